@@ -1,0 +1,410 @@
+//! The scene format of INTERFACES.md: camera, ambient, lights and objects.
+//!
+//! Positions and transforms are kept in `f64` so that a scene 10 km from the
+//! origin loses nothing before [`Scene::origin`] is subtracted; everything the
+//! GPU and the reference see is relative to that origin, in `f32`.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::{anyhow, bail, Context, Result};
+use glam::{DMat4, DQuat, DVec3, EulerRot, Vec3};
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::mesh::{self, Mesh};
+
+/// The camera's far plane: a distance, or `"infinite"`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Far {
+    Finite(f64),
+    Infinite,
+}
+
+#[derive(Clone, Debug)]
+pub struct Camera {
+    pub eye: DVec3,
+    pub target: DVec3,
+    pub up: DVec3,
+    pub fov_y_deg: f64,
+    pub near: f64,
+    pub far: Far,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind {
+    /// `direction` is the way the light travels (unit length).
+    Directional { direction: DVec3 },
+    Point { position: DVec3, range: f64 },
+    Spot { position: DVec3, direction: DVec3, range: f64, spot_angle_deg: f64 },
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Light {
+    pub kind: LightKind,
+    pub color: Vec3,
+}
+
+#[derive(Clone, Debug)]
+pub struct Object {
+    /// The name as written in the scene (`"cube"` or a path).
+    pub mesh_name: String,
+    pub mesh: Arc<Mesh>,
+    /// `T * Rz * Ry * Rx * S`, in world space, double precision.
+    pub model: DMat4,
+    pub color: Vec3,
+    pub casts_shadow: bool,
+}
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// `"default"` for a lesson's built-in scene, else the file path.
+    pub name: String,
+    pub camera: Camera,
+    pub ambient: Vec3,
+    pub lights: Vec<Light>,
+    pub objects: Vec<Object>,
+}
+
+// ---- the TOML as written -------------------------------------------------
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    camera: Spanned<CameraFile>,
+    #[serde(default)]
+    ambient: Option<AmbientFile>,
+    #[serde(default)]
+    lights: Vec<Spanned<LightFile>>,
+    #[serde(default)]
+    objects: Vec<Spanned<ObjectFile>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CameraFile {
+    eye: [f64; 3],
+    target: [f64; 3],
+    #[serde(default = "default_up")]
+    up: [f64; 3],
+    #[serde(default = "default_fov")]
+    fov_y_deg: f64,
+    #[serde(default = "default_near")]
+    near: f64,
+    #[serde(default = "default_far")]
+    far: FarFile,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum FarFile {
+    Number(f64),
+    Word(String),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AmbientFile {
+    color: [f32; 3],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightFile {
+    #[serde(rename = "type")]
+    kind: String,
+    direction: Option<[f64; 3]>,
+    position: Option<[f64; 3]>,
+    range: Option<f64>,
+    spot_angle_deg: Option<f64>,
+    #[serde(default = "default_white")]
+    color: [f32; 3],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectFile {
+    mesh: String,
+    #[serde(default)]
+    translate: [f64; 3],
+    #[serde(default)]
+    rotate_deg: [f64; 3],
+    #[serde(default = "default_scale")]
+    scale: ScaleFile,
+    #[serde(default = "default_grey")]
+    color: [f32; 3],
+    #[serde(default = "default_true")]
+    casts_shadow: bool,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum ScaleFile {
+    Uniform(f64),
+    PerAxis([f64; 3]),
+}
+
+fn default_up() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn default_fov() -> f64 {
+    50.0
+}
+fn default_near() -> f64 {
+    0.1
+}
+fn default_far() -> FarFile {
+    FarFile::Number(100.0)
+}
+fn default_white() -> [f32; 3] {
+    [1.0; 3]
+}
+fn default_grey() -> [f32; 3] {
+    [0.8; 3]
+}
+fn default_scale() -> ScaleFile {
+    ScaleFile::Uniform(1.0)
+}
+fn default_true() -> bool {
+    true
+}
+
+/// 1-based line of a byte offset, for error messages.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
+}
+
+fn finite3(v: [f64; 3], what: &str) -> Result<DVec3> {
+    if v.iter().any(|c| !c.is_finite()) {
+        bail!("{what}: must be finite, got {v:?}");
+    }
+    Ok(DVec3::from(v))
+}
+
+fn unit3(v: [f64; 3], what: &str) -> Result<DVec3> {
+    let d = finite3(v, what)?;
+    if d.length_squared() < 1e-24 {
+        bail!("{what}: zero-length vector {v:?}");
+    }
+    Ok(d.normalize())
+}
+
+fn color3(v: [f32; 3], what: &str) -> Result<Vec3> {
+    if v.iter().any(|c| !c.is_finite() || *c < 0.0) {
+        bail!("{what}: colour components must be finite and >= 0, got {v:?}");
+    }
+    Ok(Vec3::from(v))
+}
+
+fn positive(x: f64, what: &str) -> Result<f64> {
+    if !(x.is_finite() && x > 0.0) {
+        bail!("{what}: must be a positive number, got {x}");
+    }
+    Ok(x)
+}
+
+impl Scene {
+    /// Loads and validates a scene file. Relative OBJ paths are relative to it.
+    pub fn load(path: &Path) -> Result<Scene> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read scene file", path.display()))?;
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Scene::parse(&text, &path.display().to_string(), &dir)
+    }
+
+    /// Parses scene TOML. `name` is used in messages; `dir` resolves OBJ paths.
+    pub fn parse(text: &str, name: &str, dir: &Path) -> Result<Scene> {
+        let file: SceneFile = toml::from_str(text).map_err(|e| {
+            let line = e.span().map(|s| line_of(text, s.start));
+            let msg = e.message().trim().to_string();
+            match line {
+                Some(l) => anyhow!("{name}:{l}: {msg}"),
+                None => anyhow!("{name}: {msg}"),
+            }
+        })?;
+        let at = |span: std::ops::Range<usize>| format!("{name}:{}", line_of(text, span.start));
+
+        let cam_span = file.camera.span();
+        let c = file.camera.into_inner();
+        let camera = (|| -> Result<Camera> {
+            let eye = finite3(c.eye, "camera.eye")?;
+            let target = finite3(c.target, "camera.target")?;
+            let up = unit3(c.up, "camera.up")?;
+            if (target - eye).length_squared() < 1e-24 {
+                bail!("camera.target: equals camera.eye");
+            }
+            if (target - eye).normalize().cross(up).length() < 1e-6 {
+                bail!("camera.up: parallel to the view direction");
+            }
+            let fov = c.fov_y_deg;
+            if !(fov.is_finite() && fov > 0.0 && fov < 179.0) {
+                bail!("camera.fov_y_deg: must be in (0, 179), got {fov}");
+            }
+            let near = positive(c.near, "camera.near")?;
+            let far = match c.far {
+                FarFile::Number(f) => {
+                    let f = positive(f, "camera.far")?;
+                    if f <= near {
+                        bail!("camera.far: must be greater than near ({near}), got {f}");
+                    }
+                    Far::Finite(f)
+                }
+                FarFile::Word(w) if w == "infinite" => Far::Infinite,
+                FarFile::Word(w) => bail!("camera.far: a number or \"infinite\", got {w:?}"),
+            };
+            Ok(Camera { eye, target, up, fov_y_deg: fov, near, far })
+        })()
+        .map_err(|e| anyhow!("{}: {e}", at(cam_span)))?;
+
+        let ambient = match file.ambient {
+            Some(a) => color3(a.color, "ambient.color").map_err(|e| anyhow!("{name}: {e}"))?,
+            None => Vec3::splat(0.08),
+        };
+
+        let mut lights = Vec::new();
+        for (i, l) in file.lights.into_iter().enumerate() {
+            let span = l.span();
+            let l = l.into_inner();
+            let light = parse_light(l, i).map_err(|e| anyhow!("{}: {e}", at(span)))?;
+            lights.push(light);
+        }
+        if lights.is_empty() {
+            bail!("{name}: lights: the scene needs at least one [[lights]] entry");
+        }
+
+        let mut objects = Vec::new();
+        let mut cache: Vec<(String, Arc<Mesh>)> = Vec::new();
+        for (i, o) in file.objects.into_iter().enumerate() {
+            let span = o.span();
+            let o = o.into_inner();
+            let obj = parse_object(o, i, dir, &mut cache).map_err(|e| anyhow!("{}: {e}", at(span)))?;
+            objects.push(obj);
+        }
+        if objects.is_empty() {
+            bail!("{name}: objects: the scene needs at least one [[objects]] entry");
+        }
+        Ok(Scene { name: name.to_string(), camera, ambient, lights, objects })
+    }
+
+    /// A lesson's built-in scene: TOML compiled into the binary, meshes built in.
+    pub fn builtin(name: &str, text: &str) -> Result<Scene> {
+        let mut s = Scene::parse(text, name, Path::new("."))?;
+        s.name = "default".into();
+        Ok(s)
+    }
+
+    /// World-space bounds of every object, in `f64`.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for o in &self.objects {
+            for p in &o.mesh.positions {
+                let w = o.model.transform_point3(p.as_dvec3());
+                lo = lo.min(w);
+                hi = hi.max(w);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// The point everything is made relative to before going to `f32`:
+    /// the centre of the scene bounds. Huge coordinates cancel here, in `f64`.
+    pub fn origin(&self) -> DVec3 {
+        let (lo, hi) = self.bounds();
+        (lo + hi) * 0.5
+    }
+
+    /// Object-to-origin-relative matrix in `f32`: `T(-origin) * model`, formed in `f64`.
+    pub fn model_relative(&self, object: usize) -> glam::Mat4 {
+        (DMat4::from_translation(-self.origin()) * self.objects[object].model).as_mat4()
+    }
+
+    /// Every triangle in origin-relative world space, with its object index.
+    pub fn world_triangles(&self) -> Vec<([Vec3; 3], u32)> {
+        let origin = self.origin();
+        let mut out = Vec::new();
+        for (oi, o) in self.objects.iter().enumerate() {
+            let rel = DMat4::from_translation(-origin) * o.model;
+            let w: Vec<Vec3> = o
+                .mesh
+                .positions
+                .iter()
+                .map(|p| rel.transform_point3(p.as_dvec3()).as_vec3())
+                .collect();
+            for t in o.mesh.indices.chunks_exact(3) {
+                out.push(([w[t[0] as usize], w[t[1] as usize], w[t[2] as usize]], oi as u32));
+            }
+        }
+        out
+    }
+}
+
+fn parse_light(l: LightFile, i: usize) -> Result<Light> {
+    let p = format!("lights[{i}]");
+    let color = color3(l.color, &format!("{p}.color"))?;
+    let need = |v: Option<[f64; 3]>, f: &str| -> Result<[f64; 3]> {
+        v.ok_or_else(|| anyhow!("{p}.{f}: required for a {} light", l.kind))
+    };
+    let range = |r: Option<f64>| -> Result<f64> {
+        positive(r.ok_or_else(|| anyhow!("{p}.range: required for a {} light", l.kind))?, &format!("{p}.range"))
+    };
+    let kind = match l.kind.as_str() {
+        "directional" => LightKind::Directional {
+            direction: unit3(need(l.direction, "direction")?, &format!("{p}.direction"))?,
+        },
+        "point" => LightKind::Point {
+            position: finite3(need(l.position, "position")?, &format!("{p}.position"))?,
+            range: range(l.range)?,
+        },
+        "spot" => {
+            let a = l.spot_angle_deg.ok_or_else(|| anyhow!("{p}.spot_angle_deg: required for a spot light"))?;
+            if !(a.is_finite() && a > 0.0 && a < 179.0) {
+                bail!("{p}.spot_angle_deg: must be in (0, 179), got {a}");
+            }
+            LightKind::Spot {
+                position: finite3(need(l.position, "position")?, &format!("{p}.position"))?,
+                direction: unit3(need(l.direction, "direction")?, &format!("{p}.direction"))?,
+                range: range(l.range)?,
+                spot_angle_deg: a,
+            }
+        }
+        other => bail!("{p}.type: unknown light type {other:?} (expected \"directional\", \"point\" or \"spot\")"),
+    };
+    Ok(Light { kind, color })
+}
+
+fn parse_object(o: ObjectFile, i: usize, dir: &Path, cache: &mut Vec<(String, Arc<Mesh>)>) -> Result<Object> {
+    let p = format!("objects[{i}]");
+    let t = finite3(o.translate, &format!("{p}.translate"))?;
+    let r = finite3(o.rotate_deg, &format!("{p}.rotate_deg"))?;
+    let s = match o.scale {
+        ScaleFile::Uniform(s) => DVec3::splat(s),
+        ScaleFile::PerAxis(v) => finite3(v, &format!("{p}.scale"))?,
+    };
+    if s.to_array().iter().any(|c| !c.is_finite() || c.abs() < 1e-12) {
+        bail!("{p}.scale: every component must be finite and non-zero, got {s}");
+    }
+    let color = color3(o.color, &format!("{p}.color"))?;
+    let mesh = match cache.iter().find(|(n, _)| *n == o.mesh) {
+        Some((_, m)) => m.clone(),
+        None => {
+            let m = Arc::new(load_mesh(&o.mesh, dir).map_err(|e| anyhow!("{p}.mesh: {e:#}"))?);
+            cache.push((o.mesh.clone(), m.clone()));
+            m
+        }
+    };
+    // T * Rz * Ry * Rx * S: rotate about X first, then Y, then Z.
+    let rot = DQuat::from_euler(EulerRot::ZYX, r.z.to_radians(), r.y.to_radians(), r.x.to_radians());
+    let model = DMat4::from_scale_rotation_translation(s, rot, t);
+    Ok(Object { mesh_name: o.mesh, mesh, model, color, casts_shadow: o.casts_shadow })
+}
+
+/// A built-in name, or an `.obj` path relative to the scene's folder.
+fn load_mesh(name: &str, dir: &Path) -> Result<Mesh> {
+    if name.to_ascii_lowercase().ends_with(".obj") {
+        let path: PathBuf = dir.join(name);
+        mesh::load_obj(&path)
+    } else {
+        mesh::builtin(name)
+    }
+}
