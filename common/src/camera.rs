@@ -1,1 +1,141 @@
-//! (in progress)
+//! Camera and light matrices. Everything here is origin-relative
+//! (see [`Scene::origin`]): formed in `f64`, handed to the GPU in `f32`.
+
+use glam::dcamera::rh::proj::directx as webgpu;
+use glam::dcamera::rh::view::look_at_mat4;
+use glam::{DMat4, DVec3, Mat4, Vec3};
+
+use crate::scene::{Far, LightKind, Scene};
+
+/// Camera matrices for a `width × height` image, relative to the scene origin.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraMatrices {
+    pub view: Mat4,
+    pub proj: Mat4,
+    pub view_proj: Mat4,
+    /// The camera position, origin-relative.
+    pub eye: Vec3,
+}
+
+/// Right-handed perspective with depth in [0, 1] (WebGPU's, which glam calls
+/// the DirectX convention), or with an infinite far plane.
+pub fn perspective(fov_y_deg: f64, aspect: f64, near: f64, far: Far) -> DMat4 {
+    match far {
+        Far::Finite(f) => webgpu::perspective(fov_y_deg.to_radians(), aspect, near, f),
+        Far::Infinite => webgpu::perspective_infinite(fov_y_deg.to_radians(), aspect, near),
+    }
+}
+
+pub fn camera_matrices(scene: &Scene, width: u32, height: u32) -> CameraMatrices {
+    camera_matrices_with_far(scene, width, height, scene.camera.far)
+}
+
+/// The same camera with another far plane (lesson 07 swaps finite and infinite).
+pub fn camera_matrices_with_far(scene: &Scene, width: u32, height: u32, far: Far) -> CameraMatrices {
+    let c = &scene.camera;
+    let o = scene.origin();
+    let view = look_at_mat4(c.eye - o, c.target - o, c.up);
+    let proj = perspective(c.fov_y_deg, width as f64 / height as f64, c.near, far);
+    CameraMatrices {
+        view: view.as_mat4(),
+        proj: proj.as_mat4(),
+        view_proj: (proj * view).as_mat4(),
+        eye: (c.eye - o).as_vec3(),
+    }
+}
+
+/// An `up` vector that is not parallel to `dir`.
+pub fn stable_up(dir: DVec3) -> DVec3 {
+    if dir.normalize().y.abs() > 0.99 {
+        DVec3::Z
+    } else {
+        DVec3::Y
+    }
+}
+
+// ANCHOR: light_view_proj
+/// Directional light: an orthographic frustum fitted to the scene bounds.
+///
+/// The light "camera" sits outside the bounding sphere looking along the light
+/// direction; the ortho box is the bounds' eight corners seen from there, so
+/// every caster and receiver lands inside the depth map.
+pub fn directional_light_view_proj(scene: &Scene, direction: DVec3) -> Mat4 {
+    let o = scene.origin();
+    let (lo, hi) = scene.bounds();
+    let (lo, hi) = (lo - o, hi - o);
+    let centre = (lo + hi) * 0.5;
+    let radius = ((hi - lo).length() * 0.5).max(1e-6);
+    let eye = centre - direction.normalize() * radius * 2.0;
+    let view = look_at_mat4(eye, centre, stable_up(direction));
+    let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for i in 0..8 {
+        let corner = DVec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        let v = view.transform_point3(corner);
+        a = a.min(v);
+        b = b.max(v);
+    }
+    // View space looks down -z: near = -max z, far = -min z.
+    let proj = webgpu::orthographic(a.x, b.x, a.y, b.y, -b.z, -a.z);
+    (proj * view).as_mat4()
+}
+// ANCHOR_END: light_view_proj
+
+/// Spot light: a perspective frustum along the spot direction with the cone's
+/// full angle and the light's range as the far plane.
+pub fn spot_light_view_proj(scene: &Scene, position: DVec3, direction: DVec3, range: f64, angle_deg: f64) -> Mat4 {
+    let p = position - scene.origin();
+    let view = look_at_mat4(p, p + direction, stable_up(direction));
+    let near = (range * 1e-3).max(1e-4);
+    let proj = webgpu::perspective(angle_deg.to_radians(), 1.0, near, range);
+    (proj * view).as_mat4()
+}
+
+/// The light's view-projection for a directional or spot light
+/// (point lights use six cube faces: see lesson 04).
+pub fn light_view_proj(scene: &Scene, light: usize) -> Option<Mat4> {
+    match scene.lights[light].kind {
+        LightKind::Directional { direction } => Some(directional_light_view_proj(scene, direction)),
+        LightKind::Spot { position, direction, range, spot_angle_deg } => {
+            Some(spot_light_view_proj(scene, position, direction, range, spot_angle_deg))
+        }
+        LightKind::Point { .. } => None,
+    }
+}
+
+/// Light data as the shaders see it (origin-relative).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LightUniform {
+    pub view_proj: [[f32; 4]; 4],
+    /// xyz: position (point/spot) or the direction light travels (directional); w: kind 0/1/2.
+    pub position_or_dir: [f32; 4],
+    /// xyz: spot direction; w: cos(half angle).
+    pub spot: [f32; 4],
+    /// rgb: colour; w: range (0 for directional).
+    pub color_range: [f32; 4],
+}
+
+pub fn light_uniform(scene: &Scene, light: usize) -> LightUniform {
+    let l = &scene.lights[light];
+    let o = scene.origin();
+    let vp = light_view_proj(scene, light).unwrap_or(Mat4::IDENTITY);
+    let (pd, spot, range) = match l.kind {
+        LightKind::Directional { direction } => (direction.as_vec3().extend(0.0), [0.0, 0.0, 0.0, -1.0], 0.0),
+        LightKind::Point { position, range } => ((position - o).as_vec3().extend(1.0), [0.0, 0.0, 0.0, -1.0], range),
+        LightKind::Spot { position, direction, range, spot_angle_deg } => {
+            let c = (spot_angle_deg.to_radians() * 0.5).cos() as f32;
+            let d = direction.as_vec3();
+            ((position - o).as_vec3().extend(2.0), [d.x, d.y, d.z, c], range)
+        }
+    };
+    LightUniform {
+        view_proj: vp.to_cols_array_2d(),
+        position_or_dir: pd.to_array(),
+        spot,
+        color_range: l.color.extend(range as f32).to_array(),
+    }
+}

@@ -1,1 +1,52 @@
-//! (in progress)
+//! The command line every lesson shares (INTERFACES.md).
+
+use std::path::PathBuf;
+
+use clap::Parser;
+
+#[derive(Parser, Debug, Clone)]
+#[command(about = "A lesson of the shadow workbook", disable_version_flag = true)]
+pub struct Args {
+    /// Render offscreen, write images and report.json, print the report table.
+    #[arg(long)]
+    pub headless: bool,
+    /// A scene file (TOML); the lesson's default scene otherwise.
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
+    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(16..=8192))]
+    pub width: u32,
+    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(16..=8192))]
+    pub height: u32,
+    /// Run only this variant (repeatable). Default: all of the lesson's variants.
+    #[arg(long = "variant", value_name = "NAME")]
+    pub variants: Vec<String>,
+    /// Print the lesson's variants and exit.
+    #[arg(long)]
+    pub list_variants: bool,
+    /// Timed frames per variant after warm-up; the report quotes the median.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=10000))]
+    pub frames: u32,
+    /// Output folder. Default: out/<lesson>/
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// vulkan | gl | metal | dx12 (WGPU_BACKEND is honoured too).
+    #[arg(long)]
+    pub backend: Option<String>,
+}
+
+impl Args {
+    /// Arguments for a test or a tool: headless, a given size, one frame.
+    pub fn headless(width: u32, height: u32) -> Args {
+        Args {
+            headless: true,
+            scene: None,
+            width,
+            height,
+            variants: Vec::new(),
+            list_variants: false,
+            frames: 1,
+            out: None,
+            backend: None,
+        }
+    }
+}

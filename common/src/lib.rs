@@ -21,8 +21,10 @@ pub mod reference;
 pub mod render;
 pub mod report;
 pub mod scene;
+pub mod shadow_map;
 pub mod timing;
+pub mod window;
 
-pub use anyhow::{Context, Result};
+pub use anyhow::{self, Context, Result};
 pub use glam;
 pub use wgpu;

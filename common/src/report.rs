@@ -1,1 +1,84 @@
-//! (in progress)
+//! `report.json` (INTERFACES.md) and the terminal table.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::metrics::ErrorStats;
+use crate::timing::TimingSource;
+
+#[derive(Serialize, Clone, Debug)]
+pub struct AdapterReport {
+    pub name: String,
+    pub backend: String,
+}
+
+#[derive(Serialize, Clone, Debug)]
+pub struct VariantReport {
+    pub name: String,
+    /// All lights together (pixel counts summed over lights).
+    pub error: ErrorStats,
+    /// One entry per light, in scene order.
+    pub error_per_light: Vec<ErrorStats>,
+    /// Median milliseconds: `total`, one key per pass, `cpu_*` for CPU work.
+    pub timing_ms: BTreeMap<String, f64>,
+    pub timing_source: TimingSource,
+    pub counters: BTreeMap<String, u64>,
+}
+
+#[derive(Serialize, Clone, Debug)]
+pub struct Report {
+    pub lesson: String,
+    pub adapter: AdapterReport,
+    pub width: u32,
+    pub height: u32,
+    pub scene: String,
+    pub reference_ms: f64,
+    pub frames: u32,
+    pub variants: Vec<VariantReport>,
+}
+
+/// Sums per-light statistics into one (weighted by receiver pixels).
+pub fn combine(per_light: &[ErrorStats]) -> ErrorStats {
+    let n: u64 = per_light.iter().map(|s| s.receiver_pixels).sum();
+    let w = |f: fn(&ErrorStats) -> f64| -> f64 {
+        if n == 0 {
+            0.0
+        } else {
+            per_light.iter().map(|s| f(s) * s.receiver_pixels as f64).sum::<f64>() / n as f64
+        }
+    };
+    ErrorStats {
+        receiver_pixels: n,
+        misclassified_pct: w(|s| s.misclassified_pct),
+        false_shadow_pct: w(|s| s.false_shadow_pct),
+        false_lit_pct: w(|s| s.false_lit_pct),
+        mean_abs: w(|s| s.mean_abs),
+    }
+}
+
+impl Report {
+    /// The terminal table: adapter and reference time, then one row a variant.
+    pub fn table(&self) -> String {
+        let mut s = String::new();
+        s += &format!("{} on {} ({}), {}x{}, scene {}\n", self.lesson, self.adapter.name, self.adapter.backend, self.width, self.height, self.scene);
+        s += &format!("reference (CPU ray cast): {:.1} ms\n", self.reference_ms);
+        let src = self.variants.first().map(|v| v.timing_source);
+        if src == Some(TimingSource::CpuWall) {
+            s += "timing: CPU wall clock per pass (no GPU timestamp queries on this adapter)\n";
+        } else {
+            s += &format!("timing: GPU timestamps, median of {} frames\n", self.frames);
+        }
+        let w = self.variants.iter().map(|v| v.name.len()).max().unwrap_or(7).max(7);
+        s += &format!("{:<w$} | misclassified % | false shadow | false lit |       ms\n", "variant");
+        s += &format!("{}-|-----------------|--------------|-----------|---------\n", "-".repeat(w));
+        for v in &self.variants {
+            let ms = v.timing_ms.get("total").copied().unwrap_or(f64::NAN);
+            s += &format!(
+                "{:<w$} | {:>15.3} | {:>12.3} | {:>9.3} | {:>8.3}\n",
+                v.name, v.error.misclassified_pct, v.error.false_shadow_pct, v.error.false_lit_pct, ms
+            );
+        }
+        s
+    }
+}

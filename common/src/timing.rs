@@ -1,1 +1,237 @@
-//! (in progress)
+//! Timing a frame pass by pass.
+//!
+//! With `TIMESTAMP_QUERY`, every pass writes a GPU timestamp at its start and
+//! end; the report quotes GPU milliseconds. Without it (llvmpipe over GL, for
+//! one), each pass is submitted on its own and timed by the CPU wall clock
+//! around submit-and-wait: slower and noisier, and labelled `cpu_wall`.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use anyhow::{anyhow, Result};
+
+use crate::gpu::Gpu;
+
+/// Where the milliseconds came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TimingSource {
+    GpuTimestamps,
+    CpuWall,
+}
+
+const MAX_QUERIES: u32 = 512;
+
+/// Owns the query set and its readback buffers; reused frame after frame.
+pub struct Timer {
+    queries: Option<(wgpu::QuerySet, wgpu::Buffer, wgpu::Buffer)>,
+    period_ns: f64,
+}
+
+impl Timer {
+    pub fn new(gpu: &Gpu) -> Timer {
+        let queries = gpu.has(wgpu::Features::TIMESTAMP_QUERY).then(|| {
+            let set = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: MAX_QUERIES,
+            });
+            let size = MAX_QUERIES as u64 * 8;
+            let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamp resolve"),
+                size,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            let read = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamp readback"),
+                size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            (set, resolve, read)
+        });
+        Timer { queries, period_ns: gpu.queue.get_timestamp_period() as f64 }
+    }
+
+    pub fn source(&self) -> TimingSource {
+        if self.queries.is_some() {
+            TimingSource::GpuTimestamps
+        } else {
+            TimingSource::CpuWall
+        }
+    }
+
+    /// Starts recording a frame.
+    pub fn frame<'a>(&'a mut self, gpu: &'a Gpu) -> Frame<'a> {
+        Frame {
+            encoder: new_encoder(gpu),
+            gpu,
+            timer: self,
+            names: Vec::new(),
+            wall: Vec::new(),
+            cpu: Vec::new(),
+        }
+    }
+}
+
+fn new_encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
+    gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") })
+}
+
+/// The timestamp slots of one pass; hand them to the pass descriptor.
+pub struct PassTimestamps<'q> {
+    slot: Option<(&'q wgpu::QuerySet, u32)>,
+}
+
+impl<'q> PassTimestamps<'q> {
+    pub fn render(&self) -> Option<wgpu::RenderPassTimestampWrites<'q>> {
+        self.slot.map(|(query_set, i)| wgpu::RenderPassTimestampWrites {
+            query_set,
+            beginning_of_pass_write_index: Some(i),
+            end_of_pass_write_index: Some(i + 1),
+        })
+    }
+
+    pub fn compute(&self) -> Option<wgpu::ComputePassTimestampWrites<'q>> {
+        self.slot.map(|(query_set, i)| wgpu::ComputePassTimestampWrites {
+            query_set,
+            beginning_of_pass_write_index: Some(i),
+            end_of_pass_write_index: Some(i + 1),
+        })
+    }
+}
+
+/// One frame being recorded. Passes are named; a name used twice (one
+/// "lighting" pass per light) adds up.
+pub struct Frame<'a> {
+    pub gpu: &'a Gpu,
+    encoder: wgpu::CommandEncoder,
+    timer: &'a mut Timer,
+    names: Vec<String>,
+    wall: Vec<(String, f64)>,
+    cpu: Vec<(String, f64)>,
+}
+
+/// Milliseconds of one frame: `total` and one entry per pass name.
+#[derive(Clone, Debug, Default)]
+pub struct FrameTimes {
+    pub ms: BTreeMap<String, f64>,
+}
+
+impl<'a> Frame<'a> {
+    /// Records one pass. `f` gets the encoder and the pass's timestamp slots.
+    pub fn pass<R>(&mut self, name: &str, f: impl FnOnce(&mut wgpu::CommandEncoder, &PassTimestamps) -> R) -> R {
+        match &self.timer.queries {
+            Some((set, _, _)) if (self.names.len() as u32 + 1) * 2 <= MAX_QUERIES => {
+                let ts = PassTimestamps { slot: Some((set, self.names.len() as u32 * 2)) };
+                self.names.push(name.to_string());
+                f(&mut self.encoder, &ts)
+            }
+            Some(_) => f(&mut self.encoder, &PassTimestamps { slot: None }),
+            None => {
+                // CPU wall clock: submit what came before, then time this pass alone.
+                let before = std::mem::replace(&mut self.encoder, new_encoder(self.gpu));
+                self.gpu.queue.submit([before.finish()]);
+                let _ = self.gpu.wait();
+                let t = Instant::now();
+                let r = f(&mut self.encoder, &PassTimestamps { slot: None });
+                let this = std::mem::replace(&mut self.encoder, new_encoder(self.gpu));
+                self.gpu.queue.submit([this.finish()]);
+                let _ = self.gpu.wait();
+                self.wall.push((name.to_string(), t.elapsed().as_secs_f64() * 1e3));
+                r
+            }
+        }
+    }
+
+    /// Times CPU-side work (silhouette extraction, ...) as `cpu_<name>`.
+    pub fn cpu<R>(&mut self, name: &str, f: impl FnOnce() -> R) -> R {
+        let t = Instant::now();
+        let r = f();
+        self.cpu.push((format!("cpu_{name}"), t.elapsed().as_secs_f64() * 1e3));
+        r
+    }
+
+    /// Direct access for copies outside any timed pass.
+    pub fn encoder(&mut self) -> &mut wgpu::CommandEncoder {
+        &mut self.encoder
+    }
+
+    /// Submits, waits, and returns the frame's milliseconds.
+    pub fn finish(mut self) -> Result<FrameTimes> {
+        let n = self.names.len() as u32 * 2;
+        if let (Some((set, resolve, read)), true) = (&self.timer.queries, n > 0) {
+            self.encoder.resolve_query_set(set, 0..n, resolve, 0);
+            self.encoder.copy_buffer_to_buffer(resolve, 0, read, 0, n as u64 * 8);
+        }
+        self.gpu.queue.submit([self.encoder.finish()]);
+        self.gpu.wait()?;
+        let mut ms: BTreeMap<String, f64> = BTreeMap::new();
+        for (k, v) in self.cpu {
+            *ms.entry(k).or_default() += v;
+        }
+        match (&self.timer.queries, n > 0) {
+            (Some((_, _, read)), true) => {
+                let stamps = read_u64s(self.gpu, read, n as usize)?;
+                let to_ms = self.timer.period_ns / 1e6;
+                let (mut first, mut last) = (u64::MAX, 0u64);
+                for (i, name) in self.names.iter().enumerate() {
+                    let (a, b) = (stamps[2 * i], stamps[2 * i + 1]);
+                    first = first.min(a);
+                    last = last.max(b);
+                    *ms.entry(name.clone()).or_default() += b.saturating_sub(a) as f64 * to_ms;
+                }
+                ms.insert("total".into(), last.saturating_sub(first) as f64 * to_ms);
+            }
+            _ => {
+                let mut total = 0.0;
+                for (k, v) in self.wall {
+                    total += v;
+                    *ms.entry(k).or_default() += v;
+                }
+                ms.insert("total".into(), total);
+            }
+        }
+        Ok(FrameTimes { ms })
+    }
+}
+
+fn read_u64s(gpu: &Gpu, buf: &wgpu::Buffer, n: usize) -> Result<Vec<u64>> {
+    let slice = buf.slice(..(n as u64 * 8));
+    slice.map_async(wgpu::MapMode::Read, |_| {});
+    gpu.wait()?;
+    let out = {
+        let view = slice.get_mapped_range().map_err(|e| anyhow!("timestamp readback: {e}"))?;
+        bytemuck::cast_slice::<u8, u64>(&view).to_vec()
+    };
+    buf.unmap();
+    Ok(out)
+}
+
+/// The median of each key over several frames (the report's figure).
+pub fn median_times(frames: &[FrameTimes]) -> BTreeMap<String, f64> {
+    let mut keys: Vec<&String> = frames.iter().flat_map(|f| f.ms.keys()).collect();
+    keys.sort();
+    keys.dedup();
+    keys.into_iter()
+        .map(|k| {
+            let mut v: Vec<f64> = frames.iter().map(|f| f.ms.get(k).copied().unwrap_or(0.0)).collect();
+            v.sort_by(|a, b| a.total_cmp(b));
+            let m = if v.len() % 2 == 1 { v[v.len() / 2] } else { 0.5 * (v[v.len() / 2 - 1] + v[v.len() / 2]) };
+            (k.clone(), m)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        let f = |t: f64| FrameTimes { ms: [("total".to_string(), t)].into_iter().collect() };
+        assert_eq!(median_times(&[f(3.0), f(1.0), f(2.0)])["total"], 2.0);
+        assert_eq!(median_times(&[f(4.0), f(1.0), f(2.0), f(3.0)])["total"], 2.5);
+    }
+}
