@@ -2,6 +2,9 @@
 // Appended to common.wgsl (bindings, vs_scene, lit_output).
 
 @group(2) @binding(0) var shadow_map: texture_depth_2d;
+// A comparison sampler with nearest filtering: the hardware does the
+// `receiver <= stored` test for one texel and returns 0 or 1.
+@group(2) @binding(1) var shadow_compare: sampler_comparison;
 
 // ANCHOR: shadow_coords
 // World position -> (u, v, depth) in the shadow map.
@@ -21,11 +24,10 @@ fn visibility(world: vec3<f32>) -> f32 {
     if any(s.xy < vec2<f32>(0.0)) || any(s.xy >= vec2<f32>(1.0)) || s.z > 1.0 {
         return 1.0;
     }
-    let size = vec2<f32>(textureDimensions(shadow_map));
-    let stored = textureLoad(shadow_map, vec2<i32>(floor(s.xy * size)), 0);
-    // No bias: a receiver a rounding error behind its own stored depth is
-    // "in shadow". That is shadow acne, measured here and fixed in lesson 02.
-    return select(0.0, 1.0, s.z <= stored);
+    // lit = (s.z <= stored depth of the texel holding s.xy). No bias: a
+    // receiver a rounding error behind its own stored depth is "in shadow".
+    // That is shadow acne, measured here and fixed in lesson 02.
+    return textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z);
 }
 // ANCHOR_END: depth_compare
 

@@ -46,7 +46,11 @@ struct PreparedTri {
 impl PreparedTri {
     fn new(t: &[Vec3; 3]) -> Self {
         let v0 = Vec3A::from(t[0]);
-        Self { v0, e1: Vec3A::from(t[1]) - v0, e2: Vec3A::from(t[2]) - v0 }
+        Self {
+            v0,
+            e1: Vec3A::from(t[1]) - v0,
+            e2: Vec3A::from(t[2]) - v0,
+        }
     }
 
     /// Distance `t` in `[t_min, t_max]` where the ray crosses either face,
@@ -85,19 +89,34 @@ impl Bvh {
     /// Builds the tree (obvhs' "medium" preset: PLOC plus reinsertion).
     pub fn build(tris: Vec<[Vec3; 3]>) -> Bvh {
         if tris.is_empty() {
-            return Bvh { cwbvh: CwBvh::default(), tris: Vec::new(), ids: Vec::new() };
+            return Bvh {
+                cwbvh: CwBvh::default(),
+                tris: Vec::new(),
+                ids: Vec::new(),
+            };
         }
         let soup: Vec<Triangle> = tris
             .iter()
-            .map(|t| Triangle { v0: t[0].into(), v1: t[1].into(), v2: t[2].into() })
+            .map(|t| Triangle {
+                v0: t[0].into(),
+                v1: t[1].into(),
+                v2: t[2].into(),
+            })
             .collect();
         let params = BvhBuildParams::medium_build();
         let mut cwbvh = build_cwbvh_from_tris(&soup, params, &mut Default::default());
         // Reorder so that leaf primitive i is triangle i.
         let ids = std::mem::take(&mut cwbvh.primitive_indices);
-        let prepared = ids.iter().map(|&i| PreparedTri::new(&tris[i as usize])).collect();
+        let prepared = ids
+            .iter()
+            .map(|&i| PreparedTri::new(&tris[i as usize]))
+            .collect();
         cwbvh.primitive_indices = (0..ids.len() as u32).collect();
-        Bvh { cwbvh, tris: prepared, ids }
+        Bvh {
+            cwbvh,
+            tris: prepared,
+            ids,
+        }
     }
 
     /// Number of triangles in the tree.
@@ -109,28 +128,34 @@ impl Bvh {
         self.tris.is_empty()
     }
 
-    /// The traversal ray: backed up by [`BACK_UP`], with a safe inverse.
-    fn traversal_ray(origin: Vec3A, dir: Vec3A, t_max: f32) -> Ray {
-        let len = dir.length();
-        let back = BACK_UP / len;
-        let mut ray = Ray::new(origin - dir * back, dir, 0.0, t_max + back);
-        let inv = |c: f32| if c.abs() < 1e-30 { 1e30_f32.copysign(c) } else { 1.0 / c };
-        ray.inv_direction = Vec3A::new(inv(dir.x), inv(dir.y), inv(dir.z));
-        ray
+    /// The traversal ray, backed up by [`BACK_UP`] and with a safe inverse,
+    /// and how far it was backed up (in units of `d`); `None` for a
+    /// non-finite or zero ray.
+    fn traversal_ray(o: Vec3A, d: Vec3A, t_max: f32) -> Option<(Ray, f32)> {
+        let back = BACK_UP / d.length();
+        if !(o.is_finite() && d.is_finite() && back.is_finite()) {
+            return None;
+        }
+        let mut ray = Ray::new(o - d * back, d, 0.0, t_max + back);
+        let inv = |c: f32| {
+            if c.abs() < 1e-30 {
+                1e30_f32.copysign(c)
+            } else {
+                1.0 / c
+            }
+        };
+        ray.inv_direction = Vec3A::new(inv(d.x), inv(d.y), inv(d.z));
+        Some((ray, back))
     }
 
     /// The nearest triangle the ray crosses with `0 <= t <= t_max`.
     /// Equal distances go to the lower triangle index, so the answer does not
     /// depend on the tree's shape.
     pub fn closest_hit(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<Hit> {
-        if self.is_empty() {
-            return None;
-        }
         let (o, d) = (Vec3A::from(origin), sanitize(dir));
-        let back = BACK_UP / d.length();
+        let (ray, back) = Self::traversal_ray(o, d, t_max)?;
         let mut best: Option<Hit> = None;
-        let mut ray_hit = RayHit::none();
-        self.cwbvh.ray_traverse(Self::traversal_ray(o, d, t_max), &mut ray_hit, |_, i| {
+        self.cwbvh.ray_traverse(ray, &mut RayHit::none(), |_, i| {
             let limit = best.map_or(t_max, |b| b.t);
             let Some(t) = self.tris[i].intersect(o, d, 0.0, limit) else {
                 return f32::INFINITY;
@@ -147,14 +172,21 @@ impl Bvh {
 
     /// Whether any triangle other than `skip_tri` crosses the ray with
     /// `t_min <= t <= t_max`. Use `t_max = f32::INFINITY` for an unbounded ray.
-    pub fn any_hit(&self, origin: Vec3, dir: Vec3, t_min: f32, t_max: f32, skip_tri: Option<u32>) -> bool {
-        if self.is_empty() || !(t_min <= t_max) {
-            return false;
-        }
+    pub fn any_hit(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_min: f32,
+        t_max: f32,
+        skip_tri: Option<u32>,
+    ) -> bool {
         let (o, d) = (Vec3A::from(origin), sanitize(dir));
-        let ray = Self::traversal_ray(o, d, t_max);
+        let Some((ray, _)) = Self::traversal_ray(o, d, t_max) else {
+            return false;
+        };
         let missed = self.cwbvh.ray_traverse_miss(ray, |_, i| {
-            let hit = Some(self.ids[i]) != skip_tri && self.tris[i].intersect(o, d, t_min, t_max).is_some();
+            let hit = Some(self.ids[i]) != skip_tri
+                && self.tris[i].intersect(o, d, t_min, t_max).is_some();
             // Anything below the ray's t_max stops the traversal.
             if hit {
                 0.0
@@ -172,7 +204,7 @@ fn sanitize(dir: Vec3) -> Vec3A {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A tiny deterministic generator (xorshift), so tests need no crate.
@@ -207,13 +239,22 @@ mod tests {
         best
     }
 
-    fn brute_any(tris: &[PreparedTri], o: Vec3, d: Vec3, t0: f32, t1: f32, skip: Option<u32>) -> bool {
+    fn brute_any(
+        tris: &[PreparedTri],
+        o: Vec3,
+        d: Vec3,
+        t0: f32,
+        t1: f32,
+        skip: Option<u32>,
+    ) -> bool {
         let (o, d) = (Vec3A::from(o), Vec3A::from(d));
-        tris.iter().enumerate().any(|(i, t)| Some(i as u32) != skip && t.intersect(o, d, t0, t1).is_some())
+        tris.iter()
+            .enumerate()
+            .any(|(i, t)| Some(i as u32) != skip && t.intersect(o, d, t0, t1).is_some())
     }
 
     /// A closed UV sphere of radius `r`: every ray from inside must hit it.
-    fn sphere(r: f32, rings: u32, segments: u32) -> Vec<[Vec3; 3]> {
+    pub(crate) fn sphere(r: f32, rings: u32, segments: u32) -> Vec<[Vec3; 3]> {
         let p = |i: u32, j: u32| {
             let th = std::f32::consts::PI * i as f32 / rings as f32;
             let ph = std::f32::consts::TAU * (j % segments) as f32 / segments as f32;
@@ -244,7 +285,12 @@ mod tests {
             match (got, want) {
                 (Some(g), Some(w)) => {
                     assert_eq!(g.tri, w.tri, "ray {k}: {o} {d}");
-                    assert!((g.t - w.t).abs() <= 1e-5 * w.t.abs().max(1.0), "ray {k}: t {} vs {}", g.t, w.t);
+                    assert!(
+                        (g.t - w.t).abs() <= 1e-5 * w.t.abs().max(1.0),
+                        "ray {k}: t {} vs {}",
+                        g.t,
+                        w.t
+                    );
                     hits += 1;
                 }
                 (None, None) => {}
@@ -271,10 +317,18 @@ mod tests {
                 [c + rng.v(1.5), c + rng.v(1.5), c + rng.v(1.5)]
             })
             .collect();
-        let mut rays: Vec<(Vec3, Vec3)> = (0..3000).map(|_| (rng.v(30.0), rng.v(2.0).normalize())).collect();
+        let mut rays: Vec<(Vec3, Vec3)> = (0..3000)
+            .map(|_| (rng.v(30.0), rng.v(2.0).normalize()))
+            .collect();
         // Axis-aligned rays, including -0.0 components (a straight-down light).
         for k in 0..200 {
-            let d = [Vec3::X, Vec3::NEG_Y, Vec3::Z, -Vec3::Y, Vec3::new(-0.0, 1.0, -0.0)][k % 5];
+            let d = [
+                Vec3::X,
+                Vec3::NEG_Y,
+                Vec3::Z,
+                -Vec3::Y,
+                Vec3::new(-0.0, 1.0, -0.0),
+            ][k % 5];
             rays.push((rng.v(20.0), d));
         }
         let hits = compare_with_brute_force(tris, &rays, 100.0);
@@ -286,13 +340,18 @@ mod tests {
         let tris = sphere(2.0, 40, 64);
         assert!(tris.len() > 4000);
         let mut rng = Rng(12345);
-        let mut rays: Vec<(Vec3, Vec3)> = (0..1500).map(|_| (rng.v(2.0), rng.v(2.0).normalize())).collect();
+        let mut rays: Vec<(Vec3, Vec3)> = (0..1500)
+            .map(|_| (rng.v(2.0), rng.v(2.0).normalize()))
+            .collect();
         rays.extend((0..1500).map(|_| (rng.v(10.0), rng.v(2.0).normalize())));
         compare_with_brute_force(tris.clone(), &rays, 100.0);
         // Closed: every ray from inside hits, and any_hit sees the shell.
         let bvh = Bvh::build(tris);
         for &(o, d) in &rays[..1500] {
-            assert!(bvh.closest_hit(o * 0.5, d, f32::INFINITY).is_some(), "escaped from {o} along {d}");
+            assert!(
+                bvh.closest_hit(o * 0.5, d, f32::INFINITY).is_some(),
+                "escaped from {o} along {d}"
+            );
             assert!(bvh.any_hit(o * 0.5, d, 0.0, f32::INFINITY, None));
         }
     }
@@ -300,14 +359,27 @@ mod tests {
     #[test]
     fn rays_through_shared_edges_and_vertices_do_not_slip_through() {
         // A 2x2 quad split into triangles; aim exactly at the diagonal and the centre vertex.
-        let (a, b, c, d) = (Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(-1.0, 0.0, 1.0));
+        let (a, b, c, d) = (
+            Vec3::new(-1.0, 0.0, -1.0),
+            Vec3::new(1.0, 0.0, -1.0),
+            Vec3::new(1.0, 0.0, 1.0),
+            Vec3::new(-1.0, 0.0, 1.0),
+        );
         let m = Vec3::ZERO;
         let bvh = Bvh::build(vec![[a, b, m], [b, c, m], [c, d, m], [d, a, m]]);
-        for p in [Vec3::ZERO, Vec3::new(0.5, 0.0, 0.5), Vec3::new(-0.3, 0.0, 0.3), Vec3::new(0.0, 0.0, 0.7)] {
+        for p in [
+            Vec3::ZERO,
+            Vec3::new(0.5, 0.0, 0.5),
+            Vec3::new(-0.3, 0.0, 0.3),
+            Vec3::new(0.0, 0.0, 0.7),
+        ] {
             for dir in [Vec3::NEG_Y, Vec3::Y, Vec3::new(0.3, -1.0, 0.2).normalize()] {
                 let o = p - dir * 3.0;
                 let hit = bvh.closest_hit(o, dir, 10.0);
-                assert!(hit.is_some_and(|h| (h.t - 3.0).abs() < 1e-5), "slipped through at {p} along {dir}");
+                assert!(
+                    hit.is_some_and(|h| (h.t - 3.0).abs() < 1e-5),
+                    "slipped through at {p} along {dir}"
+                );
             }
         }
     }
@@ -322,16 +394,29 @@ mod tests {
 
     #[test]
     fn single_triangle_front_back_skip_and_range() {
-        let bvh = Bvh::build(vec![[Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]]);
+        let bvh = Bvh::build(vec![[
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ]]);
         assert_eq!(bvh.len(), 1);
         let p = Vec3::new(0.25, 0.25, 0.0);
         // Front face (counter-clockwise seen from +Z) and back face both hit.
-        assert_eq!(bvh.closest_hit(p + Vec3::Z * 2.0, Vec3::NEG_Z, 5.0), Some(Hit { tri: 0, t: 2.0 }));
-        assert_eq!(bvh.closest_hit(p - Vec3::Z * 2.0, Vec3::Z, 5.0), Some(Hit { tri: 0, t: 2.0 }));
+        assert_eq!(
+            bvh.closest_hit(p + Vec3::Z * 2.0, Vec3::NEG_Z, 5.0),
+            Some(Hit { tri: 0, t: 2.0 })
+        );
+        assert_eq!(
+            bvh.closest_hit(p - Vec3::Z * 2.0, Vec3::Z, 5.0),
+            Some(Hit { tri: 0, t: 2.0 })
+        );
         // A ray that stops short, starts past it, or misses the triangle.
         assert_eq!(bvh.closest_hit(p + Vec3::Z * 2.0, Vec3::NEG_Z, 1.9), None);
         assert!(!bvh.any_hit(p + Vec3::Z * 2.0, Vec3::NEG_Z, 2.1, 5.0, None));
-        assert_eq!(bvh.closest_hit(Vec3::new(0.8, 0.8, 1.0), Vec3::NEG_Z, 5.0), None);
+        assert_eq!(
+            bvh.closest_hit(Vec3::new(0.8, 0.8, 1.0), Vec3::NEG_Z, 5.0),
+            None
+        );
         // Skipping the only triangle leaves nothing to hit.
         assert!(bvh.any_hit(p + Vec3::Z, Vec3::NEG_Z, 0.0, 5.0, None));
         assert!(!bvh.any_hit(p + Vec3::Z, Vec3::NEG_Z, 0.0, 5.0, Some(0)));

@@ -52,18 +52,31 @@ impl Gpu {
                 _ => wgpu::Backends::VULKAN | wgpu::Backends::GL | wgpu::Backends::METAL | wgpu::Backends::DX12,
             },
         };
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = backends;
-        desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
-        desc.display = display;
-        let instance = wgpu::Instance::new(desc);
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: None,
-            ..Default::default()
-        }))
-        .map_err(|_| anyhow!("{NO_ADAPTER_HINT}"))?;
+        // Try the primary APIs first and GL last: probing GL/EGL is slower
+        // and noisier, and Vulkan (lavapipe) has the optional features.
+        let mut found = None;
+        let mut display = display;
+        for tier in [backends & !wgpu::Backends::GL, backends & wgpu::Backends::GL] {
+            if tier.is_empty() {
+                continue;
+            }
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+            desc.backends = tier;
+            desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
+            desc.display = display.take();
+            let instance = wgpu::Instance::new(desc);
+            let options = wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: None,
+                ..Default::default()
+            };
+            if let Ok(adapter) = pollster::block_on(instance.request_adapter(&options)) {
+                found = Some((instance, adapter));
+                break;
+            }
+        }
+        let (instance, adapter) = found.ok_or_else(|| anyhow!("{NO_ADAPTER_HINT}"))?;
         let info = adapter.get_info();
         let features = adapter.features() & OPTIONAL_FEATURES;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -75,7 +88,7 @@ impl Gpu {
         .map_err(|e| anyhow!("cannot open a device on {}: {e}", info.name))?;
         // Validation errors are programming errors in a lesson; make them one clear line.
         device.on_uncaptured_error(std::sync::Arc::new(|e: wgpu::Error| {
-            eprintln!("error: wgpu: {e}");
+            eprintln!("error: wgpu: {}", e.to_string().split_whitespace().collect::<Vec<_>>().join(" "));
             std::process::exit(3);
         }));
         Ok(Gpu { instance, adapter, device, queue, info, features })

@@ -10,6 +10,7 @@
 //! - [`render`]: scene upload, frame targets, the shared passes, readback.
 //! - [`app`]: the command line, the headless runner and the window runner.
 
+pub mod adjacency;
 pub mod app;
 pub mod bvh;
 pub mod camera;

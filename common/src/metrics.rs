@@ -53,7 +53,11 @@ pub fn agree_colour(reference_visibility: f32) -> Rgba<u8> {
 /// The reference's object id image: 0 where nothing was hit, else object + 1
 /// (the GPU's convention).
 pub fn reference_object_ids(reference: &Reference) -> Vec<u32> {
-    reference.hits.iter().map(|h| h.map_or(0, |h| h.object + 1)).collect()
+    reference
+        .hits
+        .iter()
+        .map(|h| h.map_or(0, |h| h.object + 1))
+        .collect()
 }
 
 // ANCHOR: compare
@@ -61,7 +65,12 @@ pub fn reference_object_ids(reference: &Reference) -> Vec<u32> {
 /// `gpu_object_id[p]` is 0 where the GPU covered nothing, else object + 1.
 ///
 /// Panics if the images are not `width × height` of the reference.
-pub fn compare(reference: &Reference, light: usize, gpu_object_id: &[u32], gpu_visibility: &[f32]) -> Comparison {
+pub fn compare(
+    reference: &Reference,
+    light: usize,
+    gpu_object_id: &[u32],
+    gpu_visibility: &[f32],
+) -> Comparison {
     let (w, h) = (reference.width, reference.height);
     let n = w as usize * h as usize;
     assert_eq!(gpu_object_id.len(), n, "object id image is not {w}x{h}");
@@ -97,13 +106,15 @@ pub fn compare(reference: &Reference, light: usize, gpu_object_id: &[u32], gpu_v
         diff.put_pixel(p as u32 % w, p as u32 / w, colour);
     }
 
-    let pct = |count: u64| if receivers == 0 { 0.0 } else { 100.0 * count as f64 / receivers as f64 };
+    // With no receivers every count is 0, and so is every figure.
+    let of = receivers.max(1) as f64;
+    let pct = |count: u64| 100.0 * count as f64 / of;
     let stats = ErrorStats {
         receiver_pixels: receivers,
         misclassified_pct: pct(false_shadow + false_lit),
         false_shadow_pct: pct(false_shadow),
         false_lit_pct: pct(false_lit),
-        mean_abs: if receivers == 0 { 0.0 } else { abs_sum / receivers as f64 },
+        mean_abs: abs_sum / of,
     };
     Comparison { stats, diff }
 }
@@ -113,7 +124,10 @@ pub fn compare(reference: &Reference, light: usize, gpu_object_id: &[u32], gpu_v
 /// alpha 0 where no geometry covers the pixel, 255 elsewhere.
 pub fn visibility_image(object_id: &[u32], visibility: &[f32], w: u32, h: u32) -> GrayAlphaImage {
     let n = w as usize * h as usize;
-    assert!(object_id.len() == n && visibility.len() == n, "visibility images must be {w}x{h}");
+    assert!(
+        object_id.len() == n && visibility.len() == n,
+        "visibility images must be {w}x{h}"
+    );
     GrayAlphaImage::from_fn(w, h, |x, y| {
         let p = (y * w + x) as usize;
         let gray = (255.0 * visibility[p].clamp(0.0, 1.0)).round() as u8;
@@ -124,7 +138,12 @@ pub fn visibility_image(object_id: &[u32], visibility: &[f32], w: u32, h: u32) -
 /// [`visibility_image`] of the reference for `light`.
 pub fn reference_visibility_image(reference: &Reference, light: usize) -> GrayAlphaImage {
     let ids = reference_object_ids(reference);
-    visibility_image(&ids, &reference.visibility[light], reference.width, reference.height)
+    visibility_image(
+        &ids,
+        &reference.visibility[light],
+        reference.width,
+        reference.height,
+    )
 }
 
 // ANCHOR: ascii_mask
@@ -132,18 +151,34 @@ pub fn reference_visibility_image(reference: &Reference, light: usize) -> GrayAl
 /// rows` cells, rows joined by `'\n'`. A cell is `' '` when more than half of
 /// its pixels are uncovered, else `'#'` when more covered pixels are shadowed
 /// (v < 0.5) than lit, else `'.'` (ties go to the surface, then to lit).
-pub fn ascii_mask(object_id: &[u32], visibility: &[f32], w: u32, h: u32, cols: u32, rows: u32) -> String {
+pub fn ascii_mask(
+    object_id: &[u32],
+    visibility: &[f32],
+    w: u32,
+    h: u32,
+    cols: u32,
+    rows: u32,
+) -> String {
     let n = w as usize * h as usize;
-    assert!(object_id.len() == n && visibility.len() == n, "visibility images must be {w}x{h}");
+    assert!(
+        object_id.len() == n && visibility.len() == n,
+        "visibility images must be {w}x{h}"
+    );
     let mut out = String::with_capacity(((cols + 1) * rows) as usize);
     for r in 0..rows {
         if r > 0 {
             out.push('\n');
         }
         // Cell edges at floor(k·size/cells): every pixel lands in exactly one cell.
-        let (y0, y1) = (r as u64 * h as u64 / rows as u64, (r + 1) as u64 * h as u64 / rows as u64);
+        let (y0, y1) = (
+            r as u64 * h as u64 / rows as u64,
+            (r + 1) as u64 * h as u64 / rows as u64,
+        );
         for c in 0..cols {
-            let (x0, x1) = (c as u64 * w as u64 / cols as u64, (c + 1) as u64 * w as u64 / cols as u64);
+            let (x0, x1) = (
+                c as u64 * w as u64 / cols as u64,
+                (c + 1) as u64 * w as u64 / cols as u64,
+            );
             let (mut uncovered, mut shadowed, mut lit) = (0u64, 0u64, 0u64);
             for y in y0..y1 {
                 for x in x0..x1 {
@@ -175,7 +210,14 @@ pub fn ascii_mask(object_id: &[u32], visibility: &[f32], w: u32, h: u32, cols: u
 /// [`ascii_mask`] of the reference for `light`.
 pub fn reference_ascii_mask(reference: &Reference, light: usize, cols: u32, rows: u32) -> String {
     let ids = reference_object_ids(reference);
-    ascii_mask(&ids, &reference.visibility[light], reference.width, reference.height, cols, rows)
+    ascii_mask(
+        &ids,
+        &reference.visibility[light],
+        reference.width,
+        reference.height,
+        cols,
+        rows,
+    )
 }
 
 #[cfg(test)]
@@ -187,7 +229,13 @@ mod tests {
 
     /// A one-light reference from per-pixel (object hit, visibility, N·L).
     fn reference(w: u32, h: u32, pixels: &[(Option<u32>, f32, f32)]) -> Reference {
-        let hit = |object| PixelHit { object, triangle: 0, t: 1.0, position: Vec3::ZERO, normal: Vec3::Y };
+        let hit = |object| PixelHit {
+            object,
+            triangle: 0,
+            t: 1.0,
+            position: Vec3::ZERO,
+            normal: Vec3::Y,
+        };
         Reference {
             width: w,
             height: h,
@@ -215,32 +263,92 @@ mod tests {
             });
         }
         // Not receivers: grazing light, a miss, an object mismatch, outside the light (N·L 0).
-        px.extend([(Some(0), 1.0, 0.05), (None, 0.0, 0.0), (Some(1), 1.0, 0.9), (Some(0), 0.0, 0.0)]);
+        px.extend([
+            (Some(0), 1.0, 0.05),
+            (None, 0.0, 0.0),
+            (Some(1), 1.0, 0.9),
+            (Some(0), 0.0, 0.0),
+        ]);
         gpu.extend([0.0, 1.0, 0.0, 1.0]);
         let ids = [vec![1; 10], vec![1, 0, 3, 1]].concat(); // 3: the GPU sees object 2 there
         let r = reference(14, 1, &px);
         let s = compare(&r, 0, &ids, &gpu).stats;
         assert_eq!(s.receiver_pixels, 10);
-        assert_eq!((s.misclassified_pct, s.false_shadow_pct, s.false_lit_pct), (30.0, 20.0, 10.0));
-        assert!((s.mean_abs - (0.75 + 0.6 + 0.7) / 10.0).abs() < 1e-7, "mean_abs {}", s.mean_abs);
+        assert_eq!(
+            (s.misclassified_pct, s.false_shadow_pct, s.false_lit_pct),
+            (30.0, 20.0, 10.0)
+        );
+        assert!(
+            (s.mean_abs - (0.75 + 0.6 + 0.7) / 10.0).abs() < 1e-7,
+            "mean_abs {}",
+            s.mean_abs
+        );
     }
 
     #[test]
     fn no_receivers_gives_zeros() {
-        let r = reference(3, 1, &[(None, 0.0, 0.0), (Some(0), 1.0, 0.01), (Some(2), 1.0, 1.0)]);
+        let r = reference(
+            3,
+            1,
+            &[(None, 0.0, 0.0), (Some(0), 1.0, 0.01), (Some(2), 1.0, 1.0)],
+        );
         let c = compare(&r, 0, &[0, 1, 1], &[1.0, 0.0, 0.0]);
-        assert_eq!(c.stats, ErrorStats { receiver_pixels: 0, misclassified_pct: 0.0, false_shadow_pct: 0.0, false_lit_pct: 0.0, mean_abs: 0.0 });
+        assert_eq!(
+            c.stats,
+            ErrorStats {
+                receiver_pixels: 0,
+                misclassified_pct: 0.0,
+                false_shadow_pct: 0.0,
+                false_lit_pct: 0.0,
+                mean_abs: 0.0
+            }
+        );
     }
 
     #[test]
     fn diff_image_colours() {
         // false shadow, false lit, agree lit, agree shadowed, not a receiver, uncovered,
         // and covered on the GPU only.
-        let r = reference(7, 1, &[(Some(0), 1.0, 1.0), (Some(0), 0.0, 1.0), (Some(0), 1.0, 1.0), (Some(0), 0.0, 1.0), (Some(0), 1.0, 0.0), (None, 0.0, 0.0), (None, 0.0, 0.0)]);
-        let c = compare(&r, 0, &[1, 1, 1, 1, 1, 0, 1], &[0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0]);
+        let r = reference(
+            7,
+            1,
+            &[
+                (Some(0), 1.0, 1.0),
+                (Some(0), 0.0, 1.0),
+                (Some(0), 1.0, 1.0),
+                (Some(0), 0.0, 1.0),
+                (Some(0), 1.0, 0.0),
+                (None, 0.0, 0.0),
+                (None, 0.0, 0.0),
+            ],
+        );
+        let c = compare(
+            &r,
+            0,
+            &[1, 1, 1, 1, 1, 0, 1],
+            &[0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0],
+        );
         let got: Vec<Rgba<u8>> = c.diff.pixels().copied().collect();
-        assert_eq!(got, vec![FALSE_SHADOW, FALSE_LIT, Rgba([128, 128, 128, 255]), Rgba([48, 48, 48, 255]), NOT_RECEIVER, UNCOVERED, NOT_RECEIVER]);
-        assert_eq!((c.stats.receiver_pixels, c.stats.false_shadow_pct, c.stats.false_lit_pct), (4, 25.0, 25.0));
+        assert_eq!(
+            got,
+            vec![
+                FALSE_SHADOW,
+                FALSE_LIT,
+                Rgba([128, 128, 128, 255]),
+                Rgba([48, 48, 48, 255]),
+                NOT_RECEIVER,
+                UNCOVERED,
+                NOT_RECEIVER
+            ]
+        );
+        assert_eq!(
+            (
+                c.stats.receiver_pixels,
+                c.stats.false_shadow_pct,
+                c.stats.false_lit_pct
+            ),
+            (4, 25.0, 25.0)
+        );
     }
 
     #[test]
@@ -249,7 +357,10 @@ mod tests {
         let got: Vec<[u8; 2]> = img.pixels().map(|p| p.0).collect();
         assert_eq!(got, vec![[128, 0], [255, 255], [0, 255], [51, 255]]);
         let r = reference(2, 1, &[(None, 0.0, 0.0), (Some(3), 1.0, 1.0)]);
-        let got: Vec<[u8; 2]> = reference_visibility_image(&r, 0).pixels().map(|p| p.0).collect();
+        let got: Vec<[u8; 2]> = reference_visibility_image(&r, 0)
+            .pixels()
+            .map(|p| p.0)
+            .collect();
         assert_eq!(got, vec![[0, 0], [255, 255]]);
     }
 

@@ -15,7 +15,8 @@ pub const COMMON_WGSL: &str = include_str!("../../shaders/common.wgsl");
 
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 pub const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
-pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// 8-bit, like the visibility PNGs; R32Float is not renderable on downlevel GL.
+pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
 /// Background colour of the shaded frame (linear).
 pub const CLEAR_COLOR: wgpu::Color = wgpu::Color { r: 0.02, g: 0.025, b: 0.035, a: 1.0 };
 
@@ -492,7 +493,7 @@ impl FrameTargets {
         let visibility = self
             .visibility
             .iter()
-            .map(|t| read_texture(gpu, t, 4).map(|b| bytemuck::cast_slice::<u8, f32>(&b).to_vec()))
+            .map(|t| read_texture(gpu, t, 1).map(|b| b.iter().map(|&v| v as f32 / 255.0).collect()))
             .collect::<Result<Vec<_>>>()?;
         Ok(FrameImages { width: self.width, height: self.height, color, id, visibility })
     }

@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::Result;
 
 use crate::gpu::Gpu;
-use crate::render::{depth_texture, pipeline_layout_for, read_texture, vertex_state, SceneGpu};
+use crate::render::{depth_texture, pipeline_layout_for, read_texture, render_texture, vertex_state, SceneGpu};
 
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -24,11 +24,17 @@ impl ShadowMap {
         ShadowMap { size, texture, view }
     }
 
+    /// Reads the stored depths back to the CPU. Drawn through a shader into
+    /// an RGBA8 target (the float's four bytes), because GL cannot copy
+    /// depth textures to buffers.
+    pub fn read_depths(&self, gpu: &Gpu) -> Result<Vec<f32>> {
+        read_depth_texture(gpu, &self.view, self.size, wgpu::TextureViewDimension::D2)
+    }
+
     /// Writes the depth map as a picture: near = dark, far = light, the
     /// range stretched over what the map holds so the casters stand out.
     pub fn write_png(&self, gpu: &Gpu, path: &Path) -> Result<()> {
-        let raw = read_texture(gpu, &self.texture, 4)?;
-        let d: &[f32] = bytemuck::cast_slice(&raw);
+        let d = self.read_depths(gpu)?;
         let lo = d.iter().copied().fold(f32::INFINITY, f32::min);
         let hi = d.iter().copied().filter(|&x| x < 1.0).fold(lo, f32::max);
         let span = (hi - lo).max(1e-12);
@@ -146,4 +152,87 @@ pub fn shadow_map_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, map: &ShadowM
             wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
         ],
     })
+}
+
+const DEPTH_TO_BYTES_WGSL: &str = r#"
+// The depth texture bound as unfilterable float: GLSL has no textureLoad on
+// shadow samplers.
+@group(0) @binding(0) var depth: texture_2d<f32>;
+@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
+}
+@fragment fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let d = textureLoad(depth, vec2<i32>(p.xy), 0).r;
+    // The float's bits, one byte per channel: exact on the way back.
+    return unpack4x8unorm(bitcast<u32>(d));
+}
+"#;
+
+/// Reads a 2D depth texture view as `f32`s through a render pass.
+pub fn read_depth_texture(gpu: &Gpu, view: &wgpu::TextureView, size: u32, dim: wgpu::TextureViewDimension) -> Result<Vec<f32>> {
+    let device = &gpu.device;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("depth to bytes"),
+        source: wgpu::ShaderSource::Wgsl(DEPTH_TO_BYTES_WGSL.into()),
+    });
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("depth to bytes"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: dim,
+                    multisampled: false,
+                },
+                count: None,
+            },
+        ],
+    });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &layout,
+        entries: &[
+            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(view) },
+        ],
+    });
+    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor { label: None, bind_group_layouts: &[Some(&layout)], immediate_size: 0 });
+    let target_format = wgpu::TextureFormat::Rgba8Unorm;
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("depth to bytes"),
+        layout: Some(&pl),
+        vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState { module: &module, entry_point: Some("fs"), compilation_options: Default::default(), targets: &[Some(target_format.into())] }),
+        multiview_mask: None,
+        cache: None,
+    });
+    let target = render_texture(gpu, "depth bytes", size, size, target_format, wgpu::TextureUsages::empty());
+    let tv = target.create_view(&Default::default());
+    let mut enc = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("depth to bytes"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &tv,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+    gpu.queue.submit([enc.finish()]);
+    let bytes = read_texture(gpu, &target, 4)?;
+    Ok(bytes.chunks_exact(4).map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]]))).collect())
 }

@@ -1,0 +1,76 @@
+//! lesson_01 (depth map): snapshot of the shadow mask and the error figures,
+//! and the shaded frame against a committed reference image.
+//!
+//! Run `cargo insta review` after a change to see what moved.
+
+mod support;
+
+const BIN: &str = env!("CARGO_BIN_EXE_lesson_01");
+const SIZE: [&str; 4] = ["--width", "320", "--height", "180"];
+
+#[test]
+fn lesson_01_snapshot() {
+    let Some(run) = support::run_lesson(BIN, "lesson_01_snapshot", &[&SIZE[..], &["--frames", "1"]].concat()) else {
+        return;
+    };
+    let variants = run.report["variants"].as_array().expect("variants");
+    assert_eq!(variants.len(), 5, "one variant per resolution");
+    let mut text = String::from("reference visibility, light 0 ('#' shadow, '.' lit, ' ' background):\n");
+    text += &support::ascii_of(&run.out.join("reference_visibility_l0.png"), 64, 18);
+    text += "\n\nres_4096 visibility, light 0:\n";
+    text += &support::ascii_of(&run.out.join("res_4096_visibility_l0.png"), 64, 18);
+    text += "\n\nerror against the reference (rounded to whole percent):\n";
+    for v in variants {
+        text += &support::error_line(v, 0);
+        text += "\n";
+    }
+    insta::assert_snapshot!("lesson_01", text);
+}
+
+/// What lesson 01 teaches, as numbers: without bias, acne makes a large share
+/// of lit receivers falsely shadowed at every resolution, while the error at
+/// shadow edges (false lit) shrinks as the map gets finer.
+#[test]
+fn lesson_01_acne_is_measured_and_edges_improve_with_resolution() {
+    let Some(run) = support::run_lesson(BIN, "lesson_01_trend", &[&SIZE[..], &["--frames", "1"]].concat()) else {
+        return;
+    };
+    let fs = |n: &str| support::variant(&run.report, n)["error"]["false_shadow_pct"].as_f64().unwrap();
+    let fl = |n: &str| support::variant(&run.report, n)["error"]["false_lit_pct"].as_f64().unwrap();
+    for n in ["res_256", "res_1024", "res_4096"] {
+        assert!(fs(n) > 5.0, "{n}: no bias must show acne, false shadow = {}%", fs(n));
+    }
+    assert!(fl("res_4096") < fl("res_256"), "false lit must fall with resolution: {} vs {}", fl("res_4096"), fl("res_256"));
+    let receivers = support::variant(&run.report, "res_1024")["error"]["receiver_pixels"].as_u64().unwrap();
+    assert!(receivers > 10_000, "the default scene must have receivers, got {receivers}");
+}
+
+#[test]
+fn lesson_01_writes_every_output() {
+    let Some(run) = support::run_lesson(BIN, "lesson_01_outputs", &[&SIZE[..], &["--variant", "res_512"]].concat()) else {
+        return;
+    };
+    for f in ["res_512.png", "res_512_visibility_l0.png", "reference_visibility_l0.png", "res_512_diff_l0.png", "report.json", "res_512_depth_map.png"] {
+        assert!(run.out.join(f).is_file(), "missing output {f}");
+    }
+    let r = &run.report;
+    assert_eq!(r["lesson"], "lesson_01");
+    assert_eq!(r["width"], 320);
+    assert!(r["reference_ms"].as_f64().unwrap() > 0.0);
+    let v = support::variant(r, "res_512");
+    for k in ["total", "base", "shadow", "lighting"] {
+        assert!(v["timing_ms"][k].as_f64().is_some_and(|x| x >= 0.0), "timing_ms.{k} missing");
+    }
+    assert!(run.stdout.contains("misclassified %"), "the terminal table is printed");
+    let vis = image::open(run.out.join("res_512_visibility_l0.png")).unwrap();
+    assert_eq!(vis.color(), image::ColorType::La8, "visibility PNGs are 8-bit gray+alpha");
+}
+
+#[test]
+fn lesson_01_frame_matches_reference_image() {
+    let Some(run) = support::run_lesson(BIN, "lesson_01_image", &[&SIZE[..], &["--variant", "res_2048"]].concat()) else {
+        return;
+    };
+    let reference = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference_images/lesson_01_res_2048.png");
+    support::compare_with_reference(&run.out.join("res_2048.png"), &reference, 8, 24, 2.0);
+}

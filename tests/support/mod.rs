@@ -1,0 +1,160 @@
+//! Shared by the lesson tests: run a lesson binary headless, read its outputs.
+//!
+//! The tests drive the real command line (`--headless --out DIR ...`), so
+//! what they check is what a learner runs.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// With `WORKBOOK_REQUIRE_GPU=1` (CI sets it), a lesson that finds no
+/// adapter fails the test. Without it, the test says loudly that it skipped.
+pub fn gpu_required() -> bool {
+    std::env::var("WORKBOOK_REQUIRE_GPU").is_ok_and(|v| v == "1")
+}
+
+pub struct LessonRun {
+    pub out: PathBuf,
+    pub report: serde_json::Value,
+    pub stdout: String,
+}
+
+/// A fresh output folder under the target directory.
+pub fn out_dir(name: &str) -> PathBuf {
+    let backend = std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "auto".into());
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-{backend}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create test output folder");
+    dir
+}
+
+/// Runs `bin --headless --out <dir> args...`. `None` only when no adapter
+/// exists and the GPU is not required (the skip is printed).
+pub fn run_lesson(bin: &str, name: &str, args: &[&str]) -> Option<LessonRun> {
+    let out = out_dir(name);
+    let o = Command::new(bin)
+        .arg("--headless")
+        .arg("--out")
+        .arg(&out)
+        .args(args)
+        .output()
+        .expect("run the lesson binary");
+    let stderr = String::from_utf8_lossy(&o.stderr).to_string();
+    let stdout = String::from_utf8_lossy(&o.stdout).to_string();
+    if !o.status.success() {
+        if stderr.contains("no GPU adapter found") && !gpu_required() {
+            eprintln!("SKIPPED {name}: no GPU adapter (set WORKBOOK_REQUIRE_GPU=1 to make this a failure)");
+            return None;
+        }
+        panic!("{name}: lesson failed ({}):\n{stderr}\n{stdout}", o.status);
+    }
+    let text = std::fs::read_to_string(out.join("report.json")).expect("report.json written");
+    let report: serde_json::Value = serde_json::from_str(&text).expect("report.json parses");
+    Some(LessonRun { out, report, stdout })
+}
+
+/// Reads a visibility PNG (gray + alpha) as (object covered 0/1, visibility 0..1).
+pub fn read_visibility(path: &Path) -> (Vec<u32>, Vec<f32>, u32, u32) {
+    let img = image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_luma_alpha8();
+    let (w, h) = img.dimensions();
+    let ids = img.pixels().map(|p| u32::from(p.0[1] > 0)).collect();
+    let vis = img.pixels().map(|p| p.0[0] as f32 / 255.0).collect();
+    (ids, vis, w, h)
+}
+
+/// The coarse text mask a learner reads in `cargo insta review`.
+pub fn ascii_of(path: &Path, cols: u32, rows: u32) -> String {
+    let (ids, vis, w, h) = read_visibility(path);
+    common::metrics::ascii_mask(&ids, &vis, w, h, cols, rows)
+}
+
+/// One variant's error figures, rounded for a stable snapshot.
+pub fn error_line(v: &serde_json::Value, decimals: usize) -> String {
+    let e = &v["error"];
+    let f = |k: &str| e[k].as_f64().unwrap_or(f64::NAN);
+    format!(
+        "{:<14} misclassified {:>6.d$}%  false shadow {:>6.d$}%  false lit {:>6.d$}%",
+        v["name"].as_str().unwrap_or("?"),
+        f("misclassified_pct"),
+        f("false_shadow_pct"),
+        f("false_lit_pct"),
+        d = decimals
+    )
+}
+
+pub fn variant<'a>(report: &'a serde_json::Value, name: &str) -> &'a serde_json::Value {
+    report["variants"]
+        .as_array()
+        .and_then(|vs| vs.iter().find(|v| v["name"] == name))
+        .unwrap_or_else(|| panic!("variant {name} missing from report.json"))
+}
+
+/// Compares a rendered frame with a committed reference PNG.
+///
+/// Both are box-filtered into `block`×`block` cells (so single-pixel raster
+/// differences between drivers do not count); the test fails when more than
+/// `max_bad_pct` % of the cells differ by more than `tol` (0–255) in any
+/// channel. On failure, the actual image and a difference image are written
+/// next to the reference as `*.actual.png` and `*.diff.png`. A missing
+/// reference is a failure (with `WORKBOOK_BLESS=1` it is written instead).
+pub fn compare_with_reference(actual: &Path, reference: &Path, block: u32, tol: u8, max_bad_pct: f64) {
+    let a = image::open(actual).unwrap_or_else(|e| panic!("{}: {e}", actual.display())).to_rgba8();
+    if std::env::var("WORKBOOK_BLESS").is_ok_and(|v| v == "1") {
+        a.save(reference).expect("write reference image");
+        eprintln!("blessed {}", reference.display());
+        return;
+    }
+    let r = match image::open(reference) {
+        Ok(r) => r.to_rgba8(),
+        Err(e) => panic!(
+            "reference image {} is missing or unreadable ({e}); render it with WORKBOOK_BLESS=1 and look at it before committing",
+            reference.display()
+        ),
+    };
+    assert_eq!(a.dimensions(), r.dimensions(), "image size differs from {}", reference.display());
+    let (w, h) = a.dimensions();
+    let (cw, ch) = (w.div_ceil(block), h.div_ceil(block));
+    let mut bad = 0u32;
+    let mut diff = image::RgbaImage::new(w, h);
+    for cy in 0..ch {
+        for cx in 0..cw {
+            let mut sa = [0f64; 4];
+            let mut sr = [0f64; 4];
+            let mut n = 0f64;
+            for y in cy * block..((cy + 1) * block).min(h) {
+                for x in cx * block..((cx + 1) * block).min(w) {
+                    for c in 0..4 {
+                        sa[c] += a.get_pixel(x, y).0[c] as f64;
+                        sr[c] += r.get_pixel(x, y).0[c] as f64;
+                    }
+                    n += 1.0;
+                }
+            }
+            let d = (0..4).map(|c| ((sa[c] - sr[c]) / n).abs()).fold(0.0, f64::max);
+            let is_bad = d > tol as f64;
+            bad += is_bad as u32;
+            for y in cy * block..((cy + 1) * block).min(h) {
+                for x in cx * block..((cx + 1) * block).min(w) {
+                    let g = (d * 4.0).min(255.0) as u8;
+                    diff.put_pixel(x, y, if is_bad { image::Rgba([255, 0, 0, 255]) } else { image::Rgba([g, g, g, 255]) });
+                }
+            }
+        }
+    }
+    let pct = 100.0 * bad as f64 / (cw * ch) as f64;
+    if pct > max_bad_pct {
+        let stem = reference.with_extension("");
+        let act = PathBuf::from(format!("{}.actual.png", stem.display()));
+        let dif = PathBuf::from(format!("{}.diff.png", stem.display()));
+        a.save(&act).expect("write actual image");
+        diff.save(&dif).expect("write diff image");
+        panic!(
+            "{} differs from {}: {pct:.2}% of {block}x{block} cells off by more than {tol} (allowed {max_bad_pct}%); wrote {} and {}",
+            actual.display(),
+            reference.display(),
+            act.display(),
+            dif.display()
+        );
+    }
+}
