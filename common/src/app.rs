@@ -37,7 +37,13 @@ pub trait Lesson: Sized {
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self>;
 
     /// Records one frame of `variant` into `targets`, one named pass at a time.
-    fn render(&mut self, frame: &mut Frame, scene: &SceneGpu, targets: &FrameTargets, variant: &str) -> Result<()>;
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: &str,
+    ) -> Result<()>;
 
     /// Counters for the report (casters drawn, fragments, ...), after `render`.
     fn counters(&self, _variant: &str) -> BTreeMap<String, u64> {
@@ -45,7 +51,13 @@ pub trait Lesson: Sized {
     }
 
     /// Extra debug images (the depth map, ...), written after the last frame.
-    fn write_extras(&self, _gpu: &Gpu, _scene: &SceneGpu, _variant: &str, _out: &Path) -> Result<()> {
+    fn write_extras(
+        &self,
+        _gpu: &Gpu,
+        _scene: &SceneGpu,
+        _variant: &str,
+        _out: &Path,
+    ) -> Result<()> {
         Ok(())
     }
 }
@@ -62,7 +74,10 @@ pub fn main<L: Lesson>() -> ExitCode {
                 return ExitCode::SUCCESS;
             }
             let msg = e.to_string();
-            eprintln!("{}", msg.lines().next().unwrap_or("error: bad command line"));
+            eprintln!(
+                "{}",
+                msg.lines().next().unwrap_or("error: bad command line")
+            );
             return ExitCode::from(2);
         }
     };
@@ -77,7 +92,8 @@ pub fn main<L: Lesson>() -> ExitCode {
 }
 
 fn display_available() -> bool {
-    std::env::var_os("DISPLAY").is_some_and(|v| !v.is_empty()) || std::env::var_os("WAYLAND_DISPLAY").is_some_and(|v| !v.is_empty())
+    std::env::var_os("DISPLAY").is_some_and(|v| !v.is_empty())
+        || std::env::var_os("WAYLAND_DISPLAY").is_some_and(|v| !v.is_empty())
 }
 
 /// Runs as the command line says: list variants, headless, or the window.
@@ -108,7 +124,10 @@ pub fn select_variants<L: Lesson>(asked: &[String]) -> Result<Vec<String>> {
     }
     for a in asked {
         if !all.contains(a) {
-            bail!("--variant: unknown variant {a:?} (known: {})", all.join(", "));
+            bail!(
+                "--variant: unknown variant {a:?} (known: {})",
+                all.join(", ")
+            );
         }
     }
     Ok(asked.to_vec())
@@ -144,9 +163,17 @@ const WARM_UP_FRAMES: u32 = 2;
 // ANCHOR: run_headless
 /// Renders every variant offscreen, compares it with the exact reference,
 /// times it, and writes the outputs of INTERFACES.md to the output folder.
-pub fn run_headless<L: Lesson>(args: &Args, scene: Scene, variants: &[String]) -> Result<HeadlessRun> {
-    let out_dir = args.out.clone().unwrap_or_else(|| PathBuf::from("out").join(L::NAME));
-    std::fs::create_dir_all(&out_dir).with_context(|| format!("--out: cannot create {}", out_dir.display()))?;
+pub fn run_headless<L: Lesson>(
+    args: &Args,
+    scene: Scene,
+    variants: &[String],
+) -> Result<HeadlessRun> {
+    let out_dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out").join(L::NAME));
+    std::fs::create_dir_all(&out_dir)
+        .with_context(|| format!("--out: cannot create {}", out_dir.display()))?;
     let gpu = Gpu::new(args.backend.as_deref(), None)?;
     let scene_name = scene.name.clone();
     let sg = SceneGpu::new(&gpu, scene, args.width, args.height)?;
@@ -157,7 +184,10 @@ pub fn run_headless<L: Lesson>(args: &Args, scene: Scene, variants: &[String]) -
     let reference = render_reference(&sg.scene, sg.camera.view_proj, args.width, args.height);
     let (w, h) = (args.width, args.height);
     for k in 0..sg.scene.lights.len() {
-        save(&metrics::reference_visibility_image(&reference, k), &out_dir.join(format!("reference_visibility_l{k}.png")))?;
+        save(
+            &metrics::reference_visibility_image(&reference, k),
+            &out_dir.join(format!("reference_visibility_l{k}.png")),
+        )?;
     }
 
     let mut rows = Vec::new();
@@ -173,14 +203,18 @@ pub fn run_headless<L: Lesson>(args: &Args, scene: Scene, variants: &[String]) -
             }
         }
         let images = targets.read(&gpu)?;
-        let color = image::RgbaImage::from_raw(w, h, images.color.clone()).context("colour readback size")?;
+        let color = image::RgbaImage::from_raw(w, h, images.color.clone())
+            .context("colour readback size")?;
         save(&color, &out_dir.join(format!("{v}.png")))?;
         let mut per_light = Vec::new();
         let mut ascii = Vec::new();
         for k in 0..sg.scene.lights.len() {
             let vis = &images.visibility[k];
             let cmp = metrics::compare(&reference, k, &images.id, vis);
-            save(&metrics::visibility_image(&images.id, vis, w, h), &out_dir.join(format!("{v}_visibility_l{k}.png")))?;
+            save(
+                &metrics::visibility_image(&images.id, vis, w, h),
+                &out_dir.join(format!("{v}_visibility_l{k}.png")),
+            )?;
             save(&cmp.diff, &out_dir.join(format!("{v}_diff_l{k}.png")))?;
             per_light.push(cmp.stats);
             ascii.push(metrics::ascii_mask(&images.id, vis, w, h, 64, 24));
@@ -194,11 +228,18 @@ pub fn run_headless<L: Lesson>(args: &Args, scene: Scene, variants: &[String]) -
             timing_source: timer.source(),
             counters: lesson.counters(v),
         });
-        runs.push(VariantRun { name: v.clone(), images, ascii });
+        runs.push(VariantRun {
+            name: v.clone(),
+            images,
+            ascii,
+        });
     }
     let report = Report {
         lesson: L::NAME.to_string(),
-        adapter: AdapterReport { name: gpu.adapter_name(), backend: gpu.backend_name() },
+        adapter: AdapterReport {
+            name: gpu.adapter_name(),
+            backend: gpu.backend_name(),
+        },
         width: w,
         height: h,
         scene: scene_name,
@@ -207,8 +248,14 @@ pub fn run_headless<L: Lesson>(args: &Args, scene: Scene, variants: &[String]) -
         variants: rows,
     };
     let json = serde_json::to_string_pretty(&report)?;
-    std::fs::write(out_dir.join("report.json"), json).with_context(|| format!("cannot write {}", out_dir.join("report.json").display()))?;
-    Ok(HeadlessRun { report, reference, variants: runs, out_dir })
+    std::fs::write(out_dir.join("report.json"), json)
+        .with_context(|| format!("cannot write {}", out_dir.join("report.json").display()))?;
+    Ok(HeadlessRun {
+        report,
+        reference,
+        variants: runs,
+        out_dir,
+    })
 }
 // ANCHOR_END: run_headless
 
@@ -219,5 +266,6 @@ where
     [P::Subpixel]: image::EncodableLayout,
     C: std::ops::Deref<Target = [P::Subpixel]>,
 {
-    img.save(path).with_context(|| format!("cannot write {}", path.display()))
+    img.save(path)
+        .with_context(|| format!("cannot write {}", path.display()))
 }

@@ -311,12 +311,17 @@ pub(crate) mod tests {
     #[test]
     fn bvh_matches_brute_force_on_random_triangles() {
         let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-        let tris: Vec<[Vec3; 3]> = (0..3000)
+        let mut tris: Vec<[Vec3; 3]> = (0..3000)
             .map(|_| {
                 let c = rng.v(20.0);
                 [c + rng.v(1.5), c + rng.v(1.5), c + rng.v(1.5)]
             })
             .collect();
+        // Degenerate ones too (welded corners, collinear slivers): the tree must cope.
+        for _ in 0..20 {
+            let (a, b) = (rng.v(20.0), rng.v(20.0));
+            tris.extend([[a, a, b], [a, b, (a + b) * 0.5], [a, a, a]]);
+        }
         let mut rays: Vec<(Vec3, Vec3)> = (0..3000)
             .map(|_| (rng.v(30.0), rng.v(2.0).normalize()))
             .collect();

@@ -31,7 +31,12 @@ pub fn camera_matrices(scene: &Scene, width: u32, height: u32) -> CameraMatrices
 }
 
 /// The same camera with another far plane (lesson 07 swaps finite and infinite).
-pub fn camera_matrices_with_far(scene: &Scene, width: u32, height: u32, far: Far) -> CameraMatrices {
+pub fn camera_matrices_with_far(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    far: Far,
+) -> CameraMatrices {
     let c = &scene.camera;
     let o = scene.origin();
     let view = look_at_mat4(c.eye - o, c.target - o, c.up);
@@ -86,7 +91,13 @@ pub fn directional_light_view_proj(scene: &Scene, direction: DVec3) -> Mat4 {
 
 /// Spot light: a perspective frustum along the spot direction with the cone's
 /// full angle and the light's range as the far plane.
-pub fn spot_light_view_proj(scene: &Scene, position: DVec3, direction: DVec3, range: f64, angle_deg: f64) -> Mat4 {
+pub fn spot_light_view_proj(
+    scene: &Scene,
+    position: DVec3,
+    direction: DVec3,
+    range: f64,
+    angle_deg: f64,
+) -> Mat4 {
     let p = position - scene.origin();
     let view = look_at_mat4(p, p + direction, stable_up(direction));
     let near = (range * 1e-3).max(1e-4);
@@ -99,9 +110,18 @@ pub fn spot_light_view_proj(scene: &Scene, position: DVec3, direction: DVec3, ra
 pub fn light_view_proj(scene: &Scene, light: usize) -> Option<Mat4> {
     match scene.lights[light].kind {
         LightKind::Directional { direction } => Some(directional_light_view_proj(scene, direction)),
-        LightKind::Spot { position, direction, range, spot_angle_deg } => {
-            Some(spot_light_view_proj(scene, position, direction, range, spot_angle_deg))
-        }
+        LightKind::Spot {
+            position,
+            direction,
+            range,
+            spot_angle_deg,
+        } => Some(spot_light_view_proj(
+            scene,
+            position,
+            direction,
+            range,
+            spot_angle_deg,
+        )),
         LightKind::Point { .. } => None,
     }
 }
@@ -124,12 +144,27 @@ pub fn light_uniform(scene: &Scene, light: usize) -> LightUniform {
     let o = scene.origin();
     let vp = light_view_proj(scene, light).unwrap_or(Mat4::IDENTITY);
     let (pd, spot, range) = match l.kind {
-        LightKind::Directional { direction } => (direction.as_vec3().extend(0.0), [0.0, 0.0, 0.0, -1.0], 0.0),
-        LightKind::Point { position, range } => ((position - o).as_vec3().extend(1.0), [0.0, 0.0, 0.0, -1.0], range),
-        LightKind::Spot { position, direction, range, spot_angle_deg } => {
+        LightKind::Directional { direction } => {
+            (direction.as_vec3().extend(0.0), [0.0, 0.0, 0.0, -1.0], 0.0)
+        }
+        LightKind::Point { position, range } => (
+            (position - o).as_vec3().extend(1.0),
+            [0.0, 0.0, 0.0, -1.0],
+            range,
+        ),
+        LightKind::Spot {
+            position,
+            direction,
+            range,
+            spot_angle_deg,
+        } => {
             let c = (spot_angle_deg.to_radians() * 0.5).cos() as f32;
             let d = direction.as_vec3();
-            ((position - o).as_vec3().extend(2.0), [d.x, d.y, d.z, c], range)
+            (
+                (position - o).as_vec3().extend(2.0),
+                [d.x, d.y, d.z, c],
+                range,
+            )
         }
     };
     LightUniform {
@@ -137,5 +172,100 @@ pub fn light_uniform(scene: &Scene, light: usize) -> LightUniform {
         position_or_dir: pd.to_array(),
         spot,
         color_range: l.color.extend(range as f32).to_array(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    const SCENE: &str = r#"
+[camera]
+eye = [0.0, 2.0, 5.0]
+target = [0.0, 0.0, 0.0]
+fov_y_deg = 60.0
+near = 0.5
+far = 50.0
+[[lights]]
+type = "directional"
+direction = [0.3, -1.0, 0.2]
+[[objects]]
+mesh = "cube"
+translate = [10000.0, 0.5, -10000.0]
+"#;
+
+    fn scene() -> Scene {
+        Scene::parse(SCENE, "test", std::path::Path::new(".")).unwrap()
+    }
+
+    #[test]
+    fn camera_maps_target_to_screen_centre_and_depth_range() {
+        let s = scene();
+        let m = camera_matrices(&s, 320, 180);
+        let o = s.origin();
+        let target = (s.camera.target - o).as_vec3();
+        let c = m.view_proj * target.extend(1.0);
+        let ndc = c.truncate() / c.w;
+        assert!(
+            ndc.x.abs() < 1e-4 && ndc.y.abs() < 1e-4,
+            "target at the centre: {ndc}"
+        );
+        // A point on the near plane maps to depth 0, on the far plane to 1.
+        let fwd = (s.camera.target - s.camera.eye).normalize();
+        for (d, want) in [(0.5, 0.0), (50.0, 1.0)] {
+            let p = (s.camera.eye + fwd * d - o).as_vec3();
+            let c = m.view_proj * p.extend(1.0);
+            assert!(
+                (c.z / c.w - want).abs() < 1e-4,
+                "depth at {d}: {}",
+                c.z / c.w
+            );
+        }
+    }
+
+    #[test]
+    fn infinite_far_maps_points_at_infinity_inside_depth_range() {
+        let s = scene();
+        let m = camera_matrices_with_far(&s, 320, 180, Far::Infinite);
+        let dir = (s.camera.target - s.camera.eye).normalize().as_vec3();
+        let c = m.view_proj * dir.extend(0.0); // w = 0: a point at infinity
+        assert!(
+            c.w > 0.0 && (c.z / c.w) <= 1.0 && (c.z / c.w) > 0.99,
+            "z/w = {}",
+            c.z / c.w
+        );
+    }
+
+    #[test]
+    fn directional_light_frustum_contains_the_scene_far_from_origin() {
+        let s = scene();
+        let vp = directional_light_view_proj(&s, DVec3::new(0.3, -1.0, 0.2));
+        for (tri, _) in s.world_triangles() {
+            for p in tri {
+                let c = vp * p.extend(1.0);
+                let n = c.truncate() / c.w;
+                assert!(
+                    n.x.abs() <= 1.0001 && n.y.abs() <= 1.0001 && (-1e-4..=1.0001).contains(&n.z),
+                    "outside the light frustum: {n}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn origin_relative_positions_keep_millimetres_10km_out() {
+        // The cube sits 10 km out; relative to the origin its corners are exact to f32 precision.
+        let s = scene();
+        let tris = s.world_triangles();
+        let max = tris
+            .iter()
+            .flat_map(|(t, _)| t.iter())
+            .map(|p| p.abs().max_element())
+            .fold(0.0, f32::max);
+        assert!(
+            max <= 0.5 + 1e-6,
+            "origin-relative coordinates stay small: {max}"
+        );
     }
 }

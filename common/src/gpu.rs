@@ -42,21 +42,32 @@ pub fn parse_backend(name: &str) -> Result<wgpu::Backends> {
 impl Gpu {
     /// Opens a device. `backend` (from `--backend`) wins over `WGPU_BACKEND`.
     /// `display` is the window system connection in windowed mode (GL needs it).
-    pub fn new(backend: Option<&str>, display: Option<Box<dyn wgpu::wgt::WgpuHasDisplayHandle>>) -> Result<Gpu> {
+    pub fn new(
+        backend: Option<&str>,
+        display: Option<Box<dyn wgpu::wgt::WgpuHasDisplayHandle>>,
+    ) -> Result<Gpu> {
         let backends = match backend {
             Some(b) => parse_backend(b)?,
             None => match std::env::var("WGPU_BACKEND") {
                 Ok(v) if !v.trim().is_empty() => {
                     parse_backend(&v).map_err(|e| anyhow!("WGPU_BACKEND: {e}"))?
                 }
-                _ => wgpu::Backends::VULKAN | wgpu::Backends::GL | wgpu::Backends::METAL | wgpu::Backends::DX12,
+                _ => {
+                    wgpu::Backends::VULKAN
+                        | wgpu::Backends::GL
+                        | wgpu::Backends::METAL
+                        | wgpu::Backends::DX12
+                }
             },
         };
         // Try the primary APIs first and GL last: probing GL/EGL is slower
         // and noisier, and Vulkan (lavapipe) has the optional features.
         let mut found = None;
         let mut display = display;
-        for tier in [backends & !wgpu::Backends::GL, backends & wgpu::Backends::GL] {
+        for tier in [
+            backends & !wgpu::Backends::GL,
+            backends & wgpu::Backends::GL,
+        ] {
             if tier.is_empty() {
                 continue;
             }
@@ -88,10 +99,23 @@ impl Gpu {
         .map_err(|e| anyhow!("cannot open a device on {}: {e}", info.name))?;
         // Validation errors are programming errors in a lesson; make them one clear line.
         device.on_uncaptured_error(std::sync::Arc::new(|e: wgpu::Error| {
-            eprintln!("error: wgpu: {}", e.to_string().split_whitespace().collect::<Vec<_>>().join(" "));
+            eprintln!(
+                "error: wgpu: {}",
+                e.to_string()
+                    .split_whitespace()
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            );
             std::process::exit(3);
         }));
-        Ok(Gpu { instance, adapter, device, queue, info, features })
+        Ok(Gpu {
+            instance,
+            adapter,
+            device,
+            queue,
+            info,
+            features,
+        })
     }
 
     pub fn has(&self, f: wgpu::Features) -> bool {

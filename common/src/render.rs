@@ -18,7 +18,12 @@ pub const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 /// 8-bit, like the visibility PNGs; R32Float is not renderable on downlevel GL.
 pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
 /// Background colour of the shaded frame (linear).
-pub const CLEAR_COLOR: wgpu::Color = wgpu::Color { r: 0.02, g: 0.025, b: 0.035, a: 1.0 };
+pub const CLEAR_COLOR: wgpu::Color = wgpu::Color {
+    r: 0.02,
+    g: 0.025,
+    b: 0.035,
+    a: 1.0,
+};
 
 /// Uniform slots are spaced by the device's dynamic-offset alignment.
 const SLOT: u64 = 256;
@@ -95,17 +100,20 @@ fn uniform_entry(binding: u32, dynamic: bool, size: u64) -> wgpu::BindGroupLayou
 /// Compiles `common.wgsl` followed by a lesson's own WGSL.
 pub fn shader_module(gpu: &Gpu, label: &str, lesson_wgsl: &str) -> wgpu::ShaderModule {
     let source = format!("{COMMON_WGSL}\n// ---- {label} ----\n{lesson_wgsl}");
-    gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    })
+    gpu.device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        })
 }
 
 impl SceneGpu {
     pub fn new(gpu: &Gpu, scene: Scene, width: u32, height: u32) -> Result<SceneGpu> {
         let device = &gpu.device;
         let depth_format = gpu.depth_stencil_format();
-        let meshes = (0..scene.objects.len()).map(|i| upload_mesh(gpu, &scene, i)).collect::<Result<Vec<_>>>()?;
+        let meshes = (0..scene.objects.len())
+            .map(|i| upload_mesh(gpu, &scene, i))
+            .collect::<Result<Vec<_>>>()?;
         let camera_buf = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("camera"),
             size: std::mem::size_of::<CameraUniform>() as u64,
@@ -133,23 +141,40 @@ impl SceneGpu {
         });
         let object_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("object"),
-            entries: &[uniform_entry(0, true, std::mem::size_of::<ObjectUniform>() as u64)],
+            entries: &[uniform_entry(
+                0,
+                true,
+                std::mem::size_of::<ObjectUniform>() as u64,
+            )],
         });
         fn binding(buf: &wgpu::Buffer, size: usize) -> wgpu::BindingResource<'_> {
-            wgpu::BindingResource::Buffer(wgpu::BufferBinding { buffer: buf, offset: 0, size: wgpu::BufferSize::new(size as u64) })
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: buf,
+                offset: 0,
+                size: wgpu::BufferSize::new(size as u64),
+            })
         }
         let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("frame"),
             layout: &frame_layout,
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: camera_buf.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: binding(&light_buf, std::mem::size_of::<LightUniform>()) },
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: camera_buf.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: binding(&light_buf, std::mem::size_of::<LightUniform>()),
+                },
             ],
         });
         let object_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("object"),
             layout: &object_layout,
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: binding(&object_buf, std::mem::size_of::<ObjectUniform>()) }],
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: binding(&object_buf, std::mem::size_of::<ObjectUniform>()),
+            }],
         });
         let module = shader_module(gpu, "base pass", "");
         let layout = pipeline_layout_for(gpu, &frame_layout, &object_layout, &[]);
@@ -204,10 +229,12 @@ impl SceneGpu {
             eye: self.camera.eye.extend(1.0).to_array(),
             ambient: self.scene.ambient.extend(1.0).to_array(),
         };
-        gpu.queue.write_buffer(&self.camera_buf, 0, bytemuck::bytes_of(&cam));
+        gpu.queue
+            .write_buffer(&self.camera_buf, 0, bytemuck::bytes_of(&cam));
         for k in 0..self.scene.lights.len() {
             let l = light_uniform(&self.scene, k);
-            gpu.queue.write_buffer(&self.light_buf, SLOT * k as u64, bytemuck::bytes_of(&l));
+            gpu.queue
+                .write_buffer(&self.light_buf, SLOT * k as u64, bytemuck::bytes_of(&l));
         }
         for (i, o) in self.scene.objects.iter().enumerate() {
             let model = self.scene.model_relative(i);
@@ -217,7 +244,8 @@ impl SceneGpu {
                 color: o.color.extend(1.0).to_array(),
                 id: [i as u32 + 1, 0, 0, 0],
             };
-            gpu.queue.write_buffer(&self.object_buf, SLOT * i as u64, bytemuck::bytes_of(&u));
+            gpu.queue
+                .write_buffer(&self.object_buf, SLOT * i as u64, bytemuck::bytes_of(&u));
         }
     }
 
@@ -231,7 +259,8 @@ impl SceneGpu {
     pub fn write_light_view_proj(&self, gpu: &Gpu, k: usize, view_proj: Mat4) {
         let mut l = light_uniform(&self.scene, k);
         l.view_proj = view_proj.to_cols_array_2d();
-        gpu.queue.write_buffer(&self.light_buf, SLOT * k as u64, bytemuck::bytes_of(&l));
+        gpu.queue
+            .write_buffer(&self.light_buf, SLOT * k as u64, bytemuck::bytes_of(&l));
     }
 
     /// Binds group 0 for light `k`.
@@ -240,7 +269,11 @@ impl SceneGpu {
     }
 
     /// Draws the objects `keep` selects, binding each one's uniforms at group 1.
-    pub fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>, keep: impl Fn(usize) -> bool) -> u32 {
+    pub fn draw_objects(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        keep: impl Fn(usize) -> bool,
+    ) -> u32 {
         let mut drawn = 0;
         for (i, m) in self.meshes.iter().enumerate() {
             if !keep(i) {
@@ -262,14 +295,28 @@ impl SceneGpu {
 
     // ANCHOR: base_pass
     /// Depth, the ambient term and the object id, for every object.
-    pub fn base_pass(&self, encoder: &mut wgpu::CommandEncoder, t: &FrameTargets, ts: Option<wgpu::RenderPassTimestampWrites>) {
+    pub fn base_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        t: &FrameTargets,
+        ts: Option<wgpu::RenderPassTimestampWrites>,
+    ) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("base pass"),
-            color_attachments: &[Some(t.color_attachment(wgpu::LoadOp::Clear(CLEAR_COLOR))), Some(t.id_attachment())],
+            color_attachments: &[
+                Some(t.color_attachment(wgpu::LoadOp::Clear(CLEAR_COLOR))),
+                Some(t.id_attachment()),
+            ],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &t.depth_view,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
-                stencil_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0), store: wgpu::StoreOp::Store }),
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0),
+                    store: wgpu::StoreOp::Store,
+                }),
             }),
             timestamp_writes: ts,
             occlusion_query_set: None,
@@ -294,35 +341,44 @@ impl SceneGpu {
     ) -> wgpu::RenderPipeline {
         let layout = pipeline_layout_for(gpu, &self.frame_layout, &self.object_layout, extra);
         let add = wgpu::BlendState {
-            color: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::One, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::One,
+                dst_factor: wgpu::BlendFactor::One,
+                operation: wgpu::BlendOperation::Add,
+            },
             alpha: wgpu::BlendComponent::OVER,
         };
-        gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(fs_entry),
-            layout: Some(&layout),
-            vertex: vertex_state(module, "vs_scene"),
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: self.depth_format,
-                depth_write_enabled: Some(false),
-                // Same vertices, same matrices, @invariant: the depths are equal.
-                depth_compare: Some(wgpu::CompareFunction::LessEqual),
-                stencil,
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module,
-                entry_point: Some(fs_entry),
-                compilation_options: Default::default(),
-                targets: &[
-                    Some(wgpu::ColorTargetState { format: COLOR_FORMAT, blend: Some(add), write_mask: wgpu::ColorWrites::ALL }),
-                    Some(VISIBILITY_FORMAT.into()),
-                ],
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
+        gpu.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(fs_entry),
+                layout: Some(&layout),
+                vertex: vertex_state(module, "vs_scene"),
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: self.depth_format,
+                    depth_write_enabled: Some(false),
+                    // Same vertices, same matrices, @invariant: the depths are equal.
+                    depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                    stencil,
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module,
+                    entry_point: Some(fs_entry),
+                    compilation_options: Default::default(),
+                    targets: &[
+                        Some(wgpu::ColorTargetState {
+                            format: COLOR_FORMAT,
+                            blend: Some(add),
+                            write_mask: wgpu::ColorWrites::ALL,
+                        }),
+                        Some(VISIBILITY_FORMAT.into()),
+                    ],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
     }
 
     /// Adds light `light` to the frame through `pipeline`, writing its visibility.
@@ -344,13 +400,22 @@ impl SceneGpu {
                     view: &t.visibility_views[light],
                     depth_slice: None,
                     resolve_target: None,
-                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
                 }),
             ],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &t.depth_view,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
-                stencil_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
             }),
             timestamp_writes: ts,
             occlusion_query_set: None,
@@ -375,11 +440,12 @@ pub fn pipeline_layout_for(
 ) -> wgpu::PipelineLayout {
     let mut layouts: Vec<Option<&wgpu::BindGroupLayout>> = vec![Some(frame), Some(object)];
     layouts.extend(extra.iter().map(|l| Some(*l)));
-    gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: None,
-        bind_group_layouts: &layouts,
-        immediate_size: 0,
-    })
+    gpu.device
+        .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: None,
+            bind_group_layouts: &layouts,
+            immediate_size: 0,
+        })
 }
 
 pub fn vertex_state<'a>(module: &'a wgpu::ShaderModule, entry: &'a str) -> wgpu::VertexState<'a> {
@@ -394,25 +460,39 @@ pub fn vertex_state<'a>(module: &'a wgpu::ShaderModule, entry: &'a str) -> wgpu:
 fn upload_mesh(gpu: &Gpu, scene: &Scene, i: usize) -> Result<GpuMesh> {
     let m = &scene.objects[i].mesh;
     if m.indices.is_empty() {
-        return Err(anyhow!("objects[{i}].mesh: {:?} has no triangles", scene.objects[i].mesh_name));
+        return Err(anyhow!(
+            "objects[{i}].mesh: {:?} has no triangles",
+            scene.objects[i].mesh_name
+        ));
     }
     let verts: Vec<Vertex> = m
         .positions
         .iter()
         .zip(&m.normals)
-        .map(|(p, n)| Vertex { position: p.to_array(), normal: n.to_array() })
+        .map(|(p, n)| Vertex {
+            position: p.to_array(),
+            normal: n.to_array(),
+        })
         .collect();
-    let vertices = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(&m.name),
-        contents: bytemuck::cast_slice(&verts),
-        usage: wgpu::BufferUsages::VERTEX,
-    });
-    let indices = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(&m.name),
-        contents: bytemuck::cast_slice(&m.indices),
-        usage: wgpu::BufferUsages::INDEX,
-    });
-    Ok(GpuMesh { vertices, indices, index_count: m.indices.len() as u32 })
+    let vertices = gpu
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(&m.name),
+            contents: bytemuck::cast_slice(&verts),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+    let indices = gpu
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(&m.name),
+            contents: bytemuck::cast_slice(&m.indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+    Ok(GpuMesh {
+        vertices,
+        indices,
+        index_count: m.indices.len() as u32,
+    })
 }
 
 /// The frame's render targets: shaded colour, depth-stencil, object id, and
@@ -430,10 +510,21 @@ pub struct FrameTargets {
     pub visibility_views: Vec<wgpu::TextureView>,
 }
 
-pub fn render_texture(gpu: &Gpu, label: &str, w: u32, h: u32, format: wgpu::TextureFormat, extra: wgpu::TextureUsages) -> wgpu::Texture {
+pub fn render_texture(
+    gpu: &Gpu,
+    label: &str,
+    w: u32,
+    h: u32,
+    format: wgpu::TextureFormat,
+    extra: wgpu::TextureUsages,
+) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
@@ -451,7 +542,16 @@ impl FrameTargets {
         let depth = render_texture(gpu, "depth", w, h, scene.depth_format, tb);
         let id = render_texture(gpu, "id", w, h, ID_FORMAT, wgpu::TextureUsages::empty());
         let visibility: Vec<_> = (0..scene.scene.lights.len())
-            .map(|k| render_texture(gpu, &format!("visibility {k}"), w, h, VISIBILITY_FORMAT, wgpu::TextureUsages::empty()))
+            .map(|k| {
+                render_texture(
+                    gpu,
+                    &format!("visibility {k}"),
+                    w,
+                    h,
+                    VISIBILITY_FORMAT,
+                    wgpu::TextureUsages::empty(),
+                )
+            })
             .collect();
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         FrameTargets {
@@ -468,12 +568,18 @@ impl FrameTargets {
         }
     }
 
-    pub fn color_attachment(&self, load: wgpu::LoadOp<wgpu::Color>) -> wgpu::RenderPassColorAttachment<'_> {
+    pub fn color_attachment(
+        &self,
+        load: wgpu::LoadOp<wgpu::Color>,
+    ) -> wgpu::RenderPassColorAttachment<'_> {
         wgpu::RenderPassColorAttachment {
             view: &self.color_view,
             depth_slice: None,
             resolve_target: None,
-            ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+            ops: wgpu::Operations {
+                load,
+                store: wgpu::StoreOp::Store,
+            },
         }
     }
 
@@ -482,7 +588,10 @@ impl FrameTargets {
             view: &self.id_view,
             depth_slice: None,
             resolve_target: None,
-            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
         }
     }
 
@@ -495,7 +604,13 @@ impl FrameTargets {
             .iter()
             .map(|t| read_texture(gpu, t, 1).map(|b| b.iter().map(|&v| v as f32 / 255.0).collect()))
             .collect::<Result<Vec<_>>>()?;
-        Ok(FrameImages { width: self.width, height: self.height, color, id, visibility })
+        Ok(FrameImages {
+            width: self.width,
+            height: self.height,
+            color,
+            id,
+            visibility,
+        })
     }
 }
 
@@ -514,10 +629,17 @@ pub fn read_texture(gpu: &Gpu, tex: &wgpu::Texture, bytes_per_pixel: u32) -> Res
 }
 
 /// Copies one layer (and aspect) of a texture to the CPU, tightly packed.
-pub fn read_texture_layer(gpu: &Gpu, tex: &wgpu::Texture, bpp: u32, layer: u32, aspect: wgpu::TextureAspect) -> Result<Vec<u8>> {
+pub fn read_texture_layer(
+    gpu: &Gpu,
+    tex: &wgpu::Texture,
+    bpp: u32,
+    layer: u32,
+    aspect: wgpu::TextureAspect,
+) -> Result<Vec<u8>> {
     let (w, h) = (tex.width(), tex.height());
     let row = w * bpp;
-    let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     let buf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
         size: padded as u64 * h as u64,
@@ -526,12 +648,29 @@ pub fn read_texture_layer(gpu: &Gpu, tex: &wgpu::Texture, bpp: u32, layer: u32, 
     });
     let mut enc = gpu.device.create_command_encoder(&Default::default());
     enc.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo { texture: tex, mip_level: 0, origin: wgpu::Origin3d { x: 0, y: 0, z: layer }, aspect },
+        wgpu::TexelCopyTextureInfo {
+            texture: tex,
+            mip_level: 0,
+            origin: wgpu::Origin3d {
+                x: 0,
+                y: 0,
+                z: layer,
+            },
+            aspect,
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &buf,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(h) },
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(h),
+            },
         },
-        wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
     );
     gpu.queue.submit([enc.finish()]);
     let slice = buf.slice(..);
@@ -539,7 +678,9 @@ pub fn read_texture_layer(gpu: &Gpu, tex: &wgpu::Texture, bpp: u32, layer: u32, 
     gpu.wait()?;
     let mut out = Vec::with_capacity((row * h) as usize);
     {
-        let data = slice.get_mapped_range().map_err(|e| anyhow!("texture readback: {e}"))?;
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| anyhow!("texture readback: {e}"))?;
         for y in 0..h as usize {
             out.extend_from_slice(&data[y * padded as usize..y * padded as usize + row as usize]);
         }
@@ -549,15 +690,27 @@ pub fn read_texture_layer(gpu: &Gpu, tex: &wgpu::Texture, bpp: u32, layer: u32, 
 }
 
 /// A depth texture the lesson samples (shadow maps).
-pub fn depth_texture(gpu: &Gpu, label: &str, size: u32, layers: u32, format: wgpu::TextureFormat) -> wgpu::Texture {
+pub fn depth_texture(
+    gpu: &Gpu,
+    label: &str,
+    size: u32,
+    layers: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
-        size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers },
+        size: wgpu::Extent3d {
+            width: size,
+            height: size,
+            depth_or_array_layers: layers,
+        },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     })
 }

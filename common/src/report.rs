@@ -45,7 +45,11 @@ pub fn combine(per_light: &[ErrorStats]) -> ErrorStats {
         if n == 0 {
             0.0
         } else {
-            per_light.iter().map(|s| f(s) * s.receiver_pixels as f64).sum::<f64>() / n as f64
+            per_light
+                .iter()
+                .map(|s| f(s) * s.receiver_pixels as f64)
+                .sum::<f64>()
+                / n as f64
         }
     };
     ErrorStats {
@@ -61,7 +65,15 @@ impl Report {
     /// The terminal table: adapter and reference time, then one row a variant.
     pub fn table(&self) -> String {
         let mut s = String::new();
-        s += &format!("{} on {} ({}), {}x{}, scene {}\n", self.lesson, self.adapter.name, self.adapter.backend, self.width, self.height, self.scene);
+        s += &format!(
+            "{} on {} ({}), {}x{}, scene {}\n",
+            self.lesson,
+            self.adapter.name,
+            self.adapter.backend,
+            self.width,
+            self.height,
+            self.scene
+        );
         s += &format!("reference (CPU ray cast): {:.1} ms\n", self.reference_ms);
         let src = self.variants.first().map(|v| v.timing_source);
         if src == Some(TimingSource::CpuWall) {
@@ -69,14 +81,30 @@ impl Report {
         } else {
             s += &format!("timing: GPU timestamps, median of {} frames\n", self.frames);
         }
-        let w = self.variants.iter().map(|v| v.name.len()).max().unwrap_or(7).max(7);
-        s += &format!("{:<w$} | misclassified % | false shadow | false lit |       ms\n", "variant");
-        s += &format!("{}-|-----------------|--------------|-----------|---------\n", "-".repeat(w));
+        let w = self
+            .variants
+            .iter()
+            .map(|v| v.name.len())
+            .max()
+            .unwrap_or(7)
+            .max(7);
+        s += &format!(
+            "{:<w$} | misclassified % | false shadow | false lit |       ms\n",
+            "variant"
+        );
+        s += &format!(
+            "{}-|-----------------|--------------|-----------|---------\n",
+            "-".repeat(w)
+        );
         for v in &self.variants {
             let ms = v.timing_ms.get("total").copied().unwrap_or(f64::NAN);
             s += &format!(
                 "{:<w$} | {:>15.3} | {:>12.3} | {:>9.3} | {:>8.3}\n",
-                v.name, v.error.misclassified_pct, v.error.false_shadow_pct, v.error.false_lit_pct, ms
+                v.name,
+                v.error.misclassified_pct,
+                v.error.false_shadow_pct,
+                v.error.false_lit_pct,
+                ms
             );
         }
         s

@@ -34,9 +34,19 @@ pub struct Camera {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightKind {
     /// `direction` is the way the light travels (unit length).
-    Directional { direction: DVec3 },
-    Point { position: DVec3, range: f64 },
-    Spot { position: DVec3, direction: DVec3, range: f64, spot_angle_deg: f64 },
+    Directional {
+        direction: DVec3,
+    },
+    Point {
+        position: DVec3,
+        range: f64,
+    },
+    Spot {
+        position: DVec3,
+        direction: DVec3,
+        range: f64,
+        spot_angle_deg: f64,
+    },
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -252,7 +262,14 @@ impl Scene {
                 FarFile::Word(w) if w == "infinite" => Far::Infinite,
                 FarFile::Word(w) => bail!("camera.far: a number or \"infinite\", got {w:?}"),
             };
-            Ok(Camera { eye, target, up, fov_y_deg: fov, near, far })
+            Ok(Camera {
+                eye,
+                target,
+                up,
+                fov_y_deg: fov,
+                near,
+                far,
+            })
         })()
         .map_err(|e| anyhow!("{}: {e}", at(cam_span)))?;
 
@@ -277,13 +294,20 @@ impl Scene {
         for (i, o) in file.objects.into_iter().enumerate() {
             let span = o.span();
             let o = o.into_inner();
-            let obj = parse_object(o, i, dir, &mut cache).map_err(|e| anyhow!("{}: {e}", at(span)))?;
+            let obj =
+                parse_object(o, i, dir, &mut cache).map_err(|e| anyhow!("{}: {e}", at(span)))?;
             objects.push(obj);
         }
         if objects.is_empty() {
             bail!("{name}: objects: the scene needs at least one [[objects]] entry");
         }
-        Ok(Scene { name: name.to_string(), camera, ambient, lights, objects })
+        Ok(Scene {
+            name: name.to_string(),
+            camera,
+            ambient,
+            lights,
+            objects,
+        })
     }
 
     /// A lesson's built-in scene: TOML compiled into the binary, meshes built in.
@@ -332,7 +356,10 @@ impl Scene {
                 .map(|p| rel.transform_point3(p.as_dvec3()).as_vec3())
                 .collect();
             for t in o.mesh.indices.chunks_exact(3) {
-                out.push(([w[t[0] as usize], w[t[1] as usize], w[t[2] as usize]], oi as u32));
+                out.push((
+                    [w[t[0] as usize], w[t[1] as usize], w[t[2] as usize]],
+                    oi as u32,
+                ));
             }
         }
         out
@@ -346,7 +373,10 @@ fn parse_light(l: LightFile, i: usize) -> Result<Light> {
         v.ok_or_else(|| anyhow!("{p}.{f}: required for a {} light", l.kind))
     };
     let range = |r: Option<f64>| -> Result<f64> {
-        positive(r.ok_or_else(|| anyhow!("{p}.range: required for a {} light", l.kind))?, &format!("{p}.range"))
+        positive(
+            r.ok_or_else(|| anyhow!("{p}.range: required for a {} light", l.kind))?,
+            &format!("{p}.range"),
+        )
     };
     let kind = match l.kind.as_str() {
         "directional" => LightKind::Directional {
@@ -373,7 +403,12 @@ fn parse_light(l: LightFile, i: usize) -> Result<Light> {
     Ok(Light { kind, color })
 }
 
-fn parse_object(o: ObjectFile, i: usize, dir: &Path, cache: &mut Vec<(String, Arc<Mesh>)>) -> Result<Object> {
+fn parse_object(
+    o: ObjectFile,
+    i: usize,
+    dir: &Path,
+    cache: &mut Vec<(String, Arc<Mesh>)>,
+) -> Result<Object> {
     let p = format!("objects[{i}]");
     let t = finite3(o.translate, &format!("{p}.translate"))?;
     let r = finite3(o.rotate_deg, &format!("{p}.rotate_deg"))?;
@@ -381,7 +416,10 @@ fn parse_object(o: ObjectFile, i: usize, dir: &Path, cache: &mut Vec<(String, Ar
         ScaleFile::Uniform(s) => DVec3::splat(s),
         ScaleFile::PerAxis(v) => finite3(v, &format!("{p}.scale"))?,
     };
-    if s.to_array().iter().any(|c| !c.is_finite() || c.abs() < 1e-12) {
+    if s.to_array()
+        .iter()
+        .any(|c| !c.is_finite() || c.abs() < 1e-12)
+    {
         bail!("{p}.scale: every component must be finite and non-zero, got {s}");
     }
     let color = color3(o.color, &format!("{p}.color"))?;
@@ -394,9 +432,20 @@ fn parse_object(o: ObjectFile, i: usize, dir: &Path, cache: &mut Vec<(String, Ar
         }
     };
     // T * Rz * Ry * Rx * S: rotate about X first, then Y, then Z.
-    let rot = DQuat::from_euler(EulerRot::ZYX, r.z.to_radians(), r.y.to_radians(), r.x.to_radians());
+    let rot = DQuat::from_euler(
+        EulerRot::ZYX,
+        r.z.to_radians(),
+        r.y.to_radians(),
+        r.x.to_radians(),
+    );
     let model = DMat4::from_scale_rotation_translation(s, rot, t);
-    Ok(Object { mesh_name: o.mesh, mesh, model, color, casts_shadow: o.casts_shadow })
+    Ok(Object {
+        mesh_name: o.mesh,
+        mesh,
+        model,
+        color,
+        casts_shadow: o.casts_shadow,
+    })
 }
 
 /// A built-in name, or an `.obj` path relative to the scene's folder.
@@ -406,5 +455,123 @@ fn load_mesh(name: &str, dir: &Path) -> Result<Mesh> {
         mesh::load_obj(&path)
     } else {
         mesh::builtin(name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const HEAD: &str = "[camera]\neye = [4.0, 3.0, 6.0]\ntarget = [0.0, 0.5, 0.0]\n[[lights]]\ntype = \"directional\"\ndirection = [-0.4, -1.0, -0.3]\n";
+
+    fn parse(text: &str) -> Result<Scene> {
+        Scene::parse(text, "s.toml", Path::new("."))
+    }
+
+    #[test]
+    fn parses_the_documented_example() {
+        let s = parse(&format!(
+            "{HEAD}[[lights]]\ntype = \"spot\"\nposition = [0.0, 3.0, 0.0]\ndirection = [0.0, -1.0, 0.0]\nrange = 20.0\nspot_angle_deg = 40.0\n[[objects]]\nmesh = \"plane\"\nscale = 10.0\n[[objects]]\nmesh = \"cube\"\ntranslate = [1.0, 0.5, 0.0]\nrotate_deg = [0.0, 90.0, 0.0]\nscale = [1.0, 2.0, 1.0]\ncasts_shadow = false\n"
+        ))
+        .unwrap();
+        assert_eq!(s.lights.len(), 2);
+        assert_eq!(s.objects.len(), 2);
+        assert!(!s.objects[1].casts_shadow);
+        assert_eq!(s.camera.far, Far::Finite(100.0));
+        // T * Rz * Ry * Rx * S: +X of the scaled cube turns to -Z under a 90° yaw.
+        let p = s.objects[1]
+            .model
+            .transform_point3(DVec3::new(0.5, 0.0, 0.0));
+        assert!((p - DVec3::new(1.0, 0.5, -0.5)).length() < 1e-9, "{p}");
+    }
+
+    #[test]
+    fn rotation_order_is_x_then_y_then_z() {
+        let s = parse(&format!(
+            "{HEAD}[[objects]]\nmesh = \"cube\"\nrotate_deg = [90.0, 90.0, 0.0]\n"
+        ))
+        .unwrap();
+        // Rx(90) takes +Y to +Z; then Ry(90) takes +Z to +X.
+        let p = s.objects[0].model.transform_vector3(DVec3::Y);
+        assert!((p - DVec3::X).length() < 1e-9, "{p}");
+    }
+
+    #[test]
+    fn infinite_far_plane() {
+        let text = HEAD.replace(
+            "target = [0.0, 0.5, 0.0]",
+            "target = [0.0, 0.5, 0.0]\nfar = \"infinite\"",
+        );
+        let s = parse(&format!("{text}[[objects]]\nmesh = \"cube\"\n")).unwrap();
+        assert_eq!(s.camera.far, Far::Infinite);
+    }
+
+    #[test]
+    fn bad_input_names_field_and_line() {
+        let cases: &[(&str, &str)] = &[
+            ("[camera]\neye = [1.0, 2.0\n", "s.toml:"),
+            (
+                &format!("{HEAD}[[objects]]\nmesh = \"nope\"\n"),
+                "objects[0].mesh",
+            ),
+            (
+                &format!("{HEAD}[[objects]]\nmesh = \"cube\"\nscale = 0.0\n"),
+                "objects[0].scale",
+            ),
+            (
+                &format!("{HEAD}[[objects]]\nmesh = \"cube\"\ncolor = [1.0, nan, 0.0]\n"),
+                "objects[0].color",
+            ),
+            (
+                &HEAD.replace("[-0.4, -1.0, -0.3]", "[0.0, 0.0, 0.0]"),
+                "lights[0].direction: zero-length",
+            ),
+            (
+                &format!(
+                    "{}[[objects]]\nmesh = \"cube\"\n",
+                    HEAD.replace("directional", "laser")
+                ),
+                "lights[0].type",
+            ),
+            (
+                &format!(
+                    "{}[[objects]]\nmesh = \"cube\"\n",
+                    HEAD.replace("target = [0.0, 0.5, 0.0]", "target = [4.0, 3.0, 6.0]")
+                ),
+                "camera.target",
+            ),
+            (
+                &format!(
+                    "{}[[objects]]\nmesh = \"cube\"\n",
+                    HEAD.replace("[camera]", "[camera]\nnear = 5.0\nfar = 1.0")
+                ),
+                "camera.far",
+            ),
+            (HEAD, "objects: the scene needs at least one"),
+        ];
+        for (text, want) in cases {
+            let e = format!("{:#}", parse(text).expect_err(want));
+            assert!(e.contains(want), "expected {want:?} in {e:?}");
+            assert!(!e.contains('\n'), "one line: {e:?}");
+        }
+    }
+
+    #[test]
+    fn errors_carry_the_line_of_the_table() {
+        let text = format!(
+            "{HEAD}\n[[objects]]\nmesh = \"cube\"\n\n[[objects]]\nmesh = \"cube\"\nscale = -0.0\n"
+        );
+        let e = format!("{:#}", parse(&text).unwrap_err());
+        let line = text
+            .lines()
+            .position(|l| l.starts_with("scale = -0.0"))
+            .unwrap()
+            + 1;
+        assert!(
+            e.contains(&format!("s.toml:{}", line - 2))
+                || e.contains(&format!("s.toml:{}", line - 1))
+                || e.contains(&format!("s.toml:{line}")),
+            "{e}"
+        );
     }
 }

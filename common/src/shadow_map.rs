@@ -6,7 +6,9 @@ use std::path::Path;
 use anyhow::Result;
 
 use crate::gpu::Gpu;
-use crate::render::{depth_texture, pipeline_layout_for, read_texture, render_texture, vertex_state, SceneGpu};
+use crate::render::{
+    depth_texture, pipeline_layout_for, read_texture, render_texture, vertex_state, SceneGpu,
+};
 
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -21,7 +23,11 @@ impl ShadowMap {
     pub fn new(gpu: &Gpu, size: u32) -> ShadowMap {
         let texture = depth_texture(gpu, &format!("shadow map {size}"), size, 1, SHADOW_FORMAT);
         let view = texture.create_view(&Default::default());
-        ShadowMap { size, texture, view }
+        ShadowMap {
+            size,
+            texture,
+            view,
+        }
     }
 
     /// Reads the stored depths back to the CPU. Drawn through a shader into
@@ -40,7 +46,11 @@ impl ShadowMap {
         let span = (hi - lo).max(1e-12);
         let img = image::GrayImage::from_fn(self.size, self.size, |x, y| {
             let v = d[(y * self.size + x) as usize];
-            image::Luma([if v >= 1.0 { 255 } else { (((v - lo) / span) * 235.0).round() as u8 }])
+            image::Luma([if v >= 1.0 {
+                255
+            } else {
+                (((v - lo) / span) * 235.0).round() as u8
+            }])
         });
         crate::app::save(&img, path)
     }
@@ -57,25 +67,34 @@ pub struct ShadowPassState {
 // ANCHOR: shadow_pipeline
 /// The depth-only pipeline of the shadow pass: the scene's vertex buffers,
 /// `vs_light_depth` (object → light clip space), no fragment shader at all.
-pub fn shadow_pipeline(gpu: &Gpu, scene: &SceneGpu, module: &wgpu::ShaderModule, state: ShadowPassState) -> wgpu::RenderPipeline {
+pub fn shadow_pipeline(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    module: &wgpu::ShaderModule,
+    state: ShadowPassState,
+) -> wgpu::RenderPipeline {
     let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
-    gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("shadow pass"),
-        layout: Some(&layout),
-        vertex: vertex_state(module, "vs_light_depth"),
-        primitive: wgpu::PrimitiveState { cull_mode: state.cull, ..Default::default() },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: SHADOW_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: state.bias,
-        }),
-        multisample: Default::default(),
-        fragment: None,
-        multiview_mask: None,
-        cache: None,
-    })
+    gpu.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shadow pass"),
+            layout: Some(&layout),
+            vertex: vertex_state(module, "vs_light_depth"),
+            primitive: wgpu::PrimitiveState {
+                cull_mode: state.cull,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: SHADOW_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: state.bias,
+            }),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        })
 }
 // ANCHOR_END: shadow_pipeline
 
@@ -94,7 +113,10 @@ pub fn shadow_pass(
         color_attachments: &[],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
             view: &map.view,
-            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            }),
             stencil_ops: None,
         }),
         timestamp_writes: ts,
@@ -110,31 +132,37 @@ pub fn shadow_pass(
 /// Bind group layout for sampling a shadow map in the lit pass (group 2):
 /// binding 0 the depth texture, binding 1 a comparison sampler.
 pub fn shadow_map_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
-    gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("shadow map"),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Depth,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
+    gpu.device
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shadow map"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
                 },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                count: None,
-            },
-        ],
-    })
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    count: None,
+                },
+            ],
+        })
 }
 
 /// The matching bind group. `filter` Linear gives the hardware's 2×2 PCF.
-pub fn shadow_map_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, map: &ShadowMap, filter: wgpu::FilterMode) -> wgpu::BindGroup {
+pub fn shadow_map_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &ShadowMap,
+    filter: wgpu::FilterMode,
+) -> wgpu::BindGroup {
     let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("shadow comparison"),
         address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -148,8 +176,14 @@ pub fn shadow_map_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, map: &ShadowM
         label: Some("shadow map"),
         layout,
         entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&map.view) },
-            wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&map.view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
         ],
     })
 }
@@ -170,7 +204,12 @@ const DEPTH_TO_BYTES_WGSL: &str = r#"
 "#;
 
 /// Reads a 2D depth texture view as `f32`s through a render pass.
-pub fn read_depth_texture(gpu: &Gpu, view: &wgpu::TextureView, size: u32, dim: wgpu::TextureViewDimension) -> Result<Vec<f32>> {
+pub fn read_depth_texture(
+    gpu: &Gpu,
+    view: &wgpu::TextureView,
+    size: u32,
+    dim: wgpu::TextureViewDimension,
+) -> Result<Vec<f32>> {
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("depth to bytes"),
@@ -178,40 +217,60 @@ pub fn read_depth_texture(gpu: &Gpu, view: &wgpu::TextureView, size: u32, dim: w
     });
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("depth to bytes"),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: dim,
-                    multisampled: false,
-                },
-                count: None,
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: dim,
+                multisampled: false,
             },
-        ],
+            count: None,
+        }],
     });
     let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
         layout: &layout,
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(view) },
-        ],
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::TextureView(view),
+        }],
     });
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor { label: None, bind_group_layouts: &[Some(&layout)], immediate_size: 0 });
+    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: None,
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
     let target_format = wgpu::TextureFormat::Rgba8Unorm;
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some("depth to bytes"),
         layout: Some(&pl),
-        vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
         primitive: Default::default(),
         depth_stencil: None,
         multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState { module: &module, entry_point: Some("fs"), compilation_options: Default::default(), targets: &[Some(target_format.into())] }),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs"),
+            compilation_options: Default::default(),
+            targets: &[Some(target_format.into())],
+        }),
         multiview_mask: None,
         cache: None,
     });
-    let target = render_texture(gpu, "depth bytes", size, size, target_format, wgpu::TextureUsages::empty());
+    let target = render_texture(
+        gpu,
+        "depth bytes",
+        size,
+        size,
+        target_format,
+        wgpu::TextureUsages::empty(),
+    );
     let tv = target.create_view(&Default::default());
     let mut enc = device.create_command_encoder(&Default::default());
     {
@@ -221,7 +280,10 @@ pub fn read_depth_texture(gpu: &Gpu, view: &wgpu::TextureView, size: u32, dim: w
                 view: &tv,
                 depth_slice: None,
                 resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
             })],
             depth_stencil_attachment: None,
             timestamp_writes: None,
@@ -234,5 +296,8 @@ pub fn read_depth_texture(gpu: &Gpu, view: &wgpu::TextureView, size: u32, dim: w
     }
     gpu.queue.submit([enc.finish()]);
     let bytes = read_texture(gpu, &target, 4)?;
-    Ok(bytes.chunks_exact(4).map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]]))).collect())
+    Ok(bytes
+        .chunks_exact(4)
+        .map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+        .collect())
 }

@@ -51,7 +51,10 @@ impl Timer {
             });
             (set, resolve, read)
         });
-        Timer { queries, period_ns: gpu.queue.get_timestamp_period() as f64 }
+        Timer {
+            queries,
+            period_ns: gpu.queue.get_timestamp_period() as f64,
+        }
     }
 
     pub fn source(&self) -> TimingSource {
@@ -76,7 +79,10 @@ impl Timer {
 }
 
 fn new_encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
-    gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") })
+    gpu.device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("frame"),
+        })
 }
 
 /// The timestamp slots of one pass; hand them to the pass descriptor.
@@ -86,19 +92,21 @@ pub struct PassTimestamps<'q> {
 
 impl<'q> PassTimestamps<'q> {
     pub fn render(&self) -> Option<wgpu::RenderPassTimestampWrites<'q>> {
-        self.slot.map(|(query_set, i)| wgpu::RenderPassTimestampWrites {
-            query_set,
-            beginning_of_pass_write_index: Some(i),
-            end_of_pass_write_index: Some(i + 1),
-        })
+        self.slot
+            .map(|(query_set, i)| wgpu::RenderPassTimestampWrites {
+                query_set,
+                beginning_of_pass_write_index: Some(i),
+                end_of_pass_write_index: Some(i + 1),
+            })
     }
 
     pub fn compute(&self) -> Option<wgpu::ComputePassTimestampWrites<'q>> {
-        self.slot.map(|(query_set, i)| wgpu::ComputePassTimestampWrites {
-            query_set,
-            beginning_of_pass_write_index: Some(i),
-            end_of_pass_write_index: Some(i + 1),
-        })
+        self.slot
+            .map(|(query_set, i)| wgpu::ComputePassTimestampWrites {
+                query_set,
+                beginning_of_pass_write_index: Some(i),
+                end_of_pass_write_index: Some(i + 1),
+            })
     }
 }
 
@@ -121,10 +129,16 @@ pub struct FrameTimes {
 
 impl<'a> Frame<'a> {
     /// Records one pass. `f` gets the encoder and the pass's timestamp slots.
-    pub fn pass<R>(&mut self, name: &str, f: impl FnOnce(&mut wgpu::CommandEncoder, &PassTimestamps) -> R) -> R {
+    pub fn pass<R>(
+        &mut self,
+        name: &str,
+        f: impl FnOnce(&mut wgpu::CommandEncoder, &PassTimestamps) -> R,
+    ) -> R {
         match &self.timer.queries {
             Some((set, _, _)) if (self.names.len() as u32 + 1) * 2 <= MAX_QUERIES => {
-                let ts = PassTimestamps { slot: Some((set, self.names.len() as u32 * 2)) };
+                let ts = PassTimestamps {
+                    slot: Some((set, self.names.len() as u32 * 2)),
+                };
                 self.names.push(name.to_string());
                 f(&mut self.encoder, &ts)
             }
@@ -139,7 +153,8 @@ impl<'a> Frame<'a> {
                 let this = std::mem::replace(&mut self.encoder, new_encoder(self.gpu));
                 self.gpu.queue.submit([this.finish()]);
                 let _ = self.gpu.wait();
-                self.wall.push((name.to_string(), t.elapsed().as_secs_f64() * 1e3));
+                self.wall
+                    .push((name.to_string(), t.elapsed().as_secs_f64() * 1e3));
                 r
             }
         }
@@ -149,7 +164,8 @@ impl<'a> Frame<'a> {
     pub fn cpu<R>(&mut self, name: &str, f: impl FnOnce() -> R) -> R {
         let t = Instant::now();
         let r = f();
-        self.cpu.push((format!("cpu_{name}"), t.elapsed().as_secs_f64() * 1e3));
+        self.cpu
+            .push((format!("cpu_{name}"), t.elapsed().as_secs_f64() * 1e3));
         r
     }
 
@@ -163,7 +179,8 @@ impl<'a> Frame<'a> {
         let n = self.names.len() as u32 * 2;
         if let (Some((set, resolve, read)), true) = (&self.timer.queries, n > 0) {
             self.encoder.resolve_query_set(set, 0..n, resolve, 0);
-            self.encoder.copy_buffer_to_buffer(resolve, 0, read, 0, n as u64 * 8);
+            self.encoder
+                .copy_buffer_to_buffer(resolve, 0, read, 0, n as u64 * 8);
         }
         self.gpu.queue.submit([self.encoder.finish()]);
         self.gpu.wait()?;
@@ -202,7 +219,9 @@ fn read_u64s(gpu: &Gpu, buf: &wgpu::Buffer, n: usize) -> Result<Vec<u64>> {
     slice.map_async(wgpu::MapMode::Read, |_| {});
     gpu.wait()?;
     let out = {
-        let view = slice.get_mapped_range().map_err(|e| anyhow!("timestamp readback: {e}"))?;
+        let view = slice
+            .get_mapped_range()
+            .map_err(|e| anyhow!("timestamp readback: {e}"))?;
         bytemuck::cast_slice::<u8, u64>(&view).to_vec()
     };
     buf.unmap();
@@ -216,9 +235,16 @@ pub fn median_times(frames: &[FrameTimes]) -> BTreeMap<String, f64> {
     keys.dedup();
     keys.into_iter()
         .map(|k| {
-            let mut v: Vec<f64> = frames.iter().map(|f| f.ms.get(k).copied().unwrap_or(0.0)).collect();
+            let mut v: Vec<f64> = frames
+                .iter()
+                .map(|f| f.ms.get(k).copied().unwrap_or(0.0))
+                .collect();
             v.sort_by(|a, b| a.total_cmp(b));
-            let m = if v.len() % 2 == 1 { v[v.len() / 2] } else { 0.5 * (v[v.len() / 2 - 1] + v[v.len() / 2]) };
+            let m = if v.len() % 2 == 1 {
+                v[v.len() / 2]
+            } else {
+                0.5 * (v[v.len() / 2 - 1] + v[v.len() / 2])
+            };
             (k.clone(), m)
         })
         .collect()
@@ -230,8 +256,13 @@ mod tests {
 
     #[test]
     fn median_of_odd_and_even_counts() {
-        let f = |t: f64| FrameTimes { ms: [("total".to_string(), t)].into_iter().collect() };
+        let f = |t: f64| FrameTimes {
+            ms: [("total".to_string(), t)].into_iter().collect(),
+        };
         assert_eq!(median_times(&[f(3.0), f(1.0), f(2.0)])["total"], 2.0);
-        assert_eq!(median_times(&[f(4.0), f(1.0), f(2.0), f(3.0)])["total"], 2.5);
+        assert_eq!(
+            median_times(&[f(4.0), f(1.0), f(2.0), f(3.0)])["total"],
+            2.5
+        );
     }
 }

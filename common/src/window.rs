@@ -68,7 +68,8 @@ struct App<L: Lesson> {
 }
 
 pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<String>) -> Result<()> {
-    let event_loop = EventLoop::new().map_err(|e| anyhow!("cannot open a window ({e}); use --headless"))?;
+    let event_loop =
+        EventLoop::new().map_err(|e| anyhow!("cannot open a window ({e}); use --headless"))?;
     let mut app: App<L> = App {
         args: args.clone(),
         scene: Some(scene),
@@ -80,7 +81,9 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<String>) -
         last_cursor: None,
         last_ms: 0.0,
     };
-    event_loop.run_app(&mut app).map_err(|e| anyhow!("window event loop: {e}"))?;
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| anyhow!("window event loop: {e}"))?;
     match app.error {
         Some(e) => Err(e),
         None => Ok(()),
@@ -92,14 +95,28 @@ impl<L: Lesson> App<L> {
         let scene = self.scene.take().ok_or_else(|| anyhow!("no scene"))?;
         let attrs = Window::default_attributes()
             .with_title(L::NAME)
-            .with_inner_size(winit::dpi::PhysicalSize::new(self.args.width, self.args.height));
-        let window = Arc::new(el.create_window(attrs).map_err(|e| anyhow!("cannot create a window: {e}"))?);
+            .with_inner_size(winit::dpi::PhysicalSize::new(
+                self.args.width,
+                self.args.height,
+            ));
+        let window = Arc::new(
+            el.create_window(attrs)
+                .map_err(|e| anyhow!("cannot create a window: {e}"))?,
+        );
         let gpu = Gpu::new(self.args.backend.as_deref(), None)?;
-        let surface = gpu.instance.create_surface(window.clone()).map_err(|e| anyhow!("cannot create a surface: {e}"))?;
+        let surface = gpu
+            .instance
+            .create_surface(window.clone())
+            .map_err(|e| anyhow!("cannot create a surface: {e}"))?;
         let size = window.inner_size();
         let mut config = surface
             .get_default_config(&gpu.adapter, size.width.max(1), size.height.max(1))
-            .ok_or_else(|| anyhow!("the adapter {} cannot present to this window", gpu.info.name))?;
+            .ok_or_else(|| {
+                anyhow!(
+                    "the adapter {} cannot present to this window",
+                    gpu.info.name
+                )
+            })?;
         let caps = surface.get_capabilities(&gpu.adapter);
         if let Some(f) = caps.formats.iter().find(|f| f.is_srgb()) {
             config.format = *f;
@@ -109,58 +126,87 @@ impl<L: Lesson> App<L> {
         let targets = FrameTargets::new(&gpu, &scene);
         let lesson = L::new(&gpu, &scene)?;
         let timer = Timer::new(&gpu);
-        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("blit"),
-            source: wgpu::ShaderSource::Wgsl(BLIT_WGSL.into()),
-        });
-        let blit_layout = gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("blit"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
+        let module = gpu
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("blit"),
+                source: wgpu::ShaderSource::Wgsl(BLIT_WGSL.into()),
+            });
+        let blit_layout = gpu
+            .device
+            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("blit"),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                }],
+            });
+        let layout = gpu
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("blit"),
+                bind_group_layouts: &[Some(&blit_layout)],
+                immediate_size: 0,
+            });
+        let blit = gpu
+            .device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("blit"),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
                 },
-                count: None,
-            }],
-        });
-        let layout = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("blit"),
-            bind_group_layouts: &[Some(&blit_layout)],
-            immediate_size: 0,
-        });
-        let blit = gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("blit"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs"),
-                compilation_options: Default::default(),
-                targets: &[Some(config.format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+                primitive: Default::default(),
+                depth_stencil: None,
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(config.format.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            });
         let blit_group = blit_group(&gpu, &blit_layout, &targets);
-        self.running = Some(Running { window, surface, config, gpu, scene, targets, lesson, timer, blit, blit_layout, blit_group });
+        self.running = Some(Running {
+            window,
+            surface,
+            config,
+            gpu,
+            scene,
+            targets,
+            lesson,
+            timer,
+            blit,
+            blit_layout,
+            blit_group,
+        });
         Ok(())
     }
 
     fn redraw(&mut self) -> Result<()> {
         let variant = self.variants[self.current].clone();
-        let Some(r) = self.running.as_mut() else { return Ok(()) };
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
         let mut frame = r.timer.frame(&r.gpu);
-        r.lesson.render(&mut frame, &r.scene, &r.targets, &variant)?;
+        r.lesson
+            .render(&mut frame, &r.scene, &r.targets, &variant)?;
         let t = frame.finish()?;
         self.last_ms = t.ms.get("total").copied().unwrap_or(0.0);
         let surface_tex = match r.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(t) | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
             _ => {
                 r.surface.configure(&r.gpu.device, &r.config);
                 return Ok(());
@@ -175,7 +221,10 @@ impl<L: Lesson> App<L> {
                     view: &view,
                     depth_slice: None,
                     resolve_target: None,
-                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
                 })],
                 depth_stencil_attachment: None,
                 timestamp_writes: None,
@@ -188,12 +237,19 @@ impl<L: Lesson> App<L> {
         }
         r.gpu.queue.submit([enc.finish()]);
         r.gpu.queue.present(surface_tex);
-        r.window.set_title(&format!("{} - {} - {:.2} ms  [V: next variant, drag: orbit, arrows: light]", L::NAME, variant, self.last_ms));
+        r.window.set_title(&format!(
+            "{} - {} - {:.2} ms  [V: next variant, drag: orbit, arrows: light]",
+            L::NAME,
+            variant,
+            self.last_ms
+        ));
         Ok(())
     }
 
     fn resize(&mut self, w: u32, h: u32) -> Result<()> {
-        let Some(r) = self.running.as_mut() else { return Ok(()) };
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
         if w == 0 || h == 0 {
             return Ok(());
         }
@@ -209,7 +265,9 @@ impl<L: Lesson> App<L> {
     }
 
     fn orbit(&mut self, dx: f64, dy: f64) {
-        let Some(r) = self.running.as_mut() else { return };
+        let Some(r) = self.running.as_mut() else {
+            return;
+        };
         let c = &mut r.scene.scene.camera;
         let arm = c.eye - c.target;
         let right = arm.cross(c.up).normalize();
@@ -226,15 +284,21 @@ impl<L: Lesson> App<L> {
     }
 
     fn zoom(&mut self, amount: f64) {
-        let Some(r) = self.running.as_mut() else { return };
+        let Some(r) = self.running.as_mut() else {
+            return;
+        };
         let c = &mut r.scene.scene.camera;
         c.eye = c.target + (c.eye - c.target) * (1.0 - amount * 0.1).clamp(0.5, 1.5);
         r.scene.set_camera(&r.gpu);
     }
 
     fn move_light(&mut self, key: &NamedKey) {
-        let Some(r) = self.running.as_mut() else { return };
-        let Some(light) = r.scene.scene.lights.first_mut() else { return };
+        let Some(r) = self.running.as_mut() else {
+            return;
+        };
+        let Some(light) = r.scene.scene.lights.first_mut() else {
+            return;
+        };
         let step = 0.05;
         let turn = |d: DVec3, yaw: f64, pitch: f64| {
             let q = DQuat::from_rotation_y(yaw);
@@ -251,7 +315,9 @@ impl<L: Lesson> App<L> {
             _ => return,
         };
         match &mut light.kind {
-            LightKind::Directional { direction } => *direction = turn(*direction, dx * step, dz * step),
+            LightKind::Directional { direction } => {
+                *direction = turn(*direction, dx * step, dz * step)
+            }
             LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
                 *position += DVec3::new(dx, dy, dz) * 0.1;
             }
@@ -269,7 +335,10 @@ fn blit_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, t: &FrameTargets) -> wg
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("blit"),
         layout,
-        entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&t.color_view) }],
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::TextureView(&t.color_view),
+        }],
     })
 }
 
@@ -290,7 +359,11 @@ impl<L: Lesson> ApplicationHandler for App<L> {
             }
             WindowEvent::Resized(s) => self.resize(s.width, s.height),
             WindowEvent::RedrawRequested => self.redraw(),
-            WindowEvent::MouseInput { state, button: MouseButton::Left, .. } => {
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
                 self.dragging = state == ElementState::Pressed;
                 Ok(())
             }
@@ -312,8 +385,12 @@ impl<L: Lesson> ApplicationHandler for App<L> {
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
                 match &event.logical_key {
                     Key::Named(NamedKey::Escape) => el.exit(),
-                    Key::Named(NamedKey::Space) => self.current = (self.current + 1) % self.variants.len(),
-                    Key::Character(c) if c.eq_ignore_ascii_case("v") => self.current = (self.current + 1) % self.variants.len(),
+                    Key::Named(NamedKey::Space) => {
+                        self.current = (self.current + 1) % self.variants.len()
+                    }
+                    Key::Character(c) if c.eq_ignore_ascii_case("v") => {
+                        self.current = (self.current + 1) % self.variants.len()
+                    }
                     Key::Named(k) => self.move_light(k),
                     _ => {}
                 }

@@ -69,6 +69,44 @@ pub fn ascii_of(path: &Path, cols: u32, rows: u32) -> String {
     common::metrics::ascii_mask(&ids, &vis, w, h, cols, rows)
 }
 
+/// A three-level text mask, stable across drivers where a surface is noisy:
+/// per cell, '#' when under 15 % of its covered pixels are lit, '.' when over
+/// 85 % are, ':' for mixed cells (acne, penumbrae, shadow edges), ' ' when
+/// under half the cell is covered.
+pub fn ascii_levels(path: &Path, cols: u32, rows: u32) -> String {
+    let (ids, vis, w, h) = read_visibility(path);
+    let mut out = String::new();
+    for r in 0..rows {
+        for c in 0..cols {
+            let (x0, x1) = (c * w / cols, (c + 1) * w / cols);
+            let (y0, y1) = (r * h / rows, (r + 1) * h / rows);
+            let (mut covered, mut lit, mut n) = (0u32, 0f32, 0u32);
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    let i = (y * w + x) as usize;
+                    n += 1;
+                    if ids[i] != 0 {
+                        covered += 1;
+                        lit += vis[i];
+                    }
+                }
+            }
+            let ch = if covered * 2 < n {
+                ' '
+            } else {
+                match lit / covered as f32 {
+                    f if f < 0.15 => '#',
+                    f if f > 0.85 => '.',
+                    _ => ':',
+                }
+            };
+            out.push(ch);
+        }
+        out.push('\n');
+    }
+    out
+}
+
 /// One variant's error figures, rounded for a stable snapshot.
 pub fn error_line(v: &serde_json::Value, decimals: usize) -> String {
     let e = &v["error"];
