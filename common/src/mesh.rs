@@ -58,7 +58,7 @@ pub const BUILTIN_NAMES: [&str; 5] = ["plane", "cube", "sphere", "torus", "knot"
 /// | `cube` | side 1, flat normals: each face has its own 4 vertices | 24 | 12 |
 /// | `sphere` | radius 0.5, UV sphere of 48 segments × 24 stacks, smooth normals, one vertex at each pole (no sliver triangles there) | 1106 | 2208 |
 /// | `torus` | a ring lying in XZ around the Y axis: major radius R = 0.35 (origin to the tube's centre line), minor radius r = 0.15 (the tube), so it spans 1 × 0.3 × 1. 64 × 32 segments, smooth normals | 2048 | 4096 |
-/// | `knot` | a (2,3) torus knot (trefoil): a tube of radius 0.07 around the curve `((R + a cos 3t) cos 2t, a sin 3t, (R + a cos 3t) sin 2t)` with R = 0.28, a = 0.14. It winds twice around the Y axis and three times around its own core, so it shadows itself. Three-fold symmetric about Y with its centroid at the origin; its box is x ∈ [−0.40, 0.49], y ∈ [−0.21, 0.21], z ∈ [−0.46, 0.46]. 192 × 16 segments, smooth normals | 3072 | 6144 |
+/// | `knot` | a (2,3) torus knot (trefoil): a tube of radius 0.07 around the curve `((R + a cos 3t) cos 2t, a sin 3t, (R + a cos 3t) sin 2t)` with R = 0.28, a = 0.14. It goes twice around the Y axis while winding three times around the tube of a torus (R, a), so it crosses over itself and shadows itself. Three-fold symmetric about Y with its centroid at the origin; its box is x ∈ [−0.40, 0.49], y ∈ [−0.21, 0.21], z ∈ [−0.46, 0.46]. 192 × 16 segments, smooth normals | 3072 | 6144 |
 ///
 /// Every mesh except `plane` is closed. Seams share their vertices, so the
 /// meshes are closed by index as well as by position.

@@ -1,0 +1,101 @@
+// shadow_volume.wgsl: the geometry of stencil shadow volumes (lessons 05-08).
+// Appended to common.wgsl (camera, light, object); a lesson may append more.
+//
+// Two ways to build a volume, one vertex shader each:
+// - vs_volume_cpu: the CPU found the silhouette (as Doom 3 did) and sends
+//   (position, w): w = 1 stays where it is, w = 0 goes to infinity.
+// - vs_volume_quads: every edge was turned into a degenerate quad in
+//   advance; the vertex shader decides, per vertex, from the normal of the
+//   face it belongs to, whether it stays or goes to infinity.
+
+struct VolumeOut {
+    // invariant: the front cap must land on exactly the base pass's depths.
+    @invariant @builtin(position) clip: vec4<f32>,
+};
+
+// ANCHOR: extrude_to_infinity
+// A world point pushed away from the light, to infinity. w = 0 makes the
+// result a direction: the projection sends it to the vanishing point.
+fn extrude_to_infinity(world: vec3<f32>) -> vec4<f32> {
+    if light.position_or_dir.w == 0.0 {
+        // Directional: every point goes to the same point at infinity.
+        return vec4<f32>(light.position_or_dir.xyz, 0.0);
+    }
+    // Point and spot: straight away from the light.
+    return vec4<f32>(world - light.position_or_dir.xyz, 0.0);
+}
+// ANCHOR_END: extrude_to_infinity
+
+// ANCHOR: vs_volume_cpu
+@vertex
+fn vs_volume_cpu(@location(0) position: vec3<f32>, @location(1) w: f32) -> VolumeOut {
+    var out: VolumeOut;
+    // The same expression as vs_scene, so finite vertices get the same depth.
+    let world = object.model * vec4<f32>(position, 1.0);
+    if w == 0.0 {
+        out.clip = camera.view_proj * extrude_to_infinity(world.xyz);
+    } else {
+        out.clip = camera.view_proj * world;
+    }
+    return out;
+}
+// ANCHOR_END: vs_volume_cpu
+
+// ANCHOR: faces_light
+// Does the face (unnormalised object-space normal n, a point p0 on it) face
+// the light? In world space through the normal matrix, which keeps the
+// normal pointing out even when the model mirrors (det < 0). Exactly 0 is
+// "not facing", so a degenerate face (n = 0) never faces the light.
+fn faces_light(n: vec3<f32>, p0: vec3<f32>) -> bool {
+    let nw = (object.normal_matrix * vec4<f32>(n, 0.0)).xyz;
+    if light.position_or_dir.w == 0.0 {
+        return dot(nw, -light.position_or_dir.xyz) > 0.0;
+    }
+    let pw = (object.model * vec4<f32>(p0, 1.0)).xyz;
+    return dot(nw, light.position_or_dir.xyz - pw) > 0.0;
+}
+// ANCHOR_END: faces_light
+
+// ANCHOR: vs_volume_quads
+// kind 0: an edge-quad vertex: stays if its face faces the light, else goes
+//         to infinity (a quad between a lit and an unlit face opens up;
+//         otherwise its two ends stay together and it has no area).
+// kind 1: a front-cap vertex: stays if its face faces the light.
+// kind 2: a back-cap vertex: goes to infinity if its face faces the light.
+// A cap vertex whose face does not face the light collapses to one point,
+// with its two partners: a triangle of zero area draws nothing.
+@vertex
+fn vs_volume_quads(
+    @location(0) position: vec3<f32>,
+    @location(1) kind: u32,
+    @location(2) face_normal: vec3<f32>,
+    @location(3) face_point: vec3<f32>,
+) -> VolumeOut {
+    var out: VolumeOut;
+    let facing = faces_light(face_normal, face_point);
+    let world = object.model * vec4<f32>(position, 1.0);
+    var stay = facing;
+    var go = !facing;
+    if kind == 1u {
+        go = false;
+    } else if kind == 2u {
+        stay = false;
+        go = facing;
+    }
+    if stay {
+        out.clip = camera.view_proj * world;
+    } else if go {
+        out.clip = camera.view_proj * extrude_to_infinity(world.xyz);
+    } else {
+        out.clip = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    }
+    return out;
+}
+// ANCHOR_END: vs_volume_quads
+
+// The fragment-counting copy of the volume pass writes one throw-away
+// value, so that every rasterised fragment runs (and counts) a shader.
+@fragment
+fn fs_volume_count() -> @location(0) vec4<f32> {
+    return vec4<f32>(1.0);
+}
