@@ -157,3 +157,13 @@ fn point_light_is_refused_by_lesson_01() {
     let e = fails(&["--scene", &p]);
     assert!(e.contains("lights[0]") && e.contains("lesson_04"), "{e}");
 }
+
+#[test]
+fn no_adapter_says_what_to_install() {
+    // No Metal on Linux: the same path a machine without any driver takes.
+    if cfg!(target_os = "macos") {
+        return;
+    }
+    let e = fails(&["--backend", "metal"]);
+    assert!(e.contains("no GPU adapter found") && e.contains("mesa-vulkan-drivers"), "{e}");
+}

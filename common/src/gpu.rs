@@ -60,6 +60,11 @@ impl Gpu {
                 }
             },
         };
+        // Mesa's loaders probe for Wayland and print a line when
+        // XDG_RUNTIME_DIR is unset (containers, CI): point it somewhere harmless.
+        if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+            std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir());
+        }
         // Try the primary APIs first and GL last: probing GL/EGL is slower
         // and noisier, and Vulkan (lavapipe) has the optional features.
         let mut found = None;

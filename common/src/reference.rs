@@ -65,7 +65,6 @@ pub fn primary_ray(inv_view_proj: DMat4, i: u32, j: u32, w: u32, h: u32) -> (Vec
     let (o, d, _) = primary_ray_f64(inv_view_proj, i, j, w, h);
     (o.as_vec3(), d.as_vec3())
 }
-// ANCHOR_END: primary_ray
 
 /// The pixel's ray in `f64` and the distance to the far plane (infinite for
 /// an infinite far plane).
@@ -92,6 +91,7 @@ fn primary_ray_f64(inv: DMat4, i: u32, j: u32, w: u32, h: u32) -> (DVec3, DVec3,
     };
     (near, dir, t_far)
 }
+// ANCHOR_END: primary_ray
 
 /// Where a light is, seen from an origin-relative point.
 enum LightRel {
