@@ -74,3 +74,19 @@ fn lesson_01_frame_matches_reference_image() {
     let reference = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference_images/lesson_01_res_2048.png");
     support::compare_with_reference(&run.out.join("res_2048.png"), &reference, 8, 24, 2.0);
 }
+
+/// Without timestamp queries the report falls back to CPU wall time per
+/// pass, and says so.
+#[test]
+fn lesson_01_cpu_timing_fallback_is_labelled() {
+    let args = [&SIZE[..], &["--variant", "res_256"]].concat();
+    let Some(run) = support::run_lesson_env(BIN, "lesson_01_cpu_timing", &args, &[("WORKBOOK_TIMING", "cpu")]) else {
+        return;
+    };
+    let v = support::variant(&run.report, "res_256");
+    assert_eq!(v["timing_source"], "cpu_wall");
+    for k in ["total", "base", "shadow", "lighting"] {
+        assert!(v["timing_ms"][k].as_f64().is_some_and(|x| x > 0.0), "timing_ms.{k} missing or zero");
+    }
+    assert!(run.stdout.contains("CPU wall clock"), "the table says where the times come from");
+}

@@ -29,8 +29,11 @@ pub struct Timer {
 }
 
 impl Timer {
+    /// GPU timestamps when the adapter has them. `WORKBOOK_TIMING=cpu` forces
+    /// the CPU wall-clock fallback (to compare the two, and to test it).
     pub fn new(gpu: &Gpu) -> Timer {
-        let queries = gpu.has(wgpu::Features::TIMESTAMP_QUERY).then(|| {
+        let forced_cpu = std::env::var("WORKBOOK_TIMING").is_ok_and(|v| v == "cpu");
+        let queries = (gpu.has(wgpu::Features::TIMESTAMP_QUERY) && !forced_cpu).then(|| {
             let set = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("pass timestamps"),
                 ty: wgpu::QueryType::Timestamp,

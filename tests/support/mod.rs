@@ -32,8 +32,14 @@ pub fn out_dir(name: &str) -> PathBuf {
 /// Runs `bin --headless --out <dir> args...`. `None` only when no adapter
 /// exists and the GPU is not required (the skip is printed).
 pub fn run_lesson(bin: &str, name: &str, args: &[&str]) -> Option<LessonRun> {
+    run_lesson_env(bin, name, args, &[])
+}
+
+/// `run_lesson` with extra environment variables for the lesson process.
+pub fn run_lesson_env(bin: &str, name: &str, args: &[&str], env: &[(&str, &str)]) -> Option<LessonRun> {
     let out = out_dir(name);
     let o = Command::new(bin)
+        .envs(env.iter().copied())
         .arg("--headless")
         .arg("--out")
         .arg(&out)
