@@ -268,6 +268,11 @@ impl SceneGpu {
         pass.set_bind_group(0, &self.frame_group, &[(SLOT * light as u64) as u32]);
     }
 
+    /// Binds object `i`'s uniforms at group 1 (shadow volumes draw their own geometry).
+    pub fn bind_object(&self, pass: &mut wgpu::RenderPass<'_>, i: usize) {
+        pass.set_bind_group(1, &self.object_group, &[(SLOT * i as u64) as u32]);
+    }
+
     /// Draws the objects `keep` selects, binding each one's uniforms at group 1.
     pub fn draw_objects(
         &self,
@@ -713,4 +718,87 @@ pub fn depth_texture(
             | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     })
+}
+
+/// WGSL for one triangle that covers the target (`vs_fullscreen`), for
+/// passes that process an image: prepend it to a fragment shader.
+pub const FULLSCREEN_WGSL: &str = r#"
+struct FullscreenOut { @builtin(position) pos: vec4<f32>, @location(0) uv: vec2<f32> };
+@vertex fn vs_fullscreen(@builtin(vertex_index) i: u32) -> FullscreenOut {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    var o: FullscreenOut;
+    o.pos = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
+    o.uv = uv;
+    return o;
+}
+"#;
+
+/// A pipeline drawing `FULLSCREEN_WGSL`'s triangle with `fs_entry` into one
+/// colour target, reading bind group 0.
+pub fn fullscreen_pipeline(
+    gpu: &Gpu,
+    label: &str,
+    fragment_wgsl: &str,
+    fs_entry: &str,
+    layout: &wgpu::BindGroupLayout,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(format!("{FULLSCREEN_WGSL}\n{fragment_wgsl}").into()),
+    });
+    let pl = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&pl),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_fullscreen"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some(fs_entry),
+            compilation_options: Default::default(),
+            targets: &[Some(format.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// Records one full-screen draw of `pipeline` into `view` (cleared first).
+pub fn draw_fullscreen(
+    encoder: &mut wgpu::CommandEncoder,
+    view: &wgpu::TextureView,
+    pipeline: &wgpu::RenderPipeline,
+    group: &wgpu::BindGroup,
+) {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("full-screen pass"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, group, &[]);
+    pass.draw(0..3, 0..1);
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::Result;
 
 use crate::gpu::Gpu;
-use crate::render::{
+use crate::render::{draw_fullscreen, fullscreen_pipeline, 
     depth_texture, pipeline_layout_for, read_texture, render_texture, vertex_state, SceneGpu,
 };
 
@@ -192,12 +192,8 @@ const DEPTH_TO_BYTES_WGSL: &str = r#"
 // The depth texture bound as unfilterable float: GLSL has no textureLoad on
 // shadow samplers.
 @group(0) @binding(0) var depth: texture_2d<f32>;
-@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
-}
-@fragment fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
-    let d = textureLoad(depth, vec2<i32>(p.xy), 0).r;
+@fragment fn fs(in: FullscreenOut) -> @location(0) vec4<f32> {
+    let d = textureLoad(depth, vec2<i32>(in.pos.xy), 0).r;
     // The float's bits, one byte per channel: exact on the way back.
     return unpack4x8unorm(bitcast<u32>(d));
 }
@@ -211,10 +207,6 @@ pub fn read_depth_texture(
     dim: wgpu::TextureViewDimension,
 ) -> Result<Vec<f32>> {
     let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("depth to bytes"),
-        source: wgpu::ShaderSource::Wgsl(DEPTH_TO_BYTES_WGSL.into()),
-    });
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("depth to bytes"),
         entries: &[wgpu::BindGroupLayoutEntry {
@@ -236,33 +228,8 @@ pub fn read_depth_texture(
             resource: wgpu::BindingResource::TextureView(view),
         }],
     });
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: None,
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
     let target_format = wgpu::TextureFormat::Rgba8Unorm;
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("depth to bytes"),
-        layout: Some(&pl),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: Default::default(),
-        depth_stencil: None,
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs"),
-            compilation_options: Default::default(),
-            targets: &[Some(target_format.into())],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
+    let pipeline = fullscreen_pipeline(gpu, "depth to bytes", DEPTH_TO_BYTES_WGSL, "fs", &layout, target_format);
     let target = render_texture(
         gpu,
         "depth bytes",
@@ -273,31 +240,85 @@ pub fn read_depth_texture(
     );
     let tv = target.create_view(&Default::default());
     let mut enc = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("depth to bytes"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &tv,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.draw(0..3, 0..1);
-    }
+    draw_fullscreen(&mut enc, &tv, &pipeline, &group);
     gpu.queue.submit([enc.finish()]);
     let bytes = read_texture(gpu, &target, 4)?;
     Ok(bytes
         .chunks_exact(4)
         .map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]])))
         .collect())
+}
+
+// ---- shared by lessons 02 and 03 ------------------------------------------
+
+/// The WGSL that lessons 02 and 03 share (`shaders/shadow_map.wgsl`): the
+/// shadow map's bindings (group 2), the light-space transform, the texel
+/// size, and the receiver-side bias of lesson 02.
+pub const SHADOW_MAP_WGSL: &str = include_str!("../../shaders/shadow_map.wgsl");
+
+/// Compiles `common.wgsl`, then `shadow_map.wgsl`, then a lesson's own WGSL.
+pub fn shader_module(gpu: &Gpu, label: &str, lesson_wgsl: &str) -> wgpu::ShaderModule {
+    crate::render::shader_module(gpu, label, &format!("{SHADOW_MAP_WGSL}\n// ---- {label} ----\n{lesson_wgsl}"))
+}
+
+/// The receiver-side bias of `shadow_map.wgsl` (its `ShadowBias`), taught in
+/// lesson 02. Lengths are in shadow-map texels at the receiver, so a setting
+/// fits any scene size, map resolution and light type.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ShadowBias {
+    /// Subtracted from the receiver's depth, in depth units (the seeds' constant).
+    pub depth: f32,
+    /// The receiver moves this many texels towards the light.
+    pub toward_light: f32,
+    /// ... plus `slope · tan θ` texels, at most `slope_max`.
+    pub slope: f32,
+    pub slope_max: f32,
+    /// The receiver moves `normal · (1 − N·L)` texels along its normal.
+    pub normal: f32,
+    pub _pad: [f32; 3],
+}
+
+impl ShadowBias {
+    /// No bias at all: lesson 01's comparison.
+    pub const NONE: ShadowBias = ShadowBias { depth: 0.0, toward_light: 0.0, slope: 0.0, slope_max: 0.0, normal: 0.0, _pad: [0.0; 3] };
+}
+
+/// A bind group layout with one uniform buffer of `size` bytes at binding 0,
+/// read by the fragment stage (a lesson's per-variant parameters, group 3).
+pub fn uniform_layout(gpu: &Gpu, label: &str, size: u64) -> wgpu::BindGroupLayout {
+    gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(size),
+            },
+            count: None,
+        }],
+    })
+}
+
+/// A uniform buffer holding `bytes`, bound through [`uniform_layout`].
+pub fn uniform_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, label: &str, bytes: &[u8]) -> wgpu::BindGroup {
+    use wgpu::util::DeviceExt;
+    let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytes,
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
+    })
+}
+
+/// Whether the adapter can clamp the hardware depth bias
+/// (`DepthBiasState::clamp`); GL cannot, and a non-zero clamp fails there.
+pub fn can_clamp_depth_bias(gpu: &Gpu) -> bool {
+    gpu.adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::DEPTH_BIAS_CLAMP)
 }

@@ -20,22 +20,13 @@ use winit::window::{Window, WindowId};
 use crate::app::Lesson;
 use crate::cli::Args;
 use crate::gpu::Gpu;
-use crate::render::{FrameTargets, SceneGpu};
+use crate::render::{draw_fullscreen, fullscreen_pipeline, FrameTargets, SceneGpu};
 use crate::scene::{LightKind, Scene};
 use crate::timing::Timer;
 
 const BLIT_WGSL: &str = r#"
 @group(0) @binding(0) var src: texture_2d<f32>;
-struct Out { @builtin(position) pos: vec4<f32>, @location(0) uv: vec2<f32> };
-@vertex fn vs(@builtin(vertex_index) i: u32) -> Out {
-    // One triangle that covers the screen.
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    var o: Out;
-    o.pos = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
-    o.uv = uv;
-    return o;
-}
-@fragment fn fs(in: Out) -> @location(0) vec4<f32> {
+@fragment fn fs(in: FullscreenOut) -> @location(0) vec4<f32> {
     let size = vec2<f32>(textureDimensions(src));
     return textureLoad(src, vec2<i32>(in.uv * size), 0);
 }
@@ -126,12 +117,6 @@ impl<L: Lesson> App<L> {
         let targets = FrameTargets::new(&gpu, &scene);
         let lesson = L::new(&gpu, &scene)?;
         let timer = Timer::new(&gpu);
-        let module = gpu
-            .device
-            .create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("blit"),
-                source: wgpu::ShaderSource::Wgsl(BLIT_WGSL.into()),
-            });
         let blit_layout = gpu
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -147,36 +132,7 @@ impl<L: Lesson> App<L> {
                     count: None,
                 }],
             });
-        let layout = gpu
-            .device
-            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("blit"),
-                bind_group_layouts: &[Some(&blit_layout)],
-                immediate_size: 0,
-            });
-        let blit = gpu
-            .device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("blit"),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: None,
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(config.format.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            });
+        let blit = fullscreen_pipeline(&gpu, "blit", BLIT_WGSL, "fs", &blit_layout, config.format);
         let blit_group = blit_group(&gpu, &blit_layout, &targets);
         self.running = Some(Running {
             window,
@@ -214,27 +170,7 @@ impl<L: Lesson> App<L> {
         };
         let view = surface_tex.texture.create_view(&Default::default());
         let mut enc = r.gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("blit"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&r.blit);
-            pass.set_bind_group(0, &r.blit_group, &[]);
-            pass.draw(0..3, 0..1);
-        }
+        draw_fullscreen(&mut enc, &view, &r.blit, &r.blit_group);
         r.gpu.queue.submit([enc.finish()]);
         r.gpu.queue.present(surface_tex);
         r.window.set_title(&format!(
