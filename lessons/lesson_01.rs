@@ -43,7 +43,11 @@ impl Lesson for DepthMap {
     }
 
     fn check_scene(scene: &Scene) -> Result<()> {
-        if let Some(k) = scene.lights.iter().position(|l| matches!(l.kind, LightKind::Point { .. })) {
+        if let Some(k) = scene
+            .lights
+            .iter()
+            .position(|l| matches!(l.kind, LightKind::Point { .. }))
+        {
             anyhow::bail!("lights[{k}]: lesson_01 shadows directional and spot lights; point lights are lesson_04");
         }
         Ok(())
@@ -52,39 +56,70 @@ impl Lesson for DepthMap {
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let module = shader_module(gpu, "lesson_01", include_str!("../shaders/lesson_01.wgsl"));
         let layout = shadow_map::shadow_map_layout(gpu);
-        let shadow_pipeline = shadow_map::shadow_pipeline(gpu, scene, &module, ShadowPassState::default());
-        let lit_pipeline = scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
+        let shadow_pipeline =
+            shadow_map::shadow_pipeline(gpu, scene, &module, ShadowPassState::default());
+        let lit_pipeline =
+            scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
         let maps = RESOLUTIONS
             .iter()
             .map(|&r| {
                 let map = ShadowMap::new(gpu, r);
-                let group = shadow_map::shadow_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
+                let group =
+                    shadow_map::shadow_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
                 (map, group)
             })
             .collect();
-        Ok(DepthMap { shadow_pipeline, lit_pipeline, maps })
+        Ok(DepthMap {
+            shadow_pipeline,
+            lit_pipeline,
+            maps,
+        })
     }
 
     // ANCHOR: render
-    fn render(&mut self, frame: &mut Frame, scene: &SceneGpu, targets: &FrameTargets, variant: &str) -> Result<()> {
-        let size = resolution(variant).ok_or_else(|| anyhow::anyhow!("unknown variant {variant}"))?;
-        let (map, group) = self.maps.iter().find(|(m, _)| m.size == size).expect("one map per resolution");
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: &str,
+    ) -> Result<()> {
+        let (map, group) = self.map_for(variant)?;
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
             // Pass 1: depth from the light. Pass 2: compare and add the light.
-            frame.pass("shadow", |enc, ts| shadow_map::shadow_pass(enc, scene, &self.shadow_pipeline, map, light, ts.render()));
-            frame.pass("lighting", |enc, ts| scene.lit_pass(enc, targets, light, &self.lit_pipeline, &[group], 0, ts.render()));
+            frame.pass("shadow", |enc, ts| {
+                shadow_map::shadow_pass(enc, scene, &self.shadow_pipeline, map, light, ts.render())
+            });
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(
+                    enc,
+                    targets,
+                    light,
+                    &self.lit_pipeline,
+                    &[group],
+                    0,
+                    ts.render(),
+                )
+            });
         }
         Ok(())
     }
     // ANCHOR_END: render
 
     fn write_extras(&self, gpu: &Gpu, _scene: &SceneGpu, variant: &str, out: &Path) -> Result<()> {
-        let size = resolution(variant).unwrap_or(0);
-        match self.maps.iter().find(|(m, _)| m.size == size) {
-            Some((map, _)) => map.write_png(gpu, &out.join(format!("{variant}_depth_map.png"))),
-            None => Ok(()),
-        }
+        let (map, _) = self.map_for(variant)?;
+        map.write_png(gpu, &out.join(format!("{variant}_depth_map.png")))
+    }
+}
+
+impl DepthMap {
+    fn map_for(&self, variant: &str) -> Result<&(ShadowMap, wgpu::BindGroup)> {
+        let size = resolution(variant);
+        self.maps
+            .iter()
+            .find(|(m, _)| Some(m.size) == size)
+            .ok_or_else(|| anyhow::anyhow!("unknown variant {variant}"))
     }
 }
 

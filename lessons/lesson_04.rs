@@ -65,13 +65,15 @@ const BEST: Variant = Variant {
     clamp_range: true,
 };
 
+// One line per variant: what changes from BEST.
+#[rustfmt::skip]
 const VARIANTS: [Variant; 10] = [
     Variant { name: "linear_256", size: 256, ..BEST },
     BEST,
     Variant { name: "linear_2048", size: 2048, ..BEST },
     Variant { name: "depth_1024", storage: Storage::Depth, ..BEST },
     Variant { name: "depth_euclid_1024", storage: Storage::DepthEuclid, ..BEST },
-    Variant { name: "const_bias_1024", bias_texels: 0.0, slope: 0.0, bias_world: 0.01, ..BEST },
+    Variant { name: "const_bias_1024", bias_texels: 0.0, slope: 0.0, bias_world: 0.003, ..BEST },
     Variant { name: "pcf3d_1024", pcf: 1.5, slope: 2.5, ..BEST },
     Variant { name: "nocull_1024", cull: false, ..BEST },
     Variant { name: "clipped_1024", unclipped: false, ..BEST },
@@ -103,7 +105,10 @@ struct CubeShadows {
 }
 
 fn find(name: &str) -> Result<usize> {
-    VARIANTS.iter().position(|v| v.name == name).ok_or_else(|| anyhow::anyhow!("unknown variant {name}"))
+    VARIANTS
+        .iter()
+        .position(|v| v.name == name)
+        .ok_or_else(|| anyhow::anyhow!("unknown variant {name}"))
 }
 
 impl Lesson for CubeShadows {
@@ -115,7 +120,11 @@ impl Lesson for CubeShadows {
     }
 
     fn check_scene(scene: &Scene) -> Result<()> {
-        if let Some(k) = scene.lights.iter().position(|l| matches!(l.kind, LightKind::Directional { .. })) {
+        if let Some(k) = scene
+            .lights
+            .iter()
+            .position(|l| matches!(l.kind, LightKind::Directional { .. }))
+        {
             anyhow::bail!("lights[{k}]: lesson_04 shadows point (and spot) lights; directional lights are lessons lesson_01-lesson_03");
         }
         Ok(())
@@ -124,49 +133,110 @@ impl Lesson for CubeShadows {
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let module = shader_module(gpu, "lesson_04", include_str!("../shaders/lesson_04.wgsl"));
         let layout = cube_shadow::cube_map_layout(gpu, 32);
-        let lit_pipeline = scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
+        let lit_pipeline =
+            scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
         let has_unclipped = gpu.has(wgpu::Features::DEPTH_CLIP_CONTROL);
-        let (mut maps, mut shadow_pipelines, mut keys, mut prepared) = (Vec::<CubeShadowMap>::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut maps, mut shadow_pipelines, mut keys, mut prepared) = (
+            Vec::<CubeShadowMap>::new(),
+            Vec::new(),
+            Vec::new(),
+            Vec::new(),
+        );
         for v in &VARIANTS {
-            let map = maps.iter().position(|m| m.size == v.size).unwrap_or_else(|| {
-                maps.push(CubeShadowMap::new(gpu, v.size));
-                maps.len() - 1
-            });
+            let map = maps
+                .iter()
+                .position(|m| m.size == v.size)
+                .unwrap_or_else(|| {
+                    maps.push(CubeShadowMap::new(gpu, v.size));
+                    maps.len() - 1
+                });
             // Without DEPTH_CLIP_CONTROL (GL), fall back to a 1 mm near plane (reported).
             let unclipped = v.unclipped && has_unclipped;
-            let near = if v.unclipped && !has_unclipped { NEAR_FALLBACK } else { NEAR };
+            let near = if v.unclipped && !has_unclipped {
+                NEAR_FALLBACK
+            } else {
+                NEAR
+            };
             let storage = match v.storage {
-                Storage::Linear => DepthStorage::Linear { vs_entry: "vs_cube_linear", fs_entry: "fs_cube_linear" },
+                Storage::Linear => DepthStorage::Linear {
+                    vs_entry: "vs_cube_linear",
+                    fs_entry: "fs_cube_linear",
+                },
                 _ => DepthStorage::Hardware,
             };
-            let pipeline = keys.iter().position(|k| *k == (storage, unclipped)).unwrap_or_else(|| {
-                shadow_pipelines.push(cube_shadow::cube_shadow_pipeline(gpu, scene, &module, storage, unclipped));
-                keys.push((storage, unclipped));
-                keys.len() - 1
-            });
+            let pipeline = keys
+                .iter()
+                .position(|k| *k == (storage, unclipped))
+                .unwrap_or_else(|| {
+                    shadow_pipelines.push(cube_shadow::cube_shadow_pipeline(
+                        gpu, scene, &module, storage, unclipped,
+                    ));
+                    keys.push((storage, unclipped));
+                    keys.len() - 1
+                });
             let mode = match v.storage {
                 Storage::Linear => 0.0,
                 Storage::Depth => 1.0,
                 Storage::DepthEuclid => 2.0,
             };
-            let params: [f32; 8] = [near as f32, 2.0 / v.size as f32, mode, f32::from(u8::from(v.clamp_range)), v.bias_world, v.bias_texels, v.slope, v.pcf];
-            let filter = if v.pcf > 0.0 { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
-            let group = cube_shadow::cube_map_group(gpu, &layout, &maps[map], filter, bytemuck::cast_slice(&params));
-            prepared.push(Prepared { pipeline, group, map, near, unclipped });
+            let params: [f32; 8] = [
+                near as f32,
+                2.0 / v.size as f32,
+                mode,
+                f32::from(u8::from(v.clamp_range)),
+                v.bias_world,
+                v.bias_texels,
+                v.slope,
+                v.pcf,
+            ];
+            let filter = if v.pcf > 0.0 {
+                wgpu::FilterMode::Linear
+            } else {
+                wgpu::FilterMode::Nearest
+            };
+            let group = cube_shadow::cube_map_group(
+                gpu,
+                &layout,
+                &maps[map],
+                filter,
+                bytemuck::cast_slice(&params),
+            );
+            prepared.push(Prepared {
+                pipeline,
+                group,
+                map,
+                near,
+                unclipped,
+            });
         }
         let faces = FaceUniforms::new(gpu, scene);
         let spheres = cube_shadow::bounding_spheres(&scene.scene);
-        Ok(CubeShadows { lit_pipeline, shadow_pipelines, maps, prepared, faces, spheres, stats: CubeStats::default() })
+        Ok(CubeShadows {
+            lit_pipeline,
+            shadow_pipelines,
+            maps,
+            prepared,
+            faces,
+            spheres,
+            stats: CubeStats::default(),
+        })
     }
 
     // ANCHOR: render
-    fn render(&mut self, frame: &mut Frame, scene: &SceneGpu, targets: &FrameTargets, variant: &str) -> Result<()> {
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: &str,
+    ) -> Result<()> {
         let i = find(variant)?;
         let (v, p) = (VARIANTS[i], &self.prepared[i]);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         self.stats = CubeStats::default();
         for light in 0..scene.scene.lights.len() {
-            let (pos, range) = cube_shadow::point_light(&scene.scene, light).expect("check_scene allows point and spot lights");
+            let (pos, range) = cube_shadow::point_light(&scene.scene, light)
+                .expect("check_scene allows point and spot lights");
             self.faces.write(frame.gpu, &scene.scene, light, p.near);
             // Leave out what the light cannot see: casters past its range,
             // and per face, casters whose bounding sphere misses the frustum.
@@ -177,15 +247,35 @@ impl Lesson for CubeShadows {
                     .filter(|&o| {
                         let c = spheres[o].centre - pos;
                         let r = spheres[o].radius;
-                        !v.cull || (c.length() - r < range && cube_shadow::sphere_touches_face(c, r, face))
+                        !v.cull
+                            || (c.length() - r < range
+                                && cube_shadow::sphere_touches_face(c, r, face))
                     })
                     .collect()
             };
             let map = &mut self.maps[p.map];
-            let s = cube_shadow::cube_shadow_passes(frame, scene, &self.shadow_pipelines[p.pipeline], map, &self.faces, light, casters);
+            let s = cube_shadow::cube_shadow_passes(
+                frame,
+                scene,
+                &self.shadow_pipelines[p.pipeline],
+                map,
+                &self.faces,
+                light,
+                casters,
+            );
             self.stats.faces_rendered += s.faces_rendered;
             self.stats.caster_draws += s.caster_draws;
-            frame.pass("lighting", |enc, ts| scene.lit_pass(enc, targets, light, &self.lit_pipeline, &[&p.group], 0, ts.render()));
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(
+                    enc,
+                    targets,
+                    light,
+                    &self.lit_pipeline,
+                    &[&p.group],
+                    0,
+                    ts.render(),
+                )
+            });
         }
         Ok(())
     }

@@ -12,7 +12,11 @@ const BIN: &str = env!("CARGO_BIN_EXE_lesson_04");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
 fn scene(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name).display().to_string()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name)
+        .display()
+        .to_string()
 }
 
 /// `--scene FILE --variant A --variant B ...` after the common size.
@@ -28,19 +32,25 @@ fn args<'a>(scene: &'a str, variants: &[&'a str]) -> Vec<&'a str> {
 }
 
 fn pct(run: &support::LessonRun, variant: &str, key: &str) -> f64 {
-    support::variant(&run.report, variant)["error"][key].as_f64().unwrap()
+    support::variant(&run.report, variant)["error"][key]
+        .as_f64()
+        .unwrap()
 }
 
 fn counter(run: &support::LessonRun, variant: &str, key: &str) -> u64 {
-    support::variant(&run.report, variant)["counters"][key].as_u64().unwrap_or_else(|| panic!("{variant}: counter {key} missing"))
+    support::variant(&run.report, variant)["counters"][key]
+        .as_u64()
+        .unwrap_or_else(|| panic!("{variant}: counter {key} missing"))
 }
 
 /// Percentage of covered pixels where a variant's visibility PNG and the
 /// reference's disagree (lit = v ≥ 0.5), over *all* covered pixels, not
 /// only the metric's receivers (which stop at the light's range).
 fn disagreement_pct(out: &Path, variant: &str) -> f64 {
-    let (ids, vis, _, _) = support::read_visibility(&out.join(format!("{variant}_visibility_l0.png")));
-    let (ref_ids, ref_vis, _, _) = support::read_visibility(&out.join("reference_visibility_l0.png"));
+    let (ids, vis, _, _) =
+        support::read_visibility(&out.join(format!("{variant}_visibility_l0.png")));
+    let (ref_ids, ref_vis, _, _) =
+        support::read_visibility(&out.join("reference_visibility_l0.png"));
     let (mut covered, mut differ) = (0u64, 0u64);
     for p in 0..ids.len() {
         if ids[p] == 1 && ref_ids[p] == 1 {
@@ -58,14 +68,20 @@ fn lesson_04_snapshot() {
     };
     let variants = run.report["variants"].as_array().expect("variants");
     assert_eq!(variants.len(), 10);
-    let mut text = String::from("reference visibility, light 0 ('#' shadow, '.' lit, ' ' background):\n");
+    let mut text =
+        String::from("reference visibility, light 0 ('#' shadow, '.' lit, ' ' background):\n");
     text += &support::ascii_of(&run.out.join("reference_visibility_l0.png"), 64, 18);
     text += "\n\nlinear_1024 visibility, light 0:\n";
     text += &support::ascii_of(&run.out.join("linear_1024_visibility_l0.png"), 64, 18);
     text += "\n\nerror against the reference (rounded to whole percent), faces rendered, caster draws:\n";
     for v in variants {
         let c = &v["counters"];
-        text += &format!("{}  faces {}  draws {}\n", support::error_line(v, 0), c["faces_rendered"], c["caster_draws"]);
+        text += &format!(
+            "{}  faces {}  draws {}\n",
+            support::error_line(v, 0),
+            c["faces_rendered"],
+            c["caster_draws"]
+        );
     }
     insta::assert_snapshot!("lesson_04", text);
     // Done-when: the best variant is within 1% of the exact reference.
@@ -78,17 +94,41 @@ fn lesson_04_snapshot() {
 /// the range are left out.
 #[test]
 fn lesson_04_culling_changes_no_pixel_and_draws_less() {
-    let Some(run) = support::run_lesson(BIN, "lesson_04_culling", &args("", &["linear_1024", "nocull_1024"])) else {
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_04_culling",
+        &args("", &["linear_1024", "nocull_1024"]),
+    ) else {
         return;
     };
-    let culled = image::open(run.out.join("linear_1024_visibility_l0.png")).unwrap().to_luma_alpha8();
-    let full = image::open(run.out.join("nocull_1024_visibility_l0.png")).unwrap().to_luma_alpha8();
-    let differ = culled.pixels().zip(full.pixels()).filter(|(a, b)| a != b).count();
-    assert_eq!(differ, 0, "culled and unculled visibility differ in {differ} pixels");
-    let (f, d) = (counter(&run, "linear_1024", "faces_rendered"), counter(&run, "linear_1024", "caster_draws"));
-    let (nf, nd) = (counter(&run, "nocull_1024", "faces_rendered"), counter(&run, "nocull_1024", "caster_draws"));
+    let culled = image::open(run.out.join("linear_1024_visibility_l0.png"))
+        .unwrap()
+        .to_luma_alpha8();
+    let full = image::open(run.out.join("nocull_1024_visibility_l0.png"))
+        .unwrap()
+        .to_luma_alpha8();
+    let differ = culled
+        .pixels()
+        .zip(full.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differ, 0,
+        "culled and unculled visibility differ in {differ} pixels"
+    );
+    let (f, d) = (
+        counter(&run, "linear_1024", "faces_rendered"),
+        counter(&run, "linear_1024", "caster_draws"),
+    );
+    let (nf, nd) = (
+        counter(&run, "nocull_1024", "faces_rendered"),
+        counter(&run, "nocull_1024", "caster_draws"),
+    );
     assert_eq!(nf, 6, "unculled renders all six faces");
-    assert!(f < nf && d < nd, "culling must draw less: faces {f} vs {nf}, draws {d} vs {nd}");
+    assert!(
+        f < nf && d < nd,
+        "culling must draw less: faces {f} vs {nf}, draws {d} vs {nd}"
+    );
 }
 
 /// Seams: the room casts too, and casters sit on a cube corner and edge
@@ -98,7 +138,11 @@ fn lesson_04_culling_changes_no_pixel_and_draws_less() {
 #[test]
 fn lesson_04_seams_edges_and_corners() {
     let s = scene("lesson_04_seams.toml");
-    let Some(run) = support::run_lesson(BIN, "lesson_04_seams", &args(&s, &["linear_1024", "depth_1024", "depth_euclid_1024"])) else {
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_04_seams",
+        &args(&s, &["linear_1024", "depth_1024", "depth_euclid_1024"]),
+    ) else {
         return;
     };
     for v in ["linear_1024", "depth_1024"] {
@@ -106,7 +150,10 @@ fn lesson_04_seams_edges_and_corners() {
         assert!(e <= 1.0, "{v}: {e}% misclassified across the seams");
     }
     let naive = pct(&run, "depth_euclid_1024", "false_shadow_pct");
-    assert!(naive >= 50.0, "the Euclidean comparison should shadow the off-axis walls, got {naive}%");
+    assert!(
+        naive >= 50.0,
+        "the Euclidean comparison should shadow the off-axis walls, got {naive}%"
+    );
 }
 
 /// Each face's view matrix matches the sampler: a caster off-centre in each
@@ -116,13 +163,22 @@ fn lesson_04_seams_edges_and_corners() {
 fn lesson_04_each_face_shadows_the_right_side() {
     for name in ["lesson_04_axes_neg.toml", "lesson_04_axes_pos.toml"] {
         let s = scene(name);
-        let Some(run) = support::run_lesson(BIN, &format!("lesson_04_{name}"), &args(&s, &["linear_1024"])) else {
+        let Some(run) = support::run_lesson(
+            BIN,
+            &format!("lesson_04_{name}"),
+            &args(&s, &["linear_1024"]),
+        ) else {
             return;
         };
         let e = pct(&run, "linear_1024", "misclassified_pct");
-        let receivers = support::variant(&run.report, "linear_1024")["error"]["receiver_pixels"].as_u64().unwrap();
+        let receivers = support::variant(&run.report, "linear_1024")["error"]["receiver_pixels"]
+            .as_u64()
+            .unwrap();
         assert!(receivers > 10_000, "{name}: the walls must be receivers");
-        assert!(e <= 0.5, "{name}: {e}% misclassified: a face looks the wrong way");
+        assert!(
+            e <= 0.5,
+            "{name}: {e}% misclassified: a face looks the wrong way"
+        );
     }
 }
 
@@ -132,15 +188,25 @@ fn lesson_04_each_face_shadows_the_right_side() {
 #[test]
 fn lesson_04_caster_inside_the_near_plane() {
     let s = scene("lesson_04_near_caster.toml");
-    let Some(run) = support::run_lesson(BIN, "lesson_04_near", &args(&s, &["linear_1024", "depth_1024", "clipped_1024"])) else {
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_04_near",
+        &args(&s, &["linear_1024", "depth_1024", "clipped_1024"]),
+    ) else {
         return;
     };
     for v in ["linear_1024", "depth_1024"] {
         let e = pct(&run, v, "misclassified_pct");
-        assert!(e <= 1.0, "{v}: {e}% misclassified with the caster inside the near plane");
+        assert!(
+            e <= 1.0,
+            "{v}: {e}% misclassified with the caster inside the near plane"
+        );
     }
     let clipped = pct(&run, "clipped_1024", "false_lit_pct");
-    assert!(clipped >= 5.0, "clipping should lose the near caster's shadow, false lit {clipped}%");
+    assert!(
+        clipped >= 5.0,
+        "clipping should lose the near caster's shadow, false lit {clipped}%"
+    );
 }
 
 /// Receivers past the light's range. The metric skips them (no light
@@ -150,15 +216,25 @@ fn lesson_04_caster_inside_the_near_plane() {
 #[test]
 fn lesson_04_receiver_beyond_the_range() {
     let s = scene("lesson_04_beyond_range.toml");
-    let Some(run) = support::run_lesson(BIN, "lesson_04_range", &args(&s, &["linear_1024", "depth_1024", "no_range_clamp_1024"])) else {
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_04_range",
+        &args(&s, &["linear_1024", "depth_1024", "no_range_clamp_1024"]),
+    ) else {
         return;
     };
     for v in ["linear_1024", "depth_1024"] {
         let e = disagreement_pct(&run.out, v);
-        assert!(e <= 1.0, "{v}: {e}% of covered pixels disagree with the reference");
+        assert!(
+            e <= 1.0,
+            "{v}: {e}% of covered pixels disagree with the reference"
+        );
     }
     let naive = disagreement_pct(&run.out, "no_range_clamp_1024");
-    assert!(naive >= 20.0, "without the clamp, receivers past the range should read shadowed: {naive}%");
+    assert!(
+        naive >= 20.0,
+        "without the clamp, receivers past the range should read shadowed: {naive}%"
+    );
 }
 
 /// The default scene moved 100 km from the world origin. Criterion: ≤ 1%
@@ -169,12 +245,19 @@ fn lesson_04_light_far_from_the_origin() {
     let Some(far) = support::run_lesson(BIN, "lesson_04_far", &args(&s, &["linear_1024"])) else {
         return;
     };
-    let Some(near) = support::run_lesson(BIN, "lesson_04_far_ref", &args("", &["linear_1024"])) else {
+    let Some(near) = support::run_lesson(BIN, "lesson_04_far_ref", &args("", &["linear_1024"]))
+    else {
         return;
     };
-    let (a, b) = (pct(&far, "linear_1024", "misclassified_pct"), pct(&near, "linear_1024", "misclassified_pct"));
+    let (a, b) = (
+        pct(&far, "linear_1024", "misclassified_pct"),
+        pct(&near, "linear_1024", "misclassified_pct"),
+    );
     assert!(a <= 1.0, "100 km out: {a}% misclassified");
-    assert!((a - b).abs() <= 0.1, "100 km out: {a}% vs {b}% at the origin");
+    assert!(
+        (a - b).abs() <= 0.1,
+        "100 km out: {a}% vs {b}% at the origin"
+    );
 }
 
 /// A directional light is refused with one line that names lessons 01-03.
@@ -187,7 +270,15 @@ fn lesson_04_refuses_directional_lights() {
         .expect("run lesson_04");
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
-    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error: lesson_04")).collect();
+    let lines: Vec<&str> = err
+        .lines()
+        .filter(|l| l.starts_with("error: lesson_04"))
+        .collect();
     assert_eq!(lines.len(), 1, "one error line: {err}");
-    assert!(lines[0].contains("lights[0]") && lines[0].contains("lesson_01") && lines[0].contains("lesson_03"), "{err}");
+    assert!(
+        lines[0].contains("lights[0]")
+            && lines[0].contains("lesson_01")
+            && lines[0].contains("lesson_03"),
+        "{err}"
+    );
 }

@@ -15,7 +15,9 @@ use glam::{DMat4, DVec3, Mat4};
 
 use crate::camera::light_uniform;
 use crate::gpu::Gpu;
-use crate::render::{depth_texture, pipeline_layout_for, read_texture, render_texture, vertex_state, SceneGpu};
+use crate::render::{
+    depth_texture, pipeline_layout_for, read_texture, render_texture, vertex_state, SceneGpu,
+};
 use crate::scene::{LightKind, Scene};
 use crate::timing::Frame;
 
@@ -50,7 +52,10 @@ pub fn face_view_proj(light: DVec3, face: usize, near: f64, far: f64) -> Mat4 {
 /// The light's position (origin-relative) and range; `None` for a directional light.
 pub fn point_light(scene: &Scene, light: usize) -> Option<(DVec3, f64)> {
     match scene.lights[light].kind {
-        LightKind::Point { position, range } | LightKind::Spot { position, range, .. } => Some((position - scene.origin(), range)),
+        LightKind::Point { position, range }
+        | LightKind::Spot {
+            position, range, ..
+        } => Some((position - scene.origin(), range)),
         LightKind::Directional { .. } => None,
     }
 }
@@ -75,7 +80,10 @@ pub fn bounding_spheres(scene: &Scene) -> Vec<Sphere> {
                 lo = lo.min(w);
                 hi = hi.max(w);
             }
-            Sphere { centre: (lo + hi) * 0.5, radius: (hi - lo).length() * 0.5 }
+            Sphere {
+                centre: (lo + hi) * 0.5,
+                radius: (hi - lo).length() * 0.5,
+            }
         })
         .collect()
 }
@@ -108,7 +116,13 @@ pub struct CubeShadowMap {
 impl CubeShadowMap {
     pub fn new(gpu: &Gpu, size: u32) -> CubeShadowMap {
         // Six square layers: GL makes this a cube map texture (wgpu's rule).
-        let texture = depth_texture(gpu, &format!("cube shadow map {size}"), size, 6, CUBE_FORMAT);
+        let texture = depth_texture(
+            gpu,
+            &format!("cube shadow map {size}"),
+            size,
+            6,
+            CUBE_FORMAT,
+        );
         let face_views = (0..6)
             .map(|i| {
                 texture.create_view(&wgpu::TextureViewDescriptor {
@@ -123,7 +137,13 @@ impl CubeShadowMap {
             dimension: Some(wgpu::TextureViewDimension::Cube),
             ..Default::default()
         });
-        CubeShadowMap { size, texture, face_views, cube_view, empty: [false; 6] }
+        CubeShadowMap {
+            size,
+            texture,
+            face_views,
+            cube_view,
+            empty: [false; 6],
+        }
     }
 }
 
@@ -155,10 +175,17 @@ impl FaceUniforms {
             label: Some("cube faces"),
             layout: &scene.frame_layout,
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: camera.as_entire_binding() },
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: camera.as_entire_binding(),
+                },
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding { buffer: &buffer, offset: 0, size: wgpu::BufferSize::new(light_size) }),
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buffer,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(light_size),
+                    }),
                 },
             ],
         });
@@ -167,11 +194,17 @@ impl FaceUniforms {
 
     /// Writes the six faces' view-projections of light `light`.
     pub fn write(&self, gpu: &Gpu, scene: &Scene, light: usize, near: f64) {
-        let Some((pos, range)) = point_light(scene, light) else { return };
+        let Some((pos, range)) = point_light(scene, light) else {
+            return;
+        };
         for face in 0..6 {
             let mut u = light_uniform(scene, light);
             u.view_proj = face_view_proj(pos, face, near, range).to_cols_array_2d();
-            gpu.queue.write_buffer(&self.buffer, SLOT * (6 * light + face) as u64, bytemuck::bytes_of(&u));
+            gpu.queue.write_buffer(
+                &self.buffer,
+                SLOT * (6 * light + face) as u64,
+                bytemuck::bytes_of(&u),
+            );
         }
     }
 }
@@ -180,36 +213,54 @@ impl FaceUniforms {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DepthStorage {
     /// distance / range, written by the fragment shader (`fs_entry`).
-    Linear { vs_entry: &'static str, fs_entry: &'static str },
+    Linear {
+        vs_entry: &'static str,
+        fs_entry: &'static str,
+    },
     /// The face projection's own depth (`vs_light_depth`, no fragment shader).
     Hardware,
 }
 
 /// The depth-only pipeline of the cube faces. `unclipped` turns off the
 /// near/far clip (needs DEPTH_CLIP_CONTROL): depth is clamped instead.
-pub fn cube_shadow_pipeline(gpu: &Gpu, scene: &SceneGpu, module: &wgpu::ShaderModule, storage: DepthStorage, unclipped: bool) -> wgpu::RenderPipeline {
+pub fn cube_shadow_pipeline(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    module: &wgpu::ShaderModule,
+    storage: DepthStorage,
+    unclipped: bool,
+) -> wgpu::RenderPipeline {
     let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
     let (vs, fs) = match storage {
         DepthStorage::Linear { vs_entry, fs_entry } => (vs_entry, Some(fs_entry)),
         DepthStorage::Hardware => ("vs_light_depth", None),
     };
-    gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("cube shadow pass"),
-        layout: Some(&layout),
-        vertex: vertex_state(module, vs),
-        primitive: wgpu::PrimitiveState { unclipped_depth: unclipped, ..Default::default() },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: CUBE_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: fs.map(|entry| wgpu::FragmentState { module, entry_point: Some(entry), compilation_options: Default::default(), targets: &[] }),
-        multiview_mask: None,
-        cache: None,
-    })
+    gpu.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("cube shadow pass"),
+            layout: Some(&layout),
+            vertex: vertex_state(module, vs),
+            primitive: wgpu::PrimitiveState {
+                unclipped_depth: unclipped,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: CUBE_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: fs.map(|entry| wgpu::FragmentState {
+                module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                targets: &[],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
 }
 
 /// What the shadow passes drew.
@@ -244,7 +295,10 @@ pub fn cube_shadow_passes(
                 color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &map.face_views[face],
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
                     stencil_ops: None,
                 }),
                 timestamp_writes: ts.render(),
@@ -252,7 +306,11 @@ pub fn cube_shadow_passes(
                 multiview_mask: None,
             });
             pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &faces.group, &[(SLOT * (6 * light + face) as u64) as u32]);
+            pass.set_bind_group(
+                0,
+                &faces.group,
+                &[(SLOT * (6 * light + face) as u64) as u32],
+            );
             stats.caster_draws += scene.draw_objects(&mut pass, |i| list.contains(&i)) as u64;
         });
         map.empty[face] = list.is_empty();
@@ -266,32 +324,48 @@ pub fn cube_shadow_passes(
 /// comparison sampler (1), and the lesson's parameters (2, `params_size` bytes).
 pub fn cube_map_layout(gpu: &Gpu, params_size: u64) -> wgpu::BindGroupLayout {
     let fragment = wgpu::ShaderStages::FRAGMENT;
-    gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("cube shadow map"),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: fragment,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Depth,
-                    view_dimension: wgpu::TextureViewDimension::Cube,
-                    multisampled: false,
+    gpu.device
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cube shadow map"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::Cube,
+                        multisampled: false,
+                    },
+                    count: None,
                 },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry { binding: 1, visibility: fragment, ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison), count: None },
-            wgpu::BindGroupLayoutEntry {
-                binding: 2,
-                visibility: fragment,
-                ty: wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: wgpu::BufferSize::new(params_size) },
-                count: None,
-            },
-        ],
-    })
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(params_size),
+                    },
+                    count: None,
+                },
+            ],
+        })
 }
 
 /// The matching bind group, with its own parameter buffer holding `params`.
-pub fn cube_map_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, map: &CubeShadowMap, filter: wgpu::FilterMode, params: &[u8]) -> wgpu::BindGroup {
+pub fn cube_map_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &CubeShadowMap,
+    filter: wgpu::FilterMode,
+    params: &[u8],
+) -> wgpu::BindGroup {
     use wgpu::util::DeviceExt;
     let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("cube comparison"),
@@ -300,14 +374,29 @@ pub fn cube_map_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, map: &CubeShado
         compare: Some(wgpu::CompareFunction::LessEqual),
         ..Default::default()
     });
-    let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some("cube params"), contents: params, usage: wgpu::BufferUsages::UNIFORM });
+    let buffer = gpu
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("cube params"),
+            contents: params,
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("cube shadow map"),
         layout,
         entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&map.cube_view) },
-            wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
-            wgpu::BindGroupEntry { binding: 2, resource: buffer.as_entire_binding() },
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&map.cube_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: buffer.as_entire_binding(),
+            },
         ],
     })
 }
@@ -344,7 +433,10 @@ const CROSS_WGSL: &str = r#"
 pub fn write_cross_png(gpu: &Gpu, map: &CubeShadowMap, face_px: u32, path: &Path) -> Result<()> {
     use wgpu::util::DeviceExt;
     let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor { label: Some("cube cross"), source: wgpu::ShaderSource::Wgsl(CROSS_WGSL.into()) });
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("cube cross"),
+        source: wgpu::ShaderSource::Wgsl(CROSS_WGSL.into()),
+    });
     let fragment = wgpu::ShaderStages::FRAGMENT;
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("cube cross"),
@@ -359,42 +451,85 @@ pub fn write_cross_png(gpu: &Gpu, map: &CubeShadowMap, face_px: u32, path: &Path
                 },
                 count: None,
             },
-            wgpu::BindGroupLayoutEntry { binding: 1, visibility: fragment, ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering), count: None },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: fragment,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering),
+                count: None,
+            },
             wgpu::BindGroupLayoutEntry {
                 binding: 2,
                 visibility: fragment,
-                ty: wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: None },
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
                 count: None,
             },
         ],
     });
     let sampler = device.create_sampler(&wgpu::SamplerDescriptor::default());
     let px = [face_px as f32, 0.0, 0.0, 0.0];
-    let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: None, contents: bytemuck::bytes_of(&px), usage: wgpu::BufferUsages::UNIFORM });
+    let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: None,
+        contents: bytemuck::bytes_of(&px),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
     let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
         layout: &layout,
         entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&map.cube_view) },
-            wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
-            wgpu::BindGroupEntry { binding: 2, resource: buf.as_entire_binding() },
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&map.cube_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: buf.as_entire_binding(),
+            },
         ],
     });
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor { label: None, bind_group_layouts: &[Some(&layout)], immediate_size: 0 });
+    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: None,
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
     let format = wgpu::TextureFormat::Rgba8Unorm;
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some("cube cross"),
         layout: Some(&pl),
-        vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
         primitive: Default::default(),
         depth_stencil: None,
         multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState { module: &module, entry_point: Some("fs"), compilation_options: Default::default(), targets: &[Some(format.into())] }),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs"),
+            compilation_options: Default::default(),
+            targets: &[Some(format.into())],
+        }),
         multiview_mask: None,
         cache: None,
     });
     let (w, h) = (4 * face_px, 3 * face_px);
-    let target = render_texture(gpu, "cube cross", w, h, format, wgpu::TextureUsages::empty());
+    let target = render_texture(
+        gpu,
+        "cube cross",
+        w,
+        h,
+        format,
+        wgpu::TextureUsages::empty(),
+    );
     let view = target.create_view(&Default::default());
     let mut enc = device.create_command_encoder(&Default::default());
     {
@@ -404,7 +539,10 @@ pub fn write_cross_png(gpu: &Gpu, map: &CubeShadowMap, face_px: u32, path: &Path
                 view: &view,
                 depth_slice: None,
                 resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
             })],
             depth_stencil_attachment: None,
             timestamp_writes: None,
@@ -417,13 +555,30 @@ pub fn write_cross_png(gpu: &Gpu, map: &CubeShadowMap, face_px: u32, path: &Path
     }
     gpu.queue.submit([enc.finish()]);
     let bytes = read_texture(gpu, &target, 4)?;
-    let d: Vec<f32> = bytes.chunks_exact(4).map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]]))).collect();
-    let lo = d.iter().copied().filter(|&x| x >= 0.0).fold(f32::INFINITY, f32::min);
-    let hi = d.iter().copied().filter(|&x| x >= 0.0 && x < 1.0).fold(lo, f32::max);
+    let d: Vec<f32> = bytes
+        .chunks_exact(4)
+        .map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+        .collect();
+    let lo = d
+        .iter()
+        .copied()
+        .filter(|&x| x >= 0.0)
+        .fold(f32::INFINITY, f32::min);
+    let hi = d
+        .iter()
+        .copied()
+        .filter(|x| (0.0..1.0).contains(x))
+        .fold(lo, f32::max);
     let span = (hi - lo).max(1e-12);
     let img = image::GrayImage::from_fn(w, h, |x, y| {
         let v = d[(y * w + x) as usize];
-        image::Luma([if v < 0.0 { 0 } else if v >= 1.0 { 255 } else { 20 + (((v - lo) / span) * 215.0).round() as u8 }])
+        image::Luma([if v < 0.0 {
+            0
+        } else if v >= 1.0 {
+            255
+        } else {
+            20 + (((v - lo) / span) * 215.0).round() as u8
+        }])
     });
     crate::app::save(&img, path)
 }
