@@ -24,6 +24,20 @@ fn extrude_to_infinity(world: vec3<f32>) -> vec4<f32> {
     // Point and spot: straight away from the light.
     return vec4<f32>(world - light.position_or_dir.xyz, 0.0);
 }
+
+// The clip position of a point at infinity. Under an infinite projection
+// it lands exactly on the far boundary (z = w, depth 1), and rounding can
+// put it a hair outside, where it is clipped away: a back cap or side
+// would silently vanish. Pull such points a hair inside (depth 1 − 1e-6),
+// like the "nudged" infinite projection of Everitt and Kilgard. Under a
+// finite far plane, z is well beyond w and this leaves it alone (lesson 07).
+fn project_to_infinity(world: vec3<f32>) -> vec4<f32> {
+    var clip = camera.view_proj * extrude_to_infinity(world);
+    if abs(clip.z - clip.w) <= 1e-5 * abs(clip.w) {
+        clip.z = clip.w * (1.0 - 1e-6);
+    }
+    return clip;
+}
 // ANCHOR_END: extrude_to_infinity
 
 // ANCHOR: vs_volume_cpu
@@ -33,7 +47,7 @@ fn vs_volume_cpu(@location(0) position: vec3<f32>, @location(1) w: f32) -> Volum
     // The same expression as vs_scene, so finite vertices get the same depth.
     let world = object.model * vec4<f32>(position, 1.0);
     if w == 0.0 {
-        out.clip = camera.view_proj * extrude_to_infinity(world.xyz);
+        out.clip = project_to_infinity(world.xyz);
     } else {
         out.clip = camera.view_proj * world;
     }
@@ -85,7 +99,7 @@ fn vs_volume_quads(
     if stay {
         out.clip = camera.view_proj * world;
     } else if go {
-        out.clip = camera.view_proj * extrude_to_infinity(world.xyz);
+        out.clip = project_to_infinity(world.xyz);
     } else {
         out.clip = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
@@ -99,3 +113,12 @@ fn vs_volume_quads(
 fn fs_volume_count() -> @location(0) vec4<f32> {
     return vec4<f32>(1.0);
 }
+
+// ANCHOR: fs_stencil_lit
+// The lit pass of a stencil technique: the stencil test (count == 0) has
+// already decided; a fragment that gets here is lit.
+@fragment
+fn fs_stencil_lit(in: VertexOut) -> LitOut {
+    return lit_output(in, 1.0);
+}
+// ANCHOR_END: fs_stencil_lit

@@ -51,8 +51,9 @@ pub struct Edge {
     faces: Range<u32>,
 }
 
-/// A silhouette edge, oriented like the light-facing face it borders:
-/// the side quad `a → b → b∞ → a∞` then winds outward, like that face.
+/// A silhouette edge, oriented like the light-facing face it borders.
+/// Seen from outside the volume, the side quad then winds `b → a → a∞ → b∞`
+/// counter-clockwise, like the caps (`a → b → b∞ → a∞` winds inward).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct SilhouetteEdge {
     pub a: u32,

@@ -26,6 +26,7 @@ pub mod render;
 pub mod report;
 pub mod scene;
 pub mod shadow_map;
+pub mod shadow_volume;
 pub mod timing;
 pub mod window;
 
