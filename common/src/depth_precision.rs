@@ -40,8 +40,12 @@ pub enum DepthMapping {
     InfiniteReversed,
 }
 
-pub const MAPPINGS: [DepthMapping; 4] =
-    [DepthMapping::Standard, DepthMapping::Reversed, DepthMapping::Infinite, DepthMapping::InfiniteReversed];
+pub const MAPPINGS: [DepthMapping; 4] = [
+    DepthMapping::Standard,
+    DepthMapping::Reversed,
+    DepthMapping::Infinite,
+    DepthMapping::InfiniteReversed,
+];
 
 impl DepthMapping {
     pub fn name(self) -> &'static str {
@@ -54,7 +58,10 @@ impl DepthMapping {
     }
 
     pub fn reversed(self) -> bool {
-        matches!(self, DepthMapping::Reversed | DepthMapping::InfiniteReversed)
+        matches!(
+            self,
+            DepthMapping::Reversed | DepthMapping::InfiniteReversed
+        )
     }
 
     // ANCHOR: depth_rows
@@ -157,9 +164,19 @@ pub fn window_depth_f32(rows: [f64; 4], d: f32) -> f32 {
 
 /// The CPU model: are surfaces at `d` and `d·(1 + gap)` stored in the right
 /// order (and not equal), inside [0, 1]?
-pub fn resolves_cpu(m: DepthMapping, f: DepthFormat, near: f64, far: f64, d: f64, gap: f64) -> bool {
+pub fn resolves_cpu(
+    m: DepthMapping,
+    f: DepthFormat,
+    near: f64,
+    far: f64,
+    d: f64,
+    gap: f64,
+) -> bool {
     let rows = m.rows(near, far);
-    let (za, zb) = (window_depth_f32(rows, d as f32), window_depth_f32(rows, (d * (1.0 + gap)) as f32));
+    let (za, zb) = (
+        window_depth_f32(rows, d as f32),
+        window_depth_f32(rows, (d * (1.0 + gap)) as f32),
+    );
     let inside = |z: f32| (0.0..=1.0).contains(&z);
     if !inside(za) || !inside(zb) {
         return false;
@@ -174,14 +191,18 @@ pub fn resolves_cpu(m: DepthMapping, f: DepthFormat, near: f64, far: f64, d: f64
 
 /// The relative gaps probed: 10⁻⁸ … 1, four per decade.
 pub fn gaps() -> Vec<f64> {
-    (0..=32).map(|i| 10f64.powf(-8.0 + i as f64 / 4.0)).collect()
+    (0..=32)
+        .map(|i| 10f64.powf(-8.0 + i as f64 / 4.0))
+        .collect()
 }
 
 /// The distances probed for a near/far pair: log-spaced from 10·near, and
 /// the two named ones last: √(near·far) and far/2.
 pub fn distances(near: f64, far: f64) -> Vec<f64> {
     let (a, b) = ((10.0 * near).ln(), (0.5 * far).ln());
-    let mut d: Vec<f64> = (0..16).map(|i| (a + (b - a) * i as f64 / 15.0).exp()).collect();
+    let mut d: Vec<f64> = (0..16)
+        .map(|i| (a + (b - a) * i as f64 / 15.0).exp())
+        .collect();
     d.push((near * far).sqrt());
     d.push(0.5 * far);
     d
@@ -227,7 +248,13 @@ fn fs_probe(in: Out) -> @location(0) vec4<f32> {
 // ANCHOR: measure_gpu
 /// The GPU measurement: `result[row][column]` is true where the near quad
 /// at `distances[row]` won against the far one at `distances[row]·(1 + gaps[column])`.
-pub fn measure_gpu(gpu: &Gpu, format: wgpu::TextureFormat, m: DepthMapping, near: f64, far: f64) -> Result<Vec<Vec<bool>>> {
+pub fn measure_gpu(
+    gpu: &Gpu,
+    format: wgpu::TextureFormat,
+    m: DepthMapping,
+    near: f64,
+    far: f64,
+) -> Result<Vec<Vec<bool>>> {
     let (gaps, dists) = (gaps(), distances(near, far));
     let (w, h) = (gaps.len() as u32, dists.len() as u32);
     let device = &gpu.device;
@@ -236,7 +263,9 @@ pub fn measure_gpu(gpu: &Gpu, format: wgpu::TextureFormat, m: DepthMapping, near
         source: wgpu::ShaderSource::Wgsl(PROBE_WGSL.into()),
     });
     let rows = m.rows(near, far).map(|r| r as f32);
-    let uniform: [f32; 8] = [rows[0], rows[1], rows[2], rows[3], w as f32, h as f32, 0.0, 0.0];
+    let uniform: [f32; 8] = [
+        rows[0], rows[1], rows[2], rows[3], w as f32, h as f32, 0.0, 0.0,
+    ];
     let ubuf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("probe"),
         contents: bytemuck::cast_slice(&uniform),
@@ -262,14 +291,21 @@ pub fn measure_gpu(gpu: &Gpu, format: wgpu::TextureFormat, m: DepthMapping, near
         entries: &[wgpu::BindGroupLayoutEntry {
             binding: 0,
             visibility: wgpu::ShaderStages::VERTEX,
-            ty: wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: None },
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
             count: None,
         }],
     });
     let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("probe"),
         layout: &layout,
-        entries: &[wgpu::BindGroupEntry { binding: 0, resource: ubuf.as_entire_binding() }],
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: ubuf.as_entire_binding(),
+        }],
     });
     let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("probe"),
@@ -289,7 +325,10 @@ pub fn measure_gpu(gpu: &Gpu, format: wgpu::TextureFormat, m: DepthMapping, near
                 attributes: &wgpu::vertex_attr_array![0 => Float32x4],
             })],
         },
-        primitive: wgpu::PrimitiveState { topology: wgpu::PrimitiveTopology::TriangleStrip, ..Default::default() },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleStrip,
+            ..Default::default()
+        },
         depth_stencil: Some(wgpu::DepthStencilState {
             format,
             depth_write_enabled: Some(true),
@@ -310,7 +349,11 @@ pub fn measure_gpu(gpu: &Gpu, format: wgpu::TextureFormat, m: DepthMapping, near
     let target = |label: &str, f: wgpu::TextureFormat| {
         device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
-            size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -321,7 +364,10 @@ pub fn measure_gpu(gpu: &Gpu, format: wgpu::TextureFormat, m: DepthMapping, near
     };
     let color = target("probe colour", wgpu::TextureFormat::R8Unorm);
     let depth = target("probe depth", format);
-    let (cv, dv) = (color.create_view(&Default::default()), depth.create_view(&Default::default()));
+    let (cv, dv) = (
+        color.create_view(&Default::default()),
+        depth.create_view(&Default::default()),
+    );
     let mut enc = device.create_command_encoder(&Default::default());
     {
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -330,12 +376,21 @@ pub fn measure_gpu(gpu: &Gpu, format: wgpu::TextureFormat, m: DepthMapping, near
                 view: &cv,
                 depth_slice: None,
                 resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &dv,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(m.clear_depth()), store: wgpu::StoreOp::Store }),
-                stencil_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0), store: wgpu::StoreOp::Store }),
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(m.clear_depth()),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0),
+                    store: wgpu::StoreOp::Store,
+                }),
             }),
             timestamp_writes: None,
             occlusion_query_set: None,
@@ -348,7 +403,10 @@ pub fn measure_gpu(gpu: &Gpu, format: wgpu::TextureFormat, m: DepthMapping, near
     }
     gpu.queue.submit([enc.finish()]);
     let px = read_texture(gpu, &color, 1).context("depth precision probe readback")?;
-    Ok(px.chunks(w as usize).map(|r| r.iter().map(|&v| v > 127).collect()).collect())
+    Ok(px
+        .chunks(w as usize)
+        .map(|r| r.iter().map(|&v| v > 127).collect())
+        .collect())
 }
 // ANCHOR_END: measure_gpu
 
@@ -357,7 +415,11 @@ pub fn model_cpu(f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Vec<Ve
     let g = gaps();
     distances(near, far)
         .iter()
-        .map(|&d| g.iter().map(|&gap| resolves_cpu(m, f, near, far, d, gap)).collect())
+        .map(|&d| {
+            g.iter()
+                .map(|&gap| resolves_cpu(m, f, near, far, d, gap))
+                .collect()
+        })
         .collect()
 }
 
@@ -388,13 +450,37 @@ impl PrecisionRow {
 }
 
 /// Measures one configuration (GPU when the adapter has the format).
-pub fn study_one(gpu: &Gpu, f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Result<PrecisionRow> {
+pub fn study_one(
+    gpu: &Gpu,
+    f: DepthFormat,
+    m: DepthMapping,
+    near: f64,
+    far: f64,
+) -> Result<PrecisionRow> {
     let g = gaps();
     let has = f == DepthFormat::D24 || gpu.has(wgpu::Features::DEPTH32FLOAT_STENCIL8);
-    let grid = if has { Some(measure_gpu(gpu, f.wgpu(), m, near, far)?) } else { None };
-    let gpu_gaps = grid.as_ref().map(|gr| gr.iter().map(|r| min_resolvable_gap(r, &g)).collect());
-    let cpu = model_cpu(f, m, near, far).iter().map(|r| min_resolvable_gap(r, &g)).collect();
-    Ok(PrecisionRow { format: f, mapping: m, near, far, distances: distances(near, far), gpu: gpu_gaps, cpu, grid })
+    let grid = if has {
+        Some(measure_gpu(gpu, f.wgpu(), m, near, far)?)
+    } else {
+        None
+    };
+    let gpu_gaps = grid
+        .as_ref()
+        .map(|gr| gr.iter().map(|r| min_resolvable_gap(r, &g)).collect());
+    let cpu = model_cpu(f, m, near, far)
+        .iter()
+        .map(|r| min_resolvable_gap(r, &g))
+        .collect();
+    Ok(PrecisionRow {
+        format: f,
+        mapping: m,
+        near,
+        far,
+        distances: distances(near, far),
+        gpu: gpu_gaps,
+        cpu,
+        grid,
+    })
 }
 
 /// The whole study: both formats, four mappings, far/near = 1e2 … 1e8.
@@ -419,8 +505,20 @@ pub fn csv(rows: &[PrecisionRow]) -> String {
     let mut s = String::from("format,mapping,near,far,distance,gpu_min_gap,cpu_min_gap\n");
     for r in rows {
         for (i, d) in r.distances.iter().enumerate() {
-            let gpu = r.gpu.as_ref().map_or_else(|| "n/a".into(), |g| fmt_gap(g[i]));
-            s += &format!("{},{},{:e},{:e},{:e},{},{}\n", r.format.name(), r.mapping.name(), r.near, r.far, d, gpu, fmt_gap(r.cpu[i]));
+            let gpu = r
+                .gpu
+                .as_ref()
+                .map_or_else(|| "n/a".into(), |g| fmt_gap(g[i]));
+            s += &format!(
+                "{},{},{:e},{:e},{:e},{},{}\n",
+                r.format.name(),
+                r.mapping.name(),
+                r.near,
+                r.far,
+                d,
+                gpu,
+                fmt_gap(r.cpu[i])
+            );
         }
     }
     s
@@ -433,10 +531,20 @@ pub fn markdown(rows: &[PrecisionRow]) -> String {
     for r in rows {
         let n = r.distances.len();
         let cell = |i: usize| {
-            let gpu = r.gpu.as_ref().map_or_else(|| "n/a".into(), |g| fmt_gap(g[i]));
+            let gpu = r
+                .gpu
+                .as_ref()
+                .map_or_else(|| "n/a".into(), |g| fmt_gap(g[i]));
             format!("{gpu} ({})", fmt_gap(r.cpu[i]))
         };
-        s += &format!("| {:.0e} | {} | {} | {} | {} |\n", r.far / r.near, r.format.name(), r.mapping.name(), cell(n - 2), cell(n - 1));
+        s += &format!(
+            "| {:.0e} | {} | {} | {} | {} |\n",
+            r.far / r.near,
+            r.format.name(),
+            r.mapping.name(),
+            cell(n - 2),
+            cell(n - 1)
+        );
     }
     s
 }
@@ -463,7 +571,11 @@ pub fn grid_image(rows: &[PrecisionRow], scale: u32) -> image::GrayImage {
             for (x, &ok) in line.iter().enumerate() {
                 for dy in 0..scale {
                     for dx in 0..scale {
-                        img.put_pixel(ox + x as u32 * scale + dx, oy + y as u32 * scale + dy, image::Luma([if ok { 255 } else { 0 }]));
+                        img.put_pixel(
+                            ox + x as u32 * scale + dx,
+                            oy + y as u32 * scale + dy,
+                            image::Luma([if ok { 255 } else { 0 }]),
+                        );
                     }
                 }
             }
@@ -483,8 +595,14 @@ mod tests {
             let [zz, tz, zw, tw] = m.rows(n, f);
             (zz * -d + tz) / (zw * -d + tw)
         };
-        assert!((z(DepthMapping::Standard, n)).abs() < 1e-12 && (z(DepthMapping::Standard, f) - 1.0).abs() < 1e-12);
-        assert!((z(DepthMapping::Reversed, n) - 1.0).abs() < 1e-12 && z(DepthMapping::Reversed, f).abs() < 1e-12);
+        assert!(
+            (z(DepthMapping::Standard, n)).abs() < 1e-12
+                && (z(DepthMapping::Standard, f) - 1.0).abs() < 1e-12
+        );
+        assert!(
+            (z(DepthMapping::Reversed, n) - 1.0).abs() < 1e-12
+                && z(DepthMapping::Reversed, f).abs() < 1e-12
+        );
         assert!(z(DepthMapping::Infinite, n).abs() < 1e-12);
         assert!((z(DepthMapping::Infinite, 1e30) - (1.0 - INFINITE_EPSILON)).abs() < 1e-12);
         assert!((z(DepthMapping::InfiniteReversed, n) - 1.0).abs() < 1e-12);
@@ -532,8 +650,14 @@ mod tests {
     #[test]
     fn min_gap_needs_every_larger_gap_to_resolve() {
         let g = [1.0, 2.0, 3.0, 4.0];
-        assert_eq!(min_resolvable_gap(&[false, true, true, true], &g), Some(2.0));
-        assert_eq!(min_resolvable_gap(&[true, false, true, true], &g), Some(3.0));
+        assert_eq!(
+            min_resolvable_gap(&[false, true, true, true], &g),
+            Some(2.0)
+        );
+        assert_eq!(
+            min_resolvable_gap(&[true, false, true, true], &g),
+            Some(3.0)
+        );
         assert_eq!(min_resolvable_gap(&[true, true, true, false], &g), None);
     }
 }

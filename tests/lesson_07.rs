@@ -1,0 +1,200 @@
+//! lesson_07 (depth clamp / infinite extrusion): a finite far plane clips
+//! z-fail's back cap at infinity; clamping depth or an infinite far plane
+//! keeps it. Snapshot of the masks and errors, the showcase, the extreme
+//! depth range, and the depth-clip-control feature check.
+
+mod support;
+
+use std::path::Path;
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_lesson_07");
+const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
+
+fn scene(name: &str) -> String {
+    format!("{}/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn error(report: &serde_json::Value, v: &str, key: &str) -> f64 {
+    support::variant(report, v)["error"][key].as_f64().unwrap()
+}
+
+/// Misclassified pixels (red or green in the diff) farther than `r` pixels
+/// from any change of the reference's shadow (its silhouette pixels), in %
+/// of receivers.
+fn off_edge_pct(out: &Path, variant: &str, light: usize, receivers: u64, r: i64) -> f64 {
+    let diff = image::open(out.join(format!("{variant}_diff_l{light}.png")))
+        .unwrap()
+        .to_rgba8();
+    let (_, vis, w, h) =
+        support::read_visibility(&out.join(format!("reference_visibility_l{light}.png")));
+    let lit = |x: i64, y: i64| {
+        vis[(y.clamp(0, h as i64 - 1) * w as i64 + x.clamp(0, w as i64 - 1)) as usize] >= 0.5
+    };
+    let mut bad = 0u64;
+    for (x, y, p) in diff.enumerate_pixels() {
+        let wrong = p.0 == [255, 0, 0, 255] || p.0 == [0, 255, 0, 255];
+        if !wrong {
+            continue;
+        }
+        let (x, y) = (x as i64, y as i64);
+        let near_edge = (-r..=r).any(|dy| (-r..=r).any(|dx| lit(x + dx, y + dy) != lit(x, y)));
+        bad += u64::from(!near_edge);
+    }
+    100.0 * bad as f64 / receivers.max(1) as f64
+}
+
+/// Every light's error off the silhouettes, for one variant.
+fn worst_off_edge(run: &support::LessonRun, v: &str) -> f64 {
+    let per = support::variant(&run.report, v)["error_per_light"]
+        .as_array()
+        .unwrap()
+        .clone();
+    (0..per.len())
+        .map(|k| {
+            off_edge_pct(
+                &run.out,
+                v,
+                k,
+                per[k]["receiver_pixels"].as_u64().unwrap(),
+                2,
+            )
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn lesson_07_snapshot() {
+    let args = [
+        &SIZE[..],
+        &["--variant", "neither", "--variant", "infinite"],
+    ]
+    .concat();
+    let Some(run) = support::run_lesson(BIN, "lesson_07_snapshot", &args) else {
+        return;
+    };
+    let mut text = String::from(
+        "reference visibility, point light 1 ('#' shadow, '.' lit, ' ' background):\n",
+    );
+    text += &support::ascii_of(&run.out.join("reference_visibility_l1.png"), 64, 18);
+    text += "\n\nneither (far plane clips the back cap), light 1:\n";
+    text += &support::ascii_of(&run.out.join("neither_visibility_l1.png"), 64, 18);
+    text += "\n\ninfinite (far plane at infinity, ε), light 1:\n";
+    text += &support::ascii_of(&run.out.join("infinite_visibility_l1.png"), 64, 18);
+    text += "\n\nerror against the reference (rounded to whole percent):\n";
+    for v in run.report["variants"].as_array().unwrap() {
+        text += &support::error_line(v, 0);
+        text += "\n";
+    }
+    insta::assert_snapshot!("lesson_07", text);
+}
+
+/// The showcase: volumes cross the finite far plane. Neither clamp nor an
+/// infinite far plane → wrong; either one → right (≤ 0.5 %, and nothing
+/// wrong more than 2 pixels away from a shadow edge).
+#[test]
+fn lesson_07_volume_crossing_finite_far_plane() {
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_07_far_plane",
+        &[
+            &SIZE[..],
+            &["--variant", "neither", "--variant", "infinite"],
+        ]
+        .concat(),
+    ) else {
+        return;
+    };
+    let neither = error(&run.report, "neither", "misclassified_pct");
+    assert!(
+        neither > 5.0,
+        "a clipped back cap must show: neither = {neither}%"
+    );
+    let inf = error(&run.report, "infinite", "misclassified_pct");
+    assert!(inf <= 0.5, "infinite far plane: {inf}% misclassified");
+    let off = worst_off_edge(&run, "infinite");
+    assert!(off <= 0.01, "infinite: {off}% wrong away from shadow edges");
+}
+
+/// `clamp` needs DEPTH_CLIP_CONTROL: it either renders right, or fails with
+/// one line naming the feature (never something else).
+#[test]
+fn lesson_07_clamp_renders_right_or_names_the_missing_feature() {
+    let out = support::out_dir("lesson_07_clamp");
+    let o = Command::new(BIN)
+        .args(["--headless", "--out"])
+        .arg(&out)
+        .args(SIZE)
+        .args(["--variant", "clamp"])
+        .output()
+        .expect("run lesson_07");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    if stderr.contains("no GPU adapter found") && !support::gpu_required() {
+        eprintln!("SKIPPED lesson_07_clamp: no GPU adapter");
+        return;
+    }
+    if o.status.success() {
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
+                .unwrap();
+        let e = error(&report, "clamp", "misclassified_pct");
+        assert!(e <= 0.5, "clamp: {e}% misclassified");
+    } else {
+        let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error")).collect();
+        assert_eq!(lines.len(), 1, "one error line: {stderr}");
+        assert!(
+            lines[0].contains("DEPTH_CLIP_CONTROL"),
+            "the line names the feature: {stderr}"
+        );
+    }
+}
+
+/// near = 1e-3, far = 1e5 (far/near = 1e8): the volumes still count right,
+/// and the depth-precision study shows why reversed float depth is the cure
+/// for the depth buffer itself (GPU-measured, `depth_precision.csv`).
+#[test]
+fn lesson_07_extreme_near_1e_3_far_1e5() {
+    let file = scene("lesson_07_near_1e-3_far_1e5.toml");
+    let args = [&SIZE[..], &["--scene", &file, "--variant", "infinite"]].concat();
+    let Some(run) = support::run_lesson(BIN, "lesson_07_extreme_range", &args) else {
+        return;
+    };
+    let inf = error(&run.report, "infinite", "misclassified_pct");
+    assert!(inf <= 0.5, "infinite at far/near 1e8: {inf}% misclassified");
+    let off = worst_off_edge(&run, "infinite");
+    assert!(
+        off <= 0.05,
+        "infinite at far/near 1e8: {off}% wrong away from shadow edges"
+    );
+    // At d = far/2 = 5e4: standard depth resolves no gap below Δd = d; reversed
+    // Depth32Float resolves Δd/d ≤ 1e-6 (where the adapter has the format).
+    let csv = std::fs::read_to_string(run.out.join("depth_precision.csv")).unwrap();
+    // Columns: 5 = GPU-measured, 6 = CPU model. "none": no gap up to Δd = d.
+    let at_half_far = |format: &str, mapping: &str, col: usize| {
+        let line = csv
+            .lines()
+            .rfind(|l| l.starts_with(&format!("{format},{mapping},1e-3,1e5,")))
+            .unwrap();
+        let cell = line.split(',').nth(col).unwrap();
+        (cell != "n/a").then(|| cell.parse::<f64>().unwrap_or(f64::INFINITY))
+    };
+    assert_eq!(
+        at_half_far("Depth24PlusStencil8", "standard", 5),
+        Some(f64::INFINITY)
+    );
+    let model = at_half_far("Depth32FloatStencil8", "reversed", 6).unwrap();
+    assert!(
+        model <= 1e-6,
+        "CPU model: reversed Depth32Float at far/2 resolves Δd/d = {model}"
+    );
+    // wgpu's GL backend rewrites clip z to 2z − w (GL's [−1, 1]), which
+    // throws away the small depths reversed-Z lives on: measured on Vulkan only.
+    if run.report["adapter"]["backend"] != "Gl" {
+        if let Some(g) = at_half_far("Depth32FloatStencil8", "reversed", 5) {
+            assert!(
+                g <= 1e-6,
+                "GPU: reversed Depth32Float at far/2 resolves Δd/d = {g}"
+            );
+        }
+    }
+}
