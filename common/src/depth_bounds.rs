@@ -576,24 +576,7 @@ impl BoundedVolumes {
         limits: Limits,
         ts: Option<wgpu::RenderPassTimestampWrites>,
     ) -> u32 {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("bounded volume pass"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0),
-                    store: wgpu::StoreOp::Store,
-                }),
-            }),
-            timestamp_writes: ts,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass = targets.stencil_pass(encoder, "bounded volume pass", ts, None);
         let limited = limits != Limits::default();
         if limited && bounds == Some(None) {
             return 0; // the range sphere is behind the camera or off screen
@@ -632,24 +615,7 @@ impl BoundedVolumes {
         }
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         for (k, b) in bounds.iter().enumerate().take(self.lights as usize) {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("count bounded fragments"),
-                color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                }),
-                timestamp_writes: None,
-                occlusion_query_set: Some(&self.queries),
-                multiview_mask: None,
-            });
+            let mut pass = targets.stencil_pass(&mut enc, "count bounded fragments", None, Some(&self.queries));
             let limited = limits != Limits::default();
             if limited && *b == Some(None) {
                 // Nothing drawn: an empty query reads 0.

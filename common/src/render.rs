@@ -573,6 +573,31 @@ impl FrameTargets {
         }
     }
 
+    /// A pass with no colour target that keeps the base pass's depth and
+    /// starts the stencil at 0: every light's volume pass begins this way.
+    pub fn stencil_pass<'e>(
+        &self,
+        encoder: &'e mut wgpu::CommandEncoder,
+        label: &str,
+        ts: Option<wgpu::RenderPassTimestampWrites<'_>>,
+        occlusion_query_set: Option<&wgpu::QuerySet>,
+    ) -> wgpu::RenderPass<'e> {
+        let keep = wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store };
+        let zero = wgpu::Operations { load: wgpu::LoadOp::Clear(0), store: wgpu::StoreOp::Store };
+        encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &self.depth_view,
+                depth_ops: Some(keep),
+                stencil_ops: Some(zero),
+            }),
+            timestamp_writes: ts,
+            occlusion_query_set,
+            multiview_mask: None,
+        })
+    }
+
     pub fn color_attachment(
         &self,
         load: wgpu::LoadOp<wgpu::Color>,

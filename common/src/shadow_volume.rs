@@ -761,25 +761,7 @@ impl ShadowVolumes {
         draws: &[CasterDraw],
         ts: Option<wgpu::RenderPassTimestampWrites>,
     ) -> u32 {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("volume pass"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                // Every light starts from a count of 0.
-                stencil_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0),
-                    store: wgpu::StoreOp::Store,
-                }),
-            }),
-            timestamp_writes: ts,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass = targets.stencil_pass(encoder, "volume pass", ts, None);
         self.draw_casters(&mut pass, scene, light, extrusion, draws, None, false)
     }
     // ANCHOR_END: volume_pass
