@@ -10,11 +10,6 @@ use std::path::Path;
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_05");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
-fn misclassified(run: &support::LessonRun, v: &str) -> f64 {
-    support::variant(&run.report, v)["error"]["misclassified_pct"]
-        .as_f64()
-        .unwrap()
-}
 
 #[test]
 fn lesson_05_snapshot() {
@@ -53,7 +48,7 @@ fn lesson_05_exact_when_the_eye_is_outside() {
         return;
     };
     for v in ["zpass_cpu", "zpass_quads"] {
-        let m = misclassified(&run, v);
+        let m = support::misclassified(&run, v);
         assert!(m <= 0.5, "{v}: {m:.3}% misclassified");
         let t = &support::variant(&run.report, v)["timing_ms"];
         assert!(
@@ -86,7 +81,7 @@ fn lesson_05_zpass_fails_inside_a_volume() {
         let Some(run) = support::run_lesson(BIN, &format!("lesson_05_{name}"), &args) else {
             return;
         };
-        let m = misclassified(&run, "zpass_quads");
+        let m = support::misclassified(&run, "zpass_quads");
         assert!(
             m > min,
             "{name}: z-pass should fail here, misclassified {m:.2}%"

@@ -8,11 +8,6 @@ mod support;
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_06");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
-fn misclassified(run: &support::LessonRun, v: &str) -> f64 {
-    support::variant(&run.report, v)["error"]["misclassified_pct"]
-        .as_f64()
-        .unwrap()
-}
 
 #[test]
 fn lesson_06_snapshot() {
@@ -41,12 +36,12 @@ fn lesson_06_zfail_is_exact_with_the_eye_in_shadow() {
     let Some(run) = support::run_lesson(BIN, "lesson_06_exact", &SIZE) else {
         return;
     };
-    assert!(misclassified(&run, "zpass_quads") > 10.0);
+    assert!(support::misclassified(&run, "zpass_quads") > 10.0);
     for v in ["zfail_cpu", "zfail_quads", "zfail_selective"] {
-        let m = misclassified(&run, v);
+        let m = support::misclassified(&run, v);
         assert!(m <= 0.5, "{v}: {m:.3}% misclassified");
     }
-    let no_front = misclassified(&run, "zfail_no_front_cap");
+    let no_front = support::misclassified(&run, "zfail_no_front_cap");
     assert!(
         no_front > 10.0,
         "without the front cap every lit caster face is counted: {no_front:.2}%"

@@ -15,9 +15,6 @@ fn scene(name: &str) -> String {
     format!("{}/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
-fn error(report: &serde_json::Value, v: &str, key: &str) -> f64 {
-    support::variant(report, v)["error"][key].as_f64().unwrap()
-}
 
 /// Misclassified pixels (red or green in the diff) farther than `r` pixels
 /// from any change of the reference's shadow (its silhouette pixels), in %
@@ -105,12 +102,12 @@ fn lesson_07_volume_crossing_finite_far_plane() {
     ) else {
         return;
     };
-    let neither = error(&run.report, "neither", "misclassified_pct");
+    let neither = support::error(&run.report, "neither", "misclassified_pct");
     assert!(
         neither > 5.0,
         "a clipped back cap must show: neither = {neither}%"
     );
-    let inf = error(&run.report, "infinite", "misclassified_pct");
+    let inf = support::error(&run.report, "infinite", "misclassified_pct");
     assert!(inf <= 0.5, "infinite far plane: {inf}% misclassified");
     let off = worst_off_edge(&run, "infinite");
     assert!(off <= 0.01, "infinite: {off}% wrong away from shadow edges");
@@ -137,7 +134,7 @@ fn lesson_07_clamp_renders_right_or_names_the_missing_feature() {
         let report: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
                 .unwrap();
-        let e = error(&report, "clamp", "misclassified_pct");
+        let e = support::error(&report, "clamp", "misclassified_pct");
         assert!(e <= 0.5, "clamp: {e}% misclassified");
     } else {
         let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error")).collect();
@@ -159,7 +156,7 @@ fn lesson_07_extreme_near_1e_3_far_1e5() {
     let Some(run) = support::run_lesson(BIN, "lesson_07_extreme_range", &args) else {
         return;
     };
-    let inf = error(&run.report, "infinite", "misclassified_pct");
+    let inf = support::error(&run.report, "infinite", "misclassified_pct");
     assert!(inf <= 0.5, "infinite at far/near 1e8: {inf}% misclassified");
     let off = worst_off_edge(&run, "infinite");
     assert!(

@@ -32,11 +32,6 @@ fn run(test: &str, scene_path: &Path, variants: &[&str]) -> Option<support::Less
     support::run_lesson(BIN, test, &args)
 }
 
-fn misclassified(run: &support::LessonRun, variant: &str) -> f64 {
-    support::variant(&run.report, variant)["error"]["misclassified_pct"]
-        .as_f64()
-        .expect("misclassified_pct")
-}
 
 fn counter(run: &support::LessonRun, variant: &str, key: &str) -> Option<u64> {
     support::variant(&run.report, variant)["counters"][key].as_u64()
@@ -75,7 +70,7 @@ fn interior_error_pct(run: &support::LessonRun, variant: &str) -> f64 {
 
 /// The pass criterion of a correct variant.
 fn assert_exact(run: &support::LessonRun, variant: &str) {
-    let m = misclassified(run, variant);
+    let m = support::misclassified(run, variant);
     assert!(m <= 0.5, "{variant}: misclassified {m:.3}% > 0.5%");
     let interior = interior_error_pct(run, variant);
     assert!(
@@ -93,7 +88,7 @@ fn eye_inside_the_umbra() {
     ) else {
         return;
     };
-    let zpass = misclassified(&r, "zpass_quads");
+    let zpass = support::misclassified(&r, "zpass_quads");
     assert!(
         zpass > 10.0,
         "z-pass must fail with the eye in shadow, got {zpass:.2}%"
@@ -111,7 +106,7 @@ fn near_plane_slices_a_volume() {
     ) else {
         return;
     };
-    let zpass = misclassified(&r, "zpass_quads");
+    let zpass = support::misclassified(&r, "zpass_quads");
     assert!(
         zpass > 5.0,
         "z-pass must fail where the near plane is in shadow, got {zpass:.2}%"
@@ -309,7 +304,7 @@ fn nested_256_volumes_wrap_the_stencil() {
         Some(256),
         "the CPU count finds 256 layers"
     );
-    let m = misclassified(&r, "zfail_quads");
+    let m = support::misclassified(&r, "zfail_quads");
     assert!(
         m > 1.0,
         "256 ≡ 0 (mod 256): the floor under the stack reads as lit, measured {m:.2}%"

@@ -127,6 +127,18 @@ pub fn error_line(v: &serde_json::Value, decimals: usize) -> String {
     )
 }
 
+/// One error figure of one variant (`"misclassified_pct"`, `"false_lit_pct"`, ...).
+pub fn error(report: &serde_json::Value, variant_name: &str, key: &str) -> f64 {
+    variant(report, variant_name)["error"][key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{variant_name}: error.{key} missing"))
+}
+
+/// A variant's misclassified %, the figure most pass criteria use.
+pub fn misclassified(run: &LessonRun, variant_name: &str) -> f64 {
+    error(&run.report, variant_name, "misclassified_pct")
+}
+
 pub fn variant<'a>(report: &'a serde_json::Value, name: &str) -> &'a serde_json::Value {
     report["variants"]
         .as_array()
