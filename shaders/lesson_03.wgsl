@@ -1,0 +1,132 @@
+// lesson_03.wgsl: percentage-closer filtering. Compiled after common.wgsl and
+// shadow_map.wgsl (the map at group 2, shadow_coords). The map's depths come
+// with lesson 02's slope-scaled bias already added by the shadow pass.
+
+// The same shadow map read as plain floats (for the depth-averaging variant;
+// GL cannot load texels through a comparison binding).
+@group(2) @binding(2) var shadow_depths: texture_2d<f32>;
+
+// Rust: lessons/lesson_03.rs `FilterUniform`.
+struct Filter {
+    // 0: N×N grid, 1: hardware 2×2, 2: rotated Poisson disk, 3: average depths.
+    mode: u32,
+    // Grid and depth average: N.
+    n: u32,
+    // 1: each tap compares with the receiver's plane at the tap (RPDB).
+    receiver_plane: u32,
+    // Poisson disk: taps (16, the disk's size).
+    taps: u32,
+    // Poisson disk: radius in texels.
+    radius: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+};
+@group(3) @binding(0) var<uniform> pcf: Filter;
+
+// ANCHOR: receiver_plane
+// How the receiver's depth changes across the map: d(depth)/d(u, v) of the
+// plane through this pixel, from the screen-space derivatives of (u, v, depth).
+// A tap at offset o then compares against depth + dot(gradient, o): the
+// receiver's own plane there, instead of the centre's depth.
+fn receiver_plane_gradient(s: vec3<f32>) -> vec2<f32> {
+    let dx = dpdx(s);
+    let dy = dpdy(s);
+    let det = dx.x * dy.y - dx.y * dy.x;
+    if abs(det) < 1e-20 {
+        return vec2<f32>(0.0);
+    }
+    return vec2<f32>(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det;
+}
+// ANCHOR_END: receiver_plane
+
+// ANCHOR: pcf_grid
+// N×N nearest comparisons around the receiver, averaged: the fraction of the
+// taps whose stored depth is not in front of the receiver.
+fn pcf_grid(s: vec3<f32>, n: i32, gradient: vec2<f32>) -> f32 {
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let r = n / 2;
+    var lit = 0.0;
+    for (var y = -r; y <= r; y++) {
+        for (var x = -r; x <= r; x++) {
+            let o = vec2<f32>(f32(x), f32(y)) * texel;
+            lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
+        }
+    }
+    return lit / f32(n * n);
+}
+// ANCHOR_END: pcf_grid
+
+// ANCHOR: poisson
+// 16 points of a Poisson disk in the unit circle (no two closer than 0.42).
+const POISSON_DISK = array<vec2<f32>, 16>(
+    vec2<f32>(0.4566, -0.5539), vec2<f32>(0.2625, 0.2274), vec2<f32>(-0.3396, 0.8718), vec2<f32>(-0.6309, 0.2422),
+    vec2<f32>(0.7170, 0.0136), vec2<f32>(0.6324, 0.6501), vec2<f32>(-0.7837, -0.3495), vec2<f32>(-0.1228, -0.5643),
+    vec2<f32>(-0.3798, -0.1711), vec2<f32>(0.2276, 0.9058), vec2<f32>(0.8729, -0.4201), vec2<f32>(0.2302, -0.9317),
+    vec2<f32>(-0.3928, -0.9130), vec2<f32>(-0.2094, 0.4436), vec2<f32>(-0.7033, 0.6601), vec2<f32>(0.1568, -0.1990),
+);
+
+// Interleaved gradient noise (Jimenez 2014): a different angle per pixel, so
+// that neighbouring pixels see different taps and the banding of a fixed
+// pattern turns into fine noise.
+fn rotation_angle(pixel: vec2<f32>) -> f32 {
+    return 6.2831853 * fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))));
+}
+
+// 16 bilinear (2×2) comparisons on the rotated disk.
+fn pcf_poisson(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let a = rotation_angle(pixel);
+    let rot = mat2x2<f32>(cos(a), sin(a), -sin(a), cos(a));
+    var lit = 0.0;
+    // A constant trip count: the compiler unrolls the loop and the disk's
+    // points become constants (an indexed array would live in memory).
+    for (var i = 0u; i < 16u; i++) {
+        let o = rot * POISSON_DISK[i] * pcf.radius * texel;
+        lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
+    }
+    return lit / 16.0;
+}
+// ANCHOR_END: poisson
+
+// ANCHOR: depth_average
+// The wrong way: average the N×N stored depths, then compare once. Near a
+// shadow's edge the average is a depth where no surface is (between the
+// caster and the floor), and the answer is still 0 or 1.
+fn depth_average(s: vec3<f32>, n: i32) -> f32 {
+    let size = vec2<i32>(textureDimensions(shadow_depths));
+    let centre = vec2<i32>(floor(s.xy * vec2<f32>(size)));
+    let r = n / 2;
+    var sum = 0.0;
+    for (var y = -r; y <= r; y++) {
+        for (var x = -r; x <= r; x++) {
+            let t = clamp(centre + vec2<i32>(x, y), vec2<i32>(0), size - 1);
+            sum += textureLoad(shadow_depths, t, 0).r;
+        }
+    }
+    return select(0.0, 1.0, s.z <= sum / f32(n * n));
+}
+// ANCHOR_END: depth_average
+
+// ANCHOR: fs_lit
+@fragment
+fn fs_lit(in: VertexOut) -> LitOut {
+    let s = shadow_coords(in.world);
+    // Derivatives before any branch: they need all four pixels of the quad.
+    var gradient = receiver_plane_gradient(s);
+    if pcf.receiver_plane == 0u {
+        gradient = vec2<f32>(0.0);
+    }
+    var v = 1.0;
+    if !outside_shadow_map(in.world, s) {
+        switch pcf.mode {
+            case 0u: { v = pcf_grid(s, i32(pcf.n), gradient); }
+            // One tap; the sampler compares the 4 nearest texels and blends.
+            case 1u: { v = textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z); }
+            case 2u: { v = pcf_poisson(s, in.clip.xy, gradient); }
+            default: { v = depth_average(s, i32(pcf.n)); }
+        }
+    }
+    return lit_output(in, v);
+}
+// ANCHOR_END: fs_lit
