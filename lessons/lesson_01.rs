@@ -12,7 +12,7 @@ use std::path::Path;
 
 use common::app::{self, Lesson};
 use common::gpu::Gpu;
-use common::render::{shader_module, FrameTargets, SceneGpu};
+use common::render::{FrameTargets, SceneGpu};
 use common::scene::{LightKind, Scene};
 use common::shadow_map::{self, ShadowMap, ShadowPassState};
 use common::timing::Frame;
@@ -54,7 +54,8 @@ impl Lesson for DepthMap {
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
-        let module = shader_module(gpu, "lesson_01", include_str!("../shaders/lesson_01.wgsl"));
+        let module =
+            shadow_map::shader_module(gpu, "lesson_01", include_str!("../shaders/lesson_01.wgsl"));
         let layout = shadow_map::shadow_map_layout(gpu);
         let shadow_pipeline =
             shadow_map::shadow_pipeline(gpu, scene, &module, ShadowPassState::default());

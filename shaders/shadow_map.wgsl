@@ -1,4 +1,4 @@
-// shadow_map.wgsl: the shadow-map lookup that lessons 02 and 03 share.
+// shadow_map.wgsl: the shadow-map lookup that lessons 01, 02 and 03 share.
 // Compiled after common.wgsl and before the lesson's own WGSL
 // (`common::shadow_map::shader_module`).
 

@@ -12,7 +12,6 @@
 
 mod support;
 
-use std::path::{Path, PathBuf};
 
 use common::camera::{camera_matrices, light_view_proj};
 use common::glam::{DVec3, Vec3};
@@ -23,17 +22,11 @@ const BIN: &str = env!("CARGO_BIN_EXE_lesson_02");
 /// The variant the chapter recommends: the rasteriser's slope-scaled bias.
 const BEST: &str = "slope_hw";
 
-fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)
-}
 
-fn error(report: &serde_json::Value, variant: &str, key: &str) -> f64 {
-    support::variant(report, variant)["error"][key].as_f64().unwrap_or(f64::NAN)
-}
 
 fn run(name: &str, scene: Option<&str>, size: (u32, u32), variants: &[&str]) -> Option<support::LessonRun> {
     let (w, h) = (size.0.to_string(), size.1.to_string());
-    let scene = scene.map(|s| scene_path(s).display().to_string());
+    let scene = scene.map(|s| support::scene_path(s).display().to_string());
     let mut args = vec!["--width", &w, "--height", &h, "--frames", "1"];
     if let Some(s) = &scene {
         args.extend(["--scene", s.as_str()]);
@@ -56,7 +49,7 @@ struct Closer {
 
 impl Closer {
     fn new(scene: &str, size: (u32, u32), map_size: u64) -> Closer {
-        let scene = Scene::load(&scene_path(scene)).expect("scene loads");
+        let scene = Scene::load(&support::scene_path(scene)).expect("scene loads");
         let cam = camera_matrices(&scene, size.0, size.1);
         let reference = render_reference(&scene, cam.view_proj, size.0, size.1);
         // A texel is 2/N of NDC; the light's x_ndc = row 0 · p (orthographic).
@@ -202,10 +195,10 @@ fn lesson_02_snapshot() {
 #[test]
 fn lesson_02_best_variant_is_within_one_percent() {
     let Some(run) = run("lesson_02_best", None, SIZE, &["none", BEST]) else { return };
-    let (none, best) = (error(&run.report, "none", "false_shadow_pct"), error(&run.report, BEST, "misclassified_pct"));
+    let (none, best) = (support::error(&run.report, "none", "false_shadow_pct"), support::error(&run.report, BEST, "misclassified_pct"));
     assert!(none > 40.0, "no bias must show lesson 01's acne, false shadow = {none:.2}%");
     assert!(best <= 1.0, "{BEST}: misclassified {best:.3}% > 1%");
-    assert!(error(&run.report, BEST, "false_lit_pct") <= 0.5, "{BEST} must not buy the acne with Peter Panning");
+    assert!(support::error(&run.report, BEST, "false_lit_pct") <= 0.5, "{BEST} must not buy the acne with Peter Panning");
 }
 
 /// The sweep: as the constant bias grows, false shadow (acne) falls and
@@ -214,8 +207,8 @@ fn lesson_02_best_variant_is_within_one_percent() {
 fn lesson_02_sweep_trades_acne_for_peter_panning() {
     let sweep = ["bias_0.25tx", "bias_0.5tx", "bias_1tx", "bias_4tx", "bias_16tx", "bias_64tx"];
     let Some(run) = run("lesson_02_sweep", None, SIZE, &sweep) else { return };
-    let fs: Vec<f64> = sweep.iter().map(|v| error(&run.report, v, "false_shadow_pct")).collect();
-    let fl: Vec<f64> = sweep.iter().map(|v| error(&run.report, v, "false_lit_pct")).collect();
+    let fs: Vec<f64> = sweep.iter().map(|v| support::error(&run.report, v, "false_shadow_pct")).collect();
+    let fl: Vec<f64> = sweep.iter().map(|v| support::error(&run.report, v, "false_lit_pct")).collect();
     eprintln!("bias (texels)   false shadow %   false lit %");
     for (i, v) in sweep.iter().enumerate() {
         eprintln!("{v:<14} {:>14.3} {:>13.3}", fs[i], fl[i]);
@@ -259,7 +252,7 @@ fn lesson_02_grazing_light() {
         }
         if deg < 89 {
             // At 89° N·L = 0.017 < 0.05: the report leaves the floor out.
-            let m = error(&run.report, BEST, "misclassified_pct");
+            let m = support::error(&run.report, BEST, "misclassified_pct");
             assert!(m <= 1.0, "{deg}°: {BEST} misclassified {m:.3}%");
         }
         let none = c.floor_acne_pct(&gpu(&run, "none"));
@@ -311,10 +304,10 @@ fn lesson_02_thin_plate() {
     let lost = |v: &str, o: usize| c.shadow_lost_pct(&gpu(&run, v), o);
     eprintln!("variant, sheet's shadow lost %, board's shadow lost %, misclassified %");
     for v in variants {
-        eprintln!("  {v:<14} {:>6.1} {:>6.1} {:>7.3}", lost(v, sheet), lost(v, board), error(&run.report, v, "misclassified_pct"));
+        eprintln!("  {v:<14} {:>6.1} {:>6.1} {:>7.3}", lost(v, sheet), lost(v, board), support::error(&run.report, v, "misclassified_pct"));
     }
     assert!(lost(BEST, sheet) <= 1.0 && lost(BEST, board) <= 1.0, "{BEST} must keep both shadows");
-    assert!(error(&run.report, BEST, "misclassified_pct") <= 1.0);
+    assert!(support::error(&run.report, BEST, "misclassified_pct") <= 1.0);
     assert!(lost("front_cull", sheet) > 90.0, "front-face culling must lose the single-sided sheet");
     assert!(lost("constant_seed", sheet) > 90.0 && lost("constant_seed", board) > 90.0, "the seeds' bias must leak under both");
 }
@@ -328,11 +321,11 @@ fn lesson_02_ten_km_from_the_origin() {
     for v in near.report["variants"].as_array().expect("variants") {
         let name = v["name"].as_str().unwrap();
         for key in ["misclassified_pct", "false_shadow_pct", "false_lit_pct"] {
-            let (a, b) = (error(&near.report, name, key), error(&far.report, name, key));
+            let (a, b) = (support::error(&near.report, name, key), support::error(&far.report, name, key));
             assert!((a - b).abs() <= 0.01, "{name}.{key}: {a:.4}% at the origin, {b:.4}% 10 km away");
         }
     }
-    assert!(error(&far.report, BEST, "misclassified_pct") <= 1.0);
+    assert!(support::error(&far.report, BEST, "misclassified_pct") <= 1.0);
 }
 
 /// Why that works, on the CPU: the light-space depth of every vertex of the
@@ -344,7 +337,7 @@ fn lesson_02_ten_km_from_the_origin() {
 #[test]
 fn lesson_02_relative_coordinates_keep_the_millimetres() {
     use common::glam::{DMat4, Mat4};
-    let scene = Scene::load(&scene_path("lesson_02_far.toml")).expect("scene loads");
+    let scene = Scene::load(&support::scene_path("lesson_02_far.toml")).expect("scene loads");
     let origin = scene.origin();
     let m_rel = light_view_proj(&scene, 0).expect("directional light");
     // The same matrix for absolute coordinates: M_rel · T(−origin), exact in f64.
@@ -377,10 +370,10 @@ fn lesson_02_relative_coordinates_keep_the_millimetres() {
 fn lesson_02_light_frustum_much_larger_than_the_scene() {
     let scene = "lesson_02_spot_wide.toml";
     let Some(run) = run("lesson_02_spot_wide", Some(scene), SIZE, &["none", "constant_seed", BEST]) else { return };
-    let best = error(&run.report, BEST, "misclassified_pct");
+    let best = support::error(&run.report, BEST, "misclassified_pct");
     assert!(best <= 1.0, "{BEST}: misclassified {best:.3}%");
-    assert!(error(&run.report, "none", "false_shadow_pct") > 40.0);
-    let seed = error(&run.report, "constant_seed", "false_lit_pct");
+    assert!(support::error(&run.report, "none", "false_shadow_pct") > 40.0);
+    let seed = support::error(&run.report, "constant_seed", "false_lit_pct");
     assert!(seed > 1.0, "the seeds' constant must wipe out the shadows, false lit {seed:.3}%");
 }
 

@@ -7,7 +7,6 @@
 
 mod support;
 
-use std::path::Path;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_03");
 const SIZE: [&str; 4] = ["--width", "640", "--height", "360"];
@@ -16,16 +15,10 @@ const BEST: &str = "poisson_16";
 /// Every variant that filters the right way (comparisons, then average).
 const SOUND: [&str; 6] = ["pcf_1x1", "pcf_3x3", "pcf_5x5", "pcf_7x7", "hw_2x2", "poisson_16"];
 
-fn error(report: &serde_json::Value, variant: &str, key: &str) -> f64 {
-    support::variant(report, variant)["error"][key].as_f64().unwrap_or(f64::NAN)
-}
 
-fn counter(report: &serde_json::Value, variant: &str, key: &str) -> u64 {
-    support::variant(report, variant)["counters"][key].as_u64().unwrap_or_else(|| panic!("{variant}: counters.{key} missing"))
-}
 
 fn run(name: &str, scene: Option<&str>, extra: &[&str]) -> Option<support::LessonRun> {
-    let scene = scene.map(|s| Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(s).display().to_string());
+    let scene = scene.map(|s| support::scene_path(s).display().to_string());
     let mut args: Vec<&str> = [&SIZE[..], &["--frames", "1"], extra].concat();
     if let Some(s) = &scene {
         args.extend(["--scene", s.as_str()]);
@@ -49,10 +42,10 @@ fn lesson_03_snapshot() {
         let name = v["name"].as_str().unwrap();
         text += &format!(
             "{name:<14} taps {:>2}  texels {:>2}  misclassified {:>5.1}%  mean |dV| {:>3.0}%\n",
-            counter(&run.report, name, "taps"),
-            counter(&run.report, name, "texels_read"),
-            error(&run.report, name, "misclassified_pct"),
-            100.0 * error(&run.report, name, "mean_abs"),
+            support::counter(&run.report, name, "taps"),
+            support::counter(&run.report, name, "texels_read"),
+            support::error(&run.report, name, "misclassified_pct"),
+            100.0 * support::error(&run.report, name, "mean_abs"),
         );
     }
     insta::assert_snapshot!("lesson_03", text);
@@ -64,10 +57,10 @@ fn lesson_03_snapshot() {
 fn lesson_03_best_variant_is_within_one_percent() {
     let Some(run) = run("lesson_03_best", None, &[]) else { return };
     for v in SOUND {
-        let m = error(&run.report, v, "misclassified_pct");
+        let m = support::error(&run.report, v, "misclassified_pct");
         assert!(m <= 1.0, "{v}: misclassified {m:.3}%");
     }
-    let best = SOUND.iter().min_by(|a, b| error(&run.report, a, "misclassified_pct").total_cmp(&error(&run.report, b, "misclassified_pct")));
+    let best = SOUND.iter().min_by(|a, b| support::error(&run.report, a, "misclassified_pct").total_cmp(&support::error(&run.report, b, "misclassified_pct")));
     assert_eq!(best, Some(&BEST), "the chapter names {BEST} the most accurate");
 }
 
@@ -80,14 +73,14 @@ fn lesson_03_taps_error_and_time() {
     let Some(run) = run("lesson_03_taps", None, &[]) else { return };
     let expect = [("pcf_1x1", 1, 1), ("pcf_3x3", 9, 9), ("pcf_5x5", 25, 25), ("pcf_7x7", 49, 49), ("hw_2x2", 1, 4), ("poisson_16", 16, 64)];
     for (v, taps, texels) in expect {
-        assert_eq!((counter(&run.report, v, "taps"), counter(&run.report, v, "texels_read")), (taps, texels), "{v}");
+        assert_eq!((support::counter(&run.report, v, "taps"), support::counter(&run.report, v, "texels_read")), (taps, texels), "{v}");
         let t = support::variant(&run.report, v)["timing_ms"]["lighting"].as_f64();
         assert!(t.is_some_and(|t| t > 0.0), "{v}: timing_ms.lighting missing");
     }
     let grid = ["pcf_1x1", "pcf_3x3", "pcf_5x5", "pcf_7x7"];
-    let mean: Vec<f64> = grid.iter().map(|v| error(&run.report, v, "mean_abs")).collect();
+    let mean: Vec<f64> = grid.iter().map(|v| support::error(&run.report, v, "mean_abs")).collect();
     assert!(mean.windows(2).all(|w| w[1] > w[0]), "a wider kernel softens more: mean |dV| {mean:?}");
-    let mis: Vec<f64> = grid.iter().map(|v| error(&run.report, v, "misclassified_pct")).collect();
+    let mis: Vec<f64> = grid.iter().map(|v| support::error(&run.report, v, "misclassified_pct")).collect();
     assert!(mis.iter().all(|&m| (m - mis[0]).abs() < 0.3), "the 50% line stays near the edge: {mis:?}");
     assert_eq!(fractional_pixels(&run, "pcf_1x1"), 0, "one nearest comparison is 0 or 1");
     assert!(fractional_pixels(&run, "pcf_3x3") > 1000, "a 3x3 average makes a penumbra");
@@ -101,9 +94,9 @@ fn lesson_03_taps_error_and_time() {
 #[test]
 fn lesson_03_wide_kernel_needs_receiver_plane_bias() {
     let Some(run) = run("lesson_03_rpdb", None, &["--variant", "pcf_7x7", "--variant", "pcf_7x7_flat"]) else { return };
-    let (with, without) = (error(&run.report, "pcf_7x7", "mean_abs"), error(&run.report, "pcf_7x7_flat", "mean_abs"));
+    let (with, without) = (support::error(&run.report, "pcf_7x7", "mean_abs"), support::error(&run.report, "pcf_7x7_flat", "mean_abs"));
     assert!(without > 5.0 * with && without > 0.1, "mean |dV|: {with:.4} with the receiver plane, {without:.4} without");
-    assert!(error(&run.report, "pcf_7x7_flat", "false_shadow_pct") > error(&run.report, "pcf_7x7", "false_shadow_pct"));
+    assert!(support::error(&run.report, "pcf_7x7_flat", "false_shadow_pct") > support::error(&run.report, "pcf_7x7", "false_shadow_pct"));
 }
 
 /// Filtering depth instead of comparisons: the 3×3 average of the stored
@@ -113,7 +106,7 @@ fn lesson_03_wide_kernel_needs_receiver_plane_bias() {
 fn lesson_03_averaging_depths_is_wrong() {
     let Some(run) = run("lesson_03_depth_avg", None, &["--variant", "pcf_3x3", "--variant", "depth_avg_3x3"]) else { return };
     assert_eq!(fractional_pixels(&run, "depth_avg_3x3"), 0, "one comparison of an averaged depth is 0 or 1");
-    let (pcf, avg) = (error(&run.report, "pcf_3x3", "false_shadow_pct"), error(&run.report, "depth_avg_3x3", "false_shadow_pct"));
+    let (pcf, avg) = (support::error(&run.report, "pcf_3x3", "false_shadow_pct"), support::error(&run.report, "depth_avg_3x3", "false_shadow_pct"));
     assert!(avg > 2.0 * pcf, "false shadow: {pcf:.3}% for PCF, {avg:.3}% for averaged depths");
 }
 
@@ -126,10 +119,10 @@ fn lesson_03_extreme_scenes() {
     for scene in ["lesson_02_grazing_85.toml", "lesson_02_thin_plate.toml", "lesson_02_far.toml", "lesson_02_spot_wide.toml"] {
         let Some(run) = run(&format!("lesson_03_{scene}"), Some(scene), &[]) else { return };
         for v in SOUND {
-            let m = error(&run.report, v, "misclassified_pct");
+            let m = support::error(&run.report, v, "misclassified_pct");
             assert!(m <= 1.0, "{scene}: {v} misclassified {m:.3}%");
         }
-        let veil = error(&run.report, "pcf_7x7_flat", "mean_abs");
+        let veil = support::error(&run.report, "pcf_7x7_flat", "mean_abs");
         assert!(veil > 0.1, "{scene}: pcf_7x7_flat mean |dV| {veil:.3}");
     }
 }

@@ -249,9 +249,9 @@ pub fn read_depth_texture(
         .collect())
 }
 
-// ---- shared by lessons 02 and 03 ------------------------------------------
+// ---- the shader side, shared by lessons 01, 02 and 03 ---------------------
 
-/// The WGSL that lessons 02 and 03 share (`shaders/shadow_map.wgsl`): the
+/// The WGSL that lessons 01, 02 and 03 share (`shaders/shadow_map.wgsl`): the
 /// shadow map's bindings (group 2), the light-space transform, the texel
 /// size, and the receiver-side bias of lesson 02.
 pub const SHADOW_MAP_WGSL: &str = include_str!("../../shaders/shadow_map.wgsl");

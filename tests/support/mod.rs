@@ -134,6 +134,18 @@ pub fn error(report: &serde_json::Value, variant_name: &str, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("{variant_name}: error.{key} missing"))
 }
 
+/// One counter of one variant (`"taps"`, `"volume_fragments"`, ...).
+pub fn counter(report: &serde_json::Value, variant_name: &str, key: &str) -> u64 {
+    variant(report, variant_name)["counters"][key]
+        .as_u64()
+        .unwrap_or_else(|| panic!("{variant_name}: counters.{key} missing"))
+}
+
+/// A committed scene file, by name (`"lesson_02_grazing_85.toml"`).
+pub fn scene_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)
+}
+
 /// A variant's misclassified %, the figure most pass criteria use.
 pub fn misclassified(run: &LessonRun, variant_name: &str) -> f64 {
     error(&run.report, variant_name, "misclassified_pct")
