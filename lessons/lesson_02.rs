@@ -40,25 +40,67 @@ enum Fix {
 
 /// Receiver moved `t` texels towards the light: a constant bias.
 const fn toward(t: f32) -> ShadowBias {
-    ShadowBias { toward_light: t, ..ShadowBias::NONE }
+    ShadowBias {
+        toward_light: t,
+        ..ShadowBias::NONE
+    }
 }
 
 /// The sweep of constant biases, in texels: acne falls, Peter Panning rises.
-const SWEEP: [(&str, f32); 6] =
-    [("bias_0.25tx", 0.25), ("bias_0.5tx", 0.5), ("bias_1tx", 1.0), ("bias_4tx", 4.0), ("bias_16tx", 16.0), ("bias_64tx", 64.0)];
+const SWEEP: [(&str, f32); 6] = [
+    ("bias_0.25tx", 0.25),
+    ("bias_0.5tx", 0.5),
+    ("bias_1tx", 1.0),
+    ("bias_4tx", 4.0),
+    ("bias_16tx", 16.0),
+    ("bias_64tx", 64.0),
+];
 
 fn variant_list() -> Vec<(&'static str, Fix)> {
     let mut v = vec![
         ("none", Fix::Receiver(ShadowBias::NONE)),
         // lwjglgamedev's `projCoords.z - bias` with `bias = 0.05`: depth units.
-        ("constant_seed", Fix::Receiver(ShadowBias { depth: 0.05, ..ShadowBias::NONE })),
+        (
+            "constant_seed",
+            Fix::Receiver(ShadowBias {
+                depth: 0.05,
+                ..ShadowBias::NONE
+            }),
+        ),
     ];
-    v.extend(SWEEP.iter().map(|&(name, t)| (name, Fix::Receiver(toward(t)))));
+    v.extend(
+        SWEEP
+            .iter()
+            .map(|&(name, t)| (name, Fix::Receiver(toward(t)))),
+    );
     v.extend([
         ("slope_hw", Fix::Hardware(SlopeScaledBias::RECOMMENDED)),
-        ("slope_shader", Fix::Receiver(ShadowBias { toward_light: 0.1, slope: 1.0, slope_max: 4.0, ..ShadowBias::NONE })),
-        ("slope_unclamped", Fix::Receiver(ShadowBias { toward_light: 0.1, slope: 1.0, slope_max: f32::MAX, ..ShadowBias::NONE })),
-        ("normal_offset", Fix::Receiver(ShadowBias { toward_light: 0.3, normal: 2.0, ..ShadowBias::NONE })),
+        (
+            "slope_shader",
+            Fix::Receiver(ShadowBias {
+                toward_light: 0.1,
+                slope: 1.0,
+                slope_max: 4.0,
+                ..ShadowBias::NONE
+            }),
+        ),
+        (
+            "slope_unclamped",
+            Fix::Receiver(ShadowBias {
+                toward_light: 0.1,
+                slope: 1.0,
+                slope_max: f32::MAX,
+                ..ShadowBias::NONE
+            }),
+        ),
+        (
+            "normal_offset",
+            Fix::Receiver(ShadowBias {
+                toward_light: 0.3,
+                normal: 2.0,
+                ..ShadowBias::NONE
+            }),
+        ),
         ("front_cull", Fix::CullFrontFaces),
     ]);
     v
@@ -92,32 +134,62 @@ impl Lesson for Bias {
     const DEFAULT_SCENE: &'static str = include_str!("../scenes/lesson_02.toml");
 
     fn variants() -> Vec<String> {
-        variant_list().into_iter().map(|(n, _)| n.to_string()).collect()
+        variant_list()
+            .into_iter()
+            .map(|(n, _)| n.to_string())
+            .collect()
     }
 
     fn check_scene(scene: &Scene) -> Result<()> {
-        if let Some(k) = scene.lights.iter().position(|l| matches!(l.kind, LightKind::Point { .. })) {
+        if let Some(k) = scene
+            .lights
+            .iter()
+            .position(|l| matches!(l.kind, LightKind::Point { .. }))
+        {
             anyhow::bail!("lights[{k}]: lesson_02 shadows directional and spot lights; point lights are lesson_04");
         }
         Ok(())
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
-        let module = shadow_map::shader_module(gpu, "lesson_02", include_str!("../shaders/lesson_02.wgsl"));
+        let module =
+            shadow_map::shader_module(gpu, "lesson_02", include_str!("../shaders/lesson_02.wgsl"));
         let map_layout = shadow_map::shadow_map_layout(gpu);
-        let bias_layout = shadow_map::uniform_layout(gpu, "shadow bias", std::mem::size_of::<ShadowBias>() as u64);
-        let lit_pipeline = scene.lit_pipeline(gpu, &module, "fs_lit", &[&map_layout, &bias_layout], Default::default());
+        let bias_layout = shadow_map::uniform_layout(
+            gpu,
+            "shadow bias",
+            std::mem::size_of::<ShadowBias>() as u64,
+        );
+        let lit_pipeline = scene.lit_pipeline(
+            gpu,
+            &module,
+            "fs_lit",
+            &[&map_layout, &bias_layout],
+            Default::default(),
+        );
         let map = ShadowMap::new(gpu, MAP_SIZE);
-        let map_group = shadow_map::shadow_map_group(gpu, &map_layout, &map, wgpu::FilterMode::Nearest);
+        let map_group =
+            shadow_map::shadow_map_group(gpu, &map_layout, &map, wgpu::FilterMode::Nearest);
 
         let pass = |state| shadow_map::shadow_pipeline(gpu, scene, &module, state);
         let plain_shadow = pass(ShadowPassState::default());
-        let cull_shadow = pass(ShadowPassState { cull: Some(wgpu::Face::Front), ..Default::default() });
+        let cull_shadow = pass(ShadowPassState {
+            cull: Some(wgpu::Face::Front),
+            ..Default::default()
+        });
         // One per light: the clamp is in texels, converted for each light.
         // (GL cannot clamp: there the slope-scaled bias is unclamped.)
-        let slope = variant_list().into_iter().find_map(|(_, f)| if let Fix::Hardware(b) = f { Some(b) } else { None });
+        let slope = variant_list().into_iter().find_map(|(_, f)| {
+            if let Fix::Hardware(b) = f {
+                Some(b)
+            } else {
+                None
+            }
+        });
         let slope = slope.expect("a slope_hw variant");
-        let slope_shadow = (0..scene.scene.lights.len()).map(|k| pass(slope.pass_state(gpu, &scene.scene, k, MAP_SIZE))).collect();
+        let slope_shadow = (0..scene.scene.lights.len())
+            .map(|k| pass(slope.pass_state(gpu, &scene.scene, k, MAP_SIZE)))
+            .collect();
 
         let variants = variant_list()
             .into_iter()
@@ -126,14 +198,33 @@ impl Lesson for Bias {
                     Fix::Receiver(b) => b,
                     _ => ShadowBias::NONE,
                 };
-                (name, fix, shadow_map::uniform_group(gpu, &bias_layout, name, bytemuck::bytes_of(&b)))
+                (
+                    name,
+                    fix,
+                    shadow_map::uniform_group(gpu, &bias_layout, name, bytemuck::bytes_of(&b)),
+                )
             })
             .collect();
-        Ok(Bias { variants, map, map_group, lit_pipeline, plain_shadow, cull_shadow, slope_shadow, casters_drawn: 0 })
+        Ok(Bias {
+            variants,
+            map,
+            map_group,
+            lit_pipeline,
+            plain_shadow,
+            cull_shadow,
+            slope_shadow,
+            casters_drawn: 0,
+        })
     }
 
     // ANCHOR: render
-    fn render(&mut self, frame: &mut Frame, scene: &SceneGpu, targets: &FrameTargets, variant: &str) -> Result<()> {
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: &str,
+    ) -> Result<()> {
         let (fix, bias_group) = self.fix(variant)?;
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = 0;
@@ -143,9 +234,21 @@ impl Lesson for Bias {
                 Fix::Hardware { .. } => &self.slope_shadow[light],
                 Fix::CullFrontFaces => &self.cull_shadow,
             };
-            drawn += frame.pass("shadow", |enc, ts| shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render()));
+            drawn += frame.pass("shadow", |enc, ts| {
+                shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render())
+            });
             let groups = [&self.map_group, bias_group];
-            frame.pass("lighting", |enc, ts| scene.lit_pass(enc, targets, light, &self.lit_pipeline, &groups, 0, ts.render()));
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(
+                    enc,
+                    targets,
+                    light,
+                    &self.lit_pipeline,
+                    &groups,
+                    0,
+                    ts.render(),
+                )
+            });
         }
         self.casters_drawn = drawn as u64;
         Ok(())
@@ -153,7 +256,10 @@ impl Lesson for Bias {
     // ANCHOR_END: render
 
     fn counters(&self, _variant: &str) -> BTreeMap<String, u64> {
-        BTreeMap::from([("shadow_map_size".into(), MAP_SIZE as u64), ("casters_drawn".into(), self.casters_drawn)])
+        BTreeMap::from([
+            ("shadow_map_size".into(), MAP_SIZE as u64),
+            ("casters_drawn".into(), self.casters_drawn),
+        ])
     }
 }
 

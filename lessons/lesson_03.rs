@@ -42,15 +42,30 @@ enum Filter {
 }
 
 fn variant_list() -> Vec<(&'static str, Filter)> {
-    let grid = |n| Filter::Grid { n, receiver_plane: true };
+    let grid = |n| Filter::Grid {
+        n,
+        receiver_plane: true,
+    };
     vec![
         ("pcf_1x1", grid(1)),
         ("pcf_3x3", grid(3)), // the seed's 3×3 average
         ("pcf_5x5", grid(5)),
         ("pcf_7x7", grid(7)),
-        ("pcf_7x7_flat", Filter::Grid { n: 7, receiver_plane: false }),
+        (
+            "pcf_7x7_flat",
+            Filter::Grid {
+                n: 7,
+                receiver_plane: false,
+            },
+        ),
         ("hw_2x2", Filter::Hardware2x2),
-        ("poisson_16", Filter::Poisson { taps: 16, radius: 2.5 }),
+        (
+            "poisson_16",
+            Filter::Poisson {
+                taps: 16,
+                radius: 2.5,
+            },
+        ),
         ("depth_avg_3x3", Filter::DepthAverage { n: 3 }),
     ]
 }
@@ -90,11 +105,28 @@ struct FilterUniform {
 
 impl From<Filter> for FilterUniform {
     fn from(f: Filter) -> Self {
-        let u = FilterUniform { mode: 0, n: 1, receiver_plane: 0, taps: 0, radius: 0.0, _pad: [0.0; 3] };
+        let u = FilterUniform {
+            mode: 0,
+            n: 1,
+            receiver_plane: 0,
+            taps: 0,
+            radius: 0.0,
+            _pad: [0.0; 3],
+        };
         match f {
-            Filter::Grid { n, receiver_plane } => FilterUniform { n, receiver_plane: receiver_plane as u32, ..u },
+            Filter::Grid { n, receiver_plane } => FilterUniform {
+                n,
+                receiver_plane: receiver_plane as u32,
+                ..u
+            },
             Filter::Hardware2x2 => FilterUniform { mode: 1, ..u },
-            Filter::Poisson { taps, radius } => FilterUniform { mode: 2, taps, radius, receiver_plane: 1, ..u },
+            Filter::Poisson { taps, radius } => FilterUniform {
+                mode: 2,
+                taps,
+                radius,
+                receiver_plane: 1,
+                ..u
+            },
             Filter::DepthAverage { n } => FilterUniform { mode: 3, n, ..u },
         }
     }
@@ -105,7 +137,11 @@ fn map_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
     let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture { sample_type, view_dimension: wgpu::TextureViewDimension::D2, multisampled: false },
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
         count: None,
     };
     let compare = wgpu::BindGroupLayoutEntry {
@@ -114,11 +150,24 @@ fn map_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
         count: None,
     };
-    let entries = [texture(0, wgpu::TextureSampleType::Depth), compare, texture(2, wgpu::TextureSampleType::Float { filterable: false })];
-    gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("shadow map, two ways"), entries: &entries })
+    let entries = [
+        texture(0, wgpu::TextureSampleType::Depth),
+        compare,
+        texture(2, wgpu::TextureSampleType::Float { filterable: false }),
+    ];
+    gpu.device
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shadow map, two ways"),
+            entries: &entries,
+        })
 }
 
-fn map_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, map: &ShadowMap, filter: wgpu::FilterMode) -> wgpu::BindGroup {
+fn map_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &ShadowMap,
+    filter: wgpu::FilterMode,
+) -> wgpu::BindGroup {
     let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("shadow comparison"),
         address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -132,9 +181,18 @@ fn map_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, map: &ShadowMap, filter:
         label: Some("shadow map"),
         layout,
         entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&map.view) },
-            wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
-            wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&map.view) },
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&map.view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&map.view),
+            },
         ],
     })
 }
@@ -154,39 +212,88 @@ impl Lesson for Pcf {
     const DEFAULT_SCENE: &'static str = include_str!("../scenes/lesson_03.toml");
 
     fn variants() -> Vec<String> {
-        variant_list().into_iter().map(|(n, _)| n.to_string()).collect()
+        variant_list()
+            .into_iter()
+            .map(|(n, _)| n.to_string())
+            .collect()
     }
 
     fn check_scene(scene: &Scene) -> Result<()> {
-        if let Some(k) = scene.lights.iter().position(|l| matches!(l.kind, LightKind::Point { .. })) {
+        if let Some(k) = scene
+            .lights
+            .iter()
+            .position(|l| matches!(l.kind, LightKind::Point { .. }))
+        {
             anyhow::bail!("lights[{k}]: lesson_03 shadows directional and spot lights; point lights are lesson_04");
         }
         Ok(())
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
-        let module = shadow_map::shader_module(gpu, "lesson_03", include_str!("../shaders/lesson_03.wgsl"));
+        let module =
+            shadow_map::shader_module(gpu, "lesson_03", include_str!("../shaders/lesson_03.wgsl"));
         let layout = map_layout(gpu);
-        let filter_layout = shadow_map::uniform_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);
-        let lit_pipeline = scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout, &filter_layout], Default::default());
+        let filter_layout =
+            shadow_map::uniform_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);
+        let lit_pipeline = scene.lit_pipeline(
+            gpu,
+            &module,
+            "fs_lit",
+            &[&layout, &filter_layout],
+            Default::default(),
+        );
         let map = ShadowMap::new(gpu, MAP_SIZE);
         let nearest = map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
         let linear = map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
         let bias = SlopeScaledBias::RECOMMENDED;
         let shadow_pipelines = (0..scene.scene.lights.len())
-            .map(|k| shadow_map::shadow_pipeline(gpu, scene, &module, bias.pass_state(gpu, &scene.scene, k, MAP_SIZE)))
+            .map(|k| {
+                shadow_map::shadow_pipeline(
+                    gpu,
+                    scene,
+                    &module,
+                    bias.pass_state(gpu, &scene.scene, k, MAP_SIZE),
+                )
+            })
             .collect();
         let variants = variant_list()
             .into_iter()
-            .map(|(name, f)| (name, f, shadow_map::uniform_group(gpu, &filter_layout, name, bytemuck::bytes_of(&FilterUniform::from(f)))))
+            .map(|(name, f)| {
+                (
+                    name,
+                    f,
+                    shadow_map::uniform_group(
+                        gpu,
+                        &filter_layout,
+                        name,
+                        bytemuck::bytes_of(&FilterUniform::from(f)),
+                    ),
+                )
+            })
             .collect();
-        Ok(Pcf { variants, map, nearest, linear, lit_pipeline, shadow_pipelines })
+        Ok(Pcf {
+            variants,
+            map,
+            nearest,
+            linear,
+            lit_pipeline,
+            shadow_pipelines,
+        })
     }
 
     // ANCHOR: render
-    fn render(&mut self, frame: &mut Frame, scene: &SceneGpu, targets: &FrameTargets, variant: &str) -> Result<()> {
-        let (_, filter, filter_group) =
-            self.variants.iter().find(|(n, ..)| *n == variant).ok_or_else(|| anyhow::anyhow!("unknown variant {variant}"))?;
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: &str,
+    ) -> Result<()> {
+        let (_, filter, filter_group) = self
+            .variants
+            .iter()
+            .find(|(n, ..)| *n == variant)
+            .ok_or_else(|| anyhow::anyhow!("unknown variant {variant}"))?;
         let map_group = match filter.sampler() {
             wgpu::FilterMode::Linear => &self.linear,
             _ => &self.nearest,
@@ -194,18 +301,38 @@ impl Lesson for Pcf {
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
             let shadow = &self.shadow_pipelines[light];
-            frame.pass("shadow", |enc, ts| shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render()));
+            frame.pass("shadow", |enc, ts| {
+                shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render())
+            });
             let groups = [map_group, filter_group];
-            frame.pass("lighting", |enc, ts| scene.lit_pass(enc, targets, light, &self.lit_pipeline, &groups, 0, ts.render()));
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(
+                    enc,
+                    targets,
+                    light,
+                    &self.lit_pipeline,
+                    &groups,
+                    0,
+                    ts.render(),
+                )
+            });
         }
         Ok(())
     }
     // ANCHOR_END: render
 
     fn counters(&self, variant: &str) -> BTreeMap<String, u64> {
-        let filter = self.variants.iter().find(|(n, ..)| *n == variant).map(|(_, f, _)| *f);
+        let filter = self
+            .variants
+            .iter()
+            .find(|(n, ..)| *n == variant)
+            .map(|(_, f, _)| *f);
         let (taps, texels) = filter.map_or((0, 0), Filter::taps);
-        BTreeMap::from([("taps".into(), taps), ("texels_read".into(), texels), ("shadow_map_size".into(), MAP_SIZE as u64)])
+        BTreeMap::from([
+            ("taps".into(), taps),
+            ("texels_read".into(), texels),
+            ("shadow_map_size".into(), MAP_SIZE as u64),
+        ])
     }
 }
 

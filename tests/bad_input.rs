@@ -15,17 +15,35 @@ fn dir() -> PathBuf {
 /// Runs lesson_01 and returns its single stderr line, asserting failure.
 fn fails(args: &[&str]) -> String {
     let out = Command::new(BIN)
-        .args(["--headless", "--width", "64", "--height", "36", "--frames", "1"])
+        .args([
+            "--headless",
+            "--width",
+            "64",
+            "--height",
+            "36",
+            "--frames",
+            "1",
+        ])
         .args(args)
         .arg("--out")
         .arg(dir().join("out"))
         .output()
         .expect("run lesson_01");
     let stderr = String::from_utf8_lossy(&out.stderr).to_string();
-    assert!(!out.status.success(), "expected failure for {args:?}, got success; stderr: {stderr}");
+    assert!(
+        !out.status.success(),
+        "expected failure for {args:?}, got success; stderr: {stderr}"
+    );
     assert!(!stderr.contains("panicked"), "panic for {args:?}: {stderr}");
-    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty() && !l.starts_with("warning:")).collect();
-    assert_eq!(lines.len(), 1, "expected one error line for {args:?}, got: {stderr}");
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with("warning:"))
+        .collect();
+    assert_eq!(
+        lines.len(),
+        1,
+        "expected one error line for {args:?}, got: {stderr}"
+    );
     lines[0].to_string()
 }
 
@@ -51,19 +69,28 @@ fn scene_with_object(name: &str, object: &str) -> String {
 #[test]
 fn missing_scene_file() {
     let e = fails(&["--scene", "/nonexistent/scene.toml"]);
-    assert!(e.contains("/nonexistent/scene.toml") && e.contains("cannot read"), "{e}");
+    assert!(
+        e.contains("/nonexistent/scene.toml") && e.contains("cannot read"),
+        "{e}"
+    );
 }
 
 #[test]
 fn malformed_scene_names_file_and_line() {
     let p = scene_file("malformed.toml", "[camera]\neye = [1.0, 2.0\n");
     let e = fails(&["--scene", &p]);
-    assert!(e.contains("malformed.toml:2") || e.contains("malformed.toml:3"), "{e}");
+    assert!(
+        e.contains("malformed.toml:2") || e.contains("malformed.toml:3"),
+        "{e}"
+    );
 }
 
 #[test]
 fn unknown_field_is_named() {
-    let p = scene_file("unknown_field.toml", &format!("{GOOD_HEAD}\n[[objects]]\nmesh = \"cube\"\nscael = 2.0\n"));
+    let p = scene_file(
+        "unknown_field.toml",
+        &format!("{GOOD_HEAD}\n[[objects]]\nmesh = \"cube\"\nscael = 2.0\n"),
+    );
     let e = fails(&["--scene", &p]);
     assert!(e.contains("scael"), "{e}");
 }
@@ -72,7 +99,10 @@ fn unknown_field_is_named() {
 fn unknown_mesh_name() {
     let p = scene_with_object("unknown_mesh.toml", "mesh = \"teapotz\"");
     let e = fails(&["--scene", &p]);
-    assert!(e.contains("objects[0].mesh") && e.contains("teapotz"), "{e}");
+    assert!(
+        e.contains("objects[0].mesh") && e.contains("teapotz"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -82,7 +112,10 @@ fn nan_vector() {
         "[camera]\neye = [4.0, 3.0, 6.0]\ntarget = [0.0, 0.5, 0.0]\n[[lights]]\ntype = \"directional\"\ndirection = [nan, -1.0, 0.0]\n[[objects]]\nmesh = \"cube\"\n",
     );
     let e = fails(&["--scene", &p]);
-    assert!(e.contains("lights[0].direction") && e.contains("finite"), "{e}");
+    assert!(
+        e.contains("lights[0].direction") && e.contains("finite"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -92,12 +125,18 @@ fn zero_length_vector() {
         "[camera]\neye = [4.0, 3.0, 6.0]\ntarget = [0.0, 0.5, 0.0]\n[[lights]]\ntype = \"directional\"\ndirection = [0.0, 0.0, 0.0]\n[[objects]]\nmesh = \"cube\"\n",
     );
     let e = fails(&["--scene", &p]);
-    assert!(e.contains("lights[0].direction") && e.contains("zero-length"), "{e}");
+    assert!(
+        e.contains("lights[0].direction") && e.contains("zero-length"),
+        "{e}"
+    );
 }
 
 #[test]
 fn zero_scale() {
-    let p = scene_with_object("zero_scale.toml", "mesh = \"cube\"\nscale = [1.0, 0.0, 1.0]");
+    let p = scene_with_object(
+        "zero_scale.toml",
+        "mesh = \"cube\"\nscale = [1.0, 0.0, 1.0]",
+    );
     let e = fails(&["--scene", &p]);
     assert!(e.contains("objects[0].scale"), "{e}");
 }
@@ -119,15 +158,26 @@ fn empty_mesh() {
 
 #[test]
 fn degenerate_triangles_only() {
-    std::fs::write(dir().join("degenerate.obj"), "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n").unwrap();
+    std::fs::write(
+        dir().join("degenerate.obj"),
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n",
+    )
+    .unwrap();
     let p = scene_with_object("degenerate.toml", "mesh = \"degenerate.obj\"");
     let e = fails(&["--scene", &p]);
-    assert!(e.contains("degenerate.obj") && e.contains("degenerate"), "{e}");
+    assert!(
+        e.contains("degenerate.obj") && e.contains("degenerate"),
+        "{e}"
+    );
 }
 
 #[test]
 fn nan_in_obj() {
-    std::fs::write(dir().join("nan.obj"), "v 0 0 0\nv 1 nan 0\nv 0 0 1\nf 1 2 3\n").unwrap();
+    std::fs::write(
+        dir().join("nan.obj"),
+        "v 0 0 0\nv 1 nan 0\nv 0 0 1\nf 1 2 3\n",
+    )
+    .unwrap();
     let p = scene_with_object("nan_obj.toml", "mesh = \"nan.obj\"");
     let e = fails(&["--scene", &p]);
     assert!(e.contains("nan.obj"), "{e}");
@@ -136,7 +186,9 @@ fn nan_in_obj() {
 #[test]
 fn nonsense_cli_values() {
     assert!(fails(&["--width", "abc"]).contains("--width"));
-    assert!(fails(&["--width", "-5"]).contains("--width") || fails(&["--width", "-5"]).contains("-5"));
+    assert!(
+        fails(&["--width", "-5"]).contains("--width") || fails(&["--width", "-5"]).contains("-5")
+    );
     assert!(fails(&["--frames", "0"]).contains("--frames"));
     assert!(fails(&["--backend", "glide"]).contains("--backend"));
     assert!(fails(&["--no-such-flag"]).contains("--no-such-flag"));
@@ -145,7 +197,10 @@ fn nonsense_cli_values() {
 #[test]
 fn unknown_variant() {
     let e = fails(&["--variant", "res_123"]);
-    assert!(e.contains("--variant") && e.contains("res_123") && e.contains("res_1024"), "{e}");
+    assert!(
+        e.contains("--variant") && e.contains("res_123") && e.contains("res_1024"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -165,5 +220,8 @@ fn no_adapter_says_what_to_install() {
         return;
     }
     let e = fails(&["--backend", "metal"]);
-    assert!(e.contains("no GPU adapter found") && e.contains("mesa-vulkan-drivers"), "{e}");
+    assert!(
+        e.contains("no GPU adapter found") && e.contains("mesa-vulkan-drivers"),
+        "{e}"
+    );
 }

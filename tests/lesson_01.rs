@@ -10,7 +10,18 @@ const SIZE: [&str; 4] = ["--width", "320", "--height", "180"];
 
 #[test]
 fn lesson_01_snapshot() {
-    let args = ["--width", "640", "--height", "360", "--frames", "1", "--variant", "res_256", "--variant", "res_4096"];
+    let args = [
+        "--width",
+        "640",
+        "--height",
+        "360",
+        "--frames",
+        "1",
+        "--variant",
+        "res_256",
+        "--variant",
+        "res_4096",
+    ];
     let Some(run) = support::run_lesson(BIN, "lesson_01_snapshot", &args) else {
         return;
     };
@@ -32,25 +43,62 @@ fn lesson_01_snapshot() {
 /// shadow edges (false lit) shrinks as the map gets finer.
 #[test]
 fn lesson_01_acne_is_measured_and_edges_improve_with_resolution() {
-    let Some(run) = support::run_lesson(BIN, "lesson_01_trend", &[&SIZE[..], &["--frames", "1"]].concat()) else {
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_01_trend",
+        &[&SIZE[..], &["--frames", "1"]].concat(),
+    ) else {
         return;
     };
-    let fs = |n: &str| support::variant(&run.report, n)["error"]["false_shadow_pct"].as_f64().unwrap();
-    let fl = |n: &str| support::variant(&run.report, n)["error"]["false_lit_pct"].as_f64().unwrap();
+    let fs = |n: &str| {
+        support::variant(&run.report, n)["error"]["false_shadow_pct"]
+            .as_f64()
+            .unwrap()
+    };
+    let fl = |n: &str| {
+        support::variant(&run.report, n)["error"]["false_lit_pct"]
+            .as_f64()
+            .unwrap()
+    };
     for n in ["res_256", "res_1024", "res_4096"] {
-        assert!(fs(n) > 5.0, "{n}: no bias must show acne, false shadow = {}%", fs(n));
+        assert!(
+            fs(n) > 5.0,
+            "{n}: no bias must show acne, false shadow = {}%",
+            fs(n)
+        );
     }
-    assert!(fl("res_4096") < fl("res_256"), "false lit must fall with resolution: {} vs {}", fl("res_4096"), fl("res_256"));
-    let receivers = support::variant(&run.report, "res_1024")["error"]["receiver_pixels"].as_u64().unwrap();
-    assert!(receivers > 10_000, "the default scene must have receivers, got {receivers}");
+    assert!(
+        fl("res_4096") < fl("res_256"),
+        "false lit must fall with resolution: {} vs {}",
+        fl("res_4096"),
+        fl("res_256")
+    );
+    let receivers = support::variant(&run.report, "res_1024")["error"]["receiver_pixels"]
+        .as_u64()
+        .unwrap();
+    assert!(
+        receivers > 10_000,
+        "the default scene must have receivers, got {receivers}"
+    );
 }
 
 #[test]
 fn lesson_01_writes_every_output() {
-    let Some(run) = support::run_lesson(BIN, "lesson_01_outputs", &[&SIZE[..], &["--variant", "res_512"]].concat()) else {
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_01_outputs",
+        &[&SIZE[..], &["--variant", "res_512"]].concat(),
+    ) else {
         return;
     };
-    for f in ["res_512.png", "res_512_visibility_l0.png", "reference_visibility_l0.png", "res_512_diff_l0.png", "report.json", "res_512_depth_map.png"] {
+    for f in [
+        "res_512.png",
+        "res_512_visibility_l0.png",
+        "reference_visibility_l0.png",
+        "res_512_diff_l0.png",
+        "report.json",
+        "res_512_depth_map.png",
+    ] {
         assert!(run.out.join(f).is_file(), "missing output {f}");
     }
     let r = &run.report;
@@ -59,19 +107,34 @@ fn lesson_01_writes_every_output() {
     assert!(r["reference_ms"].as_f64().unwrap() > 0.0);
     let v = support::variant(r, "res_512");
     for k in ["total", "base", "shadow", "lighting"] {
-        assert!(v["timing_ms"][k].as_f64().is_some_and(|x| x >= 0.0), "timing_ms.{k} missing");
+        assert!(
+            v["timing_ms"][k].as_f64().is_some_and(|x| x >= 0.0),
+            "timing_ms.{k} missing"
+        );
     }
-    assert!(run.stdout.contains("misclassified %"), "the terminal table is printed");
+    assert!(
+        run.stdout.contains("misclassified %"),
+        "the terminal table is printed"
+    );
     let vis = image::open(run.out.join("res_512_visibility_l0.png")).unwrap();
-    assert_eq!(vis.color(), image::ColorType::La8, "visibility PNGs are 8-bit gray+alpha");
+    assert_eq!(
+        vis.color(),
+        image::ColorType::La8,
+        "visibility PNGs are 8-bit gray+alpha"
+    );
 }
 
 #[test]
 fn lesson_01_frame_matches_reference_image() {
-    let Some(run) = support::run_lesson(BIN, "lesson_01_image", &[&SIZE[..], &["--variant", "res_2048"]].concat()) else {
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_01_image",
+        &[&SIZE[..], &["--variant", "res_2048"]].concat(),
+    ) else {
         return;
     };
-    let reference = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference_images/lesson_01_res_2048.png");
+    let reference = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/reference_images/lesson_01_res_2048.png");
     support::compare_with_reference(&run.out.join("res_2048.png"), &reference, 8, 24, 2.0);
 }
 
@@ -80,13 +143,24 @@ fn lesson_01_frame_matches_reference_image() {
 #[test]
 fn lesson_01_cpu_timing_fallback_is_labelled() {
     let args = [&SIZE[..], &["--variant", "res_256"]].concat();
-    let Some(run) = support::run_lesson_env(BIN, "lesson_01_cpu_timing", &args, &[("WORKBOOK_TIMING", "cpu")]) else {
+    let Some(run) = support::run_lesson_env(
+        BIN,
+        "lesson_01_cpu_timing",
+        &args,
+        &[("WORKBOOK_TIMING", "cpu")],
+    ) else {
         return;
     };
     let v = support::variant(&run.report, "res_256");
     assert_eq!(v["timing_source"], "cpu_wall");
     for k in ["total", "base", "shadow", "lighting"] {
-        assert!(v["timing_ms"][k].as_f64().is_some_and(|x| x > 0.0), "timing_ms.{k} missing or zero");
+        assert!(
+            v["timing_ms"][k].as_f64().is_some_and(|x| x > 0.0),
+            "timing_ms.{k} missing or zero"
+        );
     }
-    assert!(run.stdout.contains("CPU wall clock"), "the table says where the times come from");
+    assert!(
+        run.stdout.contains("CPU wall clock"),
+        "the table says where the times come from"
+    );
 }

@@ -12,7 +12,6 @@
 
 mod support;
 
-
 use common::camera::{camera_matrices, light_view_proj};
 use common::glam::{DVec3, Vec3};
 use common::reference::{render_reference, Reference};
@@ -22,9 +21,12 @@ const BIN: &str = env!("CARGO_BIN_EXE_lesson_02");
 /// The variant the chapter recommends: the rasteriser's slope-scaled bias.
 const BEST: &str = "slope_hw";
 
-
-
-fn run(name: &str, scene: Option<&str>, size: (u32, u32), variants: &[&str]) -> Option<support::LessonRun> {
+fn run(
+    name: &str,
+    scene: Option<&str>,
+    size: (u32, u32),
+    variants: &[&str],
+) -> Option<support::LessonRun> {
     let (w, h) = (size.0.to_string(), size.1.to_string());
     let scene = scene.map(|s| support::scene_path(s).display().to_string());
     let mut args = vec!["--width", &w, "--height", &h, "--frames", "1"];
@@ -53,10 +55,16 @@ impl Closer {
         let cam = camera_matrices(&scene, size.0, size.1);
         let reference = render_reference(&scene, cam.view_proj, size.0, size.1);
         // A texel is 2/N of NDC; the light's x_ndc = row 0 · p (orthographic).
-        let m = light_view_proj(&scene, 0).expect("a directional light").as_dmat4();
+        let m = light_view_proj(&scene, 0)
+            .expect("a directional light")
+            .as_dmat4();
         let row = |i: usize| DVec3::new(m.x_axis[i], m.y_axis[i], m.z_axis[i]).length();
         let texel = 2.0 / (map_size as f64 * row(0).min(row(1)));
-        Closer { scene, reference, texel }
+        Closer {
+            scene,
+            reference,
+            texel,
+        }
     }
 
     /// The floor pixels that face light 0, with what the reference says.
@@ -64,7 +72,11 @@ impl Closer {
         let r = &self.reference;
         (0..r.hits.len()).filter_map(move |p| {
             let h = r.hits[p]?;
-            (h.object == 0 && r.lit_by[0][p] > 0.0).then_some((p, h.position, r.visibility[0][p] >= 0.5))
+            (h.object == 0 && r.lit_by[0][p] > 0.0).then_some((
+                p,
+                h.position,
+                r.visibility[0][p] >= 0.5,
+            ))
         })
     }
 
@@ -94,7 +106,10 @@ impl Closer {
     /// `caster`, and more than 1.5 texels inside the shadow, that the GPU
     /// lights: the share of its shadow that is lost, edges left out.
     fn shadow_lost_pct(&self, gpu: &Gpu, caster: usize) -> f64 {
-        let (w, h) = (self.reference.width as usize, self.reference.height as usize);
+        let (w, h) = (
+            self.reference.width as usize,
+            self.reference.height as usize,
+        );
         let floor: Vec<Option<(Vec3, bool)>> = {
             let mut f = vec![None; w * h];
             for (p, pos, lit) in self.floor() {
@@ -107,8 +122,16 @@ impl Closer {
             .filter_map(|p| {
                 let (pos, lit) = floor[p]?;
                 let (x, y) = (p % w, p / w);
-                let near = [(x > 0, p.wrapping_sub(1)), (x + 1 < w, p + 1), (y > 0, p.wrapping_sub(w)), (y + 1 < h, p + w)];
-                (lit && near.iter().any(|&(ok, q)| ok && floor[q].is_some_and(|(_, l)| !l))).then_some(pos)
+                let near = [
+                    (x > 0, p.wrapping_sub(1)),
+                    (x + 1 < w, p + 1),
+                    (y > 0, p.wrapping_sub(w)),
+                    (y + 1 < h, p + w),
+                ];
+                (lit && near
+                    .iter()
+                    .any(|&(ok, q)| ok && floor[q].is_some_and(|(_, l)| !l)))
+                .then_some(pos)
             })
             .collect();
         let (mut n, mut bad) = (0u32, 0u32);
@@ -116,7 +139,11 @@ impl Closer {
             if lit || !gpu.covered[p] || self.nearest_caster(pos) != caster {
                 continue;
             }
-            let inside = outline.iter().map(|o| o.distance(pos)).fold(f32::INFINITY, f32::min) as f64 / self.texel;
+            let inside = outline
+                .iter()
+                .map(|o| o.distance(pos))
+                .fold(f32::INFINITY, f32::min) as f64
+                / self.texel;
             if inside > 1.5 {
                 n += 1;
                 bad += (gpu.vis[p] >= 0.5) as u32;
@@ -151,7 +178,12 @@ impl Closer {
                 shadowed.push(pos);
             }
         }
-        let gap = |f: &Vec3| shadowed.iter().map(|s| s.distance(*f)).fold(f32::INFINITY, f32::min) as f64;
+        let gap = |f: &Vec3| {
+            shadowed
+                .iter()
+                .map(|s| s.distance(*f))
+                .fold(f32::INFINITY, f32::min) as f64
+        };
         foot.iter().map(gap).fold(0.0, f64::max) / self.texel
     }
 }
@@ -163,12 +195,18 @@ struct Gpu {
 }
 
 fn gpu(run: &support::LessonRun, variant: &str) -> Gpu {
-    let (ids, vis, _, _) = support::read_visibility(&run.out.join(format!("{variant}_visibility_l0.png")));
-    Gpu { covered: ids.iter().map(|&i| i != 0).collect(), vis }
+    let (ids, vis, _, _) =
+        support::read_visibility(&run.out.join(format!("{variant}_visibility_l0.png")));
+    Gpu {
+        covered: ids.iter().map(|&i| i != 0).collect(),
+        vis,
+    }
 }
 
 fn map_size(run: &support::LessonRun) -> u64 {
-    run.report["variants"][0]["counters"]["shadow_map_size"].as_u64().expect("counters.shadow_map_size")
+    run.report["variants"][0]["counters"]["shadow_map_size"]
+        .as_u64()
+        .expect("counters.shadow_map_size")
 }
 
 // ---- the default scene -----------------------------------------------------
@@ -177,7 +215,9 @@ const SIZE: (u32, u32) = (640, 360);
 
 #[test]
 fn lesson_02_snapshot() {
-    let Some(run) = run("lesson_02_snapshot", None, SIZE, &[]) else { return };
+    let Some(run) = run("lesson_02_snapshot", None, SIZE, &[]) else {
+        return;
+    };
     let mut text = String::from("visibility of light 0: '#' shadow, '.' lit, ':' mixed (acne), ' ' background\n\nreference:\n");
     text += &support::ascii_levels(&run.out.join("reference_visibility_l0.png"), 64, 20);
     text += "\nnone (lesson 01: acne on every lit surface):\n";
@@ -194,32 +234,74 @@ fn lesson_02_snapshot() {
 /// most 1% of the receivers, where no bias shadows about half of them.
 #[test]
 fn lesson_02_best_variant_is_within_one_percent() {
-    let Some(run) = run("lesson_02_best", None, SIZE, &["none", BEST]) else { return };
-    let (none, best) = (support::error(&run.report, "none", "false_shadow_pct"), support::error(&run.report, BEST, "misclassified_pct"));
-    assert!(none > 40.0, "no bias must show lesson 01's acne, false shadow = {none:.2}%");
+    let Some(run) = run("lesson_02_best", None, SIZE, &["none", BEST]) else {
+        return;
+    };
+    let (none, best) = (
+        support::error(&run.report, "none", "false_shadow_pct"),
+        support::error(&run.report, BEST, "misclassified_pct"),
+    );
+    assert!(
+        none > 40.0,
+        "no bias must show lesson 01's acne, false shadow = {none:.2}%"
+    );
     assert!(best <= 1.0, "{BEST}: misclassified {best:.3}% > 1%");
-    assert!(support::error(&run.report, BEST, "false_lit_pct") <= 0.5, "{BEST} must not buy the acne with Peter Panning");
+    assert!(
+        support::error(&run.report, BEST, "false_lit_pct") <= 0.5,
+        "{BEST} must not buy the acne with Peter Panning"
+    );
 }
 
 /// The sweep: as the constant bias grows, false shadow (acne) falls and
 /// false lit (Peter Panning, leaks under the slab) rises.
 #[test]
 fn lesson_02_sweep_trades_acne_for_peter_panning() {
-    let sweep = ["bias_0.25tx", "bias_0.5tx", "bias_1tx", "bias_4tx", "bias_16tx", "bias_64tx"];
-    let Some(run) = run("lesson_02_sweep", None, SIZE, &sweep) else { return };
-    let fs: Vec<f64> = sweep.iter().map(|v| support::error(&run.report, v, "false_shadow_pct")).collect();
-    let fl: Vec<f64> = sweep.iter().map(|v| support::error(&run.report, v, "false_lit_pct")).collect();
+    let sweep = [
+        "bias_0.25tx",
+        "bias_0.5tx",
+        "bias_1tx",
+        "bias_4tx",
+        "bias_16tx",
+        "bias_64tx",
+    ];
+    let Some(run) = run("lesson_02_sweep", None, SIZE, &sweep) else {
+        return;
+    };
+    let fs: Vec<f64> = sweep
+        .iter()
+        .map(|v| support::error(&run.report, v, "false_shadow_pct"))
+        .collect();
+    let fl: Vec<f64> = sweep
+        .iter()
+        .map(|v| support::error(&run.report, v, "false_lit_pct"))
+        .collect();
     eprintln!("bias (texels)   false shadow %   false lit %");
     for (i, v) in sweep.iter().enumerate() {
         eprintln!("{v:<14} {:>14.3} {:>13.3}", fs[i], fl[i]);
     }
     for i in 1..sweep.len() {
         // A pixel or two of raster noise is not a trend.
-        assert!(fs[i] <= fs[i - 1] + 0.01, "false shadow must fall with the bias: {fs:?}");
-        assert!(fl[i] + 0.01 >= fl[i - 1], "false lit must rise with the bias: {fl:?}");
+        assert!(
+            fs[i] <= fs[i - 1] + 0.01,
+            "false shadow must fall with the bias: {fs:?}"
+        );
+        assert!(
+            fl[i] + 0.01 >= fl[i - 1],
+            "false lit must rise with the bias: {fl:?}"
+        );
     }
-    assert!(fs[0] > 10.0 && fs[5] < 0.1, "acne from {:.2}% down to {:.3}%", fs[0], fs[5]);
-    assert!(fl[5] > 10.0 * fl[0], "Peter Panning from {:.3}% up to {:.3}%", fl[0], fl[5]);
+    assert!(
+        fs[0] > 10.0 && fs[5] < 0.1,
+        "acne from {:.2}% down to {:.3}%",
+        fs[0],
+        fs[5]
+    );
+    assert!(
+        fl[5] > 10.0 * fl[0],
+        "Peter Panning from {:.3}% up to {:.3}%",
+        fl[0],
+        fl[5]
+    );
 }
 
 // ---- extreme cases ------------------------------------------------------------
@@ -235,20 +317,42 @@ fn lesson_02_grazing_light() {
     let variants = ["none", "bias_1tx", "slope_shader", "slope_unclamped", BEST];
     for deg in [80, 85, 89] {
         let scene = format!("lesson_02_grazing_{deg}.toml");
-        let Some(run) = run(&format!("lesson_02_grazing_{deg}"), Some(&scene), SIZE, &variants) else { return };
+        let Some(run) = run(
+            &format!("lesson_02_grazing_{deg}"),
+            Some(&scene),
+            SIZE,
+            &variants,
+        ) else {
+            return;
+        };
         let c = Closer::new(&scene, SIZE, map_size(&run));
         let (cube, sphere) = (1, 2);
         eprintln!("grazing {deg}°: variant, floor acne %, gap at the cube's foot (texels), cube's shadow lost %");
         for v in variants {
             let g = gpu(&run, v);
-            eprintln!("  {v:<16} {:>6.2} {:>6.1} {:>6.1}", c.floor_acne_pct(&g), c.contact_gap_texels(&g, cube), c.shadow_lost_pct(&g, cube));
+            eprintln!(
+                "  {v:<16} {:>6.2} {:>6.1} {:>6.1}",
+                c.floor_acne_pct(&g),
+                c.contact_gap_texels(&g, cube),
+                c.shadow_lost_pct(&g, cube)
+            );
         }
         let best = gpu(&run, BEST);
-        assert!(c.floor_acne_pct(&best) <= 1.0, "{deg}°: {BEST} floor acne {:.2}%", c.floor_acne_pct(&best));
+        assert!(
+            c.floor_acne_pct(&best) <= 1.0,
+            "{deg}°: {BEST} floor acne {:.2}%",
+            c.floor_acne_pct(&best)
+        );
         for caster in [cube, sphere] {
             let gap = c.contact_gap_texels(&best, caster);
-            assert!(gap <= 2.0, "{deg}°: {BEST} gap at object {caster}'s foot is {gap:.1} texels");
-            assert!(c.shadow_lost_pct(&best, caster) <= 1.0, "{deg}°: {BEST} loses object {caster}'s shadow");
+            assert!(
+                gap <= 2.0,
+                "{deg}°: {BEST} gap at object {caster}'s foot is {gap:.1} texels"
+            );
+            assert!(
+                c.shadow_lost_pct(&best, caster) <= 1.0,
+                "{deg}°: {BEST} loses object {caster}'s shadow"
+            );
         }
         if deg < 89 {
             // At 89° N·L = 0.017 < 0.05: the report leaves the floor out.
@@ -256,13 +360,22 @@ fn lesson_02_grazing_light() {
             assert!(m <= 1.0, "{deg}°: {BEST} misclassified {m:.3}%");
         }
         let none = c.floor_acne_pct(&gpu(&run, "none"));
-        assert!(none > 40.0, "{deg}°: no bias must leave acne on the floor, got {none:.1}%");
+        assert!(
+            none > 40.0,
+            "{deg}°: no bias must leave acne on the floor, got {none:.1}%"
+        );
         if deg == 89 {
             let constant = c.floor_acne_pct(&gpu(&run, "bias_1tx"));
-            assert!(constant > 10.0, "89°: a 1-texel bias must fall short, floor acne {constant:.1}%");
+            assert!(
+                constant > 10.0,
+                "89°: a 1-texel bias must fall short, floor acne {constant:.1}%"
+            );
             let clamped = c.contact_gap_texels(&gpu(&run, "slope_shader"), cube);
             let unclamped = c.contact_gap_texels(&gpu(&run, "slope_unclamped"), cube);
-            assert!(unclamped > 20.0 && clamped <= 2.0, "89°: unclamped gap {unclamped:.1} texels, clamped {clamped:.1}");
+            assert!(
+                unclamped > 20.0 && clamped <= 2.0,
+                "89°: unclamped gap {unclamped:.1} texels, clamped {clamped:.1}"
+            );
         }
     }
 }
@@ -274,20 +387,49 @@ fn lesson_02_grazing_light() {
 #[test]
 fn lesson_02_contact_gap() {
     let scene = "lesson_02_contact.toml";
-    let variants = ["constant_seed", "bias_1tx", "bias_4tx", "bias_16tx", "bias_64tx", BEST];
-    let Some(run) = run("lesson_02_contact", Some(scene), SIZE, &variants) else { return };
+    let variants = [
+        "constant_seed",
+        "bias_1tx",
+        "bias_4tx",
+        "bias_16tx",
+        "bias_64tx",
+        BEST,
+    ];
+    let Some(run) = run("lesson_02_contact", Some(scene), SIZE, &variants) else {
+        return;
+    };
     let c = Closer::new(scene, SIZE, map_size(&run));
     let gap = |v: &str| c.contact_gap_texels(&gpu(&run, v), 1);
     eprintln!("variant, gap at the cube's foot (texels), cube's shadow lost %");
     for v in variants {
-        eprintln!("  {v:<14} {:>6.1} {:>6.1}", gap(v), c.shadow_lost_pct(&gpu(&run, v), 1));
+        eprintln!(
+            "  {v:<14} {:>6.1} {:>6.1}",
+            gap(v),
+            c.shadow_lost_pct(&gpu(&run, v), 1)
+        );
     }
     assert!(gap(BEST) <= 1.0, "{BEST}: gap {:.1} texels", gap(BEST));
-    assert!(c.shadow_lost_pct(&gpu(&run, BEST), 1) <= 1.0, "{BEST} loses the cube's shadow");
-    assert!(gap("constant_seed") > 10.0, "the seeds' constant must detach the shadow, gap {:.1}", gap("constant_seed"));
-    let sweep: Vec<f64> = ["bias_1tx", "bias_4tx", "bias_16tx", "bias_64tx"].iter().map(|v| gap(v)).collect();
-    assert!(sweep.windows(2).all(|w| w[1] + 0.5 >= w[0]), "the gap must grow with the bias: {sweep:?}");
-    assert!(sweep[3] > sweep[0] + 5.0, "64 texels of bias must open a gap: {sweep:?}");
+    assert!(
+        c.shadow_lost_pct(&gpu(&run, BEST), 1) <= 1.0,
+        "{BEST} loses the cube's shadow"
+    );
+    assert!(
+        gap("constant_seed") > 10.0,
+        "the seeds' constant must detach the shadow, gap {:.1}",
+        gap("constant_seed")
+    );
+    let sweep: Vec<f64> = ["bias_1tx", "bias_4tx", "bias_16tx", "bias_64tx"]
+        .iter()
+        .map(|v| gap(v))
+        .collect();
+    assert!(
+        sweep.windows(2).all(|w| w[1] + 0.5 >= w[0]),
+        "the gap must grow with the bias: {sweep:?}"
+    );
+    assert!(
+        sweep[3] > sweep[0] + 5.0,
+        "64 texels of bias must open a gap: {sweep:?}"
+    );
 }
 
 /// Thin things: a single-sided sheet 2 cm above the floor and a board 1 cm
@@ -298,31 +440,57 @@ fn lesson_02_contact_gap() {
 fn lesson_02_thin_plate() {
     let scene = "lesson_02_thin_plate.toml";
     let variants = ["constant_seed", "front_cull", BEST];
-    let Some(run) = run("lesson_02_thin_plate", Some(scene), SIZE, &variants) else { return };
+    let Some(run) = run("lesson_02_thin_plate", Some(scene), SIZE, &variants) else {
+        return;
+    };
     let c = Closer::new(scene, SIZE, map_size(&run));
     let (sheet, board) = (1, 2);
     let lost = |v: &str, o: usize| c.shadow_lost_pct(&gpu(&run, v), o);
     eprintln!("variant, sheet's shadow lost %, board's shadow lost %, misclassified %");
     for v in variants {
-        eprintln!("  {v:<14} {:>6.1} {:>6.1} {:>7.3}", lost(v, sheet), lost(v, board), support::error(&run.report, v, "misclassified_pct"));
+        eprintln!(
+            "  {v:<14} {:>6.1} {:>6.1} {:>7.3}",
+            lost(v, sheet),
+            lost(v, board),
+            support::error(&run.report, v, "misclassified_pct")
+        );
     }
-    assert!(lost(BEST, sheet) <= 1.0 && lost(BEST, board) <= 1.0, "{BEST} must keep both shadows");
+    assert!(
+        lost(BEST, sheet) <= 1.0 && lost(BEST, board) <= 1.0,
+        "{BEST} must keep both shadows"
+    );
     assert!(support::error(&run.report, BEST, "misclassified_pct") <= 1.0);
-    assert!(lost("front_cull", sheet) > 90.0, "front-face culling must lose the single-sided sheet");
-    assert!(lost("constant_seed", sheet) > 90.0 && lost("constant_seed", board) > 90.0, "the seeds' bias must leak under both");
+    assert!(
+        lost("front_cull", sheet) > 90.0,
+        "front-face culling must lose the single-sided sheet"
+    );
+    assert!(
+        lost("constant_seed", sheet) > 90.0 && lost("constant_seed", board) > 90.0,
+        "the seeds' bias must leak under both"
+    );
 }
 
 /// The default scene 10 km from the origin gives the same report: the GPU
 /// only sees coordinates relative to the scene-bounds centre, formed in f64.
 #[test]
 fn lesson_02_ten_km_from_the_origin() {
-    let Some(near) = run("lesson_02_origin", None, SIZE, &[]) else { return };
-    let Some(far) = run("lesson_02_far", Some("lesson_02_far.toml"), SIZE, &[]) else { return };
+    let Some(near) = run("lesson_02_origin", None, SIZE, &[]) else {
+        return;
+    };
+    let Some(far) = run("lesson_02_far", Some("lesson_02_far.toml"), SIZE, &[]) else {
+        return;
+    };
     for v in near.report["variants"].as_array().expect("variants") {
         let name = v["name"].as_str().unwrap();
         for key in ["misclassified_pct", "false_shadow_pct", "false_lit_pct"] {
-            let (a, b) = (support::error(&near.report, name, key), support::error(&far.report, name, key));
-            assert!((a - b).abs() <= 0.01, "{name}.{key}: {a:.4}% at the origin, {b:.4}% 10 km away");
+            let (a, b) = (
+                support::error(&near.report, name, key),
+                support::error(&far.report, name, key),
+            );
+            assert!(
+                (a - b).abs() <= 0.01,
+                "{name}.{key}: {a:.4}% at the origin, {b:.4}% 10 km away"
+            );
         }
     }
     assert!(support::error(&far.report, BEST, "misclassified_pct") <= 1.0);
@@ -356,9 +524,21 @@ fn lesson_02_relative_coordinates_keep_the_millimetres() {
             worst_rel = worst_rel.max((rel_z - exact).abs() * metres);
         }
     }
-    eprintln!("worst light-space depth error: absolute f32 {:.3} mm, origin-relative {:.4} mm", worst_naive * 1e3, worst_rel * 1e3);
-    assert!(worst_rel < 1e-5, "origin-relative f32 must stay under 0.01 mm, got {:.4} mm", worst_rel * 1e3);
-    assert!(worst_naive > 1e-4, "absolute f32 at 10 km loses tenths of a millimetre and more, got {:.4} mm", worst_naive * 1e3);
+    eprintln!(
+        "worst light-space depth error: absolute f32 {:.3} mm, origin-relative {:.4} mm",
+        worst_naive * 1e3,
+        worst_rel * 1e3
+    );
+    assert!(
+        worst_rel < 1e-5,
+        "origin-relative f32 must stay under 0.01 mm, got {:.4} mm",
+        worst_rel * 1e3
+    );
+    assert!(
+        worst_naive > 1e-4,
+        "absolute f32 at 10 km loses tenths of a millimetre and more, got {:.4} mm",
+        worst_naive * 1e3
+    );
 }
 
 /// A light frustum much larger than the scene: a spot light 25 m away with
@@ -369,23 +549,44 @@ fn lesson_02_relative_coordinates_keep_the_millimetres() {
 #[test]
 fn lesson_02_light_frustum_much_larger_than_the_scene() {
     let scene = "lesson_02_spot_wide.toml";
-    let Some(run) = run("lesson_02_spot_wide", Some(scene), SIZE, &["none", "constant_seed", BEST]) else { return };
+    let Some(run) = run(
+        "lesson_02_spot_wide",
+        Some(scene),
+        SIZE,
+        &["none", "constant_seed", BEST],
+    ) else {
+        return;
+    };
     let best = support::error(&run.report, BEST, "misclassified_pct");
     assert!(best <= 1.0, "{BEST}: misclassified {best:.3}%");
     assert!(support::error(&run.report, "none", "false_shadow_pct") > 40.0);
     let seed = support::error(&run.report, "constant_seed", "false_lit_pct");
-    assert!(seed > 1.0, "the seeds' constant must wipe out the shadows, false lit {seed:.3}%");
+    assert!(
+        seed > 1.0,
+        "the seeds' constant must wipe out the shadows, false lit {seed:.3}%"
+    );
 }
 
 #[test]
 fn lesson_02_writes_every_output() {
-    let Some(run) = run("lesson_02_outputs", None, (320, 180), &[BEST]) else { return };
-    for f in [format!("{BEST}.png"), format!("{BEST}_visibility_l0.png"), format!("{BEST}_diff_l0.png"), "reference_visibility_l0.png".into(), "report.json".into()] {
+    let Some(run) = run("lesson_02_outputs", None, (320, 180), &[BEST]) else {
+        return;
+    };
+    for f in [
+        format!("{BEST}.png"),
+        format!("{BEST}_visibility_l0.png"),
+        format!("{BEST}_diff_l0.png"),
+        "reference_visibility_l0.png".into(),
+        "report.json".into(),
+    ] {
         assert!(run.out.join(&f).is_file(), "missing output {f}");
     }
     let v = support::variant(&run.report, BEST);
     for k in ["total", "base", "shadow", "lighting"] {
-        assert!(v["timing_ms"][k].as_f64().is_some_and(|x| x >= 0.0), "timing_ms.{k} missing");
+        assert!(
+            v["timing_ms"][k].as_f64().is_some_and(|x| x >= 0.0),
+            "timing_ms.{k} missing"
+        );
     }
     assert_eq!(v["counters"]["shadow_map_size"], 1024);
     assert!(v["counters"]["casters_drawn"].as_u64().unwrap() >= 4);

@@ -7,15 +7,19 @@
 
 mod support;
 
-
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_03");
 const SIZE: [&str; 4] = ["--width", "640", "--height", "360"];
 /// The variant with the fewest misclassified pixels on the default scene.
 const BEST: &str = "poisson_16";
 /// Every variant that filters the right way (comparisons, then average).
-const SOUND: [&str; 6] = ["pcf_1x1", "pcf_3x3", "pcf_5x5", "pcf_7x7", "hw_2x2", "poisson_16"];
-
-
+const SOUND: [&str; 6] = [
+    "pcf_1x1",
+    "pcf_3x3",
+    "pcf_5x5",
+    "pcf_7x7",
+    "hw_2x2",
+    "poisson_16",
+];
 
 fn run(name: &str, scene: Option<&str>, extra: &[&str]) -> Option<support::LessonRun> {
     let scene = scene.map(|s| support::scene_path(s).display().to_string());
@@ -28,15 +32,24 @@ fn run(name: &str, scene: Option<&str>, extra: &[&str]) -> Option<support::Lesso
 
 /// Pixels of a visibility PNG that are neither 0 nor 1: a penumbra.
 fn fractional_pixels(run: &support::LessonRun, variant: &str) -> usize {
-    let (ids, vis, _, _) = support::read_visibility(&run.out.join(format!("{variant}_visibility_l0.png")));
-    ids.iter().zip(&vis).filter(|&(&id, &v)| id != 0 && v > 0.0 && v < 1.0).count()
+    let (ids, vis, _, _) =
+        support::read_visibility(&run.out.join(format!("{variant}_visibility_l0.png")));
+    ids.iter()
+        .zip(&vis)
+        .filter(|&(&id, &v)| id != 0 && v > 0.0 && v < 1.0)
+        .count()
 }
 
 #[test]
 fn lesson_03_snapshot() {
-    let Some(run) = run("lesson_03_snapshot", None, &[]) else { return };
-    let mut text = String::from("per variant: taps (depth comparisons per pixel), texels read, and the error against the\n");
-    text += "hard-edged reference: misclassified in percent (one decimal) and mean |V - V_ref| in\n";
+    let Some(run) = run("lesson_03_snapshot", None, &[]) else {
+        return;
+    };
+    let mut text = String::from(
+        "per variant: taps (depth comparisons per pixel), texels read, and the error against the\n",
+    );
+    text +=
+        "hard-edged reference: misclassified in percent (one decimal) and mean |V - V_ref| in\n";
     text += "percent (whole: it moves by tenths between Vulkan and GL)\n\n";
     for v in run.report["variants"].as_array().expect("variants") {
         let name = v["name"].as_str().unwrap();
@@ -55,13 +68,25 @@ fn lesson_03_snapshot() {
 /// most 1% of the receivers; so does every filter that averages comparisons.
 #[test]
 fn lesson_03_best_variant_is_within_one_percent() {
-    let Some(run) = run("lesson_03_best", None, &[]) else { return };
+    let Some(run) = run("lesson_03_best", None, &[]) else {
+        return;
+    };
     for v in SOUND {
         let m = support::error(&run.report, v, "misclassified_pct");
         assert!(m <= 1.0, "{v}: misclassified {m:.3}%");
     }
-    let best = SOUND.iter().min_by(|a, b| support::error(&run.report, a, "misclassified_pct").total_cmp(&support::error(&run.report, b, "misclassified_pct")));
-    assert_eq!(best, Some(&BEST), "the chapter names {BEST} the most accurate");
+    let best = SOUND.iter().min_by(|a, b| {
+        support::error(&run.report, a, "misclassified_pct").total_cmp(&support::error(
+            &run.report,
+            b,
+            "misclassified_pct",
+        ))
+    });
+    assert_eq!(
+        best,
+        Some(&BEST),
+        "the chapter names {BEST} the most accurate"
+    );
 }
 
 /// Taps against error against time, as the report shows them: the counters
@@ -70,20 +95,58 @@ fn lesson_03_best_variant_is_within_one_percent() {
 /// while the misclassified share stays put, and the lighting pass has a time.
 #[test]
 fn lesson_03_taps_error_and_time() {
-    let Some(run) = run("lesson_03_taps", None, &[]) else { return };
-    let expect = [("pcf_1x1", 1, 1), ("pcf_3x3", 9, 9), ("pcf_5x5", 25, 25), ("pcf_7x7", 49, 49), ("hw_2x2", 1, 4), ("poisson_16", 16, 64)];
+    let Some(run) = run("lesson_03_taps", None, &[]) else {
+        return;
+    };
+    let expect = [
+        ("pcf_1x1", 1, 1),
+        ("pcf_3x3", 9, 9),
+        ("pcf_5x5", 25, 25),
+        ("pcf_7x7", 49, 49),
+        ("hw_2x2", 1, 4),
+        ("poisson_16", 16, 64),
+    ];
     for (v, taps, texels) in expect {
-        assert_eq!((support::counter(&run.report, v, "taps"), support::counter(&run.report, v, "texels_read")), (taps, texels), "{v}");
+        assert_eq!(
+            (
+                support::counter(&run.report, v, "taps"),
+                support::counter(&run.report, v, "texels_read")
+            ),
+            (taps, texels),
+            "{v}"
+        );
         let t = support::variant(&run.report, v)["timing_ms"]["lighting"].as_f64();
-        assert!(t.is_some_and(|t| t > 0.0), "{v}: timing_ms.lighting missing");
+        assert!(
+            t.is_some_and(|t| t > 0.0),
+            "{v}: timing_ms.lighting missing"
+        );
     }
     let grid = ["pcf_1x1", "pcf_3x3", "pcf_5x5", "pcf_7x7"];
-    let mean: Vec<f64> = grid.iter().map(|v| support::error(&run.report, v, "mean_abs")).collect();
-    assert!(mean.windows(2).all(|w| w[1] > w[0]), "a wider kernel softens more: mean |dV| {mean:?}");
-    let mis: Vec<f64> = grid.iter().map(|v| support::error(&run.report, v, "misclassified_pct")).collect();
-    assert!(mis.iter().all(|&m| (m - mis[0]).abs() < 0.3), "the 50% line stays near the edge: {mis:?}");
-    assert_eq!(fractional_pixels(&run, "pcf_1x1"), 0, "one nearest comparison is 0 or 1");
-    assert!(fractional_pixels(&run, "pcf_3x3") > 1000, "a 3x3 average makes a penumbra");
+    let mean: Vec<f64> = grid
+        .iter()
+        .map(|v| support::error(&run.report, v, "mean_abs"))
+        .collect();
+    assert!(
+        mean.windows(2).all(|w| w[1] > w[0]),
+        "a wider kernel softens more: mean |dV| {mean:?}"
+    );
+    let mis: Vec<f64> = grid
+        .iter()
+        .map(|v| support::error(&run.report, v, "misclassified_pct"))
+        .collect();
+    assert!(
+        mis.iter().all(|&m| (m - mis[0]).abs() < 0.3),
+        "the 50% line stays near the edge: {mis:?}"
+    );
+    assert_eq!(
+        fractional_pixels(&run, "pcf_1x1"),
+        0,
+        "one nearest comparison is 0 or 1"
+    );
+    assert!(
+        fractional_pixels(&run, "pcf_3x3") > 1000,
+        "a 3x3 average makes a penumbra"
+    );
 }
 
 /// A 7×7 kernel reaches 3 texels from the receiver; on a sloped surface the
@@ -93,10 +156,25 @@ fn lesson_03_taps_error_and_time() {
 /// times higher, while the 50% line (misclassified) hardly shows it.
 #[test]
 fn lesson_03_wide_kernel_needs_receiver_plane_bias() {
-    let Some(run) = run("lesson_03_rpdb", None, &["--variant", "pcf_7x7", "--variant", "pcf_7x7_flat"]) else { return };
-    let (with, without) = (support::error(&run.report, "pcf_7x7", "mean_abs"), support::error(&run.report, "pcf_7x7_flat", "mean_abs"));
-    assert!(without > 5.0 * with && without > 0.1, "mean |dV|: {with:.4} with the receiver plane, {without:.4} without");
-    assert!(support::error(&run.report, "pcf_7x7_flat", "false_shadow_pct") > support::error(&run.report, "pcf_7x7", "false_shadow_pct"));
+    let Some(run) = run(
+        "lesson_03_rpdb",
+        None,
+        &["--variant", "pcf_7x7", "--variant", "pcf_7x7_flat"],
+    ) else {
+        return;
+    };
+    let (with, without) = (
+        support::error(&run.report, "pcf_7x7", "mean_abs"),
+        support::error(&run.report, "pcf_7x7_flat", "mean_abs"),
+    );
+    assert!(
+        without > 5.0 * with && without > 0.1,
+        "mean |dV|: {with:.4} with the receiver plane, {without:.4} without"
+    );
+    assert!(
+        support::error(&run.report, "pcf_7x7_flat", "false_shadow_pct")
+            > support::error(&run.report, "pcf_7x7", "false_shadow_pct")
+    );
 }
 
 /// Filtering depth instead of comparisons: the 3×3 average of the stored
@@ -104,10 +182,26 @@ fn lesson_03_wide_kernel_needs_receiver_plane_bias() {
 /// still 0 or 1: no penumbra, and more false shadow than 3×3 PCF.
 #[test]
 fn lesson_03_averaging_depths_is_wrong() {
-    let Some(run) = run("lesson_03_depth_avg", None, &["--variant", "pcf_3x3", "--variant", "depth_avg_3x3"]) else { return };
-    assert_eq!(fractional_pixels(&run, "depth_avg_3x3"), 0, "one comparison of an averaged depth is 0 or 1");
-    let (pcf, avg) = (support::error(&run.report, "pcf_3x3", "false_shadow_pct"), support::error(&run.report, "depth_avg_3x3", "false_shadow_pct"));
-    assert!(avg > 2.0 * pcf, "false shadow: {pcf:.3}% for PCF, {avg:.3}% for averaged depths");
+    let Some(run) = run(
+        "lesson_03_depth_avg",
+        None,
+        &["--variant", "pcf_3x3", "--variant", "depth_avg_3x3"],
+    ) else {
+        return;
+    };
+    assert_eq!(
+        fractional_pixels(&run, "depth_avg_3x3"),
+        0,
+        "one comparison of an averaged depth is 0 or 1"
+    );
+    let (pcf, avg) = (
+        support::error(&run.report, "pcf_3x3", "false_shadow_pct"),
+        support::error(&run.report, "depth_avg_3x3", "false_shadow_pct"),
+    );
+    assert!(
+        avg > 2.0 * pcf,
+        "false shadow: {pcf:.3}% for PCF, {avg:.3}% for averaged depths"
+    );
 }
 
 /// PCF on lesson 02's extreme scenes: grazing light at 85°, the thin plate,
@@ -116,8 +210,15 @@ fn lesson_03_averaging_depths_is_wrong() {
 /// receiver-plane bias veils the grazing floor (mean |ΔV| over 10%).
 #[test]
 fn lesson_03_extreme_scenes() {
-    for scene in ["lesson_02_grazing_85.toml", "lesson_02_thin_plate.toml", "lesson_02_far.toml", "lesson_02_spot_wide.toml"] {
-        let Some(run) = run(&format!("lesson_03_{scene}"), Some(scene), &[]) else { return };
+    for scene in [
+        "lesson_02_grazing_85.toml",
+        "lesson_02_thin_plate.toml",
+        "lesson_02_far.toml",
+        "lesson_02_spot_wide.toml",
+    ] {
+        let Some(run) = run(&format!("lesson_03_{scene}"), Some(scene), &[]) else {
+            return;
+        };
         for v in SOUND {
             let m = support::error(&run.report, v, "misclassified_pct");
             assert!(m <= 1.0, "{scene}: {v} misclassified {m:.3}%");

@@ -10,7 +10,6 @@ use std::path::Path;
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_05");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
-
 #[test]
 fn lesson_05_snapshot() {
     let Some(run) = support::run_lesson(BIN, "lesson_05_snapshot", &SIZE) else {

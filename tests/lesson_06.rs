@@ -8,7 +8,6 @@ mod support;
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_06");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
-
 #[test]
 fn lesson_06_snapshot() {
     let Some(run) = support::run_lesson(BIN, "lesson_06_snapshot", &SIZE) else {

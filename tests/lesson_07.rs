@@ -15,7 +15,6 @@ fn scene(name: &str) -> String {
     format!("{}/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
-
 /// Misclassified pixels (red or green in the diff) farther than `r` pixels
 /// from any change of the reference's shadow (its silhouette pixels), in %
 /// of receivers.

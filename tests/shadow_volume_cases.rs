@@ -32,7 +32,6 @@ fn run(test: &str, scene_path: &Path, variants: &[&str]) -> Option<support::Less
     support::run_lesson(BIN, test, &args)
 }
 
-
 fn counter(run: &support::LessonRun, variant: &str, key: &str) -> Option<u64> {
     support::variant(&run.report, variant)["counters"][key].as_u64()
 }

@@ -615,7 +615,12 @@ impl BoundedVolumes {
         }
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         for (k, b) in bounds.iter().enumerate().take(self.lights as usize) {
-            let mut pass = targets.stencil_pass(&mut enc, "count bounded fragments", None, Some(&self.queries));
+            let mut pass = targets.stencil_pass(
+                &mut enc,
+                "count bounded fragments",
+                None,
+                Some(&self.queries),
+            );
             let limited = limits != Limits::default();
             if limited && *b == Some(None) {
                 // Nothing drawn: an empty query reads 0.

@@ -6,8 +6,9 @@ use std::path::Path;
 use anyhow::Result;
 
 use crate::gpu::Gpu;
-use crate::render::{draw_fullscreen, fullscreen_pipeline, 
-    depth_texture, pipeline_layout_for, read_texture, render_texture, vertex_state, SceneGpu,
+use crate::render::{
+    depth_texture, draw_fullscreen, fullscreen_pipeline, pipeline_layout_for, read_texture,
+    render_texture, vertex_state, SceneGpu,
 };
 
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -229,7 +230,14 @@ pub fn read_depth_texture(
         }],
     });
     let target_format = wgpu::TextureFormat::Rgba8Unorm;
-    let pipeline = fullscreen_pipeline(gpu, "depth to bytes", DEPTH_TO_BYTES_WGSL, "fs", &layout, target_format);
+    let pipeline = fullscreen_pipeline(
+        gpu,
+        "depth to bytes",
+        DEPTH_TO_BYTES_WGSL,
+        "fs",
+        &layout,
+        target_format,
+    );
     let target = render_texture(
         gpu,
         "depth bytes",
@@ -258,7 +266,11 @@ pub const SHADOW_MAP_WGSL: &str = include_str!("../../shaders/shadow_map.wgsl");
 
 /// Compiles `common.wgsl`, then `shadow_map.wgsl`, then a lesson's own WGSL.
 pub fn shader_module(gpu: &Gpu, label: &str, lesson_wgsl: &str) -> wgpu::ShaderModule {
-    crate::render::shader_module(gpu, label, &format!("{SHADOW_MAP_WGSL}\n// ---- {label} ----\n{lesson_wgsl}"))
+    crate::render::shader_module(
+        gpu,
+        label,
+        &format!("{SHADOW_MAP_WGSL}\n// ---- {label} ----\n{lesson_wgsl}"),
+    )
 }
 
 /// The receiver-side bias of `shadow_map.wgsl` (its `ShadowBias`), taught in
@@ -281,46 +293,67 @@ pub struct ShadowBias {
 
 impl ShadowBias {
     /// No bias at all: lesson 01's comparison.
-    pub const NONE: ShadowBias = ShadowBias { depth: 0.0, toward_light: 0.0, slope: 0.0, slope_max: 0.0, normal: 0.0, _pad: [0.0; 3] };
+    pub const NONE: ShadowBias = ShadowBias {
+        depth: 0.0,
+        toward_light: 0.0,
+        slope: 0.0,
+        slope_max: 0.0,
+        normal: 0.0,
+        _pad: [0.0; 3],
+    };
 }
 
 /// A bind group layout with one uniform buffer of `size` bytes at binding 0,
 /// read by the fragment stage (a lesson's per-variant parameters, group 3).
 pub fn uniform_layout(gpu: &Gpu, label: &str, size: u64) -> wgpu::BindGroupLayout {
-    gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: wgpu::BufferSize::new(size),
-            },
-            count: None,
-        }],
-    })
+    gpu.device
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(size),
+                },
+                count: None,
+            }],
+        })
 }
 
 /// A uniform buffer holding `bytes`, bound through [`uniform_layout`].
-pub fn uniform_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, label: &str, bytes: &[u8]) -> wgpu::BindGroup {
+pub fn uniform_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    bytes: &[u8],
+) -> wgpu::BindGroup {
     use wgpu::util::DeviceExt;
-    let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: bytes,
-        usage: wgpu::BufferUsages::UNIFORM,
-    });
+    let buffer = gpu
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
-        entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: buffer.as_entire_binding(),
+        }],
     })
 }
 
 /// Whether the adapter can clamp the hardware depth bias
 /// (`DepthBiasState::clamp`); GL cannot, and a non-zero clamp fails there.
 pub fn can_clamp_depth_bias(gpu: &Gpu) -> bool {
-    gpu.adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::DEPTH_BIAS_CLAMP)
+    gpu.adapter
+        .get_downlevel_capabilities()
+        .flags
+        .contains(wgpu::DownlevelFlags::DEPTH_BIAS_CLAMP)
 }
 
 // ANCHOR: slope_scaled_bias
@@ -339,14 +372,35 @@ pub struct SlopeScaledBias {
 
 impl SlopeScaledBias {
     /// What lesson 02 measured best, and what lesson 03 filters with.
-    pub const RECOMMENDED: SlopeScaledBias = SlopeScaledBias { constant: 8, slope_scale: 1.5, clamp_texels: 16.0 };
+    pub const RECOMMENDED: SlopeScaledBias = SlopeScaledBias {
+        constant: 8,
+        slope_scale: 1.5,
+        clamp_texels: 16.0,
+    };
 
     /// The shadow pass's state for `light` and a `map_size` map: the clamp
     /// converted to depth units at the scene's centre, and left out where
     /// the adapter cannot clamp (GL), so there the bias is unclamped.
-    pub fn pass_state(&self, gpu: &Gpu, scene: &crate::scene::Scene, light: usize, map_size: u32) -> ShadowPassState {
-        let clamp = if can_clamp_depth_bias(gpu) { (self.clamp_texels as f64 * depth_per_texel(scene, light, map_size)) as f32 } else { 0.0 };
-        ShadowPassState { cull: None, bias: wgpu::DepthBiasState { constant: self.constant, slope_scale: self.slope_scale, clamp } }
+    pub fn pass_state(
+        &self,
+        gpu: &Gpu,
+        scene: &crate::scene::Scene,
+        light: usize,
+        map_size: u32,
+    ) -> ShadowPassState {
+        let clamp = if can_clamp_depth_bias(gpu) {
+            (self.clamp_texels as f64 * depth_per_texel(scene, light, map_size)) as f32
+        } else {
+            0.0
+        };
+        ShadowPassState {
+            cull: None,
+            bias: wgpu::DepthBiasState {
+                constant: self.constant,
+                slope_scale: self.slope_scale,
+                clamp,
+            },
+        }
     }
 }
 // ANCHOR_END: slope_scaled_bias
@@ -356,12 +410,16 @@ impl SlopeScaledBias {
 pub fn depth_per_texel(scene: &crate::scene::Scene, light: usize, map_size: u32) -> f64 {
     use crate::scene::LightKind;
     use glam::DVec3;
-    let Some(m) = crate::camera::light_view_proj(scene, light) else { return 0.0 };
+    let Some(m) = crate::camera::light_view_proj(scene, light) else {
+        return 0.0;
+    };
     let m = m.as_dmat4();
     let centre = DVec3::ZERO; // everything is relative to the scene-bounds centre
     let along = match scene.lights[light].kind {
         LightKind::Directional { direction } => direction.normalize(),
-        LightKind::Spot { position, .. } => (centre - (position - scene.origin())).normalize_or(DVec3::NEG_Y),
+        LightKind::Spot { position, .. } => {
+            (centre - (position - scene.origin())).normalize_or(DVec3::NEG_Y)
+        }
         LightKind::Point { .. } => return 0.0,
     };
     let row = |i: usize| DVec3::new(m.x_axis[i], m.y_axis[i], m.z_axis[i]).length();

@@ -36,7 +36,12 @@ pub fn run_lesson(bin: &str, name: &str, args: &[&str]) -> Option<LessonRun> {
 }
 
 /// `run_lesson` with extra environment variables for the lesson process.
-pub fn run_lesson_env(bin: &str, name: &str, args: &[&str], env: &[(&str, &str)]) -> Option<LessonRun> {
+pub fn run_lesson_env(
+    bin: &str,
+    name: &str,
+    args: &[&str],
+    env: &[(&str, &str)],
+) -> Option<LessonRun> {
     let out = out_dir(name);
     let o = Command::new(bin)
         .envs(env.iter().copied())
@@ -57,12 +62,18 @@ pub fn run_lesson_env(bin: &str, name: &str, args: &[&str], env: &[(&str, &str)]
     }
     let text = std::fs::read_to_string(out.join("report.json")).expect("report.json written");
     let report: serde_json::Value = serde_json::from_str(&text).expect("report.json parses");
-    Some(LessonRun { out, report, stdout })
+    Some(LessonRun {
+        out,
+        report,
+        stdout,
+    })
 }
 
 /// Reads a visibility PNG (gray + alpha) as (object covered 0/1, visibility 0..1).
 pub fn read_visibility(path: &Path) -> (Vec<u32>, Vec<f32>, u32, u32) {
-    let img = image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_luma_alpha8();
+    let img = image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_luma_alpha8();
     let (w, h) = img.dimensions();
     let ids = img.pixels().map(|p| u32::from(p.0[1] > 0)).collect();
     let vis = img.pixels().map(|p| p.0[0] as f32 / 255.0).collect();
@@ -143,7 +154,9 @@ pub fn counter(report: &serde_json::Value, variant_name: &str, key: &str) -> u64
 
 /// A committed scene file, by name (`"lesson_02_grazing_85.toml"`).
 pub fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name)
 }
 
 /// A variant's misclassified %, the figure most pass criteria use.
@@ -166,8 +179,16 @@ pub fn variant<'a>(report: &'a serde_json::Value, name: &str) -> &'a serde_json:
 /// channel. On failure, the actual image and a difference image are written
 /// next to the reference as `*.actual.png` and `*.diff.png`. A missing
 /// reference is a failure (with `WORKBOOK_BLESS=1` it is written instead).
-pub fn compare_with_reference(actual: &Path, reference: &Path, block: u32, tol: u8, max_bad_pct: f64) {
-    let a = image::open(actual).unwrap_or_else(|e| panic!("{}: {e}", actual.display())).to_rgba8();
+pub fn compare_with_reference(
+    actual: &Path,
+    reference: &Path,
+    block: u32,
+    tol: u8,
+    max_bad_pct: f64,
+) {
+    let a = image::open(actual)
+        .unwrap_or_else(|e| panic!("{}: {e}", actual.display()))
+        .to_rgba8();
     if std::env::var("WORKBOOK_BLESS").is_ok_and(|v| v == "1") {
         a.save(reference).expect("write reference image");
         eprintln!("blessed {}", reference.display());
@@ -180,7 +201,12 @@ pub fn compare_with_reference(actual: &Path, reference: &Path, block: u32, tol: 
             reference.display()
         ),
     };
-    assert_eq!(a.dimensions(), r.dimensions(), "image size differs from {}", reference.display());
+    assert_eq!(
+        a.dimensions(),
+        r.dimensions(),
+        "image size differs from {}",
+        reference.display()
+    );
     let (w, h) = a.dimensions();
     let (cw, ch) = (w.div_ceil(block), h.div_ceil(block));
     let mut bad = 0u32;
@@ -199,13 +225,23 @@ pub fn compare_with_reference(actual: &Path, reference: &Path, block: u32, tol: 
                     n += 1.0;
                 }
             }
-            let d = (0..4).map(|c| ((sa[c] - sr[c]) / n).abs()).fold(0.0, f64::max);
+            let d = (0..4)
+                .map(|c| ((sa[c] - sr[c]) / n).abs())
+                .fold(0.0, f64::max);
             let is_bad = d > tol as f64;
             bad += is_bad as u32;
             for y in cy * block..((cy + 1) * block).min(h) {
                 for x in cx * block..((cx + 1) * block).min(w) {
                     let g = (d * 4.0).min(255.0) as u8;
-                    diff.put_pixel(x, y, if is_bad { image::Rgba([255, 0, 0, 255]) } else { image::Rgba([g, g, g, 255]) });
+                    diff.put_pixel(
+                        x,
+                        y,
+                        if is_bad {
+                            image::Rgba([255, 0, 0, 255])
+                        } else {
+                            image::Rgba([g, g, g, 255])
+                        },
+                    );
                 }
             }
         }
