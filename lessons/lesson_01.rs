@@ -13,7 +13,7 @@ use std::path::Path;
 use common::app::{self, Lesson};
 use common::gpu::Gpu;
 use common::render::{FrameTargets, SceneGpu};
-use common::scene::{LightKind, Scene};
+use common::scene::Scene;
 use common::shadow_map::{self, ShadowMap, ShadowPassState};
 use common::timing::Frame;
 use common::Result;
@@ -43,14 +43,7 @@ impl Lesson for DepthMap {
     }
 
     fn check_scene(scene: &Scene) -> Result<()> {
-        if let Some(k) = scene
-            .lights
-            .iter()
-            .position(|l| matches!(l.kind, LightKind::Point { .. }))
-        {
-            anyhow::bail!("lights[{k}]: lesson_01 shadows directional and spot lights; point lights are lesson_04");
-        }
-        Ok(())
+        shadow_map::refuse_point_lights(scene, Self::NAME)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use common::app::{self, Lesson};
 use common::gpu::Gpu;
 use common::render::{FrameTargets, SceneGpu};
-use common::scene::{LightKind, Scene};
+use common::scene::Scene;
 use common::shadow_map::{self, ShadowBias, ShadowMap, ShadowPassState, SlopeScaledBias};
 use common::timing::Frame;
 use common::Result;
@@ -141,14 +141,7 @@ impl Lesson for Bias {
     }
 
     fn check_scene(scene: &Scene) -> Result<()> {
-        if let Some(k) = scene
-            .lights
-            .iter()
-            .position(|l| matches!(l.kind, LightKind::Point { .. }))
-        {
-            anyhow::bail!("lights[{k}]: lesson_02 shadows directional and spot lights; point lights are lesson_04");
-        }
-        Ok(())
+        shadow_map::refuse_point_lights(scene, Self::NAME)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use common::app::{self, Lesson};
 use common::gpu::Gpu;
 use common::render::{FrameTargets, SceneGpu};
-use common::scene::{LightKind, Scene};
+use common::scene::Scene;
 use common::shadow_map::{self, ShadowMap, SlopeScaledBias};
 use common::timing::Frame;
 use common::Result;
@@ -132,71 +132,6 @@ impl From<Filter> for FilterUniform {
     }
 }
 
-/// Group 2: the map through a comparison sampler, and as plain floats.
-fn map_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
-    let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    };
-    let compare = wgpu::BindGroupLayoutEntry {
-        binding: 1,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-        count: None,
-    };
-    let entries = [
-        texture(0, wgpu::TextureSampleType::Depth),
-        compare,
-        texture(2, wgpu::TextureSampleType::Float { filterable: false }),
-    ];
-    gpu.device
-        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("shadow map, two ways"),
-            entries: &entries,
-        })
-}
-
-fn map_group(
-    gpu: &Gpu,
-    layout: &wgpu::BindGroupLayout,
-    map: &ShadowMap,
-    filter: wgpu::FilterMode,
-) -> wgpu::BindGroup {
-    let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some("shadow comparison"),
-        address_mode_u: wgpu::AddressMode::ClampToEdge,
-        address_mode_v: wgpu::AddressMode::ClampToEdge,
-        mag_filter: filter,
-        min_filter: filter,
-        compare: Some(wgpu::CompareFunction::LessEqual),
-        ..Default::default()
-    });
-    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("shadow map"),
-        layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&map.view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::Sampler(&sampler),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&map.view),
-            },
-        ],
-    })
-}
-
 struct Pcf {
     variants: Vec<(&'static str, Filter, wgpu::BindGroup)>,
     map: ShadowMap,
@@ -219,20 +154,13 @@ impl Lesson for Pcf {
     }
 
     fn check_scene(scene: &Scene) -> Result<()> {
-        if let Some(k) = scene
-            .lights
-            .iter()
-            .position(|l| matches!(l.kind, LightKind::Point { .. }))
-        {
-            anyhow::bail!("lights[{k}]: lesson_03 shadows directional and spot lights; point lights are lesson_04");
-        }
-        Ok(())
+        shadow_map::refuse_point_lights(scene, Self::NAME)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let module =
             shadow_map::shader_module(gpu, "lesson_03", include_str!("../shaders/lesson_03.wgsl"));
-        let layout = map_layout(gpu);
+        let layout = shadow_map::shadow_map_layout_with(gpu, true);
         let filter_layout =
             shadow_map::uniform_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);
         let lit_pipeline = scene.lit_pipeline(
@@ -243,8 +171,10 @@ impl Lesson for Pcf {
             Default::default(),
         );
         let map = ShadowMap::new(gpu, MAP_SIZE);
-        let nearest = map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
-        let linear = map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
+        let nearest =
+            shadow_map::shadow_map_group_with(gpu, &layout, &map, wgpu::FilterMode::Nearest, true);
+        let linear =
+            shadow_map::shadow_map_group_with(gpu, &layout, &map, wgpu::FilterMode::Linear, true);
         let bias = SlopeScaledBias::RECOMMENDED;
         let shadow_pipelines = (0..scene.scene.lights.len())
             .map(|k| {

@@ -10,6 +10,7 @@ use crate::render::{
     depth_texture, draw_fullscreen, fullscreen_pipeline, pipeline_layout_for, read_texture,
     render_texture, vertex_state, SceneGpu,
 };
+use crate::scene::{LightKind, Scene};
 
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -130,30 +131,60 @@ pub fn shadow_pass(
 }
 // ANCHOR_END: shadow_pass
 
+/// Refuses point lights: lessons 01–03 render one 2D map per light, which a
+/// point light (lesson 04's cube map) cannot use.
+pub fn refuse_point_lights(scene: &Scene, lesson: &str) -> Result<()> {
+    match scene
+        .lights
+        .iter()
+        .position(|l| matches!(l.kind, LightKind::Point { .. }))
+    {
+        Some(k) => anyhow::bail!(
+            "lights[{k}]: {lesson} shadows directional and spot lights; point lights are lesson_04"
+        ),
+        None => Ok(()),
+    }
+}
+
 /// Bind group layout for sampling a shadow map in the lit pass (group 2):
 /// binding 0 the depth texture, binding 1 a comparison sampler.
 pub fn shadow_map_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
+    shadow_map_layout_with(gpu, false)
+}
+
+/// The same, and with `raw` a binding 2: the same texture read as plain
+/// floats (GLSL cannot `textureLoad` a depth texture), for lesson 03's
+/// depth averaging.
+pub fn shadow_map_layout_with(gpu: &Gpu, raw: bool) -> wgpu::BindGroupLayout {
+    let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    let mut entries = vec![
+        texture(0, wgpu::TextureSampleType::Depth),
+        wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            count: None,
+        },
+    ];
+    if raw {
+        entries.push(texture(
+            2,
+            wgpu::TextureSampleType::Float { filterable: false },
+        ));
+    }
     gpu.device
         .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("shadow map"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                    count: None,
-                },
-            ],
+            entries: &entries,
         })
 }
 
@@ -164,6 +195,17 @@ pub fn shadow_map_group(
     map: &ShadowMap,
     filter: wgpu::FilterMode,
 ) -> wgpu::BindGroup {
+    shadow_map_group_with(gpu, layout, map, filter, false)
+}
+
+/// The bind group for [`shadow_map_layout_with`].
+pub fn shadow_map_group_with(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &ShadowMap,
+    filter: wgpu::FilterMode,
+    raw: bool,
+) -> wgpu::BindGroup {
     let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("shadow comparison"),
         address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -173,19 +215,27 @@ pub fn shadow_map_group(
         compare: Some(wgpu::CompareFunction::LessEqual),
         ..Default::default()
     });
+    let view = wgpu::BindingResource::TextureView(&map.view);
+    let mut entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: view.clone(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 1,
+            resource: wgpu::BindingResource::Sampler(&sampler),
+        },
+    ];
+    if raw {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 2,
+            resource: view,
+        });
+    }
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("shadow map"),
         layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&map.view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::Sampler(&sampler),
-            },
-        ],
+        entries: &entries,
     })
 }
 
