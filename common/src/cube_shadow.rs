@@ -381,24 +381,7 @@ pub fn cube_map_group(
             contents: params,
             usage: wgpu::BufferUsages::UNIFORM,
         });
-    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("cube shadow map"),
-        layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&map.cube_view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::Sampler(&sampler),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: buffer.as_entire_binding(),
-            },
-        ],
-    })
+    cube_group(gpu, layout, map, &sampler, &buffer)
 }
 
 const CROSS_WGSL: &str = r#"
@@ -476,24 +459,7 @@ pub fn write_cross_png(gpu: &Gpu, map: &CubeShadowMap, face_px: u32, path: &Path
         contents: bytemuck::bytes_of(&px),
         usage: wgpu::BufferUsages::UNIFORM,
     });
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&map.cube_view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::Sampler(&sampler),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: buf.as_entire_binding(),
-            },
-        ],
-    });
+    let group = cube_group(gpu, &layout, map, &sampler, &buf);
     let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: None,
         bind_group_layouts: &[Some(&layout)],
@@ -532,27 +498,7 @@ pub fn write_cross_png(gpu: &Gpu, map: &CubeShadowMap, face_px: u32, path: &Path
     );
     let view = target.create_view(&Default::default());
     let mut enc = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("cube cross"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.draw(0..3, 0..1);
-    }
+    crate::render::draw_fullscreen(&mut enc, &view, &pipeline, &group);
     gpu.queue.submit([enc.finish()]);
     let bytes = read_texture(gpu, &target, 4)?;
     let d: Vec<f32> = bytes
@@ -581,4 +527,32 @@ pub fn write_cross_png(gpu: &Gpu, map: &CubeShadowMap, face_px: u32, path: &Path
         }])
     });
     crate::app::save(&img, path)
+}
+
+/// The cube map, its sampler and a parameter buffer as bindings 0, 1, 2.
+fn cube_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &CubeShadowMap,
+    sampler: &wgpu::Sampler,
+    params: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("cube shadow map"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&map.cube_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: params.as_entire_binding(),
+            },
+        ],
+    })
 }
