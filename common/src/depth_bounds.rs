@@ -15,13 +15,12 @@
 
 use anyhow::Result;
 use glam::{DMat4, DVec3, DVec4};
-use wgpu::util::DeviceExt;
 
 use crate::gpu::Gpu;
 use crate::render::{pipeline_layout_for, FrameTargets, SceneGpu};
 use crate::shadow_volume::{
-    degenerate_quads, lit_stencil, volume_shader_module, volume_stencil, FragmentCounter, Method,
-    QuadVertex, ShadowVolumes, QUAD_VERTEX_LAYOUT,
+    lit_stencil, volume_shader_module, volume_stencil, FragmentCounter, Method, ShadowVolumes,
+    QUAD_VERTEX_LAYOUT,
 };
 
 /// Bit 7 of the stencil: "this pixel's stored depth is inside the bounds".
@@ -309,38 +308,18 @@ pub fn bounded_lit_stencil() -> wgpu::StencilState {
 impl BoundedVolumes {
     pub fn new(gpu: &Gpu, scene: &SceneGpu, volumes: &ShadowVolumes) -> Result<BoundedVolumes> {
         let device = &gpu.device;
+        // The same pre-built quads as lessons 05-07 draw: shared buffers.
         let casters = volumes
             .casters
             .iter()
             .map(|c| {
-                let (v, i, _) = degenerate_quads(&c.adjacency);
-                let (v, i) = if i.is_empty() {
-                    (vec![bytemuck::Zeroable::zeroed()], vec![0, 0, 0])
-                } else {
-                    (v, i)
-                };
-                let buf = |label, contents: &[u8], usage| {
-                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents,
-                        usage,
-                    })
-                };
-                let v: Vec<QuadVertex> = v;
+                let (vertices, indices, count) = c.quad_buffers();
                 Caster {
                     object: c.object,
                     mirrored: c.mirrored,
-                    vertices: buf(
-                        "bounded volume quads",
-                        bytemuck::cast_slice(&v),
-                        wgpu::BufferUsages::VERTEX,
-                    ),
-                    indices: buf(
-                        "bounded volume indices",
-                        bytemuck::cast_slice(&i),
-                        wgpu::BufferUsages::INDEX,
-                    ),
-                    count: i.len() as u32,
+                    vertices,
+                    indices,
+                    count,
                 }
             })
             .collect();

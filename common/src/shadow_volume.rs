@@ -535,6 +535,16 @@ pub struct VolumeCaster {
     pub quad_ranges: VolumeRanges,
 }
 
+impl VolumeCaster {
+    /// The pre-built quads' vertex and index buffers (cheap handles), and
+    /// the index count of the whole volume: sides, front cap and back cap.
+    pub fn quad_buffers(&self) -> (wgpu::Buffer, wgpu::Buffer, u32) {
+        let r = &self.quad_ranges;
+        let count = r.sides.end.max(r.front.end).max(r.back.end);
+        (self.quad_vertices.clone(), self.quad_indices.clone(), count)
+    }
+}
+
 /// The per-frame CPU geometry: one buffer for every light, so the writes of
 /// light 0 and light 1 do not overwrite each other before the submit.
 #[derive(Default)]
