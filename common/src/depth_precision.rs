@@ -20,7 +20,7 @@ use glam::{DMat4, DVec4};
 use wgpu::util::DeviceExt;
 
 use crate::gpu::Gpu;
-use crate::render::read_texture;
+use crate::render::{read_texture, render_texture};
 
 /// The ε of an infinite far plane: the point at infinity lands at depth
 /// 1 − ε instead of exactly 1, so f32 rounding cannot push it past w.
@@ -346,24 +346,16 @@ pub fn measure_gpu(
         multiview_mask: None,
         cache: None,
     });
-    let target = |label: &str, f: wgpu::TextureFormat| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: f,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        })
-    };
-    let color = target("probe colour", wgpu::TextureFormat::R8Unorm);
-    let depth = target("probe depth", format);
+    let none = wgpu::TextureUsages::empty();
+    let color = render_texture(
+        gpu,
+        "probe colour",
+        w,
+        h,
+        wgpu::TextureFormat::R8Unorm,
+        none,
+    );
+    let depth = render_texture(gpu, "probe depth", w, h, format, none);
     let (cv, dv) = (
         color.create_view(&Default::default()),
         depth.create_view(&Default::default()),
