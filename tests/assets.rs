@@ -4,7 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use common::mesh::{builtin, load_obj, to_obj_string, validate, BUILTIN_NAMES};
+use common::mesh::{builtin, BUILTIN_NAMES};
+use common::obj::{load_obj, to_obj_string};
+use workbook::lesson_05::adjacency::validate;
 
 fn asset(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -268,8 +268,8 @@ fn check_generated(path: &Path, text: &str) {
 fn uv_seams_weld_closed() {
     let obj = scene("seam_sphere.obj");
     check_generated(&obj, &seam_sphere_obj(32, 16));
-    let mesh = common::mesh::load_obj(&obj).expect("seam sphere loads");
-    let report = common::mesh::validate(&mesh);
+    let mesh = common::obj::load_obj(&obj).expect("seam sphere loads");
+    let report = workbook::lesson_05::adjacency::validate(&mesh);
     assert!(
         report.closed && report.boundary_edges == 0,
         "welded by position the sphere is closed: {report:?}"

@@ -33,20 +33,3 @@ pub struct Args {
     #[arg(long)]
     pub backend: Option<String>,
 }
-
-impl Args {
-    /// Arguments for a test or a tool: headless, a given size, one frame.
-    pub fn headless(width: u32, height: u32) -> Args {
-        Args {
-            headless: true,
-            scene: None,
-            width,
-            height,
-            variants: Vec::new(),
-            list_variants: false,
-            frames: 1,
-            out: None,
-            backend: None,
-        }
-    }
-}

@@ -1,32 +1,56 @@
-//! `common`: everything the workbook has taught once and needs again.
+//! `common`: the workbook's plumbing, which no chapter teaches. Every
+//! technique lives with its lesson, in `lessons/lesson_NN/`.
 //!
+//! Running a lesson:
+//! - [`app`]: a lesson's `main`: the command line, then headless or the window.
+//! - [`cli`]: the command line every lesson shares (INTERFACES.md).
+//! - [`lesson`]: the [`lesson::Lesson`] trait and its typed variants.
+//! - [`headless`]: the headless runner that writes the outputs of INTERFACES.md.
+//! - [`window`]: the interactive window (winit).
+//!
+//! The GPU and what is drawn:
 //! - [`gpu`]: adapter and device selection (Vulkan/lavapipe, GL/llvmpipe, real GPUs).
+//! - [`render`]: the scene on the GPU, the shader prelude, the base pass.
+//! - [`lit`]: the lit pass that adds one light.
+//! - [`bindings`]: bind group layouts and groups (textures, samplers, uniforms).
+//! - [`targets`]: the frame's render targets and texture helpers.
+//! - [`fullscreen`]: the full-screen triangle (blits, readback, markers).
+//! - [`readback`]: buffers, textures and query results back to the CPU.
+//!
+//! Scenes, meshes and camera math:
 //! - [`scene`]: the TOML scene format of INTERFACES.md, loaded and validated.
-//! - [`mesh`]: built-in unit meshes, OBJ loading, welding, validation, adjacency.
-//! - [`reference`]: the exact CPU ray-cast reference (BVH, multi-threaded).
+//! - [`mesh`]: the mesh type, built-in unit meshes, welding, smooth normals.
+//! - [`obj`]: OBJ files, read through tobj and written for `gen_assets`.
+//! - [`camera`]: camera and light matrices.
+//!
+//! Measurement:
+//! - [`reference`]: the exact CPU ray-cast reference (multi-threaded).
+//! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
 //! - [`metrics`]: error of a GPU visibility image against the reference.
 //! - [`timing`]: GPU timestamp queries per pass, with a labelled CPU fallback.
+//! - [`counters`]: deterministic cost counters (fragments rasterised).
 //! - [`report`]: `report.json` and the terminal table.
-//! - [`render`]: scene upload, frame targets, the shared passes, readback.
-//! - [`app`]: the command line, the headless runner and the window runner.
 
-pub mod adjacency;
 pub mod app;
+pub mod bindings;
 pub mod bvh;
 pub mod camera;
 pub mod cli;
-pub mod cube_shadow;
-pub mod depth_bounds;
-pub mod depth_precision;
+pub mod counters;
+pub mod fullscreen;
 pub mod gpu;
+pub mod headless;
+pub mod lesson;
+pub mod lit;
 pub mod mesh;
 pub mod metrics;
+pub mod obj;
+pub mod readback;
 pub mod reference;
 pub mod render;
 pub mod report;
 pub mod scene;
-pub mod shadow_map;
-pub mod shadow_volume;
+pub mod targets;
 pub mod timing;
 pub mod window;
 

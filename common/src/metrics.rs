@@ -207,19 +207,6 @@ pub fn ascii_mask(
 }
 // ANCHOR_END: ascii_mask
 
-/// [`ascii_mask`] of the reference for `light`.
-pub fn reference_ascii_mask(reference: &Reference, light: usize, cols: u32, rows: u32) -> String {
-    let ids = reference_object_ids(reference);
-    ascii_mask(
-        &ids,
-        &reference.visibility[light],
-        reference.width,
-        reference.height,
-        cols,
-        rows,
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use glam::Vec3;

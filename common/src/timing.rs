@@ -8,9 +8,10 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use anyhow::{anyhow, Result};
+use anyhow::Result;
 
 use crate::gpu::Gpu;
+use crate::readback::QueryReadback;
 
 /// Where the milliseconds came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -24,7 +25,7 @@ const MAX_QUERIES: u32 = 512;
 
 /// Owns the query set and its readback buffers; reused frame after frame.
 pub struct Timer {
-    queries: Option<(wgpu::QuerySet, wgpu::Buffer, wgpu::Buffer)>,
+    queries: Option<(wgpu::QuerySet, QueryReadback)>,
     period_ns: f64,
 }
 
@@ -39,20 +40,7 @@ impl Timer {
                 ty: wgpu::QueryType::Timestamp,
                 count: MAX_QUERIES,
             });
-            let size = MAX_QUERIES as u64 * 8;
-            let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("timestamp resolve"),
-                size,
-                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let read = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("timestamp readback"),
-                size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            (set, resolve, read)
+            (set, QueryReadback::new(gpu, MAX_QUERIES, "timestamps"))
         });
         Timer {
             queries,
@@ -138,7 +126,7 @@ impl<'a> Frame<'a> {
         f: impl FnOnce(&mut wgpu::CommandEncoder, &PassTimestamps) -> R,
     ) -> R {
         match &self.timer.queries {
-            Some((set, _, _)) if (self.names.len() as u32 + 1) * 2 <= MAX_QUERIES => {
+            Some((set, _)) if (self.names.len() as u32 + 1) * 2 <= MAX_QUERIES => {
                 let ts = PassTimestamps {
                     slot: Some((set, self.names.len() as u32 * 2)),
                 };
@@ -180,10 +168,8 @@ impl<'a> Frame<'a> {
     /// Submits, waits, and returns the frame's milliseconds.
     pub fn finish(mut self) -> Result<FrameTimes> {
         let n = self.names.len() as u32 * 2;
-        if let (Some((set, resolve, read)), true) = (&self.timer.queries, n > 0) {
-            self.encoder.resolve_query_set(set, 0..n, resolve, 0);
-            self.encoder
-                .copy_buffer_to_buffer(resolve, 0, read, 0, n as u64 * 8);
+        if let (Some((set, readback)), true) = (&self.timer.queries, n > 0) {
+            readback.resolve(&mut self.encoder, set, n);
         }
         self.gpu.queue.submit([self.encoder.finish()]);
         self.gpu.wait()?;
@@ -192,8 +178,8 @@ impl<'a> Frame<'a> {
             *ms.entry(k).or_default() += v;
         }
         match (&self.timer.queries, n > 0) {
-            (Some((_, _, read)), true) => {
-                let stamps = read_u64s(self.gpu, read, n as usize)?;
+            (Some((_, readback)), true) => {
+                let stamps = readback.read(self.gpu, n)?;
                 let to_ms = self.timer.period_ns / 1e6;
                 let (mut first, mut last) = (u64::MAX, 0u64);
                 for (i, name) in self.names.iter().enumerate() {
@@ -215,20 +201,6 @@ impl<'a> Frame<'a> {
         }
         Ok(FrameTimes { ms })
     }
-}
-
-fn read_u64s(gpu: &Gpu, buf: &wgpu::Buffer, n: usize) -> Result<Vec<u64>> {
-    let slice = buf.slice(..(n as u64 * 8));
-    slice.map_async(wgpu::MapMode::Read, |_| {});
-    gpu.wait()?;
-    let out = {
-        let view = slice
-            .get_mapped_range()
-            .map_err(|e| anyhow!("timestamp readback: {e}"))?;
-        bytemuck::cast_slice::<u8, u64>(&view).to_vec()
-    };
-    buf.unmap();
-    Ok(out)
 }
 
 /// The median of each key over several frames (the report's figure).

@@ -17,11 +17,14 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
-use crate::app::Lesson;
+use crate::bindings::{self, float_texture_entry};
 use crate::cli::Args;
+use crate::fullscreen::{draw_fullscreen, Fullscreen};
 use crate::gpu::Gpu;
-use crate::render::{draw_fullscreen, fullscreen_pipeline, FrameTargets, SceneGpu};
+use crate::lesson::{variant_name, Lesson};
+use crate::render::SceneGpu;
 use crate::scene::{LightKind, Scene};
+use crate::targets::FrameTargets;
 use crate::timing::Timer;
 
 const BLIT_WGSL: &str = r#"
@@ -49,7 +52,7 @@ struct Running<L: Lesson> {
 struct App<L: Lesson> {
     args: Args,
     scene: Option<Scene>,
-    variants: Vec<String>,
+    variants: Vec<L::Variant>,
     current: usize,
     running: Option<Running<L>>,
     error: Option<anyhow::Error>,
@@ -58,7 +61,7 @@ struct App<L: Lesson> {
     last_ms: f64,
 }
 
-pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<String>) -> Result<()> {
+pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant>) -> Result<()> {
     let event_loop =
         EventLoop::new().map_err(|e| anyhow!("cannot open a window ({e}); use --headless"))?;
     let mut app: App<L> = App {
@@ -114,25 +117,12 @@ impl<L: Lesson> App<L> {
         }
         surface.configure(&gpu.device, &config);
         let scene = SceneGpu::new(&gpu, scene, config.width, config.height)?;
-        let targets = FrameTargets::new(&gpu, &scene);
+        let targets = scene.frame_targets(&gpu);
         let lesson = L::new(&gpu, &scene)?;
         let timer = Timer::new(&gpu);
-        let blit_layout = gpu
-            .device
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("blit"),
-                entries: &[wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                }],
-            });
-        let blit = fullscreen_pipeline(&gpu, "blit", BLIT_WGSL, "fs", &blit_layout, config.format);
+        let blit_layout = bindings::layout(&gpu, "blit", &[float_texture_entry(0)]);
+        let blit = Fullscreen::image("blit", BLIT_WGSL, "fs", &[&blit_layout], config.format)
+            .pipeline(&gpu);
         let blit_group = blit_group(&gpu, &blit_layout, &targets);
         self.running = Some(Running {
             window,
@@ -151,13 +141,12 @@ impl<L: Lesson> App<L> {
     }
 
     fn redraw(&mut self) -> Result<()> {
-        let variant = self.variants[self.current].clone();
+        let variant = self.variants[self.current];
         let Some(r) = self.running.as_mut() else {
             return Ok(());
         };
         let mut frame = r.timer.frame(&r.gpu);
-        r.lesson
-            .render(&mut frame, &r.scene, &r.targets, &variant)?;
+        r.lesson.render(&mut frame, &r.scene, &r.targets, variant)?;
         let t = frame.finish()?;
         self.last_ms = t.ms.get("total").copied().unwrap_or(0.0);
         let surface_tex = match r.surface.get_current_texture() {
@@ -176,7 +165,7 @@ impl<L: Lesson> App<L> {
         r.window.set_title(&format!(
             "{} - {} - {:.2} ms  [V: next variant, drag: orbit, arrows: light]",
             L::NAME,
-            variant,
+            variant_name(variant),
             self.last_ms
         ));
         Ok(())
@@ -194,7 +183,7 @@ impl<L: Lesson> App<L> {
         r.surface.configure(&r.gpu.device, &r.config);
         let scene = r.scene.scene.clone();
         r.scene = SceneGpu::new(&r.gpu, scene, w, h)?;
-        r.targets = FrameTargets::new(&r.gpu, &r.scene);
+        r.targets = r.scene.frame_targets(&r.gpu);
         r.lesson = L::new(&r.gpu, &r.scene)?;
         r.blit_group = blit_group(&r.gpu, &r.blit_layout, &r.targets);
         Ok(())
@@ -268,14 +257,8 @@ impl<L: Lesson> App<L> {
 }
 
 fn blit_group(gpu: &Gpu, layout: &wgpu::BindGroupLayout, t: &FrameTargets) -> wgpu::BindGroup {
-    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("blit"),
-        layout,
-        entries: &[wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::TextureView(&t.color_view),
-        }],
-    })
+    let color = wgpu::BindingResource::TextureView(&t.color_view);
+    bindings::group(gpu, "blit", layout, &[color])
 }
 
 impl<L: Lesson> ApplicationHandler for App<L> {

@@ -1,0 +1,92 @@
+//! The [`Lesson`] trait: what a lesson provides. The runners (headless in
+//! [`crate::headless`], interactive in [`crate::window`]) do the rest, and
+//! both call the same [`Lesson::render`], which draws into any
+//! [`FrameTargets`].
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use anyhow::Result;
+use clap::ValueEnum;
+
+use crate::gpu::Gpu;
+use crate::render::SceneGpu;
+use crate::scene::Scene;
+use crate::targets::FrameTargets;
+use crate::timing::Frame;
+
+/// What a lesson provides. The runners do the rest.
+pub trait Lesson: Sized {
+    /// `"lesson_01"`.
+    const NAME: &'static str;
+    /// The default scene, as TOML text (built-in meshes only).
+    const DEFAULT_SCENE: &'static str;
+    /// The lesson's variants, in report order. `--variant NAME` and the
+    /// report use the names clap's `ValueEnum` gives them.
+    type Variant: ValueEnum + Copy + std::fmt::Debug + 'static;
+
+    /// Rejects scenes the lesson cannot render (one clear line).
+    fn check_scene(_scene: &Scene) -> Result<()> {
+        Ok(())
+    }
+
+    /// Creates the lesson's pipelines and resources.
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self>;
+
+    /// Records one frame of `variant` into `targets`, one named pass at a time.
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Self::Variant,
+    ) -> Result<()>;
+
+    /// Counters for the report (casters drawn, fragments, ...), after `render`.
+    fn counters(&self, _variant: Self::Variant) -> BTreeMap<String, u64> {
+        BTreeMap::new()
+    }
+
+    /// Extra debug images (the depth map, ...), written after the last frame.
+    fn write_extras(
+        &self,
+        _gpu: &Gpu,
+        _scene: &SceneGpu,
+        _variant: Self::Variant,
+        _out: &Path,
+    ) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// A variant's name, as `--variant` and the report spell it.
+pub fn variant_name<V: ValueEnum>(v: V) -> String {
+    v.to_possible_value()
+        .map(|p| p.get_name().to_string())
+        .unwrap_or_default()
+}
+
+/// Every variant of `L`, in report order.
+pub fn all_variants<L: Lesson>() -> Vec<L::Variant> {
+    L::Variant::value_variants().to_vec()
+}
+
+/// The variants `--variant` asked for (all when none), by name.
+pub fn select_variants<L: Lesson>(asked: &[String]) -> Result<Vec<L::Variant>> {
+    if asked.is_empty() {
+        return Ok(all_variants::<L>());
+    }
+    asked
+        .iter()
+        .map(|a| {
+            L::Variant::from_str(a, false).map_err(|_| {
+                let known: Vec<String> =
+                    all_variants::<L>().into_iter().map(variant_name).collect();
+                anyhow::anyhow!(
+                    "--variant: unknown variant {a:?} (known: {})",
+                    known.join(", ")
+                )
+            })
+        })
+        .collect()
+}

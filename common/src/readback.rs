@@ -1,0 +1,101 @@
+//! Copying GPU results back to the CPU: buffers, textures and query
+//! results.
+
+use anyhow::{anyhow, Result};
+
+use crate::gpu::Gpu;
+
+/// Maps the first `bytes` of a `MAP_READ` buffer and copies them out.
+/// `what` names the data in the error ("timestamps", ...).
+pub fn read_buffer(gpu: &Gpu, buf: &wgpu::Buffer, bytes: u64, what: &str) -> Result<Vec<u8>> {
+    let slice = buf.slice(..bytes);
+    slice.map_async(wgpu::MapMode::Read, |_| {});
+    gpu.wait()?;
+    let out = {
+        let view = slice
+            .get_mapped_range()
+            .map_err(|e| anyhow!("{what} readback: {e}"))?;
+        view.to_vec()
+    };
+    buf.unmap();
+    Ok(out)
+}
+
+/// The two buffers a query set is read back through: one it resolves
+/// into, one the CPU maps. Holds `count` 64-bit results.
+pub struct QueryReadback {
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+    what: &'static str,
+}
+
+impl QueryReadback {
+    pub fn new(gpu: &Gpu, count: u32, what: &'static str) -> QueryReadback {
+        let buffer = |usage| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(what),
+                size: 8 * count.max(1) as u64,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        QueryReadback {
+            resolve: buffer(wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC),
+            read: buffer(wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST),
+            what,
+        }
+    }
+
+    /// Records the resolve of queries `0..n` and the copy to the mapped buffer.
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, set: &wgpu::QuerySet, n: u32) {
+        encoder.resolve_query_set(set, 0..n, &self.resolve, 0);
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, 8 * n as u64);
+    }
+
+    /// The first `n` results, after the encoder with [`Self::resolve`] was submitted.
+    pub fn read(&self, gpu: &Gpu, n: u32) -> Result<Vec<u64>> {
+        let bytes = read_buffer(gpu, &self.read, 8 * n as u64, self.what)?;
+        Ok(bytes
+            .chunks_exact(8)
+            .map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes")))
+            .collect())
+    }
+}
+
+/// Copies a 2D texture (layer 0) to the CPU, tightly packed.
+pub fn read_texture(gpu: &Gpu, tex: &wgpu::Texture, bytes_per_pixel: u32) -> Result<Vec<u8>> {
+    let (w, h) = (tex.width(), tex.height());
+    let row = w * bytes_per_pixel;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: padded as u64 * h as u64,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    enc.copy_texture_to_buffer(
+        tex.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buf,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    gpu.queue.submit([enc.finish()]);
+    let data = read_buffer(gpu, &buf, padded as u64 * h as u64, "texture")?;
+    Ok(data
+        .chunks_exact(padded as usize)
+        .flat_map(|r| &r[..row as usize])
+        .copied()
+        .collect())
+}

@@ -1,0 +1,235 @@
+//! The shadow map (lesson 01, reused by lessons 02 and 03): a depth
+//! texture rendered from the light, the pass that fills it, and how the lit
+//! pass samples it.
+
+use std::path::Path;
+
+use anyhow::Result;
+use common::bindings::{self, float_texture_entry, sampler_entry, texture_entry};
+use common::fullscreen::{read_floats, Fullscreen, FLOAT_BYTES_FORMAT};
+use common::gpu::Gpu;
+use common::headless::save;
+use common::render::{
+    pipeline_layout_for, shader_module as scene_shader_module, vertex_state, SceneGpu,
+};
+use common::scene::{LightKind, Scene};
+use common::targets::depth_texture;
+
+pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// A square depth texture seen from the light.
+pub struct ShadowMap {
+    pub size: u32,
+    pub texture: wgpu::Texture,
+    pub view: wgpu::TextureView,
+}
+
+impl ShadowMap {
+    pub fn new(gpu: &Gpu, size: u32) -> ShadowMap {
+        let texture = depth_texture(gpu, &format!("shadow map {size}"), size, 1, SHADOW_FORMAT);
+        let view = texture.create_view(&Default::default());
+        ShadowMap {
+            size,
+            texture,
+            view,
+        }
+    }
+
+    /// Reads the stored depths back to the CPU. Drawn through a shader into
+    /// an RGBA8 target (the float's four bytes), because GL cannot copy
+    /// depth textures to buffers.
+    pub fn read_depths(&self, gpu: &Gpu) -> Result<Vec<f32>> {
+        // GLSL cannot `textureLoad` a depth binding: bind it as floats.
+        let layout = bindings::layout(gpu, "depth as floats", &[float_texture_entry(0)]);
+        let view = wgpu::BindingResource::TextureView(&self.view);
+        let group = bindings::group(gpu, "depth as floats", &layout, &[view]);
+        let pipeline = Fullscreen::image(
+            "depth to bytes",
+            DEPTH_TO_BYTES_WGSL,
+            "fs",
+            &[&layout],
+            FLOAT_BYTES_FORMAT,
+        )
+        .pipeline(gpu);
+        read_floats(gpu, &pipeline, &group, (self.size, self.size))
+    }
+
+    /// Writes the depth map as a picture: near = dark, far = light, the
+    /// range stretched over what the map holds so the casters stand out.
+    pub fn write_png(&self, gpu: &Gpu, path: &Path) -> Result<()> {
+        let d = self.read_depths(gpu)?;
+        let lo = d.iter().copied().fold(f32::INFINITY, f32::min);
+        let hi = d.iter().copied().filter(|&x| x < 1.0).fold(lo, f32::max);
+        let span = (hi - lo).max(1e-12);
+        let img = image::GrayImage::from_fn(self.size, self.size, |x, y| {
+            let v = d[(y * self.size + x) as usize];
+            image::Luma([if v >= 1.0 {
+                255
+            } else {
+                (((v - lo) / span) * 235.0).round() as u8
+            }])
+        });
+        save(&img, path)
+    }
+}
+
+/// How the shadow pass rasterises: which faces it culls and what depth bias
+/// the hardware adds (lesson 02). Lesson 01 uses the default: none of either.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ShadowPassState {
+    pub cull: Option<wgpu::Face>,
+    pub bias: wgpu::DepthBiasState,
+}
+
+// ANCHOR: shadow_pipeline
+/// The depth-only pipeline of the shadow pass: the scene's vertex buffers,
+/// `vs_light_depth` (object → light clip space), no fragment shader at all.
+pub fn shadow_pipeline(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    module: &wgpu::ShaderModule,
+    state: ShadowPassState,
+) -> wgpu::RenderPipeline {
+    let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
+    gpu.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shadow pass"),
+            layout: Some(&layout),
+            vertex: vertex_state(module, "vs_light_depth"),
+            primitive: wgpu::PrimitiveState {
+                cull_mode: state.cull,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: SHADOW_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: state.bias,
+            }),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        })
+}
+// ANCHOR_END: shadow_pipeline
+
+// ANCHOR: shadow_pass
+/// Renders every shadow caster's depth from light `light` into `map`.
+pub fn shadow_pass(
+    encoder: &mut wgpu::CommandEncoder,
+    scene: &SceneGpu,
+    pipeline: &wgpu::RenderPipeline,
+    map: &ShadowMap,
+    light: usize,
+    ts: Option<wgpu::RenderPassTimestampWrites>,
+) -> u32 {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("shadow pass"),
+        color_attachments: &[],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &map.view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: ts,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    scene.bind_frame(&mut pass, light);
+    scene.draw_objects(&mut pass, |i| scene.casts_shadow(i))
+}
+// ANCHOR_END: shadow_pass
+
+/// Refuses point lights: lessons 01–03 render one 2D map per light, which a
+/// point light (lesson 04's cube map) cannot use.
+pub fn refuse_point_lights(scene: &Scene, lesson: &str) -> Result<()> {
+    match scene
+        .lights
+        .iter()
+        .position(|l| matches!(l.kind, LightKind::Point { .. }))
+    {
+        Some(k) => anyhow::bail!(
+            "lights[{k}]: {lesson} shadows directional and spot lights; point lights are lesson_04"
+        ),
+        None => Ok(()),
+    }
+}
+
+// ANCHOR: shadow_map_layout
+/// The lit pass samples the map at group 2: binding 0 the depth texture,
+/// binding 1 a comparison sampler (`shaders/lesson_01/shadow_map.wgsl`).
+pub fn shadow_map_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    use wgpu::{SamplerBindingType, TextureSampleType, TextureViewDimension};
+    vec![
+        texture_entry(0, TextureSampleType::Depth, TextureViewDimension::D2),
+        sampler_entry(1, SamplerBindingType::Comparison),
+    ]
+}
+
+/// The layout of [`shadow_map_entries`].
+pub fn shadow_map_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
+    bindings::layout(gpu, "shadow map", &shadow_map_entries())
+}
+
+/// The comparison sampler: the hardware answers `receiver <= stored` per
+/// texel. `filter` Linear blends the 4 nearest answers (lesson 03's 2×2).
+pub fn comparison_sampler(gpu: &Gpu, filter: wgpu::FilterMode) -> wgpu::Sampler {
+    gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("shadow comparison"),
+        address_mode_u: wgpu::AddressMode::ClampToEdge,
+        address_mode_v: wgpu::AddressMode::ClampToEdge,
+        mag_filter: filter,
+        min_filter: filter,
+        compare: Some(wgpu::CompareFunction::LessEqual),
+        ..Default::default()
+    })
+}
+
+/// The bind group of [`shadow_map_layout`] for `map`.
+pub fn shadow_map_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &ShadowMap,
+    filter: wgpu::FilterMode,
+) -> wgpu::BindGroup {
+    let sampler = comparison_sampler(gpu, filter);
+    let resources = [
+        wgpu::BindingResource::TextureView(&map.view),
+        wgpu::BindingResource::Sampler(&sampler),
+    ];
+    bindings::group(gpu, "shadow map", layout, &resources)
+}
+// ANCHOR_END: shadow_map_layout
+
+const DEPTH_TO_BYTES_WGSL: &str = r#"
+// The depth texture bound as unfilterable float: GLSL has no textureLoad on
+// shadow samplers.
+@group(0) @binding(0) var depth: texture_2d<f32>;
+@fragment fn fs(in: FullscreenOut) -> @location(0) vec4<f32> {
+    let d = textureLoad(depth, vec2<i32>(in.pos.xy), 0).r;
+    // The float's bits, one byte per channel: exact on the way back.
+    return unpack4x8unorm(bitcast<u32>(d));
+}
+"#;
+
+// ---- the shader side, shared by lessons 01, 02 and 03 ---------------------
+
+/// The WGSL that lessons 01, 02 and 03 share (`shaders/lesson_01/shadow_map.wgsl`):
+/// the shadow map's bindings (group 2), the light-space transform and the
+/// texel size.
+pub const SHADOW_MAP_WGSL: &str = include_str!("../../shaders/lesson_01/shadow_map.wgsl");
+
+/// Compiles `common.wgsl`, then `shadow_map.wgsl`, then a lesson's own WGSL.
+pub fn shader_module(gpu: &Gpu, label: &str, lesson_wgsl: &str) -> wgpu::ShaderModule {
+    scene_shader_module(
+        gpu,
+        label,
+        &format!("{SHADOW_MAP_WGSL}\n// ---- {label} ----\n{lesson_wgsl}"),
+    )
+}

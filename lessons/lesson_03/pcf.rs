@@ -1,0 +1,110 @@
+//! Percentage-closer filtering (lesson 03): the filters that turn the
+//! shadow map into a fractional visibility, their parameters as the shader
+//! reads them (`shaders/lesson_03/pcf.wgsl`), and the map's bindings with
+//! the extra plain-float view that depth averaging reads.
+
+use common::bindings::{self, float_texture_entry};
+use common::gpu::Gpu;
+
+use crate::lesson_01::shadow_map::{comparison_sampler, shadow_map_entries, ShadowMap};
+
+// ANCHOR: filter
+/// How a variant turns the shadow map into a visibility.
+#[derive(Clone, Copy, Debug)]
+pub enum Filter {
+    /// N×N nearest comparisons, averaged. `receiver_plane`: each tap
+    /// compares with the receiver's plane there (receiver-plane depth bias).
+    Grid { n: u32, receiver_plane: bool },
+    /// One comparison through a linear-filtering comparison sampler: the
+    /// hardware compares the 4 nearest texels and blends the answers.
+    Hardware2x2,
+    /// `taps` bilinear comparisons on a Poisson disk of `radius` texels,
+    /// rotated per pixel.
+    Poisson { taps: u32, radius: f32 },
+    /// Average N×N stored depths, then compare once: filtering depth.
+    DepthAverage { n: u32 },
+}
+
+impl Filter {
+    /// Depth comparisons per pixel and light, and texels they read.
+    pub fn taps(self) -> (u64, u64) {
+        match self {
+            Filter::Grid { n, .. } => ((n * n) as u64, (n * n) as u64),
+            Filter::Hardware2x2 => (1, 4),
+            Filter::Poisson { taps, .. } => (taps as u64, 4 * taps as u64),
+            Filter::DepthAverage { n } => (1, (n * n) as u64),
+        }
+    }
+
+    /// Linear filtering for the taps that blend 2×2 texels.
+    pub fn sampler(self) -> wgpu::FilterMode {
+        match self {
+            Filter::Hardware2x2 | Filter::Poisson { .. } => wgpu::FilterMode::Linear,
+            _ => wgpu::FilterMode::Nearest,
+        }
+    }
+}
+// ANCHOR_END: filter
+
+/// `Filter` in `pcf.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FilterUniform {
+    mode: u32,
+    n: u32,
+    receiver_plane: u32,
+    taps: u32,
+    radius: f32,
+    _pad: [f32; 3],
+}
+
+impl From<Filter> for FilterUniform {
+    fn from(f: Filter) -> Self {
+        let u = FilterUniform {
+            mode: 0,
+            n: 1,
+            receiver_plane: 0,
+            taps: 0,
+            radius: 0.0,
+            _pad: [0.0; 3],
+        };
+        match f {
+            Filter::Grid { n, receiver_plane } => FilterUniform {
+                n,
+                receiver_plane: receiver_plane as u32,
+                ..u
+            },
+            Filter::Hardware2x2 => FilterUniform { mode: 1, ..u },
+            Filter::Poisson { taps, radius } => FilterUniform {
+                mode: 2,
+                taps,
+                radius,
+                receiver_plane: 1,
+                ..u
+            },
+            Filter::DepthAverage { n } => FilterUniform { mode: 3, n, ..u },
+        }
+    }
+}
+
+/// The shadow map's bindings (lesson 01's group 2) plus binding 2: the
+/// same texture read as plain floats, for depth averaging (GLSL cannot
+/// `textureLoad` through a depth binding).
+pub fn pcf_map_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
+    let mut entries = shadow_map_entries();
+    entries.push(float_texture_entry(2));
+    bindings::layout(gpu, "pcf shadow map", &entries)
+}
+
+/// The bind group of [`pcf_map_layout`] for `map`, sampled with `filter`.
+pub fn pcf_map_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &ShadowMap,
+    filter: wgpu::FilterMode,
+) -> wgpu::BindGroup {
+    let sampler = comparison_sampler(gpu, filter);
+    let view = wgpu::BindingResource::TextureView(&map.view);
+    let resources = [view.clone(), wgpu::BindingResource::Sampler(&sampler), view];
+    bindings::group(gpu, "pcf shadow map", layout, &resources)
+}

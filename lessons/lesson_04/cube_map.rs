@@ -1,0 +1,372 @@
+//! Cube-map shadows for point lights (lesson 04): the light renders six 90°
+//! faces into the six layers of one depth texture; the lit pass samples it
+//! through a `Cube` view with the direction from the light.
+//!
+//! Also here: the per-face light uniforms (six faces in one submission need
+//! six uniform slots), the two ways to store depth, and the lit pass's
+//! parameters. Culling is in [`super::culling`], the picture of the six
+//! faces in [`super::cross`].
+
+use common::bindings::{self, sampler_entry, texture_entry, uniform_buffer, uniform_entry};
+use common::camera::{light_uniform, LightUniform};
+use common::glam::dcamera::rh::proj::directx as webgpu;
+use common::glam::dcamera::rh::view::look_at_mat4;
+use common::glam::{DMat4, DVec3, Mat4};
+use common::gpu::Gpu;
+use common::render::{pipeline_layout_for, vertex_state, SceneGpu};
+use common::scene::{LightKind, Scene};
+use common::targets::depth_texture;
+use common::timing::Frame;
+
+pub const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Uniform slots are spaced by the dynamic-offset alignment.
+const SLOT: u64 = 256;
+
+// ANCHOR: cube_faces
+/// The six faces in wgpu's layer order +X, −X, +Y, −Y, +Z, −Z: the axis each
+/// face looks along, and its `up` (the usual cube-map up vectors).
+pub const CUBE_FACES: [(DVec3, DVec3); 6] = [
+    (DVec3::X, DVec3::NEG_Y),
+    (DVec3::NEG_X, DVec3::NEG_Y),
+    (DVec3::Y, DVec3::Z),
+    (DVec3::NEG_Y, DVec3::NEG_Z),
+    (DVec3::Z, DVec3::NEG_Y),
+    (DVec3::NEG_Z, DVec3::NEG_Y),
+];
+
+/// Face `face`'s view-projection for a light at `light` (origin-relative):
+/// a square 90° frustum, so the six faces tile every direction exactly.
+pub fn face_view_proj(light: DVec3, face: usize, near: f64, far: f64) -> Mat4 {
+    let (axis, up) = CUBE_FACES[face];
+    let view = look_at_mat4(light, light + axis, up);
+    let proj = webgpu::perspective(std::f64::consts::FRAC_PI_2, 1.0, near, far);
+    // Those up vectors were made for OpenGL, whose framebuffer rows grow
+    // upwards; WebGPU's grow downwards. Flip y, or every face is read upside down.
+    (DMat4::from_scale(DVec3::new(1.0, -1.0, 1.0)) * proj * view).as_mat4()
+}
+// ANCHOR_END: cube_faces
+
+/// The light's position (origin-relative) and range; `None` for a directional light.
+pub fn point_light(scene: &Scene, light: usize) -> Option<(DVec3, f64)> {
+    match scene.lights[light].kind {
+        LightKind::Point { position, range }
+        | LightKind::Spot {
+            position, range, ..
+        } => Some((position - scene.origin(), range)),
+        LightKind::Directional { .. } => None,
+    }
+}
+
+/// A cube of six square depth layers: one `D2` view per face to render
+/// into, one `Cube` view to sample.
+pub struct CubeShadowMap {
+    pub size: u32,
+    pub texture: wgpu::Texture,
+    pub face_views: Vec<wgpu::TextureView>,
+    pub cube_view: wgpu::TextureView,
+    /// Faces holding only the clear value: a skipped face needs no pass at all.
+    empty: [bool; 6],
+}
+
+impl CubeShadowMap {
+    pub fn new(gpu: &Gpu, size: u32) -> CubeShadowMap {
+        // Six square layers: GL makes this a cube map texture (wgpu's rule).
+        let texture = depth_texture(
+            gpu,
+            &format!("cube shadow map {size}"),
+            size,
+            6,
+            CUBE_FORMAT,
+        );
+        let face_views = (0..6)
+            .map(|i| {
+                texture.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2),
+                    base_array_layer: i,
+                    array_layer_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        let cube_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::Cube),
+            ..Default::default()
+        });
+        CubeShadowMap {
+            size,
+            texture,
+            face_views,
+            cube_view,
+            empty: [false; 6],
+        }
+    }
+}
+
+/// Six light uniforms per light (one per face), bound as group 0 with the
+/// scene's frame layout: `write_light_view_proj` has one slot per light, and
+/// queue writes all land before the frame's single submission.
+pub struct FaceUniforms {
+    buffer: wgpu::Buffer,
+    group: wgpu::BindGroup,
+}
+
+impl FaceUniforms {
+    pub fn new(gpu: &Gpu, scene: &SceneGpu) -> FaceUniforms {
+        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cube face lights"),
+            size: SLOT * 6 * scene.scene.lights.len().max(1) as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        // Binding 0 (the camera) is unused by the shadow shaders but part of the layout.
+        let camera = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cube faces: unused camera"),
+            size: 96,
+            usage: wgpu::BufferUsages::UNIFORM,
+            mapped_at_creation: false,
+        });
+        let light_size = std::mem::size_of::<LightUniform>() as u64;
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cube faces"),
+            layout: &scene.frame_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: camera.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buffer,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(light_size),
+                    }),
+                },
+            ],
+        });
+        FaceUniforms { buffer, group }
+    }
+
+    /// Writes the six faces' view-projections of light `light`.
+    pub fn write(&self, gpu: &Gpu, scene: &Scene, light: usize, near: f64) {
+        let Some((pos, range)) = point_light(scene, light) else {
+            return;
+        };
+        for face in 0..6 {
+            let mut u = light_uniform(scene, light);
+            u.view_proj = face_view_proj(pos, face, near, range).to_cols_array_2d();
+            gpu.queue.write_buffer(
+                &self.buffer,
+                SLOT * (6 * light + face) as u64,
+                bytemuck::bytes_of(&u),
+            );
+        }
+    }
+}
+
+// ANCHOR: storage
+/// How the lit pass compares: what the cube stores, and how the receiver's
+/// depth is computed to match it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Storage {
+    /// distance / range, from the fragment shader.
+    Linear,
+    /// The face's hardware depth, the receiver converted along its major axis.
+    Depth,
+    /// Hardware depth compared with |v| instead: the naive mistake.
+    DepthEuclid,
+}
+
+impl Storage {
+    /// The shadow pass that fills the cube for this storage.
+    pub fn pass(self) -> DepthStorage {
+        match self {
+            Storage::Linear => DepthStorage::Linear {
+                vs_entry: "vs_cube_linear",
+                fs_entry: "fs_cube_linear",
+            },
+            Storage::Depth | Storage::DepthEuclid => DepthStorage::Hardware,
+        }
+    }
+}
+// ANCHOR_END: storage
+
+/// The lit pass's parameters (`CubeParams` in `shaders/lesson_04/cube_map.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct CubeParams {
+    /// The faces' near plane.
+    pub near: f32,
+    /// 2 / face resolution: a texel's width 1 m from the light.
+    pub texel_at_1m: f32,
+    /// 0 linear distance, 1 hardware depth, 2 hardware depth compared with
+    /// the Euclidean distance ([`Storage`] in order).
+    pub storage: u32,
+    /// 1: clamp the receiver to the light's range.
+    pub clamp_range: u32,
+    /// A constant bias in world units.
+    pub bias_world: f32,
+    /// A bias in texels, plus `slope` × tan θ texels.
+    pub bias_texels: f32,
+    pub slope: f32,
+    /// 3D PCF radius in texels; 0 is one hard tap.
+    pub pcf: f32,
+}
+
+/// How the cube stores depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepthStorage {
+    /// distance / range, written by the fragment shader (`fs_entry`).
+    Linear {
+        vs_entry: &'static str,
+        fs_entry: &'static str,
+    },
+    /// The face projection's own depth (`vs_light_depth`, no fragment shader).
+    Hardware,
+}
+
+/// The depth-only pipeline of the cube faces. `unclipped` turns off the
+/// near/far clip (needs DEPTH_CLIP_CONTROL): depth is clamped instead.
+pub fn cube_shadow_pipeline(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    module: &wgpu::ShaderModule,
+    storage: DepthStorage,
+    unclipped: bool,
+) -> wgpu::RenderPipeline {
+    let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
+    let (vs, fs) = match storage {
+        DepthStorage::Linear { vs_entry, fs_entry } => (vs_entry, Some(fs_entry)),
+        DepthStorage::Hardware => ("vs_light_depth", None),
+    };
+    gpu.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("cube shadow pass"),
+            layout: Some(&layout),
+            vertex: vertex_state(module, vs),
+            primitive: wgpu::PrimitiveState {
+                unclipped_depth: unclipped,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: CUBE_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: fs.map(|entry| wgpu::FragmentState {
+                module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                targets: &[],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+}
+
+/// What the shadow passes drew.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CubeStats {
+    pub faces_rendered: u64,
+    pub caster_draws: u64,
+}
+
+// ANCHOR: cube_shadow_passes
+/// Renders light `light`'s six faces, one render pass each (timed as
+/// "shadow"). `casters(face)` lists the objects to draw into a face; a face
+/// with none is skipped (it is cleared once, then left alone).
+pub fn cube_shadow_passes(
+    frame: &mut Frame,
+    scene: &SceneGpu,
+    pipeline: &wgpu::RenderPipeline,
+    map: &mut CubeShadowMap,
+    faces: &FaceUniforms,
+    light: usize,
+    casters: impl Fn(usize) -> Vec<usize>,
+) -> CubeStats {
+    let mut stats = CubeStats::default();
+    for face in 0..6 {
+        let list = casters(face);
+        if list.is_empty() && map.empty[face] {
+            continue;
+        }
+        frame.pass("shadow", |enc, ts| {
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("cube face"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &map.face_views[face],
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: ts.render(),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(
+                0,
+                &faces.group,
+                &[(SLOT * (6 * light + face) as u64) as u32],
+            );
+            stats.caster_draws += scene.draw_objects(&mut pass, |i| list.contains(&i)) as u64;
+        });
+        map.empty[face] = list.is_empty();
+        stats.faces_rendered += u64::from(!list.is_empty());
+    }
+    stats
+}
+// ANCHOR_END: cube_shadow_passes
+
+/// Bind group layout for the lit pass (group 2): the cube (binding 0), a
+/// comparison sampler (1), and the lesson's parameters (2, `params_size` bytes).
+pub fn cube_map_layout(gpu: &Gpu, params_size: u64) -> wgpu::BindGroupLayout {
+    use wgpu::{SamplerBindingType, ShaderStages, TextureSampleType, TextureViewDimension};
+    let entries = [
+        texture_entry(0, TextureSampleType::Depth, TextureViewDimension::Cube),
+        sampler_entry(1, SamplerBindingType::Comparison),
+        uniform_entry(2, ShaderStages::FRAGMENT, false, Some(params_size)),
+    ];
+    bindings::layout(gpu, "cube shadow map", &entries)
+}
+
+/// The matching bind group, with its own parameter buffer holding `params`.
+pub fn cube_map_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &CubeShadowMap,
+    filter: wgpu::FilterMode,
+    params: &[u8],
+) -> wgpu::BindGroup {
+    let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("cube comparison"),
+        mag_filter: filter,
+        min_filter: filter,
+        compare: Some(wgpu::CompareFunction::LessEqual),
+        ..Default::default()
+    });
+    let buffer = uniform_buffer(gpu, "cube params", params);
+    cube_group(gpu, layout, map, &sampler, &buffer)
+}
+
+/// The cube map, its sampler and a parameter buffer as bindings 0, 1, 2.
+pub(crate) fn cube_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &CubeShadowMap,
+    sampler: &wgpu::Sampler,
+    params: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    let resources = [
+        wgpu::BindingResource::TextureView(&map.cube_view),
+        wgpu::BindingResource::Sampler(sampler),
+        params.as_entire_binding(),
+    ];
+    bindings::group(gpu, "cube shadow map", layout, &resources)
+}

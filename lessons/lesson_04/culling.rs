@@ -1,0 +1,50 @@
+//! Leaving out what the light cannot see (lesson 04): casters past the
+//! light's range, and per face, casters whose bounding sphere misses the
+//! face's frustum. The unculled frame must come out the same.
+
+use common::glam::DVec3;
+use common::scene::Scene;
+
+use super::cube_map::CUBE_FACES;
+
+/// A bounding sphere, origin-relative.
+#[derive(Clone, Copy, Debug)]
+pub struct Sphere {
+    pub centre: DVec3,
+    pub radius: f64,
+}
+
+/// Each object's bounding sphere: around its world-space bounding box.
+pub fn bounding_spheres(scene: &Scene) -> Vec<Sphere> {
+    let o = scene.origin();
+    scene
+        .objects
+        .iter()
+        .map(|obj| {
+            let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+            for p in &obj.mesh.positions {
+                let w = obj.model.transform_point3(p.as_dvec3()) - o;
+                lo = lo.min(w);
+                hi = hi.max(w);
+            }
+            Sphere {
+                centre: (lo + hi) * 0.5,
+                radius: (hi - lo).length() * 0.5,
+            }
+        })
+        .collect()
+}
+
+// ANCHOR: sphere_in_face
+/// Whether a sphere (centre relative to the light) can touch face `face`'s
+/// frustum. Face +X holds the directions with x ≥ |y| and x ≥ |z|: four
+/// planes through the light, with normals (1, ∓1, 0)/√2 and (1, 0, ∓1)/√2.
+pub fn sphere_touches_face(centre: DVec3, radius: f64, face: usize) -> bool {
+    let (axis, up) = CUBE_FACES[face];
+    let side = axis.cross(up);
+    let m = centre.dot(axis);
+    let (a, b) = (centre.dot(up), centre.dot(side));
+    // The signed distance to each side plane must be > -radius.
+    (m - a.abs()) / 2f64.sqrt() > -radius && (m - b.abs()) / 2f64.sqrt() > -radius
+}
+// ANCHOR_END: sphere_in_face

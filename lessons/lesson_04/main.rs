@@ -1,0 +1,308 @@
+//! # Lesson 04: cube-map point shadows
+//!
+//! A point light sees in every direction, so one frustum is not enough: it
+//! renders six 90° faces into a cube of depth layers, and the lit pass looks
+//! the cube up with the direction from the light. Two ways to store depth
+//! (linear distance, hardware depth compared along the major axis), a bias
+//! that grows with distance, 3D PCF, and culling of faces and casters the
+//! scene does not need, measured against the unculled frame.
+//!
+//! Run: `cargo run --release --bin lesson_04 -- --headless`
+//! Book: chapter "04 Cube-map point shadows" (`book/src/lesson_04.md`).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use clap::ValueEnum;
+use common::app;
+use common::gpu::Gpu;
+use common::lesson::{variant_name, Lesson};
+use common::lit::LitPass;
+use common::render::{shader_module, SceneGpu};
+use common::scene::{LightKind, Scene};
+use common::targets::FrameTargets;
+use common::timing::Frame;
+use common::Result;
+use workbook::lesson_04::cross::write_cross_png;
+use workbook::lesson_04::cube_map::{
+    self, CubeParams, CubeShadowMap, CubeStats, FaceUniforms, Storage,
+};
+use workbook::lesson_04::culling::{self, Sphere};
+
+// ANCHOR: variants
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Variant {
+    #[value(name = "linear_256")]
+    Linear256,
+    #[value(name = "linear_1024")]
+    Linear1024,
+    #[value(name = "linear_2048")]
+    Linear2048,
+    #[value(name = "depth_1024")]
+    Depth1024,
+    #[value(name = "depth_euclid_1024")]
+    DepthEuclid1024,
+    #[value(name = "const_bias_1024")]
+    ConstBias1024,
+    #[value(name = "pcf3d_1024")]
+    Pcf3d1024,
+    #[value(name = "nocull_1024")]
+    Nocull1024,
+    #[value(name = "clipped_1024")]
+    Clipped1024,
+    #[value(name = "no_range_clamp_1024")]
+    NoRangeClamp1024,
+}
+
+#[derive(Clone, Copy)]
+struct Settings {
+    size: u32,
+    storage: Storage,
+    /// Bias in texels of the point's own distance, plus `slope` × tan θ texels.
+    bias_texels: f32,
+    slope: f32,
+    /// A constant world-space bias instead (the one that does not scale).
+    bias_world: f32,
+    /// 3D PCF radius in texels; 0 is one hard tap.
+    pcf: f32,
+    /// Skip empty faces and out-of-range casters (the unculled frame must match).
+    cull: bool,
+    /// Near-plane clipping off (DEPTH_CLIP_CONTROL) so casters nearer than it still cast.
+    unclipped: bool,
+    /// Clamp receivers beyond the range to the far plane.
+    clamp_range: bool,
+}
+
+/// `linear_1024`: what the others change one thing of.
+const BEST: Settings = Settings {
+    size: 1024,
+    storage: Storage::Linear,
+    bias_texels: 1.0,
+    slope: 1.0,
+    bias_world: 0.0,
+    pcf: 0.0,
+    cull: true,
+    unclipped: true,
+    clamp_range: true,
+};
+
+impl Variant {
+    // One line per variant: what changes from BEST.
+    #[rustfmt::skip]
+    fn settings(self) -> Settings {
+        match self {
+            Variant::Linear256 => Settings { size: 256, ..BEST },
+            Variant::Linear1024 => BEST,
+            Variant::Linear2048 => Settings { size: 2048, ..BEST },
+            Variant::Depth1024 => Settings { storage: Storage::Depth, ..BEST },
+            Variant::DepthEuclid1024 => Settings { storage: Storage::DepthEuclid, ..BEST },
+            Variant::ConstBias1024 => Settings { bias_texels: 0.0, slope: 0.0, bias_world: 0.003, ..BEST },
+            Variant::Pcf3d1024 => Settings { pcf: 1.5, slope: 2.5, ..BEST },
+            Variant::Nocull1024 => Settings { cull: false, ..BEST },
+            Variant::Clipped1024 => Settings { unclipped: false, ..BEST },
+            Variant::NoRangeClamp1024 => Settings { clamp_range: false, ..BEST },
+        }
+    }
+}
+
+/// The near plane of every face; 1 mm where DEPTH_CLIP_CONTROL is missing.
+const NEAR: f64 = 0.05;
+const NEAR_FALLBACK: f64 = 0.001;
+// ANCHOR_END: variants
+
+/// One variant on this device: its pipeline, lit-pass bind group, map and near plane.
+struct Prepared {
+    pipeline: usize,
+    group: wgpu::BindGroup,
+    map: usize,
+    near: f64,
+    unclipped: bool,
+}
+
+struct CubeShadows {
+    lit_pipeline: wgpu::RenderPipeline,
+    shadow_pipelines: Vec<wgpu::RenderPipeline>,
+    maps: Vec<CubeShadowMap>,
+    /// In variant order.
+    prepared: Vec<Prepared>,
+    faces: FaceUniforms,
+    spheres: Vec<Sphere>,
+    stats: CubeStats,
+}
+
+impl Lesson for CubeShadows {
+    const NAME: &'static str = "lesson_04";
+    const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_04.toml");
+    type Variant = Variant;
+
+    fn check_scene(scene: &Scene) -> Result<()> {
+        if let Some(k) = scene
+            .lights
+            .iter()
+            .position(|l| matches!(l.kind, LightKind::Directional { .. }))
+        {
+            anyhow::bail!("lights[{k}]: lesson_04 shadows point (and spot) lights; directional lights are lessons lesson_01-lesson_03");
+        }
+        Ok(())
+    }
+
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
+        let module = shader_module(
+            gpu,
+            "lesson_04",
+            include_str!("../../shaders/lesson_04/cube_map.wgsl"),
+        );
+        let params_size = std::mem::size_of::<CubeParams>() as u64;
+        let layout = cube_map::cube_map_layout(gpu, params_size);
+        let lit_pipeline =
+            scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
+        let has_unclipped = gpu.has(wgpu::Features::DEPTH_CLIP_CONTROL);
+        let (mut maps, mut shadow_pipelines, mut keys, mut prepared) = (
+            Vec::<CubeShadowMap>::new(),
+            Vec::new(),
+            Vec::new(),
+            Vec::new(),
+        );
+        for v in Variant::value_variants().iter().map(|v| v.settings()) {
+            let map = maps
+                .iter()
+                .position(|m| m.size == v.size)
+                .unwrap_or_else(|| {
+                    maps.push(CubeShadowMap::new(gpu, v.size));
+                    maps.len() - 1
+                });
+            // Without DEPTH_CLIP_CONTROL (GL), fall back to a 1 mm near plane (reported).
+            let unclipped = v.unclipped && has_unclipped;
+            let near = if v.unclipped && !has_unclipped {
+                NEAR_FALLBACK
+            } else {
+                NEAR
+            };
+            let storage = v.storage.pass();
+            let pipeline = keys
+                .iter()
+                .position(|k| *k == (storage, unclipped))
+                .unwrap_or_else(|| {
+                    shadow_pipelines.push(cube_map::cube_shadow_pipeline(
+                        gpu, scene, &module, storage, unclipped,
+                    ));
+                    keys.push((storage, unclipped));
+                    keys.len() - 1
+                });
+            let params = CubeParams {
+                near: near as f32,
+                texel_at_1m: 2.0 / v.size as f32,
+                storage: v.storage as u32,
+                clamp_range: v.clamp_range.into(),
+                bias_world: v.bias_world,
+                bias_texels: v.bias_texels,
+                slope: v.slope,
+                pcf: v.pcf,
+            };
+            let filter = if v.pcf > 0.0 {
+                wgpu::FilterMode::Linear
+            } else {
+                wgpu::FilterMode::Nearest
+            };
+            let group = cube_map::cube_map_group(
+                gpu,
+                &layout,
+                &maps[map],
+                filter,
+                bytemuck::bytes_of(&params),
+            );
+            prepared.push(Prepared {
+                pipeline,
+                group,
+                map,
+                near,
+                unclipped,
+            });
+        }
+        let faces = FaceUniforms::new(gpu, scene);
+        let spheres = culling::bounding_spheres(&scene.scene);
+        Ok(CubeShadows {
+            lit_pipeline,
+            shadow_pipelines,
+            maps,
+            prepared,
+            faces,
+            spheres,
+            stats: CubeStats::default(),
+        })
+    }
+
+    // ANCHOR: render
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Result<()> {
+        let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        self.stats = CubeStats::default();
+        for light in 0..scene.scene.lights.len() {
+            let (pos, range) = cube_map::point_light(&scene.scene, light)
+                .expect("check_scene allows point and spot lights");
+            self.faces.write(frame.gpu, &scene.scene, light, p.near);
+            // Leave out what the light cannot see: casters past its range,
+            // and per face, casters whose bounding sphere misses the frustum.
+            let spheres = &self.spheres;
+            let casters = |face: usize| -> Vec<usize> {
+                (0..spheres.len())
+                    .filter(|&o| scene.casts_shadow(o))
+                    .filter(|&o| {
+                        let c = spheres[o].centre - pos;
+                        let r = spheres[o].radius;
+                        !v.cull
+                            || (c.length() - r < range && culling::sphere_touches_face(c, r, face))
+                    })
+                    .collect()
+            };
+            let map = &mut self.maps[p.map];
+            let s = cube_map::cube_shadow_passes(
+                frame,
+                scene,
+                &self.shadow_pipelines[p.pipeline],
+                map,
+                &self.faces,
+                light,
+                casters,
+            );
+            self.stats.faces_rendered += s.faces_rendered;
+            self.stats.caster_draws += s.caster_draws;
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(
+                    enc,
+                    targets,
+                    LitPass::new(light, &self.lit_pipeline, &[&p.group]),
+                    ts.render(),
+                )
+            });
+        }
+        Ok(())
+    }
+    // ANCHOR_END: render
+
+    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        let p = &self.prepared[variant as usize];
+        BTreeMap::from([
+            ("faces_rendered".into(), self.stats.faces_rendered),
+            ("caster_draws".into(), self.stats.caster_draws),
+            ("unclipped_depth".into(), u64::from(p.unclipped)),
+            ("near_plane_mm".into(), (p.near * 1000.0).round() as u64),
+        ])
+    }
+
+    fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
+        let map = &self.maps[self.prepared[variant as usize].map];
+        let path = out.join(format!("{}_cube_map.png", variant_name(variant)));
+        write_cross_png(gpu, map, 128, &path)
+    }
+}
+
+fn main() -> std::process::ExitCode {
+    app::main::<CubeShadows>()
+}

@@ -1,0 +1,220 @@
+//! Extruding silhouettes into shadow volumes (lesson 05), two ways.
+//!
+//! WebGPU has no geometry shader, so the silhouette is found either
+//!
+//! - [`Extrusion::Cpu`]: on the CPU every frame, as Doom 3 did. The light is
+//!   moved into object space (inverse model), [`face_facing`] and
+//!   [`silhouette_edges_for`] give the sides, and the light-facing
+//!   triangles give the caps ([`cpu_volume`]). Vertices are
+//!   `(position, w)`: `w = 1` stays, `w = 0` goes to infinity.
+//! - [`Extrusion::Quads`]: degenerate quads built once, in advance (one per
+//!   manifold edge; one per (edge, face) pair for open and non-manifold
+//!   edges, whose other side never faces the light), plus front and back
+//!   cap triangles ([`degenerate_quads`]). The vertex shader tests the
+//!   facing of each vertex's face and moves it (`vs_volume_quads` in
+//!   `shaders/lesson_05/volume.wgsl`). No per-frame CPU work.
+//!
+//! Both give the same volumes: the boundary of the union of the
+//! light-facing faces' own volumes (see [`silhouette_edges`](super::silhouette::silhouette_edges)).
+
+use std::ops::Range;
+
+use super::adjacency::Adjacency;
+use common::gpu::Gpu;
+use common::render::{shader_module, SceneGpu};
+use common::scene::LightKind;
+
+use super::silhouette::{face_facing, light_facing_triangles_for, silhouette_edges_for, LightDir};
+
+/// The volume WGSL (`shaders/lesson_05/volume.wgsl`), after `common.wgsl`.
+pub const VOLUME_WGSL: &str = include_str!("../../shaders/lesson_05/volume.wgsl");
+
+/// `common.wgsl` + `volume.wgsl` + a lesson's own WGSL.
+pub fn volume_shader_module(gpu: &Gpu, label: &str, extra_wgsl: &str) -> wgpu::ShaderModule {
+    shader_module(gpu, label, &format!("{VOLUME_WGSL}\n{extra_wgsl}"))
+}
+
+/// How the volume geometry is built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Extrusion {
+    /// Silhouettes on the CPU every frame (Doom 3).
+    Cpu,
+    /// Degenerate quads built in advance, extruded in the vertex shader.
+    Quads,
+}
+
+/// CPU-path vertex: object-space position and w (1 stays, 0 to infinity).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct CpuVertex {
+    pub position: [f32; 3],
+    pub w: f32,
+}
+
+pub const CPU_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<CpuVertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32],
+};
+
+/// Pre-built quad/cap vertex: position, kind (0 edge, 1 front cap, 2 back
+/// cap), and its face's unnormalised normal and first vertex.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct QuadVertex {
+    pub position: [f32; 3],
+    pub kind: u32,
+    pub face_normal: [f32; 3],
+    pub face_point: [f32; 3],
+}
+
+pub const QUAD_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<QuadVertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Uint32, 2 => Float32x3, 3 => Float32x3],
+};
+
+/// Vertex ranges of one caster's volume: sides, front cap, back cap.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct VolumeRanges {
+    pub sides: Range<u32>,
+    pub front: Range<u32>,
+    pub back: Range<u32>,
+}
+
+// ANCHOR: cpu_volume
+/// The CPU path: one caster's volume for one light (object space), appended
+/// to `out`. Sides from the silhouette; caps from the light-facing faces.
+pub fn cpu_volume(adj: &Adjacency, light: LightDir, out: &mut Vec<CpuVertex>) -> VolumeRanges {
+    let facing = face_facing(adj, light);
+    let v = |i: u32, w: f32| CpuVertex {
+        position: adj.positions[i as usize].to_array(),
+        w,
+    };
+    let directional = matches!(light, LightDir::Directional(_));
+    let start = out.len() as u32;
+    for e in silhouette_edges_for(adj, &facing) {
+        // The lit face runs a → b; its side of the volume, seen from
+        // outside, runs b → a → a∞ → b∞ (counter-clockwise, like the caps).
+        out.extend([v(e.a, 1.0), v(e.b, 0.0), v(e.b, 1.0)]);
+        if !directional {
+            // Directional: a∞ = b∞, the second triangle would have no area.
+            out.extend([v(e.a, 1.0), v(e.a, 0.0), v(e.b, 0.0)]);
+        }
+    }
+    let sides_end = out.len() as u32;
+    let lit = light_facing_triangles_for(adj, &facing);
+    for t in &lit {
+        out.extend(t.map(|i| v(i, 1.0)));
+    }
+    let front_end = out.len() as u32;
+    if !directional {
+        // The back cap: the same triangles at infinity, reversed.
+        for t in &lit {
+            out.extend([v(t[0], 0.0), v(t[2], 0.0), v(t[1], 0.0)]);
+        }
+    }
+    VolumeRanges {
+        sides: start..sides_end,
+        front: sides_end..front_end,
+        back: front_end..out.len() as u32,
+    }
+}
+// ANCHOR_END: cpu_volume
+
+// ANCHOR: degenerate_quads
+/// The quads path, built once: one degenerate quad per manifold edge whose
+/// two faces run along it in opposite directions; one quad per (edge, face)
+/// for every other edge (open, non-manifold, misoriented), with a far side
+/// that never faces the light. Then front and back cap triangles for every
+/// face. Returns (vertices, indices, index ranges).
+pub fn degenerate_quads(adj: &Adjacency) -> (Vec<QuadVertex>, Vec<u32>, VolumeRanges) {
+    let mut verts: Vec<QuadVertex> = Vec::new();
+    let mut idx: Vec<u32> = Vec::new();
+    let face_data = |f: Option<u32>| match f {
+        Some(f) => {
+            let t = adj.triangles[f as usize];
+            (
+                adj.face_normals[f as usize].to_array(),
+                adj.positions[t[0] as usize].to_array(),
+            )
+        }
+        None => ([0.0; 3], [0.0; 3]), // never faces the light: always extruded
+    };
+    let vertex = |i: u32, kind: u32, f: Option<u32>| {
+        let (n, p0) = face_data(f);
+        QuadVertex {
+            position: adj.positions[i as usize].to_array(),
+            kind,
+            face_normal: n,
+            face_point: p0,
+        }
+    };
+    let mut quad = |a: u32, b: u32, near: Option<u32>, far: Option<u32>| {
+        // a, b belong to the face running a → b; b', a' to the other side.
+        let base = verts.len() as u32;
+        verts.extend([
+            vertex(a, 0, near),
+            vertex(b, 0, near),
+            vertex(b, 0, far),
+            vertex(a, 0, far),
+        ]);
+        // Wound b → a → a∞ → b∞ when the near face is lit: outward.
+        idx.extend([base, base + 2, base + 1, base, base + 3, base + 2]);
+    };
+    for e in &adj.edges {
+        let faces = adj.faces_of(e);
+        let [v0, v1] = e.v;
+        match faces {
+            [f, g] if f.forward != g.forward => {
+                let (fwd, bwd) = if f.forward { (f, g) } else { (g, f) };
+                quad(v0, v1, Some(fwd.face), Some(bwd.face));
+            }
+            _ => {
+                for f in faces {
+                    let (a, b) = if f.forward { (v0, v1) } else { (v1, v0) };
+                    quad(a, b, Some(f.face), None);
+                }
+            }
+        }
+    }
+    let sides = 0..idx.len() as u32;
+    for kind in [1u32, 2] {
+        for (f, t) in adj.triangles.iter().enumerate() {
+            let base = verts.len() as u32;
+            verts.extend(t.map(|i| vertex(i, kind, Some(f as u32))));
+            // The back cap winds the other way (it faces away from the light).
+            idx.extend(if kind == 1 {
+                [base, base + 1, base + 2]
+            } else {
+                [base, base + 2, base + 1]
+            });
+        }
+    }
+    let n = adj.triangles.len() as u32 * 3;
+    let ranges = VolumeRanges {
+        sides: sides.clone(),
+        front: sides.end..sides.end + n,
+        back: sides.end + n..sides.end + 2 * n,
+    };
+    (verts, idx, ranges)
+}
+// ANCHOR_END: degenerate_quads
+
+impl QuadVertex {
+    pub fn zeroed_vertex() -> QuadVertex {
+        bytemuck::Zeroable::zeroed()
+    }
+}
+
+/// Light `k` as the volumes see it: origin-relative world space. Spot
+/// lights cast like point lights (the cone is applied in the lit pass).
+pub fn world_light(scene: &SceneGpu, k: usize) -> LightDir {
+    let o = scene.scene.origin();
+    match scene.scene.lights[k].kind {
+        LightKind::Directional { direction } => LightDir::Directional(direction.as_vec3()),
+        LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
+            LightDir::Point((position - o).as_vec3())
+        }
+    }
+}

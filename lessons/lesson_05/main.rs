@@ -1,0 +1,130 @@
+//! # Lesson 05: z-pass stencil shadow volumes
+//!
+//! Each caster's silhouette, seen from the light, is extruded to infinity
+//! (w = 0) into a closed *shadow volume*. Counting, along the view ray, the
+//! volume faces in front of the visible surface (front faces +1, back
+//! faces −1) gives the number of volumes the surface is inside: 0 is lit.
+//! Exact while the eye is outside every volume; the report measures what
+//! happens when it is not (`--scene scenes/volume_eye_in_umbra.toml`).
+//!
+//! Two ways to build the volumes, timed against each other: silhouettes on
+//! the CPU every frame (`zpass_cpu`), and degenerate quads built once and
+//! extruded in the vertex shader (`zpass_quads`).
+//!
+//! Run: `cargo run --release --bin lesson_05 -- --headless`
+//! Book: chapter "05 z-pass stencil shadow volumes" (`book/src/lesson_05.md`).
+
+use std::collections::BTreeMap;
+
+use clap::ValueEnum;
+use common::app;
+use common::gpu::Gpu;
+use common::lesson::Lesson;
+use common::render::SceneGpu;
+use common::targets::FrameTargets;
+use common::timing::Frame;
+use common::Result;
+use workbook::lesson_05::extrusion::Extrusion;
+use workbook::lesson_05::stencil::{self, Counting};
+use workbook::lesson_05::volumes::{CasterDraw, LightVolumes, ShadowVolumes};
+
+// ANCHOR: variants
+/// The variants differ in how the volume geometry is built, not in what
+/// it is: both count with z-pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Variant {
+    /// Silhouettes found on the CPU every frame.
+    #[value(name = "zpass_cpu")]
+    ZpassCpu,
+    /// Degenerate quads built once, extruded in the vertex shader.
+    #[value(name = "zpass_quads")]
+    ZpassQuads,
+}
+
+impl Variant {
+    fn extrusion(self) -> Extrusion {
+        match self {
+            Variant::ZpassCpu => Extrusion::Cpu,
+            Variant::ZpassQuads => Extrusion::Quads,
+        }
+    }
+}
+// ANCHOR_END: variants
+
+struct ZPass {
+    volumes: ShadowVolumes,
+    lit_pipeline: wgpu::RenderPipeline,
+    /// `draws[light]`: every caster, z-pass, sides only.
+    draws: Vec<Vec<CasterDraw>>,
+    /// Computed once: mesh validation and the largest stencil count.
+    scene_counters: BTreeMap<String, u64>,
+    fragments: Option<u64>,
+    casters_drawn: u64,
+}
+
+impl Lesson for ZPass {
+    const NAME: &'static str = "lesson_05";
+    const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_05.toml");
+    type Variant = Variant;
+
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
+        let volumes = ShadowVolumes::new(gpu, scene, &Counting::zpass())?;
+        let draws = vec![volumes.all(CasterDraw::zpass); scene.scene.lights.len()];
+        Ok(ZPass {
+            lit_pipeline: stencil::stencil_lit_pipeline(gpu, scene),
+            scene_counters: stencil::scene_counters(scene),
+            volumes,
+            draws,
+            fragments: None,
+            casters_drawn: 0,
+        })
+    }
+
+    // ANCHOR: render
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Result<()> {
+        let ext = variant.extrusion();
+        if ext == Extrusion::Cpu {
+            // Doom 3's way: find every silhouette on the CPU, every frame.
+            self.volumes.prepare_cpu(frame, scene, &self.draws);
+        }
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        let mut drawn = 0;
+        for (light, draws) in self.draws.iter().enumerate() {
+            let volumes = LightVolumes {
+                light,
+                extrusion: ext,
+                draws,
+            };
+            // Clear the stencil, count the volumes into it, and add the
+            // light where the count is 0.
+            drawn += self
+                .volumes
+                .light_passes(frame, scene, targets, volumes, &self.lit_pipeline);
+        }
+        self.casters_drawn = drawn as u64;
+        self.fragments = self
+            .volumes
+            .count_fragments(frame.gpu, scene, ext, &self.draws);
+        Ok(())
+    }
+    // ANCHOR_END: render
+
+    fn counters(&self, _variant: Variant) -> BTreeMap<String, u64> {
+        let mut c = self.scene_counters.clone();
+        c.insert("casters_drawn".into(), self.casters_drawn);
+        if let Some(f) = self.fragments {
+            c.insert("volume_fragments".into(), f);
+        }
+        c
+    }
+}
+
+fn main() -> std::process::ExitCode {
+    app::main::<ZPass>()
+}

@@ -1,0 +1,384 @@
+//! Shadow volumes on the GPU (lesson 05): every caster's volume data, the
+//! volume pipelines, and the volume pass that counts them into the stencil.
+//!
+//! # What a frame does
+//!
+//! ```text
+//! base pass (depth + ambient)              scene.base_pass
+//! for each light:
+//!     volume pass: clear stencil, draw     ShadowVolumes::volume_pass
+//!                  volumes, count in stencil
+//!     lit pass where stencil == 0          scene.lit_pass with lit_stencil()
+//! ```
+//!
+//! The volume pass clears the stencil itself (its stencil attachment is
+//! `LoadOp::Clear(0)`, depth is loaded): that is the per-light stencil
+//! clear, merged into the pass that needs it.
+//!
+//! Open, non-manifold or misoriented meshes cast as two-sided surfaces
+//! ([`caster_adjacency`]). A mirrored model (det < 0) reverses every
+//! winding in world space: such casters are drawn with a pipeline whose
+//! front face is `Cw`.
+//!
+//! Vertices at infinity (w = 0) lie beyond any finite far plane: lessons 05
+//! and 06 use scenes with `far = "infinite"`; lesson 07 handles a finite one.
+//!
+//! [`FragmentCounter`] counts the fragments the volume geometry rasterises
+//! (an untimed copy of the volume pass with the depth test off), when the
+//! adapter has `PIPELINE_STATISTICS_QUERY` (lavapipe does, GL does not: the
+//! key is then omitted).
+
+use super::adjacency::Adjacency;
+use std::ops::Range;
+
+use anyhow::Result;
+use common::counters::FragmentCounter;
+use common::glam::DVec3;
+use common::gpu::Gpu;
+use common::lit::LitPass;
+use common::render::SceneGpu;
+use common::targets::FrameTargets;
+use common::timing::Frame;
+
+use super::extrusion::{
+    cpu_volume, degenerate_quads, world_light, CpuVertex, Extrusion, QuadVertex, VolumeRanges,
+};
+use super::silhouette::caster_adjacency;
+use super::stencil::{Counting, Method, VolumePipelines};
+
+/// One caster's volume in one light's volume pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CasterDraw {
+    /// Index into `scene.objects`.
+    pub object: usize,
+    pub method: Method,
+    pub front_cap: bool,
+    pub back_cap: bool,
+}
+
+impl CasterDraw {
+    /// Sides only, z-pass.
+    pub fn zpass(object: usize) -> CasterDraw {
+        CasterDraw {
+            object,
+            method: Method::ZPass,
+            front_cap: false,
+            back_cap: false,
+        }
+    }
+
+    /// The ranges of `r` this draw covers, each with "is it a cap?".
+    fn ranges(&self, r: &VolumeRanges) -> impl Iterator<Item = (Range<u32>, bool)> {
+        [
+            Some((r.sides.clone(), false)),
+            self.front_cap.then(|| (r.front.clone(), true)),
+            self.back_cap.then(|| (r.back.clone(), true)),
+        ]
+        .into_iter()
+        .flatten()
+        .filter(|(r, _)| !r.is_empty())
+    }
+}
+
+/// One light's volumes in a volume pass: which casters, counted how
+/// ([`CasterDraw`]), with the geometry of which extrusion.
+#[derive(Clone, Copy, Debug)]
+pub struct LightVolumes<'a> {
+    pub light: usize,
+    pub extrusion: Extrusion,
+    pub draws: &'a [CasterDraw],
+}
+
+/// One shadow caster: its welded adjacency and its pre-built quads.
+pub struct VolumeCaster {
+    /// Index into `scene.objects`.
+    pub object: usize,
+    pub adjacency: Adjacency,
+    /// det(model) < 0: windings flip in world space.
+    pub mirrored: bool,
+    /// Origin-relative bounding sphere.
+    pub center: DVec3,
+    pub radius: f64,
+    quad_vertices: wgpu::Buffer,
+    quad_indices: wgpu::Buffer,
+    pub quad_ranges: VolumeRanges,
+}
+
+impl VolumeCaster {
+    /// The pre-built quads' vertex and index buffers (cheap handles), and
+    /// the index count of the whole volume: sides, front cap and back cap.
+    pub fn quad_buffers(&self) -> (wgpu::Buffer, wgpu::Buffer, u32) {
+        let r = &self.quad_ranges;
+        let count = r.sides.end.max(r.front.end).max(r.back.end);
+        (self.quad_vertices.clone(), self.quad_indices.clone(), count)
+    }
+}
+
+/// The per-frame CPU geometry: one buffer for every light, so the writes of
+/// light 0 and light 1 do not overwrite each other before the submit.
+#[derive(Default)]
+struct CpuGeometry {
+    buffer: Option<wgpu::Buffer>,
+    /// `ranges[light][caster]`.
+    ranges: Vec<Vec<VolumeRanges>>,
+    vertices: Vec<CpuVertex>,
+}
+
+/// Every caster's volume data and the pipelines of both extrusion methods.
+pub struct ShadowVolumes {
+    pub casters: Vec<VolumeCaster>,
+    cpu: CpuGeometry,
+    cpu_pipelines: VolumePipelines,
+    quad_pipelines: VolumePipelines,
+    counter: Option<FragmentCounter>,
+}
+
+impl ShadowVolumes {
+    /// Every caster's adjacency and pre-built quads, and the pipelines of
+    /// both extrusions, counting with `counting`.
+    pub fn new(gpu: &Gpu, scene: &SceneGpu, counting: &Counting) -> Result<ShadowVolumes> {
+        use wgpu::util::DeviceExt;
+        let mut casters = Vec::new();
+        for (i, o) in scene.scene.objects.iter().enumerate() {
+            if !o.casts_shadow {
+                continue;
+            }
+            let adjacency = caster_adjacency(&o.mesh);
+            let model = scene.scene.model_relative(i);
+            let world: Vec<DVec3> = adjacency
+                .positions
+                .iter()
+                .map(|p| model.as_dmat4().transform_point3(p.as_dvec3()))
+                .collect();
+            let (lo, hi) = world
+                .iter()
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), p| {
+                    (a.min(*p), b.max(*p))
+                });
+            let center = (lo + hi) * 0.5;
+            let radius =
+                world.iter().map(|p| p.distance(center)).fold(0.0, f64::max) * (1.0 + 1e-6) + 1e-6;
+            let (verts, idx, quad_ranges) = degenerate_quads(&adjacency);
+            let buf = |label: &str, contents: &[u8], usage| {
+                gpu.device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(label),
+                        contents,
+                        usage,
+                    })
+            };
+            // wgpu rejects empty buffers: a caster with no edges gets one dummy.
+            let verts = if verts.is_empty() {
+                vec![QuadVertex::zeroed_vertex()]
+            } else {
+                verts
+            };
+            let idx_bytes: Vec<u32> = if idx.is_empty() { vec![0] } else { idx };
+            casters.push(VolumeCaster {
+                object: i,
+                mirrored: model.determinant() < 0.0,
+                center,
+                radius,
+                quad_vertices: buf(
+                    "volume quads",
+                    bytemuck::cast_slice(&verts),
+                    wgpu::BufferUsages::VERTEX,
+                ),
+                quad_indices: buf(
+                    "volume quad indices",
+                    bytemuck::cast_slice(&idx_bytes),
+                    wgpu::BufferUsages::INDEX,
+                ),
+                quad_ranges,
+                adjacency,
+            });
+        }
+        Ok(ShadowVolumes {
+            casters,
+            cpu: CpuGeometry::default(),
+            cpu_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Cpu, counting)?,
+            quad_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Quads, counting)?,
+            counter: FragmentCounter::new(gpu, scene.width, scene.height),
+        })
+    }
+
+    /// Every caster, drawn as `draw` says (`CasterDraw::zpass`, or
+    /// lesson 06's `caps::zfail`).
+    pub fn all(&self, draw: fn(usize) -> CasterDraw) -> Vec<CasterDraw> {
+        self.casters.iter().map(|c| draw(c.object)).collect()
+    }
+
+    fn caster(&self, object: usize) -> Option<(usize, &VolumeCaster)> {
+        self.casters
+            .iter()
+            .enumerate()
+            .find(|(_, c)| c.object == object)
+    }
+
+    // ANCHOR: prepare_cpu
+    /// The CPU path's per-frame work: silhouettes and caps for every light
+    /// and the casters in `draws[light]`, uploaded in one write. Timed as
+    /// `cpu_silhouette`.
+    pub fn prepare_cpu(&mut self, frame: &mut Frame, scene: &SceneGpu, draws: &[Vec<CasterDraw>]) {
+        let gpu = frame.gpu;
+        let cpu = &mut self.cpu;
+        let casters = &self.casters;
+        frame.cpu("silhouette", || {
+            cpu.vertices.clear();
+            cpu.ranges.clear();
+            for (k, draws_k) in draws.iter().enumerate() {
+                let light = world_light(scene, k);
+                let mut ranges = vec![VolumeRanges::default(); casters.len()];
+                for (ci, c) in casters.iter().enumerate() {
+                    if !draws_k.iter().any(|d| d.object == c.object) {
+                        continue;
+                    }
+                    // Silhouettes in object space: the light moves, not the mesh.
+                    let model = scene.scene.model_relative(c.object);
+                    ranges[ci] = cpu_volume(
+                        &c.adjacency,
+                        light.to_object_space(model),
+                        &mut cpu.vertices,
+                    );
+                }
+                cpu.ranges.push(ranges);
+            }
+            let bytes = (cpu.vertices.len().max(1) * std::mem::size_of::<CpuVertex>()) as u64;
+            if cpu.buffer.as_ref().is_none_or(|b| b.size() < bytes) {
+                cpu.buffer = Some(gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("cpu shadow volumes"),
+                    size: bytes.next_power_of_two(),
+                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }));
+            }
+            if let Some(b) = &cpu.buffer {
+                gpu.queue
+                    .write_buffer(b, 0, bytemuck::cast_slice(&cpu.vertices));
+            }
+        });
+    }
+    // ANCHOR_END: prepare_cpu
+
+    /// Draws one light's volumes into an open pass, with the volume
+    /// pipelines of their extrusion (or the counting copy). Returns the
+    /// number of casters drawn.
+    pub fn draw_casters(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        scene: &SceneGpu,
+        v: LightVolumes<'_>,
+        counting: bool,
+    ) -> u32 {
+        let pipes = match v.extrusion {
+            Extrusion::Cpu => &self.cpu_pipelines,
+            Extrusion::Quads => &self.quad_pipelines,
+        };
+        scene.bind_frame(pass, v.light);
+        let mut drawn = 0;
+        for d in v.draws {
+            let Some((ci, c)) = self.caster(d.object) else {
+                continue;
+            };
+            let pipeline = |cap: bool| match counting {
+                true => pipes.counting(),
+                false => pipes.get(d.method, c.mirrored, cap),
+            };
+            scene.bind_object(pass, c.object);
+            match v.extrusion {
+                Extrusion::Cpu => {
+                    let (Some(buf), Some(r)) = (
+                        &self.cpu.buffer,
+                        self.cpu.ranges.get(v.light).and_then(|r| r.get(ci)),
+                    ) else {
+                        continue;
+                    };
+                    pass.set_vertex_buffer(0, buf.slice(..));
+                    for (range, cap) in d.ranges(r) {
+                        pass.set_pipeline(pipeline(cap));
+                        pass.draw(range, 0..1);
+                    }
+                }
+                Extrusion::Quads => {
+                    pass.set_vertex_buffer(0, c.quad_vertices.slice(..));
+                    pass.set_index_buffer(c.quad_indices.slice(..), wgpu::IndexFormat::Uint32);
+                    for (range, cap) in d.ranges(&c.quad_ranges) {
+                        pass.set_pipeline(pipeline(cap));
+                        pass.draw_indexed(range, 0, 0..1);
+                    }
+                }
+            }
+            drawn += 1;
+        }
+        drawn
+    }
+
+    // ANCHOR: volume_pass
+    /// One light's volume pass: clears the stencil (depth is loaded from the
+    /// base pass) and counts the volumes of `draws` into it.
+    pub fn volume_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        volumes: LightVolumes<'_>,
+        ts: Option<wgpu::RenderPassTimestampWrites>,
+    ) -> u32 {
+        let mut pass = targets.stencil_pass(encoder, "volume pass", ts, None);
+        self.draw_casters(&mut pass, scene, volumes, false)
+    }
+    // ANCHOR_END: volume_pass
+
+    // ANCHOR: light_passes
+    /// One light's two passes: clear the stencil and count the light's
+    /// volumes into it ("volume"), then add the light where the count is 0
+    /// ("lighting", through `lit_pipeline`). Returns the casters drawn.
+    pub fn light_passes(
+        &self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        volumes: LightVolumes<'_>,
+        lit_pipeline: &wgpu::RenderPipeline,
+    ) -> u32 {
+        let drawn = frame.pass("volume", |enc, ts| {
+            self.volume_pass(enc, scene, targets, volumes, ts.render())
+        });
+        frame.pass("lighting", |enc, ts| {
+            let lit = LitPass::new(volumes.light, lit_pipeline, &[]);
+            scene.lit_pass(enc, targets, lit, ts.render())
+        });
+        drawn
+    }
+    // ANCHOR_END: light_passes
+
+    /// Fragments rasterised by the volumes of `draws[light]` for every light
+    /// (see [`FragmentCounter`]); `None` without PIPELINE_STATISTICS_QUERY.
+    /// Call after `prepare_cpu` for the CPU path. Untimed: its own submit.
+    pub fn count_fragments(
+        &self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        extrusion: Extrusion,
+        draws: &[Vec<CasterDraw>],
+    ) -> Option<u64> {
+        let counter = self.counter.as_ref()?;
+        counter
+            .count(gpu, |pass| {
+                for (light, draws) in draws.iter().enumerate() {
+                    let v = LightVolumes {
+                        light,
+                        extrusion,
+                        draws,
+                    };
+                    self.draw_casters(pass, scene, v, true);
+                }
+            })
+            .ok()
+    }
+
+    /// The fragment counter (lesson 08 counts its own volumes with it).
+    pub fn counter(&self) -> Option<&FragmentCounter> {
+        self.counter.as_ref()
+    }
+}

@@ -1,0 +1,180 @@
+//! # Lesson 06: z-fail with caps (Carmack's reverse)
+//!
+//! Lesson 05 counted the volume faces *in front of* the visible surface,
+//! which misses the "enter" of a volume the eye is already inside. Z-fail
+//! counts the faces *behind* it instead (back faces +1, front faces −1),
+//! out to infinity, where nothing starts inside a volume. That needs closed
+//! volumes: a front cap (the light-facing triangles) and a back cap (the
+//! same triangles at infinity, reversed).
+//!
+//! Variants: `zpass_quads` (lesson 05, for contrast), `zfail_cpu` and
+//! `zfail_quads` (the two ways to build the volumes), `zfail_no_front_cap`
+//! and `zfail_no_back_cap` (what a missing cap does), and `zfail_selective`
+//! (z-fail only for casters whose volume can reach the near plane, z-pass
+//! for the rest, nothing for casters whose volume cannot reach the view:
+//! the same pixels for less work).
+//!
+//! Run: `cargo run --release --bin lesson_06 -- --headless`
+//! Book: chapter "06 z-fail with caps" (`book/src/lesson_06.md`).
+
+use std::collections::BTreeMap;
+
+use clap::ValueEnum;
+use common::app;
+use common::gpu::Gpu;
+use common::lesson::Lesson;
+use common::render::SceneGpu;
+use common::targets::FrameTargets;
+use common::timing::Frame;
+use common::Result;
+use workbook::lesson_05::extrusion::Extrusion;
+use workbook::lesson_05::stencil;
+use workbook::lesson_05::volumes::{CasterDraw, LightVolumes, ShadowVolumes};
+use workbook::lesson_06::caps::{self, zfail_counting};
+use workbook::lesson_06::plan::{plan, PlanStats};
+
+// ANCHOR: variants
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Variant {
+    /// Lesson 05's z-pass, for contrast.
+    #[value(name = "zpass_quads")]
+    ZpassQuads,
+    #[value(name = "zfail_cpu")]
+    ZfailCpu,
+    #[value(name = "zfail_quads")]
+    ZfailQuads,
+    /// What a missing cap does.
+    #[value(name = "zfail_no_front_cap")]
+    ZfailNoFrontCap,
+    #[value(name = "zfail_no_back_cap")]
+    ZfailNoBackCap,
+    /// Z-fail only where the near plane can be in shadow, z-pass elsewhere,
+    /// nothing where the volume cannot reach the view.
+    #[value(name = "zfail_selective")]
+    ZfailSelective,
+}
+
+impl Variant {
+    fn extrusion(self) -> Extrusion {
+        match self {
+            Variant::ZfailCpu => Extrusion::Cpu,
+            _ => Extrusion::Quads,
+        }
+    }
+
+    /// The draws of one light: which casters, counted how.
+    fn draws(
+        self,
+        volumes: &ShadowVolumes,
+        scene: &SceneGpu,
+        light: usize,
+    ) -> (Vec<CasterDraw>, PlanStats) {
+        let n = volumes.casters.len() as u32;
+        let mut draws = volumes.all(caps::zfail);
+        match self {
+            Variant::ZfailSelective => return plan(volumes, scene, light),
+            Variant::ZpassQuads => {
+                let stats = PlanStats {
+                    zpass: n,
+                    ..Default::default()
+                };
+                return (volumes.all(CasterDraw::zpass), stats);
+            }
+            Variant::ZfailNoFrontCap => draws.iter_mut().for_each(|d| d.front_cap = false),
+            Variant::ZfailNoBackCap => draws.iter_mut().for_each(|d| d.back_cap = false),
+            Variant::ZfailCpu | Variant::ZfailQuads => {}
+        }
+        let stats = PlanStats {
+            zfail: n,
+            ..Default::default()
+        };
+        (draws, stats)
+    }
+}
+// ANCHOR_END: variants
+
+struct ZFail {
+    volumes: ShadowVolumes,
+    lit_pipeline: wgpu::RenderPipeline,
+    scene_counters: BTreeMap<String, u64>,
+    /// Per variant, in variant order: `draws[light]`, and what was left out.
+    plans: Vec<(Vec<Vec<CasterDraw>>, PlanStats)>,
+    fragments: Option<u64>,
+}
+
+impl Lesson for ZFail {
+    const NAME: &'static str = "lesson_06";
+    const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_06.toml");
+    type Variant = Variant;
+
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
+        let volumes = ShadowVolumes::new(gpu, scene, &zfail_counting())?;
+        let mut plans = Vec::new();
+        for v in Variant::value_variants() {
+            let mut total = PlanStats::default();
+            let mut per_light = Vec::new();
+            for light in 0..scene.scene.lights.len() {
+                let (d, s) = v.draws(&volumes, scene, light);
+                total.zpass += s.zpass;
+                total.zfail += s.zfail;
+                total.skipped += s.skipped;
+                per_light.push(d);
+            }
+            plans.push((per_light, total));
+        }
+        Ok(ZFail {
+            lit_pipeline: stencil::stencil_lit_pipeline(gpu, scene),
+            scene_counters: stencil::scene_counters(scene),
+            volumes,
+            plans,
+            fragments: None,
+        })
+    }
+
+    // ANCHOR: render
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Result<()> {
+        let (draws, _) = &self.plans[variant as usize];
+        let ext = variant.extrusion();
+        if ext == Extrusion::Cpu {
+            self.volumes.prepare_cpu(frame, scene, draws);
+        }
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        for (light, draws) in draws.iter().enumerate() {
+            // Each caster carries its own method: the stencil ops differ,
+            // the count they leave is the same.
+            let volumes = LightVolumes {
+                light,
+                extrusion: ext,
+                draws,
+            };
+            self.volumes
+                .light_passes(frame, scene, targets, volumes, &self.lit_pipeline);
+        }
+        self.fragments = self.volumes.count_fragments(frame.gpu, scene, ext, draws);
+        Ok(())
+    }
+    // ANCHOR_END: render
+
+    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        let mut c = self.scene_counters.clone();
+        let (_, s) = &self.plans[variant as usize];
+        c.insert("casters_zpass".into(), s.zpass as u64);
+        c.insert("casters_zfail".into(), s.zfail as u64);
+        c.insert("casters_skipped".into(), s.skipped as u64);
+        c.insert("casters_drawn".into(), (s.zpass + s.zfail) as u64);
+        if let Some(f) = self.fragments {
+            c.insert("volume_fragments".into(), f);
+        }
+        c
+    }
+}
+
+fn main() -> std::process::ExitCode {
+    app::main::<ZFail>()
+}

@@ -1,0 +1,152 @@
+//! Leaving out work (lesson 06): per light and caster, skip a caster whose
+//! volume cannot reach the view frustum; use z-fail (with caps) only where
+//! the caster can shadow the near-plane rectangle (the occlusion pyramid of
+//! the 2005 article), else z-pass without caps. The counts, and so the
+//! pixels, are the same as with z-fail everywhere.
+
+use common::glam::{DMat4, DVec3, DVec4};
+use common::render::SceneGpu;
+
+use super::caps::zfail;
+use crate::lesson_05::extrusion::world_light;
+use crate::lesson_05::silhouette::LightDir;
+use crate::lesson_05::volumes::{CasterDraw, ShadowVolumes};
+
+/// What [`plan`] chose: casters counted with z-pass, with z-fail, and
+/// left out.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PlanStats {
+    pub zpass: u32,
+    pub zfail: u32,
+    pub skipped: u32,
+}
+
+// ANCHOR: plan
+/// Which casters need z-fail, which z-pass, and which can be skipped,
+/// for light `light` (see the module doc). The counts are the same as
+/// with z-fail everywhere.
+pub fn plan(
+    volumes: &ShadowVolumes,
+    scene: &SceneGpu,
+    light: usize,
+) -> (Vec<CasterDraw>, PlanStats) {
+    let view_proj = scene.camera.view_proj.as_dmat4();
+    let frustum = frustum_planes(view_proj);
+    let near_rect = near_rectangle(view_proj);
+    let l = world_light(scene, light);
+    let (l_point, l_dir) = match l {
+        LightDir::Point(p) => (Some(p.as_dvec3()), None),
+        LightDir::Directional(d) => (None, Some(d.as_dvec3())),
+    };
+    let pyramid = occlusion_pyramid(&near_rect, l_point, l_dir);
+    let mut stats = PlanStats::default();
+    let mut out = Vec::new();
+    for c in &volumes.casters {
+        let outside = |(n, d): &(DVec3, f64)| {
+            let s = n.dot(c.center) + d;
+            if s + c.radius >= 0.0 {
+                return false;
+            }
+            // The extrusion must also move away from the plane.
+            match (l_point, l_dir) {
+                (Some(p), _) => s + c.radius <= n.dot(p) + d,
+                (_, Some(dir)) => n.dot(dir) <= 0.0,
+                _ => false,
+            }
+        };
+        if frustum.iter().any(outside) {
+            stats.skipped += 1;
+            continue;
+        }
+        let reaches_near = match &pyramid {
+            Some(planes) => !planes.iter().any(|(n, d)| n.dot(c.center) + d < -c.radius),
+            None => true, // degenerate pyramid: be safe
+        };
+        if reaches_near {
+            stats.zfail += 1;
+            out.push(zfail(c.object));
+        } else {
+            stats.zpass += 1;
+            out.push(CasterDraw::zpass(c.object));
+        }
+    }
+    (out, stats)
+}
+// ANCHOR_END: plan
+
+/// Planes `(n, d)` with n·p + d ≥ 0 inside, from a WebGPU view-projection
+/// (depth in [0, 1]). A far plane at infinity is left out.
+pub fn frustum_planes(vp: DMat4) -> Vec<(DVec3, f64)> {
+    let r = |i: usize| vp.row(i);
+    let candidates = [
+        r(3) + r(0),
+        r(3) - r(0),
+        r(3) + r(1),
+        r(3) - r(1),
+        r(2),
+        r(3) - r(2),
+    ];
+    candidates
+        .iter()
+        .filter_map(|p: &DVec4| {
+            let len = p.truncate().length();
+            (len > 1e-9 * p.length().max(1.0)).then(|| (p.truncate() / len, p.w / len))
+        })
+        .collect()
+}
+
+/// The four world corners of the near-plane rectangle.
+pub fn near_rectangle(vp: DMat4) -> [DVec3; 4] {
+    let inv = vp.inverse();
+    [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(x, y)| inv.project_point3(DVec3::new(x, y, 0.0)))
+}
+
+// ANCHOR: occlusion_pyramid
+/// The region whose casters can shadow the near-plane rectangle: the
+/// pyramid from a point light to the rectangle, or the rectangle swept
+/// towards a directional light. Planes face inward; `None` when the region
+/// is degenerate (light on the near plane, or travelling along it).
+pub fn occlusion_pyramid(
+    rect: &[DVec3; 4],
+    point: Option<DVec3>,
+    dir: Option<DVec3>,
+) -> Option<Vec<(DVec3, f64)>> {
+    let centre = rect.iter().sum::<DVec3>() / 4.0;
+    let near_n = (rect[1] - rect[0]).cross(rect[3] - rect[0]).normalize();
+    let (towards_light, interior) = match (point, dir) {
+        (Some(l), _) => (l - centre, (l + centre) * 0.5),
+        (_, Some(d)) => (-d, centre - d),
+        _ => return None,
+    };
+    let size = (rect[2] - rect[0]).length();
+    if near_n.dot(towards_light).abs() < 1e-9 * size.max(towards_light.length()) {
+        return None;
+    }
+    let mut planes = Vec::new();
+    let mut add = |n: DVec3, p: DVec3| {
+        let n = n.normalize();
+        let (n, d) = (n, -n.dot(p));
+        // Orient towards the interior point.
+        if n.dot(interior) + d < 0.0 {
+            planes.push((-n, -d));
+        } else {
+            planes.push((n, d));
+        }
+    };
+    add(near_n, centre);
+    for i in 0..4 {
+        let (a, b) = (rect[i], rect[(i + 1) % 4]);
+        let side = match (point, dir) {
+            (Some(l), _) => (a - l).cross(b - l),
+            (_, Some(d)) => (b - a).cross(d),
+            _ => unreachable!(),
+        };
+        add(side, a);
+    }
+    if planes.iter().any(|(n, _)| !n.is_finite()) {
+        return None;
+    }
+    Some(planes)
+}
+// ANCHOR_END: occlusion_pyramid

@@ -1,0 +1,241 @@
+//! # Lesson 07: depth clamp and infinite extrusion
+//!
+//! Z-fail (lesson 06) counts volume faces *behind* the visible surface, out
+//! to the back cap, which lies at infinity (w = 0). A finite far plane clips
+//! it away, and the counts come out wrong. Two cures, compared here:
+//!
+//! - `clamp`: keep the finite projection but clamp depth instead of
+//!   clipping it (`unclipped_depth`, wgpu's `DEPTH_CLIP_CONTROL`, the
+//!   GL_DEPTH_CLAMP of the original technique). Where the adapter lacks
+//!   it, the variant fails with one line naming it.
+//! - `infinite`: move the far plane to infinity (Everitt & Kilgard), with an
+//!   ε that keeps points at infinity strictly inside depth 1
+//!   ([`infinite_far`]).
+//!
+//! `neither` shows the failure. The lesson also measures what each choice
+//! costs in depth precision ([`precision_study`]:
+//! `depth_precision.md/.csv/.png`).
+//!
+//! Run: `cargo run --release --bin lesson_07 -- --headless`
+//! Book: chapter "07 depth clamp and infinite extrusion" (`book/src/lesson_07.md`).
+
+use std::cell::Cell;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use clap::ValueEnum;
+use common::app;
+use common::gpu::Gpu;
+use common::headless::save;
+use common::lesson::Lesson;
+use common::render::SceneGpu;
+use common::scene::{Far, Scene};
+use common::targets::FrameTargets;
+use common::timing::Frame;
+use common::{anyhow, Result};
+use workbook::lesson_05::extrusion::Extrusion;
+use workbook::lesson_05::stencil::{self, Counting};
+use workbook::lesson_05::volumes::{CasterDraw, LightVolumes, ShadowVolumes};
+use workbook::lesson_06::caps::{self, zfail_counting};
+use workbook::lesson_07::infinite_far::{infinite_scene, DepthMapping};
+use workbook::lesson_07::precision_study::{self as study, DepthFormat};
+use workbook::lesson_07::precision_table;
+
+// ANCHOR: variants
+/// The three ways to treat the back cap at infinity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Variant {
+    /// A finite far plane clips the back cap.
+    #[value(name = "neither")]
+    Neither,
+    /// Depth clamped instead of clipped.
+    #[value(name = "clamp")]
+    Clamp,
+    /// The far plane at infinity.
+    #[value(name = "infinite")]
+    Infinite,
+}
+
+impl Variant {
+    /// The depth mapping of the variant's camera.
+    fn mapping(self) -> DepthMapping {
+        match self {
+            Variant::Infinite => DepthMapping::Infinite,
+            Variant::Neither | Variant::Clamp => DepthMapping::Standard,
+        }
+    }
+}
+// ANCHOR_END: variants
+
+/// One way of drawing: the scene (camera), its volumes and lit pipeline.
+struct Route {
+    volumes: ShadowVolumes,
+    lit: wgpu::RenderPipeline,
+}
+
+impl Route {
+    /// Z-fail volumes; `unclipped_depth` clamps depth instead of clipping.
+    fn new(gpu: &Gpu, scene: &SceneGpu, unclipped_depth: bool) -> Result<Route> {
+        let counting = Counting {
+            unclipped_depth,
+            ..zfail_counting()
+        };
+        Ok(Route {
+            volumes: ShadowVolumes::new(gpu, scene, &counting)?,
+            lit: stencil::stencil_lit_pipeline(gpu, scene),
+        })
+    }
+}
+
+struct DepthClamp {
+    finite: Route,
+    /// `Err` (one line) where the adapter lacks DEPTH_CLIP_CONTROL.
+    clamp: std::result::Result<Route, String>,
+    infinite_scene: SceneGpu,
+    infinite: Route,
+    scene_counters: BTreeMap<String, u64>,
+    /// Per variant, in variant order: fragments rasterised (pipeline
+    /// statistics) and depth precision.
+    counters: Vec<BTreeMap<String, u64>>,
+    study_written: Cell<bool>,
+}
+
+/// Relative gap in parts per billion; 10⁹ means "not even Δd = d resolves".
+fn ppb(g: Option<f64>) -> u64 {
+    g.map_or(1_000_000_000, |g| (g * 1e9).round() as u64)
+}
+
+impl Lesson for DepthClamp {
+    const NAME: &'static str = "lesson_07";
+    const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_07.toml");
+    type Variant = Variant;
+
+    fn check_scene(scene: &Scene) -> Result<()> {
+        if scene.camera.far == Far::Infinite {
+            anyhow::bail!("camera.far: lesson_07 compares a finite far plane with clamping and an infinite one; give a finite far");
+        }
+        Ok(())
+    }
+
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
+        let infinite_scene = infinite_scene(gpu, scene)?;
+        let clamp = Route::new(gpu, scene, true).map_err(|e| {
+            format!("variant \"clamp\": {e}; run --variant neither --variant infinite")
+        });
+        // Depth precision for this scene's near/far, each variant's mapping.
+        let Far::Finite(far) = scene.scene.camera.far else {
+            unreachable!("checked")
+        };
+        let near = scene.scene.camera.near;
+        let format = if scene.depth_format == DepthFormat::D32F.wgpu() {
+            DepthFormat::D32F
+        } else {
+            DepthFormat::D24
+        };
+        let mut counters = Vec::new();
+        for &v in Variant::value_variants() {
+            let row = study::study_one(gpu, format, v.mapping(), near, far)?;
+            let n = row.distances.len();
+            let c: BTreeMap<String, u64> = [
+                (
+                    "depth_gap_ppb_at_sqrt_near_far".to_string(),
+                    ppb(row.best(n - 2)),
+                ),
+                (
+                    "depth_gap_ppb_at_half_far".to_string(),
+                    ppb(row.best(n - 1)),
+                ),
+            ]
+            .into();
+            counters.push(c);
+        }
+        Ok(DepthClamp {
+            finite: Route::new(gpu, scene, false)?,
+            clamp,
+            infinite: Route::new(gpu, &infinite_scene, false)?,
+            infinite_scene,
+            scene_counters: stencil::scene_counters(scene),
+            counters,
+            study_written: Cell::new(false),
+        })
+    }
+
+    // ANCHOR: render
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Result<()> {
+        let (sg, route) = match variant {
+            Variant::Neither => (scene, &self.finite),
+            Variant::Clamp => (
+                scene,
+                self.clamp.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?,
+            ),
+            Variant::Infinite => (&self.infinite_scene, &self.infinite),
+        };
+        // Z-fail everywhere, both caps: the back cap is the one at infinity.
+        let draws: Vec<Vec<CasterDraw>> = (0..sg.scene.lights.len())
+            .map(|_| route.volumes.all(caps::zfail))
+            .collect();
+        frame.pass("base", |enc, ts| sg.base_pass(enc, targets, ts.render()));
+        for (light, draws) in draws.iter().enumerate() {
+            let volumes = LightVolumes {
+                light,
+                extrusion: Extrusion::Quads,
+                draws,
+            };
+            route
+                .volumes
+                .light_passes(frame, sg, targets, volumes, &route.lit);
+        }
+        let c = &mut self.counters[variant as usize];
+        if !c.contains_key("casters_drawn") {
+            c.insert(
+                "casters_drawn".into(),
+                draws.iter().map(|d| d.len() as u64).sum(),
+            );
+            if let Some(f) = route
+                .volumes
+                .count_fragments(frame.gpu, sg, Extrusion::Quads, &draws)
+            {
+                c.insert("volume_fragments".into(), f);
+            }
+        }
+        Ok(())
+    }
+    // ANCHOR_END: render
+
+    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        let mut c = self.scene_counters.clone();
+        c.extend(self.counters[variant as usize].clone());
+        c
+    }
+
+    // ANCHOR: precision_study
+    /// The depth-precision study, once per run: both formats, four
+    /// mappings, far/near from 1e2 to 1e8 (near = 1e-3).
+    fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, _: Variant, out: &Path) -> Result<()> {
+        if self.study_written.replace(true) {
+            return Ok(());
+        }
+        let rows = study::study(gpu, 1e-3, &[1e2, 1e4, 1e6, 1e8])?;
+        let write = |name: &str, text: String| {
+            std::fs::write(out.join(name), text)
+                .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", out.join(name).display()))
+        };
+        write("depth_precision.csv", precision_table::csv(&rows))?;
+        write("depth_precision.md", precision_table::markdown(&rows))?;
+        save(
+            &precision_table::grid_image(&rows, 3),
+            &out.join("depth_precision.png"),
+        )
+    }
+    // ANCHOR_END: precision_study
+}
+
+fn main() -> std::process::ExitCode {
+    app::main::<DepthClamp>()
+}

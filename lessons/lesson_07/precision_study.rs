@@ -1,0 +1,401 @@
+//! How finely a depth buffer separates two surfaces (lesson 07).
+//!
+//! Four depth mappings (standard, reversed-Z, infinite far plane with the
+//! Everitt–Kilgard ε, infinite reversed) × two formats (`Depth24PlusStencil8`,
+//! `Depth32FloatStencil8`). Two ways to measure the same thing:
+//!
+//! - **GPU**: [`measure_gpu`] draws, into one pixel per (distance, gap),
+//!   a far quad at `d·(1 + gap)` and then a near quad at `d`, both facing the
+//!   camera, with the real depth test. The pixel shows the near quad only if
+//!   the GPU's depth pipeline (f32 clip maths, rasteriser, format
+//!   quantisation) kept the two depths apart and in the right order.
+//! - **CPU model**: [`resolves_cpu`] repeats the f32 clip maths and quantises
+//!   like the format does (24-bit unorm rounding, or the f32 itself).
+//!
+//! The figure of merit is the smallest resolvable *relative* gap Δd/d at a
+//! distance d: every gap of the grid [`GAPS`] from that one up resolves.
+
+use anyhow::{Context, Result};
+use common::bindings::{self, uniform_entry};
+use common::gpu::Gpu;
+use common::readback::read_texture;
+use common::targets::render_texture;
+use wgpu::util::DeviceExt;
+
+use super::infinite_far::{DepthMapping, MAPPINGS};
+
+/// The two depth-stencil formats the study compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepthFormat {
+    D24,
+    D32F,
+}
+
+pub const FORMATS: [DepthFormat; 2] = [DepthFormat::D24, DepthFormat::D32F];
+
+impl DepthFormat {
+    pub fn name(self) -> &'static str {
+        match self {
+            DepthFormat::D24 => "Depth24PlusStencil8",
+            DepthFormat::D32F => "Depth32FloatStencil8",
+        }
+    }
+
+    pub fn wgpu(self) -> wgpu::TextureFormat {
+        match self {
+            DepthFormat::D24 => wgpu::TextureFormat::Depth24PlusStencil8,
+            DepthFormat::D32F => wgpu::TextureFormat::Depth32FloatStencil8,
+        }
+    }
+
+    // ANCHOR: quantise
+    /// The value the buffer stores for window depth `z`, as an ordered integer.
+    pub fn quantise(self, z: f32) -> u32 {
+        let z = z.clamp(0.0, 1.0);
+        match self {
+            // 24-bit unorm: round(z · (2²⁴ − 1)); one step is 6e-8 everywhere.
+            DepthFormat::D24 => (z as f64 * 16_777_215.0).round() as u32,
+            // f32: the bits order like the values (z ≥ 0); steps shrink near 0.
+            DepthFormat::D32F => z.to_bits(),
+        }
+    }
+    // ANCHOR_END: quantise
+}
+
+// ANCHOR: window_depth
+/// Window depth of view distance `d` (> 0), in f32 like the GPU: the vertex
+/// shader's clip z and w, then the divide.
+pub fn window_depth_f32(rows: [f64; 4], d: f32) -> f32 {
+    let [zz, tz, zw, tw] = rows.map(|r| r as f32);
+    let (z, w) = (zz * -d + tz, zw * -d + tw);
+    z / w
+}
+// ANCHOR_END: window_depth
+
+/// The CPU model: are surfaces at `d` and `d·(1 + gap)` stored in the right
+/// order (and not equal), inside [0, 1]?
+pub fn resolves_cpu(
+    m: DepthMapping,
+    f: DepthFormat,
+    near: f64,
+    far: f64,
+    d: f64,
+    gap: f64,
+) -> bool {
+    let rows = m.rows(near, far);
+    let (za, zb) = (
+        window_depth_f32(rows, d as f32),
+        window_depth_f32(rows, (d * (1.0 + gap)) as f32),
+    );
+    let inside = |z: f32| (0.0..=1.0).contains(&z);
+    if !inside(za) || !inside(zb) {
+        return false;
+    }
+    let (qa, qb) = (f.quantise(za), f.quantise(zb));
+    if m.reversed() {
+        qa > qb
+    } else {
+        qa < qb
+    }
+}
+
+/// The relative gaps probed: 10⁻⁸ … 1, four per decade.
+pub fn gaps() -> Vec<f64> {
+    (0..=32)
+        .map(|i| 10f64.powf(-8.0 + i as f64 / 4.0))
+        .collect()
+}
+
+/// The distances probed for a near/far pair: log-spaced from 10·near, and
+/// the two named ones last: √(near·far) and far/2.
+pub fn distances(near: f64, far: f64) -> Vec<f64> {
+    let (a, b) = ((10.0 * near).ln(), (0.5 * far).ln());
+    let mut d: Vec<f64> = (0..16)
+        .map(|i| (a + (b - a) * i as f64 / 15.0).exp())
+        .collect();
+    d.push((near * far).sqrt());
+    d.push(0.5 * far);
+    d
+}
+
+/// The smallest gap from which every larger gap of the grid resolves.
+pub fn min_resolvable_gap(row: &[bool], gaps: &[f64]) -> Option<f64> {
+    let mut best = None;
+    for i in (0..row.len()).rev() {
+        if !row[i] {
+            break;
+        }
+        best = Some(gaps[i]);
+    }
+    best
+}
+
+/// The probe quads (`shaders/lesson_07/depth_probe.wgsl`).
+const PROBE_WGSL: &str = include_str!("../../shaders/lesson_07/depth_probe.wgsl");
+
+// ANCHOR: measure_gpu
+/// The GPU measurement: `result[row][column]` is true where the near quad
+/// at `distances[row]` won against the far one at `distances[row]·(1 + gaps[column])`.
+pub fn measure_gpu(
+    gpu: &Gpu,
+    format: wgpu::TextureFormat,
+    m: DepthMapping,
+    near: f64,
+    far: f64,
+) -> Result<Vec<Vec<bool>>> {
+    let (gaps, dists) = (gaps(), distances(near, far));
+    let (w, h) = (gaps.len() as u32, dists.len() as u32);
+    let device = &gpu.device;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("depth precision probe"),
+        source: wgpu::ShaderSource::Wgsl(PROBE_WGSL.into()),
+    });
+    let rows = m.rows(near, far).map(|r| r as f32);
+    let uniform: [f32; 8] = [
+        rows[0], rows[1], rows[2], rows[3], w as f32, h as f32, 0.0, 0.0,
+    ];
+    let ubuf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe"),
+        contents: bytemuck::cast_slice(&uniform),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    // The far quads first (value 0), then the near ones (value 1).
+    let mut inst: Vec<[f32; 4]> = Vec::new();
+    for (value, far_side) in [(0.0, true), (1.0, false)] {
+        for (r, &d) in dists.iter().enumerate() {
+            for (c, &g) in gaps.iter().enumerate() {
+                let dist = if far_side { d * (1.0 + g) } else { d };
+                inst.push([c as f32, r as f32, dist as f32, value]);
+            }
+        }
+    }
+    let ibuf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe quads"),
+        contents: bytemuck::cast_slice(&inst),
+        usage: wgpu::BufferUsages::VERTEX,
+    });
+    let entry = uniform_entry(0, wgpu::ShaderStages::VERTEX, false, None);
+    let layout = bindings::layout(gpu, "probe", &[entry]);
+    let group = bindings::group(gpu, "probe", &layout, &[ubuf.as_entire_binding()]);
+    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("probe"),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("depth precision probe"),
+        layout: Some(&pl),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_probe"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: 16,
+                step_mode: wgpu::VertexStepMode::Instance,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x4],
+            })],
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleStrip,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(m.compare()),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_probe"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::TextureFormat::R8Unorm.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    let none = wgpu::TextureUsages::empty();
+    let color = render_texture(
+        gpu,
+        "probe colour",
+        w,
+        h,
+        wgpu::TextureFormat::R8Unorm,
+        none,
+    );
+    let depth = render_texture(gpu, "probe depth", w, h, format, none);
+    let (cv, dv) = (
+        color.create_view(&Default::default()),
+        depth.create_view(&Default::default()),
+    );
+    let mut enc = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("depth precision probe"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &cv,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &dv,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(m.clear_depth()),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0),
+                    store: wgpu::StoreOp::Store,
+                }),
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.set_vertex_buffer(0, ibuf.slice(..));
+        pass.draw(0..4, 0..inst.len() as u32);
+    }
+    gpu.queue.submit([enc.finish()]);
+    let px = read_texture(gpu, &color, 1).context("depth precision probe readback")?;
+    Ok(px
+        .chunks(w as usize)
+        .map(|r| r.iter().map(|&v| v > 127).collect())
+        .collect())
+}
+// ANCHOR_END: measure_gpu
+
+/// The CPU model over the same grid as [`measure_gpu`].
+pub fn model_cpu(f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Vec<Vec<bool>> {
+    let g = gaps();
+    distances(near, far)
+        .iter()
+        .map(|&d| {
+            g.iter()
+                .map(|&gap| resolves_cpu(m, f, near, far, d, gap))
+                .collect()
+        })
+        .collect()
+}
+
+/// One configuration of the study: the smallest resolvable relative gap at
+/// every probed distance, measured on the GPU (`None` where the format is
+/// missing) and modelled on the CPU. `None` inside means "no gap up to 1".
+#[derive(Clone, Debug)]
+pub struct PrecisionRow {
+    pub format: DepthFormat,
+    pub mapping: DepthMapping,
+    pub near: f64,
+    pub far: f64,
+    pub distances: Vec<f64>,
+    pub gpu: Option<Vec<Option<f64>>>,
+    pub cpu: Vec<Option<f64>>,
+    /// The GPU's resolve grid (rows = distances), for the figure.
+    pub grid: Option<Vec<Vec<bool>>>,
+}
+
+impl PrecisionRow {
+    /// The GPU figure when measured, else the CPU model's, at distance index `i`.
+    pub fn best(&self, i: usize) -> Option<f64> {
+        match &self.gpu {
+            Some(g) => g[i],
+            None => self.cpu[i],
+        }
+    }
+}
+
+/// Measures one configuration (GPU when the adapter has the format).
+pub fn study_one(
+    gpu: &Gpu,
+    f: DepthFormat,
+    m: DepthMapping,
+    near: f64,
+    far: f64,
+) -> Result<PrecisionRow> {
+    let g = gaps();
+    let has = f == DepthFormat::D24 || gpu.has(wgpu::Features::DEPTH32FLOAT_STENCIL8);
+    let grid = if has {
+        Some(measure_gpu(gpu, f.wgpu(), m, near, far)?)
+    } else {
+        None
+    };
+    let gpu_gaps = grid
+        .as_ref()
+        .map(|gr| gr.iter().map(|r| min_resolvable_gap(r, &g)).collect());
+    let cpu = model_cpu(f, m, near, far)
+        .iter()
+        .map(|r| min_resolvable_gap(r, &g))
+        .collect();
+    Ok(PrecisionRow {
+        format: f,
+        mapping: m,
+        near,
+        far,
+        distances: distances(near, far),
+        gpu: gpu_gaps,
+        cpu,
+        grid,
+    })
+}
+
+/// The whole study: both formats, four mappings, far/near = 1e2 … 1e8.
+pub fn study(gpu: &Gpu, near: f64, ratios: &[f64]) -> Result<Vec<PrecisionRow>> {
+    let mut rows = Vec::new();
+    for &ratio in ratios {
+        for f in FORMATS {
+            for m in MAPPINGS {
+                rows.push(study_one(gpu, f, m, near, near * ratio)?);
+            }
+        }
+    }
+    Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn d24_quantises_in_even_steps_and_f32_keeps_more_near_zero() {
+        assert_eq!(DepthFormat::D24.quantise(1.0), 16_777_215);
+        assert_eq!(DepthFormat::D24.quantise(0.5), 8_388_608);
+        assert_eq!(DepthFormat::D24.quantise(1e-9), 0);
+        assert!(DepthFormat::D32F.quantise(1e-9) > DepthFormat::D32F.quantise(0.0));
+    }
+
+    #[test]
+    fn reversed_float_beats_standard_far_away() {
+        let (n, f) = (1e-3, 1e5);
+        let g = gaps();
+        let at = |fmt, m| {
+            let grid = model_cpu(fmt, m, n, f);
+            min_resolvable_gap(grid.last().unwrap(), &g)
+        };
+        // far/2 = 5e4: standard depth is within a few ulps of 1; nothing resolves.
+        assert_eq!(at(DepthFormat::D24, DepthMapping::Standard), None);
+        let rev = at(DepthFormat::D32F, DepthMapping::Reversed).expect("reversed f32 resolves");
+        assert!(rev <= 1e-6, "reversed f32 at far/2 resolves {rev}");
+        let inf_rev = at(DepthFormat::D32F, DepthMapping::InfiniteReversed).expect("resolves");
+        assert!(inf_rev <= 1e-6, "{inf_rev}");
+    }
+
+    #[test]
+    fn min_gap_needs_every_larger_gap_to_resolve() {
+        let g = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(
+            min_resolvable_gap(&[false, true, true, true], &g),
+            Some(2.0)
+        );
+        assert_eq!(
+            min_resolvable_gap(&[true, false, true, true], &g),
+            Some(3.0)
+        );
+        assert_eq!(min_resolvable_gap(&[true, true, true, false], &g), None);
+    }
+}

@@ -1,0 +1,401 @@
+//! The depth-bounds test, emulated (lesson 08). wgpu has no depth-bounds
+//! test (`VK_EXT_depth_bounds_test`, `GL_EXT_depth_bounds_test`).
+//! [`BoundedVolumes`] emulates it with two full-screen triangles and the
+//! fixed-function depth test: stencil bit 7 is set exactly where
+//! zmin ≤ stored depth ≤ zmax, and the volume pass tests that bit. It
+//! counts the fragments that reach the stencil update with an occlusion
+//! query (core WebGPU, so it works on GL too).
+
+use anyhow::Result;
+use common::bindings::{self, uniform_entry};
+use common::counters::FragmentCounter;
+use common::fullscreen::Fullscreen;
+use common::gpu::Gpu;
+use common::readback::QueryReadback;
+use common::render::{pipeline_layout_for, SceneGpu};
+use common::targets::FrameTargets;
+
+use super::range_sphere::LightBounds;
+use crate::lesson_05::extrusion::volume_shader_module;
+use crate::lesson_05::extrusion::QUAD_VERTEX_LAYOUT;
+use crate::lesson_05::stencil::lit_stencil;
+use crate::lesson_05::volumes::ShadowVolumes;
+use crate::lesson_06::caps::zfail_stencil;
+
+/// Bit 7 of the stencil: "this pixel's stored depth is inside the bounds".
+pub const BOUNDS_BIT: u32 = 0x80;
+/// Bits 0–6: the shadow-volume count (wraps modulo 128).
+pub const COUNT_BITS: u32 = 0x7f;
+
+const SLOT: u64 = 256;
+
+/// One caster's pre-built volume: lesson 05's quads buffers (shared, not
+/// copied), drawn whole (sides and both caps) with this module's pipelines.
+struct Caster {
+    object: usize,
+    mirrored: bool,
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    count: u32,
+}
+
+/// Z-fail shadow volumes whose stencil updates can be limited to one
+/// light's depth bounds (emulated) and scissor rectangle.
+pub struct BoundedVolumes {
+    casters: Vec<Caster>,
+    /// `[bounded][mirrored]`: the z-fail pipelines.
+    volume: [[wgpu::RenderPipeline; 2]; 2],
+    /// `[bounded]`: depth test off, no writes: counts what reaches the stencil.
+    count: [wgpu::RenderPipeline; 2],
+    /// No depth-stencil, an R8 target: for the pipeline-statistics counter.
+    rasterised: wgpu::RenderPipeline,
+    mark_max: wgpu::RenderPipeline,
+    mark_min: wgpu::RenderPipeline,
+    bounds_buf: wgpu::Buffer,
+    bounds_group: wgpu::BindGroup,
+    queries: wgpu::QuerySet,
+    readback: QueryReadback,
+    lights: u32,
+}
+
+/// Which of the two savings a volume pass uses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Limits {
+    pub scissor: bool,
+    pub depth_bounds: bool,
+}
+
+/// One light's bounded volume pass: the light, its range sphere's bounds
+/// (`None` for a light without a range, `Some(None)` when the sphere is off
+/// screen), and the savings to use.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundedLight {
+    pub light: usize,
+    pub bounds: Option<Option<LightBounds>>,
+    pub limits: Limits,
+}
+
+// ANCHOR: bounds_stencil
+/// The volume pass's stencil with the emulated depth-bounds test: a
+/// fragment updates the count only where bit 7 says "stored depth in
+/// bounds" (compare Equal on bit 7 alone); the count lives in bits 0–6.
+pub fn bounded_volume_stencil(bounded: bool) -> wgpu::StencilState {
+    let mut s = zfail_stencil();
+    for face in [&mut s.front, &mut s.back] {
+        face.compare = if bounded {
+            wgpu::CompareFunction::Equal
+        } else {
+            wgpu::CompareFunction::Always
+        };
+    }
+    s.read_mask = BOUNDS_BIT;
+    s.write_mask = COUNT_BITS;
+    s
+}
+
+/// Stencil bit 7 := [stored depth ≤ zmax] (a quad at zmax, test GreaterEqual),
+/// then bit 7 := 0 where stored depth < zmin (a quad at zmin, test Greater).
+fn marker_stencil(
+    pass_op: wgpu::StencilOperation,
+    depth_fail_op: wgpu::StencilOperation,
+) -> wgpu::StencilState {
+    let face = wgpu::StencilFaceState {
+        compare: wgpu::CompareFunction::Always,
+        fail_op: wgpu::StencilOperation::Keep,
+        depth_fail_op,
+        pass_op,
+    };
+    wgpu::StencilState {
+        front: face,
+        back: face,
+        read_mask: 0xff,
+        write_mask: BOUNDS_BIT,
+    }
+}
+
+/// The lit pass: the light where the count (bits 0–6) is 0.
+pub fn bounded_lit_stencil() -> wgpu::StencilState {
+    let mut s = lit_stencil();
+    s.read_mask = COUNT_BITS;
+    s
+}
+// ANCHOR_END: bounds_stencil
+
+impl BoundedVolumes {
+    pub fn new(gpu: &Gpu, scene: &SceneGpu, volumes: &ShadowVolumes) -> Result<BoundedVolumes> {
+        let device = &gpu.device;
+        // The same pre-built quads as lessons 05-07 draw: shared buffers.
+        let casters = volumes
+            .casters
+            .iter()
+            .map(|c| {
+                let (vertices, indices, count) = c.quad_buffers();
+                Caster {
+                    object: c.object,
+                    mirrored: c.mirrored,
+                    vertices,
+                    indices,
+                    count,
+                }
+            })
+            .collect();
+        let module = volume_shader_module(gpu, "bounded volumes", "");
+        let entry = uniform_entry(0, wgpu::ShaderStages::VERTEX, true, Some(16));
+        let bounds_layout = bindings::layout(gpu, "depth bounds", &[entry]);
+        let lights = scene.scene.lights.len().max(1) as u32;
+        let bounds_buf = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("depth bounds"),
+            size: SLOT * lights as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bounds_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("depth bounds"),
+            layout: &bounds_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &bounds_buf,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(16),
+                }),
+            }],
+        });
+        let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
+        let quads = [Some(QUAD_VERTEX_LAYOUT)];
+        let targets = [Some(wgpu::TextureFormat::R8Unorm.into())];
+        let ds = |compare, stencil| wgpu::DepthStencilState {
+            format: scene.depth_format,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(compare),
+            stencil,
+            bias: Default::default(),
+        };
+        // The volumes: `ds` None is the rasterised-fragment counter's copy.
+        let volume = |label: &str, ds: Option<wgpu::DepthStencilState>, mirrored: bool| {
+            let fragment = ds.is_none().then(|| wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_volume_count"),
+                compilation_options: Default::default(),
+                targets: &targets,
+            });
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_volume_quads"),
+                    compilation_options: Default::default(),
+                    buffers: &quads,
+                },
+                primitive: wgpu::PrimitiveState {
+                    front_face: if mirrored {
+                        wgpu::FrontFace::Cw
+                    } else {
+                        wgpu::FrontFace::Ccw
+                    },
+                    ..Default::default()
+                },
+                depth_stencil: ds,
+                multisample: Default::default(),
+                fragment,
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        use wgpu::CompareFunction::{Always, Greater, GreaterEqual, Less};
+        use wgpu::StencilOperation::{Keep, Replace, Zero};
+        let bounded = |b: bool, m: bool| {
+            volume(
+                "bounded volume",
+                Some(ds(Less, bounded_volume_stencil(b))),
+                m,
+            )
+        };
+        let counting = |b: bool| {
+            let mut st = bounded_volume_stencil(b);
+            st.write_mask = 0;
+            volume("bounded volume count", Some(ds(Always, st)), false)
+        };
+        let marker = |vs_entry, compare, stencil| {
+            Fullscreen {
+                label: vs_entry,
+                wgsl: include_str!("../../shaders/lesson_08/bounds.wgsl"),
+                vs_entry,
+                fragment: None,
+                groups: &[&bounds_layout],
+                depth_stencil: Some(ds(compare, stencil)),
+            }
+            .pipeline(gpu)
+        };
+        Ok(BoundedVolumes {
+            casters,
+            volume: [
+                [bounded(false, false), bounded(false, true)],
+                [bounded(true, false), bounded(true, true)],
+            ],
+            count: [counting(false), counting(true)],
+            rasterised: volume("volume fragments", None, false),
+            mark_max: marker("vs_bound_max", GreaterEqual, marker_stencil(Replace, Zero)),
+            mark_min: marker("vs_bound_min", Greater, marker_stencil(Zero, Keep)),
+            bounds_buf,
+            bounds_group,
+            queries: device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("bounded fragments"),
+                ty: wgpu::QueryType::Occlusion,
+                count: lights,
+            }),
+            readback: QueryReadback::new(gpu, lights, "occlusion query"),
+            lights,
+        })
+    }
+
+    /// Uploads light `k`'s depth bounds (before the frame is submitted).
+    pub fn write_bounds(&self, gpu: &Gpu, k: usize, b: &LightBounds) {
+        let v = [b.depth.0, b.depth.1, 0.0, 0.0];
+        gpu.queue
+            .write_buffer(&self.bounds_buf, SLOT * k as u64, bytemuck::cast_slice(&v));
+    }
+
+    fn draw_volumes(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        scene: &SceneGpu,
+        light: usize,
+        pipes: [&wgpu::RenderPipeline; 2],
+    ) -> u32 {
+        scene.bind_frame(pass, light);
+        for c in &self.casters {
+            pass.set_pipeline(pipes[c.mirrored as usize]);
+            scene.bind_object(pass, c.object);
+            pass.set_vertex_buffer(0, c.vertices.slice(..));
+            pass.set_index_buffer(c.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..c.count, 0, 0..1);
+        }
+        self.casters.len() as u32
+    }
+
+    /// Scissor and the bit-7 marker for one light, inside an open pass.
+    /// Returns whether the depth-bounds test applies.
+    fn limit(&self, pass: &mut wgpu::RenderPass<'_>, b: &BoundedLight) -> bool {
+        let Some(bounds) = b.bounds.flatten() else {
+            return false;
+        };
+        if b.limits.scissor {
+            let s = bounds.scissor;
+            pass.set_scissor_rect(s.x, s.y, s.width, s.height);
+        }
+        if b.limits.depth_bounds {
+            let offset = (SLOT * b.light as u64) as u32;
+            pass.set_bind_group(0, &self.bounds_group, &[offset]);
+            pass.set_stencil_reference(BOUNDS_BIT);
+            pass.set_pipeline(&self.mark_max);
+            pass.draw(0..3, 0..1);
+            pass.set_pipeline(&self.mark_min);
+            pass.draw(0..3, 0..1);
+        }
+        b.limits.depth_bounds
+    }
+
+    // ANCHOR: bounded_volume_pass
+    /// One light's z-fail volume pass, limited as `b.limits` says. Returns
+    /// the number of casters drawn: 0 when the light's range sphere is off
+    /// screen, since its volumes cannot change a lit pixel.
+    pub fn volume_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        b: BoundedLight,
+        ts: Option<wgpu::RenderPassTimestampWrites>,
+    ) -> u32 {
+        let mut pass = targets.stencil_pass(encoder, "bounded volume pass", ts, None);
+        if b.limits != Limits::default() && b.bounds == Some(None) {
+            return 0; // the range sphere is behind the camera or off screen
+        }
+        let bounded = self.limit(&mut pass, &b);
+        pass.set_stencil_reference(BOUNDS_BIT);
+        let pipes = &self.volume[bounded as usize];
+        self.draw_volumes(&mut pass, scene, b.light, [&pipes[0], &pipes[1]])
+    }
+    // ANCHOR_END: bounded_volume_pass
+
+    /// Counts, for every light, the volume fragments that reach the stencil
+    /// update (after scissor and bounds), with one occlusion query per light
+    /// (depth test off). Uses the frame's depth: call it after a frame.
+    /// Its own submit; it overwrites the stencil. `None` on GL: wgpu's GL
+    /// backend implements occlusion queries as ANY_SAMPLES_PASSED (0 or 1).
+    pub fn count_stencil_fragments(
+        &self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        lights: &[BoundedLight],
+    ) -> Result<Option<Vec<u64>>> {
+        if gpu.info.backend == wgpu::Backend::Gl {
+            return Ok(None);
+        }
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        let lights = &lights[..lights.len().min(self.lights as usize)];
+        for (k, b) in lights.iter().enumerate() {
+            let mut pass = targets.stencil_pass(
+                &mut enc,
+                "count bounded fragments",
+                None,
+                Some(&self.queries),
+            );
+            if b.limits != Limits::default() && b.bounds == Some(None) {
+                // Nothing drawn: an empty query reads 0.
+                pass.begin_occlusion_query(k as u32);
+                pass.end_occlusion_query();
+                continue;
+            }
+            // The marker triangles first, outside the query: only volumes count.
+            let bounded = self.limit(&mut pass, b);
+            pass.set_stencil_reference(BOUNDS_BIT);
+            pass.begin_occlusion_query(k as u32);
+            self.draw_volumes(
+                &mut pass,
+                scene,
+                b.light,
+                [&self.count[bounded as usize]; 2],
+            );
+            pass.end_occlusion_query();
+        }
+        let n = lights.len() as u32;
+        self.readback.resolve(&mut enc, &self.queries, n);
+        gpu.queue.submit([enc.finish()]);
+        Ok(Some(self.readback.read(gpu, n)?))
+    }
+
+    /// Fragments the volumes rasterise (after the scissor, before any depth
+    /// or stencil test), from pipeline statistics; `None` without them (GL).
+    pub fn count_rasterised(
+        &self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        counter: Option<&FragmentCounter>,
+        lights: &[BoundedLight],
+    ) -> Option<u64> {
+        let counter = counter?;
+        counter
+            .count(gpu, |pass| {
+                for b in lights {
+                    if b.limits.scissor && b.bounds == Some(None) {
+                        continue;
+                    }
+                    match b.bounds.flatten() {
+                        Some(lb) if b.limits.scissor => pass.set_scissor_rect(
+                            lb.scissor.x,
+                            lb.scissor.y,
+                            lb.scissor.width,
+                            lb.scissor.height,
+                        ),
+                        _ => pass.set_scissor_rect(0, 0, scene.width, scene.height),
+                    }
+                    self.draw_volumes(pass, scene, b.light, [&self.rasterised; 2]);
+                }
+            })
+            .ok()
+    }
+}

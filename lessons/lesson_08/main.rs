@@ -1,0 +1,240 @@
+//! # Lesson 08: depth bounds and scissor
+//!
+//! A point light of range r lights nothing outside its range sphere, yet
+//! its shadow volumes run to infinity and cover much of the screen. Two
+//! limits, both computed from the sphere ([`range_sphere`]), cut the volume
+//! pass's work:
+//!
+//! - a scissor rectangle: the sphere's image on screen (`set_scissor_rect`);
+//! - depth bounds: the sphere's window-depth interval [zmin, zmax]. Where the
+//!   depth *stored* at a pixel is outside it, the surface there is out of
+//!   range and its count cannot matter. wgpu has no depth-bounds test, so
+//!   it is emulated with stencil bit 7 ([`bounds_test`]).
+//!
+//! Variants: `unbounded`, `scissor`, `depth_bounds`, `bounds_scissor`. The
+//! pixels are the same in all four; the counters say how many volume
+//! fragments each one rasterises and lets through to the stencil.
+//!
+//! Run: `cargo run --release --bin lesson_08 -- --headless`
+//! Book: chapter "08 depth bounds" (`book/src/lesson_08.md`).
+
+use std::collections::BTreeMap;
+
+use clap::ValueEnum;
+use common::app;
+use common::gpu::Gpu;
+use common::lesson::Lesson;
+use common::lit::LitPass;
+use common::render::SceneGpu;
+use common::scene::{Far, LightKind, Scene};
+use common::targets::FrameTargets;
+use common::timing::Frame;
+use common::Result;
+use workbook::lesson_05::extrusion::volume_shader_module;
+use workbook::lesson_05::stencil;
+use workbook::lesson_05::volumes::ShadowVolumes;
+use workbook::lesson_06::caps::zfail_counting;
+use workbook::lesson_08::bounds_test::{bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits};
+use workbook::lesson_08::range_sphere::{all_bounds, LightBounds};
+
+// ANCHOR: variants
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Variant {
+    #[value(name = "unbounded")]
+    Unbounded,
+    #[value(name = "scissor")]
+    Scissor,
+    #[value(name = "depth_bounds")]
+    DepthBounds,
+    #[value(name = "bounds_scissor")]
+    BoundsScissor,
+}
+
+impl Variant {
+    /// Which of the two limits the variant's volume pass uses.
+    fn limits(self) -> Limits {
+        Limits {
+            scissor: matches!(self, Variant::Scissor | Variant::BoundsScissor),
+            depth_bounds: matches!(self, Variant::DepthBounds | Variant::BoundsScissor),
+        }
+    }
+}
+// ANCHOR_END: variants
+
+/// Each light's bounded volume pass for a variant.
+fn bounded_lights(bounds: &[Option<Option<LightBounds>>], limits: Limits) -> Vec<BoundedLight> {
+    bounds
+        .iter()
+        .enumerate()
+        .map(|(light, &bounds)| BoundedLight {
+            light,
+            bounds,
+            limits,
+        })
+        .collect()
+}
+
+struct DepthBounds {
+    bounded: BoundedVolumes,
+    volumes: ShadowVolumes,
+    lit_pipeline: wgpu::RenderPipeline,
+    bounds: Vec<Option<Option<LightBounds>>>,
+    scene_counters: BTreeMap<String, u64>,
+    /// Per variant, in variant order: the counters, and frames rendered.
+    counters: Vec<BTreeMap<String, u64>>,
+    frames: Vec<u32>,
+}
+
+impl Lesson for DepthBounds {
+    const NAME: &'static str = "lesson_08";
+    const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_08.toml");
+    type Variant = Variant;
+
+    fn check_scene(scene: &Scene) -> Result<()> {
+        if scene.camera.far != Far::Infinite {
+            anyhow::bail!("camera.far: lesson_08 extrudes z-fail volumes to infinity; use far = \"infinite\" (lesson 07)");
+        }
+        Ok(())
+    }
+
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
+        let volumes = ShadowVolumes::new(gpu, scene, &zfail_counting())?;
+        let module = volume_shader_module(
+            gpu,
+            "lesson_08",
+            include_str!("../../shaders/lesson_08/range.wgsl"),
+        );
+        Ok(DepthBounds {
+            bounded: BoundedVolumes::new(gpu, scene, &volumes)?,
+            lit_pipeline: scene.lit_pipeline(
+                gpu,
+                &module,
+                "fs_lit_range",
+                &[],
+                bounded_lit_stencil(),
+            ),
+            bounds: all_bounds(scene),
+            scene_counters: stencil::scene_counters(scene),
+            volumes,
+            counters: vec![BTreeMap::new(); Variant::value_variants().len()],
+            frames: vec![0; Variant::value_variants().len()],
+        })
+    }
+
+    // ANCHOR: render
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Result<()> {
+        // Per frame: the sphere → bounds and scissor of every light.
+        let bounds = frame.cpu("bounds", || all_bounds(scene));
+        for (k, b) in bounds.iter().enumerate() {
+            if let Some(Some(b)) = b {
+                self.bounded.write_bounds(frame.gpu, k, b);
+            }
+        }
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        for b in bounded_lights(&bounds, variant.limits()) {
+            frame.pass("volume", |enc, ts| {
+                self.bounded
+                    .volume_pass(enc, scene, targets, b, ts.render())
+            });
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(
+                    enc,
+                    targets,
+                    LitPass::new(b.light, &self.lit_pipeline, &[]),
+                    ts.render(),
+                )
+            });
+        }
+        self.bounds = bounds;
+        // The second call finds the first frame's depth in place: count then.
+        let n = &mut self.frames[variant as usize];
+        *n += 1;
+        if *n == 2 {
+            self.count(frame.gpu, scene, targets, variant)?;
+        }
+        Ok(())
+    }
+    // ANCHOR_END: render
+
+    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        let mut c = self.scene_counters.clone();
+        c.extend(self.counters[variant as usize].clone());
+        c
+    }
+}
+
+impl DepthBounds {
+    // ANCHOR: count
+    /// The counters: fragments that reach the stencil update (occlusion
+    /// queries; not on GL, where they only say "any"), fragments rasterised
+    /// (pipeline statistics, where the adapter has them), the scissor area.
+    fn count(
+        &mut self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Result<()> {
+        let lim = variant.limits();
+        let lights = bounded_lights(&self.bounds, lim);
+        let mut c = BTreeMap::new();
+        if let Some(s) = self
+            .bounded
+            .count_stencil_fragments(gpu, scene, targets, &lights)?
+        {
+            c.insert("stencil_fragments".to_string(), s.iter().sum());
+        }
+        let raster = self
+            .bounded
+            .count_rasterised(gpu, scene, self.volumes.counter(), &lights);
+        if let Some(r) = raster {
+            c.insert("volume_fragments".to_string(), r);
+        }
+        let full = scene.width as u64 * scene.height as u64;
+        let area = |b: &Option<Option<LightBounds>>| match b {
+            Some(Some(b)) if lim.scissor => b.scissor.area(),
+            Some(None) if lim.scissor => 0,
+            _ => full,
+        };
+        c.insert(
+            "scissor_pixels".to_string(),
+            self.bounds.iter().map(area).sum(),
+        );
+        // Which extreme cases this camera meets (range sphere in view space).
+        let (view, near) = (scene.camera.view.as_dmat4(), scene.scene.camera.near);
+        let (mut inside, mut crossing) = (0, 0);
+        for l in &scene.scene.lights {
+            if let LightKind::Point { position, range }
+            | LightKind::Spot {
+                position, range, ..
+            } = l.kind
+            {
+                let v = view.transform_point3(position - scene.scene.origin());
+                inside += (v.length() <= range) as u64;
+                crossing += (v.length() > range && v.z + range > -near) as u64;
+            }
+        }
+        c.insert("lights_around_camera".to_string(), inside);
+        c.insert("lights_crossing_near_plane".to_string(), crossing);
+        c.insert(
+            "lights_culled".to_string(),
+            self.bounds
+                .iter()
+                .filter(|b| lim != Limits::default() && **b == Some(None))
+                .count() as u64,
+        );
+        self.counters[variant as usize] = c;
+        Ok(())
+    }
+    // ANCHOR_END: count
+}
+
+fn main() -> std::process::ExitCode {
+    app::main::<DepthBounds>()
+}

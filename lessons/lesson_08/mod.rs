@@ -1,0 +1,5 @@
+//! Lesson 08, depth bounds and scissor: the light's range sphere on screen
+//! and in depth, and the depth-bounds test emulated with a stencil bit.
+
+pub mod bounds_test;
+pub mod range_sphere;

@@ -1,0 +1,126 @@
+// lesson_04/cube_map.wgsl: cube-map shadows for point lights. Appended to
+// common.wgsl (bindings, vs_scene, vs_light_depth, lit_output).
+
+@group(2) @binding(0) var cube_map: texture_depth_cube;
+@group(2) @binding(1) var cube_compare: sampler_comparison;
+
+// Rust: lesson_04::cube_map::CubeParams.
+struct CubeParams {
+    near: f32,
+    // 2 / face resolution: a texel's width 1 m from the light.
+    texel_at_1m: f32,
+    // 0 linear distance, 1 hardware depth, 2 hardware depth compared with
+    // the Euclidean distance (the naive mistake).
+    storage: u32,
+    // 1: clamp the receiver to the light's range.
+    clamp_range: u32,
+    // A constant bias (world units), a bias in texels, a slope bias in texels
+    // (times tan θ), and the 3D PCF radius in texels (0: one tap).
+    bias_world: f32,
+    bias_texels: f32,
+    slope: f32,
+    pcf: f32,
+};
+@group(2) @binding(2) var<uniform> params: CubeParams;
+const STORAGE_LINEAR: u32 = 0u;
+const STORAGE_DEPTH_EUCLID: u32 = 2u;
+
+// ANCHOR: linear_distance
+// The linear-distance shadow pass: distance / range, written as the
+// fragment's depth into the Depth32Float cube (R32Float is no render
+// target on GL; a depth texture is, on every backend).
+struct LinearOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+};
+
+@vertex
+fn vs_cube_linear(v: VertexIn) -> LinearOut {
+    var out: LinearOut;
+    let world = object.model * vec4<f32>(v.position, 1.0);
+    out.world = world.xyz;
+    out.clip = light.view_proj * world;
+    return out;
+}
+
+@fragment
+fn fs_cube_linear(in: LinearOut) -> @builtin(frag_depth) f32 {
+    return distance(in.world, light.position_or_dir.xyz) / light.color_range.w;
+}
+// ANCHOR_END: linear_distance
+
+// ANCHOR: receiver_depth
+// What the cube would store for a point at distance `d` along `v` (v: from
+// the light to the receiver), in the storage's units.
+fn receiver_depth(v: vec3<f32>, d: f32) -> f32 {
+    let far = light.color_range.w;
+    let near = params.near;
+    var z = d / far;
+    if params.storage != STORAGE_LINEAR {
+        // The face that holds v looks along v's major axis; its depth is a
+        // function of the distance along that axis, not of |v|.
+        let a = abs(v);
+        var m = max(a.x, max(a.y, a.z)) * d / length(v);
+        if params.storage == STORAGE_DEPTH_EUCLID {
+            m = d; // naive: right only where v is the face's axis
+        }
+        z = far * (m - near) / ((far - near) * m);
+    }
+    if params.clamp_range == 1u {
+        // Past the range the cube holds 1.0 (cleared, or clamped): compare
+        // at 1.0, and "nothing in range" reads lit.
+        z = min(z, 1.0);
+    }
+    return z;
+}
+// ANCHOR_END: receiver_depth
+
+// 3D PCF: the 20 directions to a cube's corners and edge midpoints.
+fn pcf_offset(i: i32) -> vec3<f32> {
+    var o = array<vec3<f32>, 20>(
+        vec3<f32>(1.0, 1.0, 1.0), vec3<f32>(1.0, -1.0, 1.0), vec3<f32>(-1.0, -1.0, 1.0), vec3<f32>(-1.0, 1.0, 1.0),
+        vec3<f32>(1.0, 1.0, -1.0), vec3<f32>(1.0, -1.0, -1.0), vec3<f32>(-1.0, -1.0, -1.0), vec3<f32>(-1.0, 1.0, -1.0),
+        vec3<f32>(1.0, 1.0, 0.0), vec3<f32>(1.0, -1.0, 0.0), vec3<f32>(-1.0, -1.0, 0.0), vec3<f32>(-1.0, 1.0, 0.0),
+        vec3<f32>(1.0, 0.0, 1.0), vec3<f32>(-1.0, 0.0, 1.0), vec3<f32>(1.0, 0.0, -1.0), vec3<f32>(-1.0, 0.0, -1.0),
+        vec3<f32>(0.0, 1.0, 1.0), vec3<f32>(0.0, -1.0, 1.0), vec3<f32>(0.0, -1.0, -1.0), vec3<f32>(0.0, 1.0, -1.0),
+    );
+    return o[i];
+}
+
+// ANCHOR: visibility
+// 1 = lit, 0 = in shadow. `n`: the geometric normal, facing the camera.
+fn visibility(world: vec3<f32>, n: vec3<f32>) -> f32 {
+    let v = world - light.position_or_dir.xyz;
+    let d = length(v);
+    let cos_t = dot(n, -v / d);
+    if cos_t <= 0.0 {
+        return 0.0; // facing away: the surface shadows itself
+    }
+    // A texel is 2 / N wide 1 m from the light, and d times that at d:
+    // the bias grows with distance, like the texels.
+    let texel = params.texel_at_1m * d;
+    let tan_t = min(sqrt(max(1.0 - cos_t * cos_t, 0.0)) / cos_t, 10.0);
+    let bias = params.bias_world + texel * (params.bias_texels + params.slope * tan_t);
+    let z = receiver_depth(v, d - bias);
+    if params.pcf == 0.0 {
+        // The direction picks the face and the texel: no face logic here.
+        return textureSampleCompareLevel(cube_map, cube_compare, v, z);
+    }
+    var lit = 0.0;
+    for (var i = 0; i < 20; i++) {
+        let dir = v + pcf_offset(i) * (params.pcf * texel);
+        lit += textureSampleCompareLevel(cube_map, cube_compare, dir, z);
+    }
+    return lit / 20.0;
+}
+// ANCHOR_END: visibility
+
+@fragment
+fn fs_lit(in: VertexOut) -> LitOut {
+    // The flat (geometric) normal, like the reference's: N·L ≤ 0 is shadow.
+    var n = normalize(cross(dpdx(in.world), dpdy(in.world)));
+    if dot(n, camera.eye.xyz - in.world) < 0.0 {
+        n = -n;
+    }
+    return lit_output(in, visibility(in.world, n));
+}

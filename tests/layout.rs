@@ -1,0 +1,454 @@
+//! The layout rules of the workbook, checked on the source tree:
+//!
+//! - a lesson uses an earlier lesson's technique, never a later one's
+//!   (`workbook::lesson_MM`, `crate::lesson_MM` or `shaders/lesson_MM/`
+//!   with MM > NN, in any file of `lessons/lesson_NN/`);
+//! - there are no import cycles between the modules of `common/` nor
+//!   between the modules of the lessons;
+//! - no source file in `lessons/` or `common/` is over 500 lines;
+//! - `common/src/lib.rs` lists every module it has, in its docs too;
+//! - no module of `common/` serves a single lesson (used by exactly one
+//!   lesson folder and by no other module of `common/`).
+//!
+//! Pure std: the checks read the files as text. Each checker is first run
+//! on in-memory text, so a broken checker cannot pass by finding nothing.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+fn repo_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Every `.rs` file below `dir`, sorted.
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+fn read(p: &Path) -> String {
+    fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// The lesson numbers that `text` refers to, with the line of each:
+/// `workbook::lesson_MM`, `crate::lesson_MM`, `shaders/lesson_MM/`.
+fn lesson_references(text: &str) -> Vec<(usize, u32)> {
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let code = line.split("//").next().unwrap_or("");
+        for prefix in ["workbook::lesson_", "crate::lesson_", "shaders/lesson_"] {
+            let mut rest = code;
+            while let Some(at) = rest.find(prefix) {
+                let digits: String = rest[at + prefix.len()..]
+                    .chars()
+                    .take_while(char::is_ascii_digit)
+                    .collect();
+                if let Ok(n) = digits.parse() {
+                    out.push((i + 1, n));
+                }
+                rest = &rest[at + prefix.len()..];
+            }
+        }
+    }
+    out
+}
+
+/// `lessons/lesson_NN/...` → NN.
+fn lesson_of(path: &Path, root: &Path) -> Option<u32> {
+    let rel = path.strip_prefix(root).ok()?;
+    let first = rel.components().next()?.as_os_str().to_str()?;
+    first.strip_prefix("lesson_")?.parse().ok()
+}
+
+/// Errors for every reference from lesson NN to a later lesson.
+fn later_lesson_imports(files: &[(PathBuf, u32, String)]) -> Vec<String> {
+    let mut errors = Vec::new();
+    for (path, n, text) in files {
+        for (line, m) in lesson_references(text) {
+            if m > *n {
+                errors.push(format!(
+                    "{}:{line}: lesson {n:02} uses lesson {m:02}, a later lesson",
+                    path.display()
+                ));
+            }
+        }
+    }
+    errors
+}
+
+#[test]
+fn later_lesson_checker_works() {
+    let files = vec![
+        (
+            PathBuf::from("lessons/lesson_05/a.rs"),
+            5,
+            "use crate::lesson_06::caps;\nuse crate::lesson_01::x; // lesson_09\n".to_string(),
+        ),
+        (
+            PathBuf::from("lessons/lesson_06/main.rs"),
+            6,
+            "use workbook::lesson_05::volumes;\ninclude_str!(\"../../shaders/lesson_07/a.wgsl\")\n"
+                .to_string(),
+        ),
+    ];
+    let errors = later_lesson_imports(&files);
+    assert_eq!(errors.len(), 2, "{errors:#?}");
+    assert!(errors[0].contains("a.rs:1") && errors[0].contains("lesson 06"));
+    assert!(errors[1].contains("main.rs:2") && errors[1].contains("lesson 07"));
+}
+
+#[test]
+fn no_lesson_uses_a_later_lesson() {
+    let root = repo_root().join("lessons");
+    let files: Vec<(PathBuf, u32, String)> = rust_files(&root)
+        .into_iter()
+        .filter_map(|p| {
+            let n = lesson_of(&p, &root)?;
+            let text = read(&p);
+            Some((p, n, text))
+        })
+        .collect();
+    assert!(
+        files.len() >= 16,
+        "expected the lesson folders' files, found {}",
+        files.len()
+    );
+    let errors = later_lesson_imports(&files);
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
+}
+
+// ---------------------------------------------------------------------------
+// Import cycles
+// ---------------------------------------------------------------------------
+
+/// The module name of a file: `common/src/render.rs` → `render`,
+/// `lessons/lesson_05/stencil.rs` → `lesson_05::stencil`.
+fn module_name(path: &Path, src: &Path, lessons: bool) -> Option<String> {
+    let rel = path.strip_prefix(src).ok()?;
+    let parts: Vec<String> = rel
+        .iter()
+        .map(|c| c.to_string_lossy().trim_end_matches(".rs").to_string())
+        .collect();
+    match (lessons, parts.as_slice()) {
+        (false, [m]) if m != "lib" => Some(m.clone()),
+        (true, [l, m]) if l.starts_with("lesson_") && m != "mod" && m != "main" => {
+            Some(format!("{l}::{m}"))
+        }
+        _ => None,
+    }
+}
+
+/// The modules `text` (the file of module `me`) uses, among `known`:
+/// `crate::x`, and in a lesson also `super::x` and `crate::lesson_NN::x`.
+fn uses(me: &str, text: &str, known: &BTreeSet<String>) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    let lesson = me.split("::").next().unwrap_or("");
+    let code: String = text
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n");
+    for (prefix, qualify) in [("crate::", false), ("super::", true)] {
+        let mut rest = code.as_str();
+        while let Some(at) = rest.find(prefix) {
+            rest = &rest[at + prefix.len()..];
+            let path: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
+                .collect();
+            let segs: Vec<&str> = path.split("::").filter(|s| !s.is_empty()).collect();
+            let candidates = match (qualify, segs.as_slice()) {
+                (true, [m, ..]) => vec![format!("{lesson}::{m}")],
+                (false, [l, m, ..]) => vec![format!("{l}::{m}"), l.to_string()],
+                (false, [m]) => vec![m.to_string()],
+                _ => vec![],
+            };
+            if let Some(c) = candidates.into_iter().find(|c| known.contains(c)) {
+                if c != me {
+                    out.insert(c);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A cycle in the graph, as module names, if there is one.
+fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    fn visit(
+        n: &str,
+        graph: &BTreeMap<String, BTreeSet<String>>,
+        state: &mut BTreeMap<String, u8>,
+        stack: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        state.insert(n.to_string(), 1);
+        stack.push(n.to_string());
+        for m in graph.get(n).into_iter().flatten() {
+            match state.get(m.as_str()).copied().unwrap_or(0) {
+                1 => {
+                    let start = stack.iter().position(|s| s == m).unwrap_or(0);
+                    let mut cycle = stack[start..].to_vec();
+                    cycle.push(m.clone());
+                    return Some(cycle);
+                }
+                0 => {
+                    if let Some(c) = visit(m, graph, state, stack) {
+                        return Some(c);
+                    }
+                }
+                _ => {}
+            }
+        }
+        stack.pop();
+        state.insert(n.to_string(), 2);
+        None
+    }
+    let mut state = BTreeMap::new();
+    for n in graph.keys() {
+        if state.get(n.as_str()).copied().unwrap_or(0) == 0 {
+            let mut stack = Vec::new();
+            if let Some(c) = visit(n, graph, &mut state, &mut stack) {
+                return Some(c);
+            }
+        }
+    }
+    None
+}
+
+fn import_graph(src: &Path, lessons: bool) -> BTreeMap<String, BTreeSet<String>> {
+    let files: Vec<(String, String)> = rust_files(src)
+        .into_iter()
+        .filter_map(|p| Some((module_name(&p, src, lessons)?, read(&p))))
+        .collect();
+    let known: BTreeSet<String> = files.iter().map(|(m, _)| m.clone()).collect();
+    files
+        .iter()
+        .map(|(m, text)| (m.clone(), uses(m, text, &known)))
+        .collect()
+}
+
+#[test]
+fn cycle_checker_works() {
+    let known: BTreeSet<String> = ["mesh", "adjacency", "render"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    let mut graph = BTreeMap::new();
+    graph.insert(
+        "mesh".to_string(),
+        uses("mesh", "use crate::adjacency::Adjacency;", &known),
+    );
+    graph.insert(
+        "adjacency".to_string(),
+        uses("adjacency", "use crate::mesh::{Mesh, face_normal};", &known),
+    );
+    graph.insert(
+        "render".to_string(),
+        uses(
+            "render",
+            "// crate::mesh in a comment\nuse crate::adjacency;",
+            &known,
+        ),
+    );
+    assert_eq!(graph["render"].len(), 1, "{graph:?}");
+    let cycle = find_cycle(&graph).expect("mesh <-> adjacency is a cycle");
+    assert!(cycle.contains(&"mesh".to_string()) && cycle.contains(&"adjacency".to_string()));
+    graph.insert("mesh".to_string(), BTreeSet::new());
+    assert_eq!(find_cycle(&graph), None);
+
+    let lessons: BTreeSet<String> = ["lesson_05::a", "lesson_05::b", "lesson_06::c"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    let a = uses("lesson_05::a", "use super::b::X;", &lessons);
+    let c = uses("lesson_06::c", "use crate::lesson_05::a::Y;", &lessons);
+    assert_eq!(a.into_iter().collect::<Vec<_>>(), ["lesson_05::b"]);
+    assert_eq!(c.into_iter().collect::<Vec<_>>(), ["lesson_05::a"]);
+}
+
+#[test]
+fn no_import_cycles() {
+    for (dir, lessons) in [("common/src", false), ("lessons", true)] {
+        let graph = import_graph(&repo_root().join(dir), lessons);
+        assert!(
+            graph.len() >= 10,
+            "{dir}: expected its modules, found {}",
+            graph.len()
+        );
+        assert!(
+            graph.values().any(|u| !u.is_empty()),
+            "{dir}: found no imports at all"
+        );
+        if let Some(cycle) = find_cycle(&graph) {
+            panic!("{dir}: import cycle {}", cycle.join(" -> "));
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Sizes and module lists
+// ---------------------------------------------------------------------------
+
+const MAX_LINES: usize = 500;
+
+#[test]
+fn no_source_file_is_over_500_lines() {
+    let mut files = rust_files(&repo_root().join("lessons"));
+    files.extend(rust_files(&repo_root().join("common")));
+    assert!(files.len() >= 30, "found {} files", files.len());
+    let long: Vec<String> = files
+        .iter()
+        .map(|p| (p, read(p).lines().count()))
+        .filter(|(_, n)| *n > MAX_LINES)
+        .map(|(p, n)| format!("{}: {n} lines", p.display()))
+        .collect();
+    assert!(
+        long.is_empty(),
+        "over {MAX_LINES} lines:\n{}",
+        long.join("\n")
+    );
+}
+
+/// `pub mod x;` declarations of a lib.rs.
+fn declared_modules(lib: &str) -> BTreeSet<String> {
+    lib.lines()
+        .filter_map(|l| l.trim().strip_prefix("pub mod "))
+        .map(|m| m.trim_end_matches(';').trim().to_string())
+        .collect()
+}
+
+#[test]
+fn common_lib_lists_every_module() {
+    let src = repo_root().join("common/src");
+    let lib = read(&src.join("lib.rs"));
+    let declared = declared_modules(&lib);
+    let files: BTreeSet<String> = rust_files(&src)
+        .iter()
+        .filter_map(|p| module_name(p, &src, false))
+        .collect();
+    assert!(files.len() >= 10, "found {files:?}");
+    assert_eq!(
+        declared, files,
+        "common/src/lib.rs's `pub mod`s and the files of common/src differ"
+    );
+    for m in &declared {
+        assert!(
+            lib.contains(&format!("[`{m}`]")),
+            "common/src/lib.rs's docs do not list [`{m}`]"
+        );
+    }
+}
+
+/// For each common module: the lesson folders and the other common
+/// modules that use it.
+fn common_users(
+    common: &[(String, String)],
+    lessons: &[(u32, String)],
+) -> BTreeMap<String, (BTreeSet<u32>, BTreeSet<String>)> {
+    let mut users = BTreeMap::new();
+    for (m, _) in common {
+        let by_lessons = lessons
+            .iter()
+            .filter(|(_, text)| {
+                text.contains(&format!("common::{m}::"))
+                    || text.contains(&format!("common::{m};"))
+                    || text.contains(&format!("common::{{{m}"))
+            })
+            .map(|(n, _)| *n)
+            .collect();
+        let by_common = common
+            .iter()
+            .filter(|(other, text)| {
+                other != m
+                    && (text.contains(&format!("crate::{m}::"))
+                        || text.contains(&format!("crate::{m};")))
+            })
+            .map(|(other, _)| other.clone())
+            .collect();
+        users.insert(m.clone(), (by_lessons, by_common));
+    }
+    users
+}
+
+fn single_lesson_modules(
+    users: &BTreeMap<String, (BTreeSet<u32>, BTreeSet<String>)>,
+) -> Vec<String> {
+    users
+        .iter()
+        .filter(|(_, (l, c))| l.len() == 1 && c.is_empty())
+        .map(|(m, (l, _))| {
+            format!(
+                "common::{m} is used only by lesson {:02}",
+                l.first().unwrap_or(&0)
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn single_lesson_checker_works() {
+    let common = vec![
+        ("render".to_string(), "use crate::camera::x;".to_string()),
+        ("camera".to_string(), String::new()),
+        ("cube".to_string(), String::new()),
+        ("gpu".to_string(), String::new()),
+    ];
+    let lessons = vec![
+        (
+            4,
+            "use common::cube::Cube;\nuse common::gpu::Gpu;".to_string(),
+        ),
+        (
+            5,
+            "use common::gpu::Gpu;\nuse common::camera::light;".to_string(),
+        ),
+    ];
+    let users = common_users(&common, &lessons);
+    let single = single_lesson_modules(&users);
+    assert_eq!(
+        single,
+        ["common::cube is used only by lesson 04"],
+        "{users:?}"
+    );
+}
+
+#[test]
+fn no_common_module_serves_a_single_lesson() {
+    let src = repo_root().join("common/src");
+    let common: Vec<(String, String)> = rust_files(&src)
+        .iter()
+        .filter_map(|p| Some((module_name(p, &src, false)?, read(p))))
+        .collect();
+    let root = repo_root().join("lessons");
+    let mut lessons: BTreeMap<u32, String> = BTreeMap::new();
+    for p in rust_files(&root) {
+        if let Some(n) = lesson_of(&p, &root) {
+            lessons.entry(n).or_default().push_str(&read(&p));
+        }
+    }
+    let lessons: Vec<(u32, String)> = lessons.into_iter().collect();
+    assert!(lessons.len() >= 8, "found {} lesson folders", lessons.len());
+    let users = common_users(&common, &lessons);
+    assert!(
+        users.values().any(|(l, _)| l.len() >= 8),
+        "no common module is used by every lesson: the checker finds nothing"
+    );
+    let single = single_lesson_modules(&users);
+    assert!(single.is_empty(), "{}", single.join("\n"));
+}
