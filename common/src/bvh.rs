@@ -4,7 +4,7 @@
 //! per node, SIMD box tests); we only add the triangle test and two guards:
 //!
 //! - obvhs skips boxes whose exit is closer than an absolute `1e-4` along the
-//!   ray. We start the traversal ray [`BACK_UP`] behind the real origin, so
+//!   ray. We start the traversal ray `BACK_UP` behind the real origin, so
 //!   nothing near the origin is skipped; the triangle test uses the real one.
 //! - obvhs clamps `1/d` to `±1/f32::EPSILON`, and a `-0.0` component gets the
 //!   wrong sign (the octant says "positive", the inverse says "negative") and
@@ -128,7 +128,7 @@ impl Bvh {
         self.tris.is_empty()
     }
 
-    /// The traversal ray, backed up by [`BACK_UP`] and with a safe inverse,
+    /// The traversal ray, backed up by `BACK_UP` and with a safe inverse,
     /// and how far it was backed up (in units of `d`); `None` for a
     /// non-finite or zero ray.
     fn traversal_ray(o: Vec3A, d: Vec3A, t_max: f32) -> Option<(Ray, f32)> {

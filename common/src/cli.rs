@@ -26,7 +26,7 @@ pub struct Args {
     /// Timed frames per variant after warm-up; the report quotes the median.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=10000))]
     pub frames: u32,
-    /// Output folder. Default: out/<lesson>/
+    /// Output folder. Default: `out/<lesson>/`
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// vulkan | gl | metal | dx12 (WGPU_BACKEND is honoured too).

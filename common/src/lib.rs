@@ -24,7 +24,7 @@
 //! - [`camera`]: camera and light matrices.
 //!
 //! Measurement:
-//! - [`reference`]: the exact CPU ray-cast reference (multi-threaded).
+//! - [`reference`](mod@reference): the exact CPU ray-cast reference (multi-threaded).
 //! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
 //! - [`metrics`]: error of a GPU visibility image against the reference.
 //! - [`timing`]: GPU timestamp queries per pass, with a labelled CPU fallback.

@@ -85,7 +85,7 @@ pub fn face_facing(adj: &Adjacency, light: LightDir) -> Vec<bool> {
 /// Because the result is the boundary of a set of faces, it is always
 /// closed loops: at every vertex as many edges arrive as leave, for any
 /// mesh, open or closed. Together with caps made of
-/// [`light_facing_triangles`](light_facing_triangles), each
+/// [`light_facing_triangles`], each
 /// light-facing face's volume is closed, and the stencil counts how
 /// many of them cover a pixel.
 ///
@@ -96,7 +96,7 @@ pub fn silhouette_edges(adj: &Adjacency, light: LightDir) -> Vec<SilhouetteEdge>
     silhouette_edges_for(adj, &face_facing(adj, light))
 }
 
-/// [`silhouette_edges`](silhouette_edges) from a `face_facing`
+/// [`silhouette_edges`] from a `face_facing`
 /// result, so one facing test can serve both the sides and the caps.
 pub fn silhouette_edges_for(adj: &Adjacency, facing: &[bool]) -> Vec<SilhouetteEdge> {
     let mut out = Vec::new();
@@ -125,7 +125,7 @@ pub fn light_facing_triangles(adj: &Adjacency, light: LightDir) -> Vec<[u32; 3]>
     light_facing_triangles_for(adj, &face_facing(adj, light))
 }
 
-/// [`light_facing_triangles`](light_facing_triangles) from a
+/// [`light_facing_triangles`] from a
 /// `face_facing` result.
 pub fn light_facing_triangles_for(adj: &Adjacency, facing: &[bool]) -> Vec<[u32; 3]> {
     adj.triangles

@@ -221,7 +221,7 @@ pub fn scene_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
 /// `[mirrored][cap]`: one counting rule's pipelines.
 type PipelineSet = [[wgpu::RenderPipeline; 2]; 2];
 
-/// The volume pipelines of one extrusion: each method's [`PipelineSet`],
+/// The volume pipelines of one extrusion: each method's pipeline set,
 /// plus the fragment-counting pipeline.
 pub struct VolumePipelines {
     zpass: PipelineSet,

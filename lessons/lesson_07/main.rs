@@ -10,10 +10,10 @@
 //!   it, the variant fails with one line naming it.
 //! - `infinite`: move the far plane to infinity (Everitt & Kilgard), with an
 //!   ε that keeps points at infinity strictly inside depth 1
-//!   ([`infinite_far`]).
+//!   ([`infinite_far`](workbook::lesson_07::infinite_far)).
 //!
 //! `neither` shows the failure. The lesson also measures what each choice
-//! costs in depth precision ([`precision_study`]:
+//! costs in depth precision ([`precision_study`](workbook::lesson_07::precision_study):
 //! `depth_precision.md/.csv/.png`).
 //!
 //! Run: `cargo run --release --bin lesson_07 -- --headless`

@@ -13,7 +13,7 @@
 //!   like the format does (24-bit unorm rounding, or the f32 itself).
 //!
 //! The figure of merit is the smallest resolvable *relative* gap Δd/d at a
-//! distance d: every gap of the grid [`GAPS`] from that one up resolves.
+//! distance d: every gap of the grid [`gaps`] from that one up resolves.
 
 use anyhow::{Context, Result};
 use common::bindings::{self, uniform_entry};

@@ -2,14 +2,14 @@
 //!
 //! A point light of range r lights nothing outside its range sphere, yet
 //! its shadow volumes run to infinity and cover much of the screen. Two
-//! limits, both computed from the sphere ([`range_sphere`]), cut the volume
+//! limits, both computed from the sphere ([`range_sphere`](workbook::lesson_08::range_sphere)), cut the volume
 //! pass's work:
 //!
 //! - a scissor rectangle: the sphere's image on screen (`set_scissor_rect`);
 //! - depth bounds: the sphere's window-depth interval [zmin, zmax]. Where the
 //!   depth *stored* at a pixel is outside it, the surface there is out of
 //!   range and its count cannot matter. wgpu has no depth-bounds test, so
-//!   it is emulated with stencil bit 7 ([`bounds_test`]).
+//!   it is emulated with stencil bit 7 ([`bounds_test`](workbook::lesson_08::bounds_test)).
 //!
 //! Variants: `unbounded`, `scissor`, `depth_bounds`, `bounds_scissor`. The
 //! pixels are the same in all four; the counters say how many volume
