@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! base pass (depth + ambient)              scene.base_pass
-//! for each light:
+//! for each light:                          ShadowVolumes::light_passes
 //!     volume pass: clear stencil, draw     ShadowVolumes::volume_pass
 //!                  volumes, count in stencil
 //!     lit pass where stencil == 0          scene.lit_pass with lit_stencil()
@@ -28,7 +28,6 @@
 //! adapter has `PIPELINE_STATISTICS_QUERY` (lavapipe does, GL does not: the
 //! key is then omitted).
 
-use super::adjacency::Adjacency;
 use std::ops::Range;
 
 use anyhow::Result;
@@ -40,6 +39,7 @@ use common::render::SceneGpu;
 use common::targets::FrameTargets;
 use common::timing::Frame;
 
+use super::adjacency::Adjacency;
 use super::extrusion::{
     cpu_volume, degenerate_quads, world_light, CpuVertex, Extrusion, QuadVertex, VolumeRanges,
 };
