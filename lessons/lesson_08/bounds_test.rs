@@ -20,7 +20,7 @@ use crate::lesson_05::extrusion::volume_shader_module;
 use crate::lesson_05::extrusion::QUAD_VERTEX_LAYOUT;
 use crate::lesson_05::stencil::lit_stencil;
 use crate::lesson_05::volumes::ShadowVolumes;
-use crate::lesson_06::caps::zfail_stencil;
+use crate::lesson_06::caps::{zfail_stencil, CAP_DEPTH_BIAS};
 
 /// Bit 7 of the stencil: "this pixel's stored depth is inside the bounds".
 pub const BOUNDS_BIT: u32 = 0x80;
@@ -36,15 +36,19 @@ struct Caster {
     mirrored: bool,
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
-    count: u32,
+    /// The index ranges, each with "is it a cap?" (caps get lesson 06's bias).
+    ranges: Vec<(std::ops::Range<u32>, bool)>,
 }
+
+/// `[mirrored][cap]`: the pipelines one volume draw picks from.
+type Pipes<'a> = [[&'a wgpu::RenderPipeline; 2]; 2];
 
 /// Z-fail shadow volumes whose stencil updates can be limited to one
 /// light's depth bounds (emulated) and scissor rectangle.
 pub struct BoundedVolumes {
     casters: Vec<Caster>,
-    /// `[bounded][mirrored]`: the z-fail pipelines.
-    volume: [[wgpu::RenderPipeline; 2]; 2],
+    /// `[bounded][mirrored][cap]`: the z-fail pipelines.
+    volume: [[[wgpu::RenderPipeline; 2]; 2]; 2],
     /// `[bounded]`: depth test off, no writes: counts what reaches the stencil.
     count: [wgpu::RenderPipeline; 2],
     /// No depth-stencil, an R8 target: for the pipeline-statistics counter.
@@ -122,20 +126,39 @@ pub fn bounded_lit_stencil() -> wgpu::StencilState {
 // ANCHOR_END: bounds_stencil
 
 impl BoundedVolumes {
-    pub fn new(gpu: &Gpu, scene: &SceneGpu, volumes: &ShadowVolumes) -> Result<BoundedVolumes> {
+    /// `unclipped_depth`: clamp depth instead of clipping it (lesson 07's
+    /// `clamp`), for a finite far plane; needs DEPTH_CLIP_CONTROL.
+    pub fn new(
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        volumes: &ShadowVolumes,
+        unclipped_depth: bool,
+    ) -> Result<BoundedVolumes> {
+        if unclipped_depth && !gpu.has(wgpu::Features::DEPTH_CLIP_CONTROL) {
+            anyhow::bail!(
+                "a finite far plane needs depth clamp (DEPTH_CLIP_CONTROL), which {} lacks; use far = \"infinite\"",
+                gpu.adapter_name()
+            );
+        }
         let device = &gpu.device;
         // The same pre-built quads as lessons 05-07 draw: shared buffers.
         let casters = volumes
             .casters
             .iter()
             .map(|c| {
-                let (vertices, indices, count) = c.quad_buffers();
+                let (vertices, indices, _) = c.quad_buffers();
+                let r = &c.quad_ranges;
+                let ranges = [(&r.sides, false), (&r.front, true), (&r.back, true)];
                 Caster {
                     object: c.object,
                     mirrored: c.mirrored,
                     vertices,
                     indices,
-                    count,
+                    ranges: ranges
+                        .into_iter()
+                        .filter(|(r, _)| !r.is_empty())
+                        .map(|(r, cap)| (r.clone(), cap))
+                        .collect(),
                 }
             })
             .collect();
@@ -171,6 +194,15 @@ impl BoundedVolumes {
             stencil,
             bias: Default::default(),
         };
+        // Caps pushed back by lesson 06's bias, as lessons 06 and 07 draw them.
+        let cap_ds = |compare, stencil, cap: bool| wgpu::DepthStencilState {
+            bias: if cap {
+                CAP_DEPTH_BIAS
+            } else {
+                Default::default()
+            },
+            ..ds(compare, stencil)
+        };
         // The volumes: `ds` None is the rasterised-fragment counter's copy.
         let volume = |label: &str, ds: Option<wgpu::DepthStencilState>, mirrored: bool| {
             let fragment = ds.is_none().then(|| wgpu::FragmentState {
@@ -194,6 +226,9 @@ impl BoundedVolumes {
                     } else {
                         wgpu::FrontFace::Ccw
                     },
+                    // The back caps and far ends past a finite far plane
+                    // are clamped to depth 1, not clipped (lesson 07).
+                    unclipped_depth,
                     ..Default::default()
                 },
                 depth_stencil: ds,
@@ -206,11 +241,10 @@ impl BoundedVolumes {
         use wgpu::CompareFunction::{Always, Greater, GreaterEqual, Less};
         use wgpu::StencilOperation::{Keep, Replace, Zero};
         let bounded = |b: bool, m: bool| {
-            volume(
-                "bounded volume",
-                Some(ds(Less, bounded_volume_stencil(b))),
-                m,
-            )
+            [false, true].map(|cap| {
+                let ds = cap_ds(Less, bounded_volume_stencil(b), cap);
+                volume("bounded volume", Some(ds), m)
+            })
         };
         let counting = |b: bool| {
             let mut st = bounded_volume_stencil(b);
@@ -262,15 +296,17 @@ impl BoundedVolumes {
         pass: &mut wgpu::RenderPass<'_>,
         scene: &SceneGpu,
         light: usize,
-        pipes: [&wgpu::RenderPipeline; 2],
+        pipes: Pipes<'_>,
     ) -> u32 {
         scene.bind_frame(pass, light);
         for c in &self.casters {
-            pass.set_pipeline(pipes[c.mirrored as usize]);
             scene.bind_object(pass, c.object);
             pass.set_vertex_buffer(0, c.vertices.slice(..));
             pass.set_index_buffer(c.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..c.count, 0, 0..1);
+            for (range, cap) in &c.ranges {
+                pass.set_pipeline(pipes[c.mirrored as usize][*cap as usize]);
+                pass.draw_indexed(range.clone(), 0, 0..1);
+            }
         }
         self.casters.len() as u32
     }
@@ -315,8 +351,9 @@ impl BoundedVolumes {
         }
         let bounded = self.limit(&mut pass, &b);
         pass.set_stencil_reference(BOUNDS_BIT);
-        let pipes = &self.volume[bounded as usize];
-        self.draw_volumes(&mut pass, scene, b.light, [&pipes[0], &pipes[1]])
+        let p = &self.volume[bounded as usize];
+        let pipes = [[&p[0][0], &p[0][1]], [&p[1][0], &p[1][1]]];
+        self.draw_volumes(&mut pass, scene, b.light, pipes)
     }
     // ANCHOR_END: bounded_volume_pass
 
@@ -358,7 +395,7 @@ impl BoundedVolumes {
                 &mut pass,
                 scene,
                 b.light,
-                [&self.count[bounded as usize]; 2],
+                [[&self.count[bounded as usize]; 2]; 2],
             );
             pass.end_occlusion_query();
         }
@@ -393,7 +430,7 @@ impl BoundedVolumes {
                         ),
                         _ => pass.set_scissor_rect(0, 0, scene.width, scene.height),
                     }
-                    self.draw_volumes(pass, scene, b.light, [&self.rasterised; 2]);
+                    self.draw_volumes(pass, scene, b.light, [[&self.rasterised; 2]; 2]);
                 }
             })
             .ok()

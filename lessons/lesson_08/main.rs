@@ -26,7 +26,7 @@ use common::gpu::Gpu;
 use common::lesson::Lesson;
 use common::lit::LitPass;
 use common::render::SceneGpu;
-use common::scene::{Far, LightKind, Scene};
+use common::scene::{Far, LightKind};
 use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
@@ -90,22 +90,18 @@ impl Lesson for DepthBounds {
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_08.toml");
     type Variant = Variant;
 
-    fn check_scene(scene: &Scene) -> Result<()> {
-        if scene.camera.far != Far::Infinite {
-            anyhow::bail!("camera.far: lesson_08 extrudes z-fail volumes to infinity; use far = \"infinite\" (lesson 07)");
-        }
-        Ok(())
-    }
-
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let volumes = ShadowVolumes::new(gpu, scene, &zfail_counting())?;
+        // A finite far plane would clip the volumes' ends at infinity: clamp
+        // depth instead, as lesson 07's `clamp` variant does.
+        let unclipped_depth = scene.scene.camera.far != Far::Infinite;
         let module = volume_shader_module(
             gpu,
             "lesson_08",
             include_str!("../../shaders/lesson_08/range.wgsl"),
         );
         Ok(DepthBounds {
-            bounded: BoundedVolumes::new(gpu, scene, &volumes)?,
+            bounded: BoundedVolumes::new(gpu, scene, &volumes, unclipped_depth)?,
             lit_pipeline: scene.lit_pipeline(
                 gpu,
                 &module,
