@@ -24,7 +24,8 @@ use crate::lesson_06::caps::{zfail_stencil, CAP_DEPTH_BIAS};
 
 /// Bit 7 of the stencil: "this pixel's stored depth is inside the bounds".
 pub const BOUNDS_BIT: u32 = 0x80;
-/// Bits 0–6: the shadow-volume count (wraps modulo 128).
+/// Bits 0–6: the shadow-volume count. It wraps modulo 128, so lesson 08
+/// warns from 128 overlapping volumes on (`count_bits`).
 pub const COUNT_BITS: u32 = 0x7f;
 
 const SLOT: u64 = 256;

@@ -31,10 +31,10 @@ use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
 use workbook::lesson_05::extrusion::volume_shader_module;
-use workbook::lesson_05::stencil;
 use workbook::lesson_05::volumes::ShadowVolumes;
 use workbook::lesson_06::caps::zfail_counting;
 use workbook::lesson_08::bounds_test::{bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits};
+use workbook::lesson_08::count_bits;
 use workbook::lesson_08::range_sphere::{all_bounds, LightBounds};
 
 // ANCHOR: variants
@@ -110,7 +110,7 @@ impl Lesson for DepthBounds {
                 bounded_lit_stencil(),
             ),
             bounds: all_bounds(scene),
-            scene_counters: stencil::scene_counters(scene),
+            scene_counters: count_bits::scene_counters(scene),
             volumes,
             counters: vec![BTreeMap::new(); Variant::value_variants().len()],
             frames: vec![0; Variant::value_variants().len()],

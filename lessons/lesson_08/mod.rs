@@ -2,4 +2,5 @@
 //! and in depth, and the depth-bounds test emulated with a stencil bit.
 
 pub mod bounds_test;
+pub mod count_bits;
 pub mod range_sphere;
