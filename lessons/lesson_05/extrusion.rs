@@ -74,6 +74,18 @@ pub const QUAD_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBu
     attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Uint32, 2 => Float32x3, 3 => Float32x3],
 };
 
+/// The quads path's reach (lesson 06): one `f32` per caster and light, the
+/// `w` its extruded vertices get (`vs_volume_quads_reach`), read per
+/// instance at location 4. 0 is infinity. Slots are [`REACH_SLOT`] bytes.
+pub const REACH_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: REACH_SLOT,
+    step_mode: wgpu::VertexStepMode::Instance,
+    attributes: &wgpu::vertex_attr_array![4 => Float32],
+};
+
+/// Bytes per caster and light in the reach buffer.
+pub const REACH_SLOT: u64 = 16;
+
 /// Vertex ranges of one caster's volume: sides, front cap, back cap.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct VolumeRanges {
@@ -86,10 +98,23 @@ pub struct VolumeRanges {
 /// The CPU path: one caster's volume for one light (object space), appended
 /// to `out`. Sides from the silhouette; caps from the light-facing faces.
 pub fn cpu_volume(adj: &Adjacency, light: LightDir, out: &mut Vec<CpuVertex>) -> VolumeRanges {
+    cpu_volume_reaching(adj, light, 0.0, out)
+}
+
+/// [`cpu_volume`] with its far vertices at `w = reach_w` instead of 0:
+/// `0 < reach_w < 1` moves them `1 / reach_w` times as far from the light
+/// (lesson 06's finite extrusion, [`REACH_VERTEX_LAYOUT`]); 0 is infinity.
+pub fn cpu_volume_reaching(
+    adj: &Adjacency,
+    light: LightDir,
+    reach_w: f32,
+    out: &mut Vec<CpuVertex>,
+) -> VolumeRanges {
     let facing = face_facing(adj, light);
     let v = |i: u32, w: f32| CpuVertex {
         position: adj.positions[i as usize].to_array(),
-        w,
+        // w = 0 marks "extruded"; it becomes reach_w (0 stays infinity).
+        w: if w == 0.0 { reach_w } else { w },
     };
     let directional = matches!(light, LightDir::Directional(_));
     let start = out.len() as u32;

@@ -22,7 +22,9 @@ use common::reference::primary_ray;
 use common::render::{pipeline_layout_for, SceneGpu};
 
 use super::extrusion::volume_shader_module;
-use super::extrusion::{world_light, Extrusion, CPU_VERTEX_LAYOUT, QUAD_VERTEX_LAYOUT};
+use super::extrusion::{
+    world_light, Extrusion, CPU_VERTEX_LAYOUT, QUAD_VERTEX_LAYOUT, REACH_VERTEX_LAYOUT,
+};
 use super::silhouette::{casts_two_sided, LightDir};
 
 /// How the stencil counts a caster's volume faces: z-pass (here) or
@@ -100,6 +102,9 @@ pub struct Counting {
     pub cap_bias: wgpu::DepthBiasState,
     /// Depth clamped instead of clipped (needs DEPTH_CLIP_CONTROL).
     pub unclipped_depth: bool,
+    /// The quads are extruded by a per-caster reach (`vs_volume_quads_reach`,
+    /// lesson 06 under a finite far plane) instead of to infinity.
+    pub finite_reach: bool,
 }
 
 impl Counting {
@@ -110,6 +115,7 @@ impl Counting {
             zfail: None,
             cap_bias: Default::default(),
             unclipped_depth: false,
+            finite_reach: false,
         }
     }
 }
@@ -244,12 +250,15 @@ impl VolumePipelines {
             );
         }
         let module = volume_shader_module(gpu, "shadow volume", "");
-        let (vs_entry, vertex_layout) = match extrusion {
-            Extrusion::Cpu => ("vs_volume_cpu", CPU_VERTEX_LAYOUT),
-            Extrusion::Quads => ("vs_volume_quads", QUAD_VERTEX_LAYOUT),
+        let (vs_entry, buffers) = match extrusion {
+            Extrusion::Cpu => ("vs_volume_cpu", vec![Some(CPU_VERTEX_LAYOUT)]),
+            Extrusion::Quads if counting.finite_reach => (
+                "vs_volume_quads_reach",
+                vec![Some(QUAD_VERTEX_LAYOUT), Some(REACH_VERTEX_LAYOUT)],
+            ),
+            Extrusion::Quads => ("vs_volume_quads", vec![Some(QUAD_VERTEX_LAYOUT)]),
         };
         let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
-        let buffers = [Some(vertex_layout)];
         let targets = [Some(wgpu::TextureFormat::R8Unorm.into())];
         let make = |stencil: Option<wgpu::StencilState>, front_face, cap: bool| {
             let (depth_stencil, fragment) = match stencil {

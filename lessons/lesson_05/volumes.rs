@@ -20,8 +20,11 @@
 //! winding in world space: such casters are drawn with a pipeline whose
 //! front face is `Cw`.
 //!
-//! Vertices at infinity (w = 0) lie beyond any finite far plane: lessons 05
-//! and 06 use scenes with `far = "infinite"`; lesson 07 handles a finite one.
+//! Vertices at infinity (w = 0) lie beyond any finite far plane: lesson 05
+//! uses scenes with `far = "infinite"`; lesson 07 handles a finite one by
+//! depth clamping. Lesson 06 can instead give each caster a finite *reach*
+//! ([`ShadowVolumes::set_reach`]): its far vertices at `w = reach_w`, that is
+//! `1 / reach_w` times as far from the light, with a finite back cap.
 //!
 //! [`FragmentCounter`] counts the fragments the volume geometry rasterises
 //! (an untimed copy of the volume pass with the depth test off), when the
@@ -41,7 +44,8 @@ use common::timing::Frame;
 
 use super::adjacency::Adjacency;
 use super::extrusion::{
-    cpu_volume, degenerate_quads, world_light, CpuVertex, Extrusion, QuadVertex, VolumeRanges,
+    cpu_volume_reaching, degenerate_quads, world_light, CpuVertex, Extrusion, QuadVertex,
+    VolumeRanges, REACH_SLOT,
 };
 use super::silhouette::caster_adjacency;
 use super::stencil::{Counting, Method, VolumePipelines};
@@ -127,6 +131,11 @@ struct CpuGeometry {
 /// Every caster's volume data and the pipelines of both extrusion methods.
 pub struct ShadowVolumes {
     pub casters: Vec<VolumeCaster>,
+    /// `reach[light][caster]`: the w of extruded vertices (0: infinity).
+    reach: Vec<Vec<f32>>,
+    /// The same, one [`REACH_SLOT`] per (light, caster), for the quads path;
+    /// `None` unless the counting has `finite_reach`.
+    reach_buffer: Option<wgpu::Buffer>,
     cpu: CpuGeometry,
     cpu_pipelines: VolumePipelines,
     quad_pipelines: VolumePipelines,
@@ -193,13 +202,44 @@ impl ShadowVolumes {
                 adjacency,
             });
         }
+        let lights = scene.scene.lights.len();
+        let reach = vec![vec![0.0; casters.len()]; lights];
+        let reach_buffer = counting.finite_reach.then(|| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("volume reach"),
+                size: REACH_SLOT * (lights * casters.len()).max(1) as u64,
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                // Zeros: every volume reaches infinity until set_reach.
+                mapped_at_creation: false,
+            })
+        });
         Ok(ShadowVolumes {
             casters,
+            reach,
+            reach_buffer,
             cpu: CpuGeometry::default(),
             cpu_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Cpu, counting)?,
             quad_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Quads, counting)?,
             counter: FragmentCounter::new(gpu, scene.width, scene.height),
         })
+    }
+
+    /// Sets `reach[light][caster]` (caster: index into `casters`), the w
+    /// every extruded vertex of that volume gets: 0 is infinity (the
+    /// default), `0 < w < 1` is `1 / w` times as far from the light. The
+    /// quads path reads it only if the counting has `finite_reach`.
+    pub fn set_reach(&mut self, gpu: &Gpu, reach: Vec<Vec<f32>>) {
+        if let Some(buf) = &self.reach_buffer {
+            let slots = REACH_SLOT as usize / 4;
+            let mut data = vec![0f32; buf.size() as usize / 4];
+            for (k, per_caster) in reach.iter().enumerate() {
+                for (ci, w) in per_caster.iter().enumerate() {
+                    data[(k * self.casters.len() + ci) * slots] = *w;
+                }
+            }
+            gpu.queue.write_buffer(buf, 0, bytemuck::cast_slice(&data));
+        }
+        self.reach = reach;
     }
 
     /// Every caster, drawn as `draw` says (`CasterDraw::zpass`, or
@@ -223,6 +263,7 @@ impl ShadowVolumes {
         let gpu = frame.gpu;
         let cpu = &mut self.cpu;
         let casters = &self.casters;
+        let reach = &self.reach;
         frame.cpu("silhouette", || {
             cpu.vertices.clear();
             cpu.ranges.clear();
@@ -235,9 +276,11 @@ impl ShadowVolumes {
                     }
                     // Silhouettes in object space: the light moves, not the mesh.
                     let model = scene.scene.model_relative(c.object);
-                    ranges[ci] = cpu_volume(
+                    let w = reach.get(k).and_then(|r| r.get(ci)).copied();
+                    ranges[ci] = cpu_volume_reaching(
                         &c.adjacency,
                         light.to_object_space(model),
+                        w.unwrap_or(0.0),
                         &mut cpu.vertices,
                     );
                 }
@@ -301,6 +344,11 @@ impl ShadowVolumes {
                 }
                 Extrusion::Quads => {
                     pass.set_vertex_buffer(0, c.quad_vertices.slice(..));
+                    if let Some(reach) = &self.reach_buffer {
+                        // This caster's reach for this light, as instance 0.
+                        let at = (v.light * self.casters.len() + ci) as u64 * REACH_SLOT;
+                        pass.set_vertex_buffer(1, reach.slice(at..at + REACH_SLOT));
+                    }
                     pass.set_index_buffer(c.quad_indices.slice(..), wgpu::IndexFormat::Uint32);
                     for (range, cap) in d.ranges(&c.quad_ranges) {
                         pass.set_pipeline(pipeline(cap));

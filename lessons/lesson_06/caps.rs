@@ -52,6 +52,7 @@ pub fn zfail_counting() -> Counting {
         zfail: Some(zfail_stencil()),
         cap_bias: CAP_DEPTH_BIAS,
         unclipped_depth: false,
+        finite_reach: false,
     }
 }
 // ANCHOR_END: zfail_draw

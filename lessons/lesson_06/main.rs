@@ -14,6 +14,10 @@
 //! for the rest, nothing for casters whose volume cannot reach the view:
 //! the same pixels for less work).
 //!
+//! Under a finite far plane, volumes at infinity would be clipped; each
+//! caster's volume then ends at a finite back cap that covers the light's
+//! range (`reach`), or the lesson refuses the scene in one line (lesson 07).
+//!
 //! Run: `cargo run --release --bin lesson_06 -- --headless`
 //! Book: chapter "06 z-fail with caps" (`book/src/lesson_06.md`).
 
@@ -28,10 +32,11 @@ use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
 use workbook::lesson_05::extrusion::Extrusion;
-use workbook::lesson_05::stencil;
+use workbook::lesson_05::stencil::{self, Counting};
 use workbook::lesson_05::volumes::{CasterDraw, LightVolumes, ShadowVolumes};
 use workbook::lesson_06::caps::{self, zfail_counting};
 use workbook::lesson_06::plan::{plan, PlanStats};
+use workbook::lesson_06::reach::volume_reach;
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -108,7 +113,17 @@ impl Lesson for ZFail {
     type Variant = Variant;
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
-        let volumes = ShadowVolumes::new(gpu, scene, &zfail_counting())?;
+        // ANCHOR: reach
+        // Each caster's volume gets a reach: infinity under far = "infinite",
+        // the light's range under a finite far plane (or a one-line error).
+        let counting = Counting {
+            finite_reach: true,
+            ..zfail_counting()
+        };
+        let mut volumes = ShadowVolumes::new(gpu, scene, &counting)?;
+        let reach = volume_reach(scene, &volumes.casters)?;
+        volumes.set_reach(gpu, reach);
+        // ANCHOR_END: reach
         let mut plans = Vec::new();
         for v in Variant::value_variants() {
             let mut total = PlanStats::default();

@@ -3,7 +3,8 @@
 //
 // Two ways to build a volume, one vertex shader each:
 // - vs_volume_cpu: the CPU found the silhouette (as Doom 3 did) and sends
-//   (position, w): w = 1 stays where it is, w = 0 goes to infinity.
+//   (position, w): w = 1 stays where it is, w = 0 goes to infinity, and
+//   0 < w < 1 goes 1/w times as far from the light (lesson 06, finite far).
 // - vs_volume_quads: every edge was turned into a degenerate quad in
 //   advance; the vertex shader decides, per vertex, from the normal of the
 //   face it belongs to, whether it stays or goes to infinity.
@@ -40,16 +41,32 @@ fn project_to_infinity(world: vec3<f32>) -> vec4<f32> {
 }
 // ANCHOR_END: extrude_to_infinity
 
+// ANCHOR: extrude_to_reach
+// A world point pushed away from a point or spot light by the factor s = 1/w:
+// L + s (p − L), written homogeneously as (p − L + w L, w). w = 0 is the
+// point at infinity above; 0 < w < 1 a finite point, so the volume ends at a
+// finite back cap, the caster's light-facing faces scaled by s about the
+// light (lesson 06 under a finite far plane). The reach w is the same for
+// every vertex of one caster's volume, so its pieces still meet.
+fn project_extruded(world: vec3<f32>, w: f32) -> vec4<f32> {
+    if w == 0.0 || light.position_or_dir.w == 0.0 {
+        return project_to_infinity(world);
+    }
+    let l = light.position_or_dir.xyz;
+    return camera.view_proj * vec4<f32>(world - l + w * l, w);
+}
+// ANCHOR_END: extrude_to_reach
+
 // ANCHOR: vs_volume_cpu
 @vertex
 fn vs_volume_cpu(@location(0) position: vec3<f32>, @location(1) w: f32) -> VolumeOut {
     var out: VolumeOut;
     // The same expression as vs_scene, so finite vertices get the same depth.
     let world = object.model * vec4<f32>(position, 1.0);
-    if w == 0.0 {
-        out.clip = project_to_infinity(world.xyz);
-    } else {
+    if w == 1.0 {
         out.clip = camera.view_proj * world;
+    } else {
+        out.clip = project_extruded(world.xyz, w);
     }
     return out;
 }
@@ -85,6 +102,16 @@ fn vs_volume_quads(
     @location(2) face_normal: vec3<f32>,
     @location(3) face_point: vec3<f32>,
 ) -> VolumeOut {
+    return volume_quad_vertex(position, kind, face_normal, face_point, 0.0);
+}
+
+fn volume_quad_vertex(
+    position: vec3<f32>,
+    kind: u32,
+    face_normal: vec3<f32>,
+    face_point: vec3<f32>,
+    reach_w: f32,
+) -> VolumeOut {
     var out: VolumeOut;
     let facing = faces_light(face_normal, face_point);
     let world = object.model * vec4<f32>(position, 1.0);
@@ -99,13 +126,28 @@ fn vs_volume_quads(
     if stay {
         out.clip = camera.view_proj * world;
     } else if go {
-        out.clip = project_to_infinity(world.xyz);
+        out.clip = project_extruded(world.xyz, reach_w);
     } else {
         out.clip = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
     return out;
 }
 // ANCHOR_END: vs_volume_quads
+
+// ANCHOR: vs_volume_quads_reach
+// The same, extruded by the factor 1/reach_w (see project_extruded):
+// reach_w is one value per caster and light, from a per-instance buffer.
+@vertex
+fn vs_volume_quads_reach(
+    @location(0) position: vec3<f32>,
+    @location(1) kind: u32,
+    @location(2) face_normal: vec3<f32>,
+    @location(3) face_point: vec3<f32>,
+    @location(4) reach_w: f32,
+) -> VolumeOut {
+    return volume_quad_vertex(position, kind, face_normal, face_point, reach_w);
+}
+// ANCHOR_END: vs_volume_quads_reach
 
 // The fragment-counting copy of the volume pass writes one throw-away
 // value, so that every rasterised fragment runs (and counts) a shader.
