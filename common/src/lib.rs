@@ -19,6 +19,7 @@
 //!
 //! Scenes, meshes and camera math:
 //! - [`scene`]: the TOML scene format of INTERFACES.md, loaded and validated.
+//! - [`limits`]: the magnitudes a scene may have, and numbers in messages.
 //! - [`mesh`]: the mesh type, built-in unit meshes, welding, smooth normals.
 //! - [`obj`]: OBJ files, read through tobj and written for `gen_assets`.
 //! - [`camera`]: camera and light matrices.
@@ -41,6 +42,7 @@ pub mod fullscreen;
 pub mod gpu;
 pub mod headless;
 pub mod lesson;
+pub mod limits;
 pub mod lit;
 pub mod mesh;
 pub mod metrics;

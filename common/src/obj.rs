@@ -8,6 +8,7 @@ use std::path::Path;
 use anyhow::{anyhow, bail, Result};
 use glam::Vec3;
 
+use crate::limits::{short, MAX_COORD};
 use crate::mesh::{face_normal, smooth_normals, Mesh};
 
 // ---- writing OBJ ---------------------------------------------------------
@@ -112,6 +113,19 @@ pub fn parse_obj(text: &str, file: &str) -> Result<Mesh> {
         return Err(match find_line(text, is_non_finite_vertex) {
             Some((line, l)) => anyhow!("{file}:{line}: vertex position is not finite: {l:?}"),
             None => anyhow!("{file}: a vertex position is not finite (NaN or infinity)"),
+        });
+    }
+    let too_big = |x: f32| x.abs() as f64 > MAX_COORD;
+    if positions
+        .iter()
+        .any(|p| p.to_array().into_iter().any(too_big))
+    {
+        let bound = short(MAX_COORD);
+        return Err(match find_line(text, |l| vertex_has(l, too_big)) {
+            Some((line, l)) => anyhow!(
+                "{file}:{line}: vertex coordinate outside ±{bound} (the world bound): {l:?}"
+            ),
+            None => anyhow!("{file}: a vertex coordinate is outside ±{bound} (the world bound)"),
         });
     }
     if indices.is_empty() {
@@ -235,11 +249,13 @@ fn find_line(text: &str, mut bad: impl FnMut(&str) -> bool) -> Option<(usize, &s
 }
 
 fn is_non_finite_vertex(line: &str) -> bool {
+    vertex_has(line, |x| !x.is_finite())
+}
+
+/// A `v` line with a coordinate for which `bad` holds.
+fn vertex_has(line: &str, bad: impl Fn(f32) -> bool) -> bool {
     let mut words = line.split_whitespace();
-    words.next() == Some("v")
-        && words
-            .take(4)
-            .any(|w| w.parse::<f32>().is_ok_and(|x| !x.is_finite()))
+    words.next() == Some("v") && words.take(3).any(|w| w.parse::<f32>().is_ok_and(&bad))
 }
 
 /// One line naming the file, and the line where the problem is.

@@ -12,6 +12,10 @@ use glam::{DMat4, DQuat, DVec3, EulerRot, Vec3};
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::limits::{
+    check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
+    MAX_SCALE, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
+};
 use crate::mesh::{self, Mesh};
 
 /// The camera's far plane: a distance, or `"infinite"`.
@@ -101,12 +105,12 @@ struct CameraFile {
     fov_y_deg: f64,
     #[serde(default = "default_near")]
     near: f64,
-    #[serde(default = "default_far")]
+    #[serde(default = "default_far", deserialize_with = "far_file")]
     far: FarFile,
 }
 
-#[derive(Deserialize)]
-#[serde(untagged)]
+/// Written by hand, not `untagged`: serde's message for that names a Rust
+/// type ("did not match any variant of untagged enum FarFile").
 enum FarFile {
     Number(f64),
     Word(String),
@@ -139,7 +143,7 @@ struct ObjectFile {
     translate: [f64; 3],
     #[serde(default)]
     rotate_deg: [f64; 3],
-    #[serde(default = "default_scale")]
+    #[serde(default = "default_scale", deserialize_with = "scale_file")]
     scale: ScaleFile,
     #[serde(default = "default_grey")]
     color: [f32; 3],
@@ -147,11 +151,56 @@ struct ObjectFile {
     casts_shadow: bool,
 }
 
-#[derive(Deserialize)]
-#[serde(untagged)]
 enum ScaleFile {
     Uniform(f64),
     PerAxis([f64; 3]),
+}
+
+/// A TOML number as `f64` (integers too).
+fn number(v: &toml::Value) -> Option<f64> {
+    match v {
+        toml::Value::Float(f) => Some(*f),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+/// A value as written, cut short for a one-line message.
+fn written(v: &toml::Value) -> String {
+    let s = v.to_string();
+    if s.chars().count() > 40 {
+        format!("{}...", s.chars().take(40).collect::<String>())
+    } else {
+        s
+    }
+}
+
+fn scale_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<ScaleFile, D::Error> {
+    let v = toml::Value::deserialize(d)?;
+    if let Some(s) = number(&v) {
+        return Ok(ScaleFile::Uniform(s));
+    }
+    if let toml::Value::Array(a) = &v {
+        if let [Some(x), Some(y), Some(z)] = a.iter().map(number).collect::<Vec<_>>()[..] {
+            return Ok(ScaleFile::PerAxis([x, y, z]));
+        }
+    }
+    Err(serde::de::Error::custom(format!(
+        "scale: expected a number or [x, y, z], got {}",
+        written(&v)
+    )))
+}
+
+fn far_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<FarFile, D::Error> {
+    let v = toml::Value::deserialize(d)?;
+    match (&v, number(&v)) {
+        (_, Some(f)) => Ok(FarFile::Number(f)),
+        (toml::Value::String(w), _) => Ok(FarFile::Word(w.clone())),
+        _ => Err(serde::de::Error::custom(format!(
+            "far: expected a number or \"infinite\", got {}",
+            written(&v)
+        ))),
+    }
 }
 
 fn default_up() -> [f64; 3] {
@@ -186,29 +235,25 @@ fn line_of(text: &str, offset: usize) -> usize {
 
 fn finite3(v: [f64; 3], what: &str) -> Result<DVec3> {
     if v.iter().any(|c| !c.is_finite()) {
-        bail!("{what}: must be finite, got {v:?}");
+        bail!("{what}: must be finite, got {}", short3(v));
     }
     Ok(DVec3::from(v))
 }
 
-fn unit3(v: [f64; 3], what: &str) -> Result<DVec3> {
-    let d = finite3(v, what)?;
-    if d.length_squared() < 1e-24 {
-        bail!("{what}: zero-length vector {v:?}");
-    }
-    Ok(d.normalize())
-}
-
 fn color3(v: [f32; 3], what: &str) -> Result<Vec3> {
-    if v.iter().any(|c| !c.is_finite() || *c < 0.0) {
-        bail!("{what}: colour components must be finite and >= 0, got {v:?}");
+    if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > 1e6) {
+        bail!(
+            "{what}: colour components must be in [0, 1e6], got {}",
+            short3(Vec3::from(v).as_dvec3())
+        );
     }
     Ok(Vec3::from(v))
 }
 
-fn positive(x: f64, what: &str) -> Result<f64> {
-    if !(x.is_finite() && x > 0.0) {
-        bail!("{what}: must be a positive number, got {x}");
+/// A positive number up to `max`.
+fn positive(x: f64, max: f64, what: &str) -> Result<f64> {
+    if !(x.is_finite() && x > 0.0 && x <= max) {
+        bail!("{what}: must be in (0, {}], got {}", short(max), short(x));
     }
     Ok(x)
 }
@@ -226,7 +271,21 @@ impl Scene {
     pub fn parse(text: &str, name: &str, dir: &Path) -> Result<Scene> {
         let file: SceneFile = toml::from_str(text).map_err(|e| {
             let line = e.span().map(|s| line_of(text, s.start));
-            let msg = e.message().trim().to_string();
+            let mut msg = e.message().trim().to_string();
+            if msg == "duplicate key" {
+                // toml names neither the key nor the table; the span does.
+                let span = e.span().unwrap_or_default();
+                let key = text.get(span.clone()).unwrap_or("").trim();
+                let line_start = text[..span.start.min(text.len())]
+                    .rfind('\n')
+                    .map_or(0, |i| i + 1);
+                let header = text[line_start..].trim_start().starts_with('[');
+                msg = match key.trim_matches(['[', ']', ' ']) {
+                    "" => msg,
+                    k if header => format!("duplicate table `[{k}]`"),
+                    k => format!("duplicate key `{k}`"),
+                };
+            }
             match line {
                 Some(l) => anyhow!("{name}:{l}: {msg}"),
                 None => anyhow!("{name}: {msg}"),
@@ -237,9 +296,9 @@ impl Scene {
         let cam_span = file.camera.span();
         let c = file.camera.into_inner();
         let camera = (|| -> Result<Camera> {
-            let eye = finite3(c.eye, "camera.eye")?;
-            let target = finite3(c.target, "camera.target")?;
-            let up = unit3(c.up, "camera.up")?;
+            let eye = check_coord(c.eye, "camera.eye")?;
+            let target = check_coord(c.target, "camera.target")?;
+            let up = check_direction(c.up, "camera.up")?;
             if (target - eye).length_squared() < 1e-24 {
                 bail!("camera.target: equals camera.eye");
             }
@@ -247,20 +306,48 @@ impl Scene {
                 bail!("camera.up: parallel to the view direction");
             }
             let fov = c.fov_y_deg;
-            if !(fov.is_finite() && fov > 0.0 && fov < 179.0) {
-                bail!("camera.fov_y_deg: must be in (0, 179), got {fov}");
+            if !(fov.is_finite() && (MIN_FOV_DEG..MAX_FOV_DEG).contains(&fov)) {
+                bail!(
+                    "camera.fov_y_deg: must be in [{}, {}), got {}",
+                    short(MIN_FOV_DEG),
+                    short(MAX_FOV_DEG),
+                    short(fov)
+                );
             }
-            let near = positive(c.near, "camera.near")?;
+            let near = c.near;
+            if !(near.is_finite() && (MIN_NEAR..=MAX_COORD).contains(&near)) {
+                bail!(
+                    "camera.near: must be in [{}, {}], got {}",
+                    short(MIN_NEAR),
+                    short(MAX_COORD),
+                    short(near)
+                );
+            }
             let far = match c.far {
                 FarFile::Number(f) => {
-                    let f = positive(f, "camera.far")?;
+                    let f = positive(f, 2.0 * MAX_COORD, "camera.far")?;
                     if f <= near {
-                        bail!("camera.far: must be greater than near ({near}), got {f}");
+                        bail!(
+                            "camera.far: must be greater than near ({}), got {}",
+                            short(near),
+                            short(f)
+                        );
+                    }
+                    if f / near > MAX_DEPTH_RATIO {
+                        bail!(
+                            "camera.far: far/near must be at most {}, got {} / {} = {}; raise near",
+                            short(MAX_DEPTH_RATIO),
+                            short(f),
+                            short(near),
+                            short(f / near)
+                        );
                     }
                     Far::Finite(f)
                 }
                 FarFile::Word(w) if w == "infinite" => Far::Infinite,
-                FarFile::Word(w) => bail!("camera.far: a number or \"infinite\", got {w:?}"),
+                FarFile::Word(w) => {
+                    bail!("camera.far: expected a number or \"infinite\", got {w:?}")
+                }
             };
             Ok(Camera {
                 eye,
@@ -301,13 +388,51 @@ impl Scene {
         if objects.is_empty() {
             bail!("{name}: objects: the scene needs at least one [[objects]] entry");
         }
-        Ok(Scene {
+        let scene = Scene {
             name: name.to_string(),
             camera,
             ambient,
             lights,
             objects,
-        })
+        };
+        scene.check_extent().map_err(|e| anyhow!("{name}: {e}"))?;
+        Ok(scene)
+    }
+
+    /// The scene fits in [`crate::limits::MAX_EXTENT`] (objects first, then
+    /// the camera, then local lights: the message names the first entry that
+    /// does not fit), and with `far = "infinite"` the farthest point of the
+    /// scene over `near` is within [`MAX_DEPTH_RATIO`].
+    fn check_extent(&self) -> Result<()> {
+        let mut extent = Extent::default();
+        for (i, o) in self.objects.iter().enumerate() {
+            let world = o.mesh.positions.iter();
+            extent.add(
+                world.map(|p| o.model.transform_point3(p.as_dvec3())),
+                &format!("objects[{i}]"),
+            )?;
+        }
+        let c = &self.camera;
+        extent.add([c.eye], "camera.eye")?;
+        extent.add([c.target], "camera.target")?;
+        for (i, l) in self.lights.iter().enumerate() {
+            if let LightKind::Point { position, .. } | LightKind::Spot { position, .. } = l.kind {
+                extent.add([position], &format!("lights[{i}].position"))?;
+            }
+        }
+        if c.far == Far::Infinite {
+            let (lo, hi) = (extent.lo, extent.hi);
+            let farthest = (c.eye - lo).abs().max((c.eye - hi).abs()).length();
+            if farthest / c.near > MAX_DEPTH_RATIO {
+                bail!(
+                    "camera.near: the scene reaches {} from the eye, and that over near ({}) must be at most {}; raise near",
+                    short(farthest),
+                    short(c.near),
+                    short(MAX_DEPTH_RATIO)
+                );
+            }
+        }
+        Ok(())
     }
 
     /// A lesson's built-in scene: TOML compiled into the binary, meshes built in.
@@ -375,25 +500,26 @@ fn parse_light(l: LightFile, i: usize) -> Result<Light> {
     let range = |r: Option<f64>| -> Result<f64> {
         positive(
             r.ok_or_else(|| anyhow!("{p}.range: required for a {} light", l.kind))?,
+            2.0 * MAX_COORD,
             &format!("{p}.range"),
         )
     };
     let kind = match l.kind.as_str() {
         "directional" => LightKind::Directional {
-            direction: unit3(need(l.direction, "direction")?, &format!("{p}.direction"))?,
+            direction: check_direction(need(l.direction, "direction")?, &format!("{p}.direction"))?,
         },
         "point" => LightKind::Point {
-            position: finite3(need(l.position, "position")?, &format!("{p}.position"))?,
+            position: check_coord(need(l.position, "position")?, &format!("{p}.position"))?,
             range: range(l.range)?,
         },
         "spot" => {
             let a = l.spot_angle_deg.ok_or_else(|| anyhow!("{p}.spot_angle_deg: required for a spot light"))?;
             if !(a.is_finite() && a > 0.0 && a < 179.0) {
-                bail!("{p}.spot_angle_deg: must be in (0, 179), got {a}");
+                bail!("{p}.spot_angle_deg: must be in (0, 179), got {}", short(a));
             }
             LightKind::Spot {
-                position: finite3(need(l.position, "position")?, &format!("{p}.position"))?,
-                direction: unit3(need(l.direction, "direction")?, &format!("{p}.direction"))?,
+                position: check_coord(need(l.position, "position")?, &format!("{p}.position"))?,
+                direction: check_direction(need(l.direction, "direction")?, &format!("{p}.direction"))?,
                 range: range(l.range)?,
                 spot_angle_deg: a,
             }
@@ -410,17 +536,22 @@ fn parse_object(
     cache: &mut Vec<(String, Arc<Mesh>)>,
 ) -> Result<Object> {
     let p = format!("objects[{i}]");
-    let t = finite3(o.translate, &format!("{p}.translate"))?;
+    let t = check_coord(o.translate, &format!("{p}.translate"))?;
     let r = finite3(o.rotate_deg, &format!("{p}.rotate_deg"))?;
     let s = match o.scale {
         ScaleFile::Uniform(s) => DVec3::splat(s),
-        ScaleFile::PerAxis(v) => finite3(v, &format!("{p}.scale"))?,
+        ScaleFile::PerAxis(v) => DVec3::from(v),
     };
     if s.to_array()
         .iter()
-        .any(|c| !c.is_finite() || c.abs() < 1e-12)
+        .any(|c| !(c.is_finite() && (MIN_SCALE..=MAX_SCALE).contains(&c.abs())))
     {
-        bail!("{p}.scale: every component must be finite and non-zero, got {s}");
+        bail!(
+            "{p}.scale: every component must be non-zero, with a magnitude in [{}, {}]; got {}",
+            short(MIN_SCALE),
+            short(MAX_SCALE),
+            short3(s)
+        );
     }
     let color = color3(o.color, &format!("{p}.color"))?;
     let mesh = match cache.iter().find(|(n, _)| *n == o.mesh) {
