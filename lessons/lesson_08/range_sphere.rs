@@ -15,7 +15,8 @@ pub const SPHERE_MARGIN: f64 = 1e-3;
 pub const DEPTH_MARGIN: f64 = 4.0 / 16_777_215.0;
 
 /// The window depth of view distance `d` (> 0) under projection `proj`
-/// (right-handed, [0, 1] depth; finite, infinite or reversed alike).
+/// (right-handed, [0, 1] depth). Past a finite far plane it exceeds 1
+/// (below 0 when reversed): the caller clamps.
 pub fn window_depth(proj: DMat4, d: f64) -> f64 {
     let c = proj * DVec4::new(0.0, 0.0, -d, 1.0);
     c.z / c.w
@@ -23,9 +24,12 @@ pub fn window_depth(proj: DMat4, d: f64) -> f64 {
 
 // ANCHOR: sphere_depth_bounds
 /// [zmin, zmax] in window depth of a sphere (centre in *view* space, radius
-/// r), for a camera with this `near` distance and projection (depth growing
-/// with distance). `None` when the sphere lies wholly behind the near plane.
-/// A sphere crossing the near plane starts at depth 0.
+/// r), for a camera with this `near` distance and projection. `None` when
+/// the sphere lies wholly behind the near plane. Window depth is monotonic
+/// in view distance, so the two ends of the sphere's distance interval give
+/// the two ends of the depth interval, in either order: the same code holds
+/// for depth growing with distance (standard, infinite) and shrinking
+/// (reversed).
 pub fn sphere_depth_bounds(
     proj: DMat4,
     near: f64,
@@ -38,13 +42,15 @@ pub fn sphere_depth_bounds(
     if d_far <= near {
         return None;
     }
-    let zmin = if d_near <= near {
-        0.0
-    } else {
-        window_depth(proj, d_near) - DEPTH_MARGIN
-    };
-    // Past a finite far plane the depth exceeds 1: the bound is then 1.
-    let zmax = window_depth(proj, d_far) + DEPTH_MARGIN;
+    // A sphere crossing the near plane starts at the near plane's depth.
+    let (a, b) = (
+        window_depth(proj, d_near.max(near)),
+        window_depth(proj, d_far),
+    );
+    // Past a finite far plane the depth leaves [0, 1]; a stored depth
+    // never does (clipped surfaces leave the clear value, 1): clamp.
+    let zmin = a.min(b) - DEPTH_MARGIN;
+    let zmax = a.max(b) + DEPTH_MARGIN;
     Some((zmin.clamp(0.0, 1.0) as f32, zmax.clamp(0.0, 1.0) as f32))
 }
 // ANCHOR_END: sphere_depth_bounds
@@ -317,9 +323,13 @@ mod tests {
 
     #[test]
     fn depth_bounds_hold_every_point_of_the_sphere() {
-        for p in [
-            proj(),
-            perspective_infinite(50f64.to_radians(), W as f64 / H as f64, 0.1),
+        let aspect = W as f64 / H as f64;
+        // Reversed depth: near and far swapped (near → 1, far → 0).
+        let reversed = perspective(50f64.to_radians(), aspect, 100.0, 0.1);
+        for (p, rev) in [
+            (proj(), false),
+            (perspective_infinite(50f64.to_radians(), aspect, 0.1), false),
+            (reversed, true),
         ] {
             for (c, r) in [
                 (DVec3::new(1.0, 0.0, -10.0), 3.0),
@@ -329,7 +339,7 @@ mod tests {
                 let (zmin, zmax) = sphere_depth_bounds(p, 0.1, c, r).unwrap();
                 let (mut lo, mut hi) = (f64::MAX, f64::MIN);
                 for q in visible_samples(c, r, 0.1) {
-                    let z = window_depth(p, -q.z).min(1.0);
+                    let z = window_depth(p, -q.z).clamp(0.0, 1.0);
                     lo = lo.min(z);
                     hi = hi.max(z);
                 }
@@ -343,7 +353,12 @@ mod tests {
                     "[{zmin}, {zmax}] vs [{lo}, {hi}]"
                 );
                 if c.z + r * (1.0 + SPHERE_MARGIN) > -0.1 {
-                    assert_eq!(zmin, 0.0, "crossing the near plane starts at 0");
+                    let at_near = if rev { zmax } else { zmin };
+                    assert_eq!(at_near, if rev { 1.0 } else { 0.0 }, "near plane");
+                }
+                // (0, 0, -90), r 20 crosses the far plane at 100.
+                if c.z - r < -100.0 && p == proj() {
+                    assert_eq!(zmax, 1.0, "past the far plane the bound is 1");
                 }
             }
         }
