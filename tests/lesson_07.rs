@@ -194,3 +194,81 @@ fn lesson_07_extreme_near_1e_3_far_1e5() {
         }
     }
 }
+
+/// Runs `variant` alone; on GL expects reversed-Z's one-line refusal.
+/// Returns the run where it rendered.
+fn run_or_refused(name: &str, args: &[&str]) -> Option<support::LessonRun> {
+    let out = support::out_dir(name);
+    let o = Command::new(BIN)
+        .args(["--headless", "--out"])
+        .arg(&out)
+        .args(args)
+        .output()
+        .expect("run lesson_07");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    if stderr.contains("no GPU adapter found") && !support::gpu_required() {
+        eprintln!("SKIPPED {name}: no GPU adapter");
+        return None;
+    }
+    if !o.status.success() {
+        let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error")).collect();
+        assert_eq!(lines.len(), 1, "one error line: {stderr}");
+        assert!(
+            lines[0].contains("reversed_z") && lines[0].contains("--backend vulkan"),
+            "the line names the variant and the backend that handles it: {stderr}"
+        );
+        return None;
+    }
+    let report =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    Some(support::LessonRun {
+        report,
+        out,
+        stdout,
+    })
+}
+
+/// Issue 8, item 5: near = 1e-3, far = 1e5, the casters ~400 units away and
+/// 1 cm above the floor. Reversed-Z in Depth32Float (far plane at infinity)
+/// is exact away from shadow edges (≤ 0.05 %); `clamp` and `infinite`
+/// (standard depth, whose steps near 1 are 2⁻²⁴ in either format) are not.
+#[test]
+fn lesson_07_reversed_z_exact_on_deep_range() {
+    let file = scene("lesson_07_deep_range.toml");
+    let rz = [&SIZE[..], &["--scene", &file, "--variant", "reversed_z"]].concat();
+    let Some(run) = run_or_refused("lesson_07_deep_reversed", &rz) else {
+        return;
+    };
+    let rz_all = support::error(&run.report, "reversed_z", "misclassified_pct");
+    let rz_off = worst_off_edge(&run, "reversed_z");
+    let std_args = [
+        &SIZE[..],
+        &[
+            "--scene",
+            &file,
+            "--variant",
+            "clamp",
+            "--variant",
+            "infinite",
+        ],
+    ]
+    .concat();
+    let Some(std_run) = support::run_lesson(BIN, "lesson_07_deep_standard", &std_args) else {
+        return;
+    };
+    let clamp_off = worst_off_edge(&std_run, "clamp");
+    let inf_off = worst_off_edge(&std_run, "infinite");
+    eprintln!("deep range, % wrong > 2 px from an edge: reversed_z {rz_off:.3} (all {rz_all:.3}), clamp {clamp_off:.3}, infinite {inf_off:.3}");
+    assert!(rz_all <= 0.5, "reversed_z: {rz_all}% misclassified");
+    assert!(
+        rz_off <= 0.05,
+        "reversed_z: {rz_off}% wrong away from edges"
+    );
+    for (v, off) in [("clamp", clamp_off), ("infinite", inf_off)] {
+        assert!(
+            off > 0.05 && off > 5.0 * rz_off,
+            "{v} should fail on the deep range (standard depth): {off}% off-edge vs reversed_z {rz_off}%"
+        );
+    }
+}

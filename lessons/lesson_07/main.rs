@@ -40,6 +40,7 @@ use workbook::lesson_06::caps::{self, zfail_counting};
 use workbook::lesson_07::infinite_far::{infinite_scene, DepthMapping};
 use workbook::lesson_07::precision_study::{self as study, DepthFormat};
 use workbook::lesson_07::precision_table;
+use workbook::lesson_07::reversed_z::ReversedZ;
 
 // ANCHOR: variants
 /// The three ways to treat the back cap at infinity.
@@ -54,6 +55,9 @@ enum Variant {
     /// The far plane at infinity.
     #[value(name = "infinite")]
     Infinite,
+    /// Reversed-Z in Depth32Float, far plane at infinity.
+    #[value(name = "reversed_z")]
+    ReversedZ,
 }
 
 impl Variant {
@@ -61,6 +65,7 @@ impl Variant {
     fn mapping(self) -> DepthMapping {
         match self {
             Variant::Infinite => DepthMapping::Infinite,
+            Variant::ReversedZ => DepthMapping::InfiniteReversed,
             Variant::Neither | Variant::Clamp => DepthMapping::Standard,
         }
     }
@@ -93,6 +98,8 @@ struct DepthClamp {
     clamp: std::result::Result<Route, String>,
     infinite_scene: SceneGpu,
     infinite: Route,
+    /// `Err` (one line) where the adapter lacks Depth32FloatStencil8.
+    reversed: std::result::Result<ReversedZ, String>,
     scene_counters: BTreeMap<String, u64>,
     /// Per variant, in variant order: fragments rasterised (pipeline
     /// statistics) and depth precision.
@@ -149,7 +156,11 @@ impl Lesson for DepthClamp {
             .into();
             counters.push(c);
         }
+        let reversed = ReversedZ::new(gpu, scene).map_err(|e| {
+            format!("variant \"reversed_z\": {e}; run --variant clamp --variant infinite")
+        });
         Ok(DepthClamp {
+            reversed,
             finite: Route::new(gpu, scene, false)?,
             clamp,
             infinite: Route::new(gpu, &infinite_scene, false)?,
@@ -168,7 +179,13 @@ impl Lesson for DepthClamp {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        if variant == Variant::ReversedZ {
+            let r = self.reversed.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?;
+            r.render(frame, targets, &self.infinite.volumes);
+            return Ok(());
+        }
         let (sg, route) = match variant {
+            Variant::ReversedZ => unreachable!("drawn above"),
             Variant::Neither => (scene, &self.finite),
             Variant::Clamp => (
                 scene,

@@ -4,3 +4,4 @@
 pub mod infinite_far;
 pub mod precision_study;
 pub mod precision_table;
+pub mod reversed_z;
