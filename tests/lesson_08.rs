@@ -115,6 +115,30 @@ fn lesson_08_bounds_and_scissor_keep_pixels_identical() {
         both * 2 < all,
         "bounds + scissor: {both} of {all} stencil fragments"
     );
+    // `volume_fragments` is the true rasterised count: with no depth bounds
+    // every rasterised fragment reaches the stencil, and the bounds (after
+    // rasterisation) do not lower it.
+    let raster = |v| counter(&run.report, v, "volume_fragments");
+    assert_eq!(
+        raster("unbounded"),
+        all,
+        "rasterised = reaching the stencil"
+    );
+    assert_eq!(raster("depth_bounds"), all, "bounds act after rasterising");
+    assert_eq!(
+        raster("scissor"),
+        counter(&run.report, "scissor", "stencil_fragments")
+    );
+    // llvmpipe's pipeline statistics count 16 per 4×4 block shaded.
+    let adapter = run.report["adapter"]["name"].as_str().unwrap_or("");
+    let inv =
+        &support::variant(&run.report, "unbounded")["counters"]["fragment_shader_invocations"];
+    if let (true, Some(inv)) = (adapter.contains("llvmpipe"), inv.as_u64()) {
+        assert!(
+            inv % 16 == 0 && inv > all,
+            "{inv} invocations, {all} fragments"
+        );
+    }
 }
 
 /// A range sphere crossing the near plane (camera outside it): zmin = 0,

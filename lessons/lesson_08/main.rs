@@ -167,9 +167,10 @@ impl Lesson for DepthBounds {
 
 impl DepthBounds {
     // ANCHOR: count
-    /// The counters: fragments that reach the stencil update (occlusion
-    /// queries; not on GL, where they only say "any"), fragments rasterised
-    /// (pipeline statistics, where the adapter has them), the scissor area.
+    /// The counters: fragments that reach the stencil update and fragments
+    /// rasterised (occlusion queries; not on GL, where they only say
+    /// "any"), fragment-shader invocations (pipeline statistics, where the
+    /// adapter has them), the scissor area.
     fn count(
         &mut self,
         gpu: &Gpu,
@@ -186,11 +187,25 @@ impl DepthBounds {
         {
             c.insert("stencil_fragments".to_string(), s.iter().sum());
         }
-        let raster = self
+        // Rasterised: the same occlusion query without the depth-bounds mark
+        // (the emulated test comes after rasterisation; the scissor before).
+        let scissor_only = Limits {
+            depth_bounds: false,
+            ..lim
+        };
+        let raster = bounded_lights(&self.bounds, scissor_only);
+        if let Some(r) = self
             .bounded
-            .count_rasterised(gpu, scene, self.volumes.counter(), &lights);
-        if let Some(r) = raster {
-            c.insert("volume_fragments".to_string(), r);
+            .count_stencil_fragments(gpu, scene, targets, &raster)?
+        {
+            c.insert("volume_fragments".to_string(), r.iter().sum());
+        }
+        // Pipeline statistics: llvmpipe counts 16 per 4×4 block shaded.
+        let invocations =
+            self.bounded
+                .count_rasterised(gpu, scene, self.volumes.counter(), &lights);
+        if let Some(r) = invocations {
+            c.insert("fragment_shader_invocations".to_string(), r);
         }
         let full = scene.width as u64 * scene.height as u64;
         let area = |b: &Option<Option<LightBounds>>| match b {
