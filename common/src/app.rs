@@ -19,7 +19,13 @@ pub fn main<L: Lesson>() -> ExitCode {
         Err(e) => {
             use clap::error::ErrorKind;
             if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-                let _ = e.print();
+                use std::io::Write;
+                // Like `e.print()`, but a failed write is an error, not a silent exit 0.
+                let mut out = std::io::stdout().lock();
+                if let Err(err) = write!(out, "{}", e.render()).and_then(|()| out.flush()) {
+                    eprintln!("error: {}: cannot write to stdout: {err}", L::NAME);
+                    return ExitCode::FAILURE;
+                }
                 return ExitCode::SUCCESS;
             }
             let msg = e.to_string();
@@ -48,21 +54,31 @@ fn display_available() -> bool {
 /// Runs as the command line says: list variants, headless, or the window.
 fn run<L: Lesson>(args: &Args) -> Result<()> {
     if args.list_variants {
-        for v in all_variants::<L>() {
-            println!("{}", variant_name(v));
-        }
-        return Ok(());
+        let names: Vec<String> = all_variants::<L>().into_iter().map(variant_name).collect();
+        return print_stdout(&(names.join("\n") + "\n"));
     }
     let variants = select_variants::<L>(&args.variants)?;
     let scene = load_scene::<L>(args)?;
     if args.headless || !display_available() {
         let result = run_headless::<L>(args, scene, &variants)?;
-        print!("{}", result.report.table());
-        println!("outputs: {}", result.out_dir.display());
-        Ok(())
+        if let Some(w) = result.report.coverage_warning() {
+            eprintln!("{w}");
+        }
+        let table = result.report.table();
+        print_stdout(&format!("{table}outputs: {}\n", result.out_dir.display()))
     } else {
         crate::window::run_window::<L>(args, scene, variants)
     }
+}
+
+/// Writes to stdout and flushes: a full disk or a closed pipe is an error
+/// (`println!` would panic).
+fn print_stdout(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| anyhow::anyhow!("cannot write to stdout: {e}"))
 }
 
 /// The `--scene` file, or the lesson's default scene.

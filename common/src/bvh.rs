@@ -21,6 +21,12 @@ use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 
+/// The BVH refuses a vertex beyond `±MAX_COORD` (or a non-finite one): obvhs
+/// computes box areas in `f32`, and past about 1e19 they overflow and its
+/// build indexes out of bounds. Validated scenes stay within
+/// [`crate::limits::MAX_EXTENT`] of their origin, far inside this.
+pub const MAX_COORD: f32 = 1e7;
+
 /// Barycentric slack: shared edges overlap by this fraction of the triangle.
 pub const EDGE_EPSILON: f32 = 1e-6;
 
@@ -87,13 +93,29 @@ pub struct Bvh {
 
 impl Bvh {
     /// Builds the tree (obvhs' "medium" preset: PLOC plus reinsertion).
+    ///
+    /// Panics with the message of [`Bvh::try_build`] for a vertex that is not
+    /// finite or lies beyond [`MAX_COORD`]; a validated scene has none.
     pub fn build(tris: Vec<[Vec3; 3]>) -> Bvh {
+        Bvh::try_build(tris).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// Builds the tree, or says which triangle has a vertex that is not
+    /// finite or lies beyond [`MAX_COORD`] (obvhs would panic on it).
+    pub fn try_build(tris: Vec<[Vec3; 3]>) -> anyhow::Result<Bvh> {
+        let bad = |v: &Vec3| !(v.is_finite() && v.abs().max_element() <= MAX_COORD);
+        if let Some(i) = tris.iter().position(|t| t.iter().any(bad)) {
+            anyhow::bail!(
+                "BVH: triangle {i} has a vertex that is not finite or lies beyond ±{MAX_COORD:e} ({:?}); the scene's limits should have refused it",
+                tris[i]
+            );
+        }
         if tris.is_empty() {
-            return Bvh {
+            return Ok(Bvh {
                 cwbvh: CwBvh::default(),
                 tris: Vec::new(),
                 ids: Vec::new(),
-            };
+            });
         }
         let soup: Vec<Triangle> = tris
             .iter()
@@ -112,11 +134,11 @@ impl Bvh {
             .map(|&i| PreparedTri::new(&tris[i as usize]))
             .collect();
         cwbvh.primitive_indices = (0..ids.len() as u32).collect();
-        Bvh {
+        Ok(Bvh {
             cwbvh,
             tris: prepared,
             ids,
-        }
+        })
     }
 
     /// Number of triangles in the tree.
@@ -387,6 +409,32 @@ pub(crate) mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn out_of_range_vertices_are_refused_not_a_panic() {
+        let unit = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        for big in [1e20, f32::INFINITY, f32::NAN, -2.0 * MAX_COORD] {
+            let mut tris = sphere(1.0, 8, 16);
+            let at = tris.len();
+            tris.push([Vec3::ZERO, Vec3::new(big, 0.0, 0.0), Vec3::Z]);
+            tris.push(unit);
+            let e = Bvh::try_build(tris).err().expect("refused");
+            assert!(
+                e.to_string().contains(&format!("triangle {at} ")),
+                "{big}: {e}"
+            );
+        }
+        // At the bound, a tiny triangle beside a huge one builds and is found.
+        let tiny = unit.map(|v| v * 1e-6 + Vec3::splat(0.5));
+        let big = [
+            Vec3::splat(-MAX_COORD),
+            Vec3::new(MAX_COORD, -MAX_COORD, -MAX_COORD),
+            Vec3::new(-MAX_COORD, MAX_COORD, -MAX_COORD),
+        ];
+        let bvh = Bvh::try_build(vec![big, tiny]).expect("builds");
+        let hit = bvh.closest_hit(Vec3::new(0.5 + 2e-7, 0.5 + 2e-7, 1.0), Vec3::NEG_Z, 10.0);
+        assert_eq!(hit.map(|h| h.tri), Some(1));
     }
 
     #[test]

@@ -9,7 +9,7 @@ use crate::cli::Args;
 use crate::gpu::Gpu;
 use crate::lesson::{variant_name, Lesson};
 use crate::metrics;
-use crate::reference::render_reference;
+use crate::reference::try_render_reference;
 use crate::render::SceneGpu;
 use crate::report::{combine, AdapterReport, Report, VariantReport};
 use crate::scene::Scene;
@@ -44,7 +44,7 @@ pub fn run_headless<L: Lesson>(
     let mut lesson = L::new(&gpu, &sg)?;
     let mut timer = Timer::new(&gpu);
 
-    let reference = render_reference(&sg.scene, sg.camera.view_proj, args.width, args.height);
+    let reference = try_render_reference(&sg.scene, sg.camera.view_proj, args.width, args.height)?;
     let (w, h) = (args.width, args.height);
     for k in 0..sg.scene.lights.len() {
         save(

@@ -3,7 +3,9 @@
 //! Only *receiver* pixels count (INTERFACES.md): geometry covers the pixel,
 //! its geometric normal faces the light (N·L > [`RECEIVER_MIN_N_DOT_L`], which
 //! also leaves out pixels beyond a light's range or cone), and the GPU and the
-//! reference see the same object there.
+//! reference see the same object there. The pixels where they do not are
+//! counted apart ([`ErrorStats::coverage_mismatch_pct`]), so that a broken
+//! image cannot hide behind a small receiver set.
 
 use image::{GrayAlphaImage, LumaA, Rgba, RgbaImage};
 use serde::Serialize;
@@ -28,7 +30,14 @@ pub struct ErrorStats {
     pub false_lit_pct: f64,
     /// Mean |GPU − reference| visibility.
     pub mean_abs: f64,
+    /// Of the pixels that either the GPU or the reference covers, the share
+    /// (%) where the two see different objects (or one sees nothing). They
+    /// are left out of the receivers; above [`COVERAGE_WARN_PCT`] the run warns.
+    pub coverage_mismatch_pct: f64,
 }
+
+/// Above this coverage mismatch (%) a headless run prints a warning line.
+pub const COVERAGE_WARN_PCT: f64 = 1.0;
 
 /// The statistics and the picture of where the errors are.
 #[derive(Clone, Debug)]
@@ -79,10 +88,15 @@ pub fn compare(
 
     let mut diff = RgbaImage::new(w, h);
     let (mut receivers, mut false_shadow, mut false_lit) = (0u64, 0u64, 0u64);
+    let (mut covered, mut mismatched) = (0u64, 0u64);
     let mut abs_sum = 0.0f64;
     for p in 0..n {
         let hit = reference.hits[p];
         let same_surface = hit.is_some_and(|hit| gpu_object_id[p] == hit.object + 1);
+        if hit.is_some() || gpu_object_id[p] != 0 {
+            covered += 1;
+            mismatched += u64::from(!same_surface);
+        }
         let colour = if same_surface && lit_by[p] > RECEIVER_MIN_N_DOT_L {
             receivers += 1;
             let (gpu, exact) = (gpu_visibility[p], ref_vis[p]);
@@ -115,6 +129,7 @@ pub fn compare(
         false_shadow_pct: pct(false_shadow),
         false_lit_pct: pct(false_lit),
         mean_abs: abs_sum / of,
+        coverage_mismatch_pct: 100.0 * mismatched as f64 / covered.max(1) as f64,
     };
     Comparison { stats, diff }
 }
@@ -261,6 +276,12 @@ mod tests {
         let r = reference(14, 1, &px);
         let s = compare(&r, 0, &ids, &gpu).stats;
         assert_eq!(s.receiver_pixels, 10);
+        // 13 covered pixels (all but the miss), 1 where the GPU sees another object.
+        assert!(
+            (s.coverage_mismatch_pct - 100.0 / 13.0).abs() < 1e-9,
+            "coverage mismatch {}",
+            s.coverage_mismatch_pct
+        );
         assert_eq!(
             (s.misclassified_pct, s.false_shadow_pct, s.false_lit_pct),
             (30.0, 20.0, 10.0)
@@ -287,7 +308,11 @@ mod tests {
                 misclassified_pct: 0.0,
                 false_shadow_pct: 0.0,
                 false_lit_pct: 0.0,
-                mean_abs: 0.0
+                mean_abs: 0.0,
+                // Pixel 0 is covered by neither; pixels 1 (object 0 on both)
+                // and 2 (object 2 in the reference, object 0 on the GPU) are
+                // covered, and pixel 2 is a mismatch.
+                coverage_mismatch_pct: 50.0
             }
         );
     }

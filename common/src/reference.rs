@@ -175,13 +175,13 @@ struct Occluders {
 }
 
 impl Occluders {
-    fn new(scene: &Scene, tris: &[([Vec3; 3], u32)]) -> Self {
+    fn new(scene: &Scene, tris: &[([Vec3; 3], u32)]) -> anyhow::Result<Self> {
         let casts = |o: u32| scene.objects[o as usize].casts_shadow;
         if tris.iter().all(|&(_, o)| casts(o)) {
-            return Occluders {
+            return Ok(Occluders {
                 bvh: None,
                 local: Vec::new(),
-            };
+            });
         }
         let mut local = vec![u32::MAX; tris.len()];
         let mut list = Vec::new();
@@ -191,10 +191,10 @@ impl Occluders {
                 list.push(t);
             }
         }
-        Occluders {
-            bvh: Some(Bvh::build(list)),
+        Ok(Occluders {
+            bvh: Some(Bvh::try_build(list)?),
             local,
-        }
+        })
     }
 
     /// Whether a caster other than scene triangle `skip` crosses the ray.
@@ -212,11 +212,25 @@ impl Occluders {
 // ANCHOR: render_reference
 /// Ray casts the scene through `view_proj` (origin-relative, depth in [0, 1]):
 /// what each pixel sees, and whether each light reaches it.
+///
+/// Panics where [`try_render_reference`] fails: on a scene that was not
+/// validated (a vertex beyond the BVH's bounds).
 pub fn render_reference(scene: &Scene, view_proj: Mat4, width: u32, height: u32) -> Reference {
+    try_render_reference(scene, view_proj, width, height).unwrap_or_else(|e| panic!("{e:#}"))
+}
+
+/// [`render_reference`], with the BVH's refusal of out-of-range vertices
+/// as an error (see [`Bvh::try_build`]).
+pub fn try_render_reference(
+    scene: &Scene,
+    view_proj: Mat4,
+    width: u32,
+    height: u32,
+) -> anyhow::Result<Reference> {
     let start = Instant::now();
     let tris = scene.world_triangles();
-    let bvh = Bvh::build(tris.iter().map(|(t, _)| *t).collect());
-    let occluders = Occluders::new(scene, &tris);
+    let bvh = Bvh::try_build(tris.iter().map(|(t, _)| *t).collect())?;
+    let occluders = Occluders::new(scene, &tris)?;
 
     // Primary rays: what the camera sees at each pixel centre.
     let inv = view_proj.as_dmat4().inverse();
@@ -282,14 +296,14 @@ pub fn render_reference(scene: &Scene, view_proj: Mat4, width: u32, height: u32)
     }
 
     let ms = start.elapsed().as_secs_f64() * 1e3;
-    Reference {
+    Ok(Reference {
         width,
         height,
         hits,
         visibility,
         lit_by,
         ms,
-    }
+    })
 }
 // ANCHOR_END: render_reference
 

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::metrics::ErrorStats;
+use crate::metrics::{ErrorStats, COVERAGE_WARN_PCT};
 use crate::timing::TimingSource;
 
 #[derive(Serialize, Clone, Debug)]
@@ -58,10 +58,39 @@ pub fn combine(per_light: &[ErrorStats]) -> ErrorStats {
         false_shadow_pct: w(|s| s.false_shadow_pct),
         false_lit_pct: w(|s| s.false_lit_pct),
         mean_abs: w(|s| s.mean_abs),
+        // Coverage does not depend on the light: every entry has the same.
+        coverage_mismatch_pct: per_light
+            .iter()
+            .map(|s| s.coverage_mismatch_pct)
+            .fold(0.0, f64::max),
     }
 }
 
 impl Report {
+    /// One warning line when a variant's GPU image and the reference see
+    /// different surfaces on more than [`COVERAGE_WARN_PCT`] % of the covered
+    /// pixels (the worst variant is named), else `None`.
+    pub fn coverage_warning(&self) -> Option<String> {
+        let bad: Vec<&VariantReport> = self
+            .variants
+            .iter()
+            .filter(|v| v.error.coverage_mismatch_pct > COVERAGE_WARN_PCT)
+            .collect();
+        let worst = bad.iter().max_by(|a, b| {
+            a.error
+                .coverage_mismatch_pct
+                .total_cmp(&b.error.coverage_mismatch_pct)
+        })?;
+        let others = match bad.len() - 1 {
+            0 => String::new(),
+            n => format!(" and {n} other variant(s)"),
+        };
+        Some(format!(
+            "warning: {}: the GPU and the reference see different surfaces on {:.1} % of the covered pixels ({}{others}); the error figures leave those pixels out, so they hide part of the image (compare {}_visibility_l0.png with reference_visibility_l0.png)",
+            self.lesson, worst.error.coverage_mismatch_pct, worst.name, worst.name
+        ))
+    }
+
     /// The terminal table: adapter and reference time, then one row a variant.
     pub fn table(&self) -> String {
         let mut s = String::new();
