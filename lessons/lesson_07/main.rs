@@ -14,7 +14,9 @@
 //!
 //! `neither` shows the failure. The lesson also measures what each choice
 //! costs in depth precision ([`precision_study`](workbook::lesson_07::precision_study):
-//! `depth_precision.md/.csv/.png`).
+//! `depth_precision.md/.csv/.png/.svg`), and `reversed_z` keeps the far
+//! plane at infinity with reversed depth in Depth32Float
+//! ([`reversed_z`](workbook::lesson_07::reversed_z)), exact on deep ranges.
 //!
 //! Run: `cargo run --release --bin lesson_07 -- --headless`
 //! Book: chapter "07 depth clamp and infinite extrusion" (`book/src/lesson_07.md`).
@@ -245,6 +247,7 @@ impl Lesson for DepthClamp {
         };
         write("depth_precision.csv", precision_table::csv(&rows))?;
         write("depth_precision.md", precision_table::markdown(&rows))?;
+        write("depth_precision.svg", precision_table::svg_plot(&rows))?;
         save(
             &precision_table::grid_image(&rows, 3),
             &out.join("depth_precision.png"),

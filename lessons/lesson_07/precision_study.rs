@@ -12,8 +12,14 @@
 //! - **CPU model**: [`resolves_cpu`] repeats the f32 clip maths and quantises
 //!   like the format does (24-bit unorm rounding, or the f32 itself).
 //!
-//! The figure of merit is the smallest resolvable *relative* gap Δd/d at a
-//! distance d: every gap of the grid [`gaps`] from that one up resolves.
+//! One sample per cell would let rounding luck decide: whether two depths
+//! land in different storage steps depends on where in a step the first
+//! one falls. So every (distance, gap) cell holds [`SAMPLES`] distances
+//! jittered across ±5 % of d, and a gap counts as resolved at d when at
+//! least [`QUANTILE`] of them resolve. The figure of merit is the smallest
+//! relative gap Δd/d from which every larger gap of the grid [`gaps`]
+//! resolves. [`analytic_gap`] gives the curve it should follow: one storage
+//! step divided by the slope of the mapping.
 
 use anyhow::{Context, Result};
 use common::bindings::{self, uniform_entry};
@@ -72,8 +78,35 @@ pub fn window_depth_f32(rows: [f64; 4], d: f32) -> f32 {
 }
 // ANCHOR_END: window_depth
 
+/// Samples per (distance, gap) cell, and the share that must resolve.
+pub const SAMPLES: usize = 32;
+pub const QUANTILE: f64 = 0.95;
+
+/// Sample `j` of the cell at distance `d`: spread evenly over d·[0.95, 1.05).
+pub fn jittered(d: f64, j: usize) -> f64 {
+    d * (1.0 + 0.1 * ((j as f64 + 0.5) / SAMPLES as f64 - 0.5))
+}
+
+// ANCHOR: analytic_gap
+/// The analytic curve: the smallest Δd/d that one storage step can hold
+/// at distance d, step(z) / (|dz/dd| · d). The step is 1/(2²⁴ − 1) for
+/// D24 and the f32 spacing at z for Depth32Float. It leaves out the f32
+/// rounding of the clip maths, which the measurement includes.
+pub fn analytic_gap(m: DepthMapping, f: DepthFormat, near: f64, far: f64, d: f64) -> f64 {
+    let [zz, tz, _, _] = m.rows(near, far);
+    // z(d) = (zz·(−d) + tz)/d = −zz + tz/d, so |dz/dd| = |tz|/d².
+    let z = -zz + tz / d;
+    let step = match f {
+        DepthFormat::D24 => 1.0 / 16_777_215.0,
+        DepthFormat::D32F => 2f64.powi((z.max(1e-38) as f32).log2().floor() as i32 - 23),
+    };
+    step / (tz.abs() / (d * d) * d)
+}
+// ANCHOR_END: analytic_gap
+
 /// The CPU model: are surfaces at `d` and `d·(1 + gap)` stored in the right
-/// order (and not equal), inside [0, 1]?
+/// order (and not equal), inside [0, 1]? A far surface past the far plane
+/// is clipped, so the near one shows.
 pub fn resolves_cpu(
     m: DepthMapping,
     f: DepthFormat,
@@ -88,8 +121,13 @@ pub fn resolves_cpu(
         window_depth_f32(rows, (d * (1.0 + gap)) as f32),
     );
     let inside = |z: f32| (0.0..=1.0).contains(&z);
-    if !inside(za) || !inside(zb) {
+    if !inside(za) {
         return false;
+    }
+    // Beyond the far plane the far quad is clipped: the near one shows, as
+    // on the GPU. (Only the largest gaps at far/2 get there.)
+    if !inside(zb) {
+        return true;
     }
     let (qa, qb) = (f.quantise(za), f.quantise(zb));
     if m.reversed() {
@@ -110,19 +148,20 @@ pub fn gaps() -> Vec<f64> {
 /// the two named ones last: √(near·far) and far/2.
 pub fn distances(near: f64, far: f64) -> Vec<f64> {
     let (a, b) = ((10.0 * near).ln(), (0.5 * far).ln());
-    let mut d: Vec<f64> = (0..16)
-        .map(|i| (a + (b - a) * i as f64 / 15.0).exp())
+    let mut d: Vec<f64> = (0..12)
+        .map(|i| (a + (b - a) * i as f64 / 11.0).exp())
         .collect();
     d.push((near * far).sqrt());
     d.push(0.5 * far);
     d
 }
 
-/// The smallest gap from which every larger gap of the grid resolves.
-pub fn min_resolvable_gap(row: &[bool], gaps: &[f64]) -> Option<f64> {
+/// The smallest gap from which every larger gap of the grid resolves in
+/// at least [`QUANTILE`] of its samples (`row`: the share resolved per gap).
+pub fn min_resolvable_gap(row: &[f64], gaps: &[f64]) -> Option<f64> {
     let mut best = None;
     for i in (0..row.len()).rev() {
-        if !row[i] {
+        if row[i] < QUANTILE {
             break;
         }
         best = Some(gaps[i]);
@@ -134,17 +173,19 @@ pub fn min_resolvable_gap(row: &[bool], gaps: &[f64]) -> Option<f64> {
 const PROBE_WGSL: &str = include_str!("../../shaders/lesson_07/depth_probe.wgsl");
 
 // ANCHOR: measure_gpu
-/// The GPU measurement: `result[row][column]` is true where the near quad
-/// at `distances[row]` won against the far one at `distances[row]·(1 + gaps[column])`.
+/// The GPU measurement: `result[row][column]` is the share of the
+/// [`SAMPLES`] jittered distances d around `distances[row]` where the near
+/// quad at d won against the far one at d·(1 + `gaps[column]`).
 pub fn measure_gpu(
     gpu: &Gpu,
     format: wgpu::TextureFormat,
     m: DepthMapping,
     near: f64,
     far: f64,
-) -> Result<Vec<Vec<bool>>> {
+) -> Result<Vec<Vec<f64>>> {
     let (gaps, dists) = (gaps(), distances(near, far));
-    let (w, h) = (gaps.len() as u32, dists.len() as u32);
+    // One pixel row per jittered sample: SAMPLES rows per distance.
+    let (w, h) = (gaps.len() as u32, (dists.len() * SAMPLES) as u32);
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("depth precision probe"),
@@ -162,7 +203,11 @@ pub fn measure_gpu(
     // The far quads first (value 0), then the near ones (value 1).
     let mut inst: Vec<[f32; 4]> = Vec::new();
     for (value, far_side) in [(0.0, true), (1.0, false)] {
-        for (r, &d) in dists.iter().enumerate() {
+        for (r, d) in dists
+            .iter()
+            .flat_map(|&d| (0..SAMPLES).map(move |j| jittered(d, j)))
+            .enumerate()
+        {
             for (c, &g) in gaps.iter().enumerate() {
                 let dist = if far_side { d * (1.0 + g) } else { d };
                 inst.push([c as f32, r as f32, dist as f32, value]);
@@ -265,21 +310,36 @@ pub fn measure_gpu(
     }
     gpu.queue.submit([enc.finish()]);
     let px = read_texture(gpu, &color, 1).context("depth precision probe readback")?;
+    // Share of each distance's SAMPLES rows where the near quad (255) won.
     Ok(px
-        .chunks(w as usize)
-        .map(|r| r.iter().map(|&v| v > 127).collect())
+        .chunks(w as usize * SAMPLES)
+        .map(|cell| {
+            (0..w as usize)
+                .map(|c| {
+                    let won = (0..SAMPLES)
+                        .filter(|&j| cell[j * w as usize + c] > 127)
+                        .count();
+                    won as f64 / SAMPLES as f64
+                })
+                .collect()
+        })
         .collect())
 }
 // ANCHOR_END: measure_gpu
 
-/// The CPU model over the same grid as [`measure_gpu`].
-pub fn model_cpu(f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Vec<Vec<bool>> {
+/// The CPU model over the same grid and samples as [`measure_gpu`].
+pub fn model_cpu(f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Vec<Vec<f64>> {
     let g = gaps();
     distances(near, far)
         .iter()
         .map(|&d| {
             g.iter()
-                .map(|&gap| resolves_cpu(m, f, near, far, d, gap))
+                .map(|&gap| {
+                    let ok = (0..SAMPLES)
+                        .filter(|&j| resolves_cpu(m, f, near, far, jittered(d, j), gap))
+                        .count();
+                    ok as f64 / SAMPLES as f64
+                })
                 .collect()
         })
         .collect()
@@ -287,7 +347,8 @@ pub fn model_cpu(f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Vec<Ve
 
 /// One configuration of the study: the smallest resolvable relative gap at
 /// every probed distance, measured on the GPU (`None` where the format is
-/// missing) and modelled on the CPU. `None` inside means "no gap up to 1".
+/// missing), modelled on the CPU, and the analytic curve. `None` inside
+/// means "no gap up to 1".
 #[derive(Clone, Debug)]
 pub struct PrecisionRow {
     pub format: DepthFormat,
@@ -297,8 +358,9 @@ pub struct PrecisionRow {
     pub distances: Vec<f64>,
     pub gpu: Option<Vec<Option<f64>>>,
     pub cpu: Vec<Option<f64>>,
-    /// The GPU's resolve grid (rows = distances), for the figure.
-    pub grid: Option<Vec<Vec<bool>>>,
+    pub analytic: Vec<f64>,
+    /// The GPU's share resolved (rows = distances, columns = gaps).
+    pub grid: Option<Vec<Vec<f64>>>,
 }
 
 impl PrecisionRow {
@@ -338,6 +400,10 @@ pub fn study_one(
         mapping: m,
         near,
         far,
+        analytic: distances(near, far)
+            .iter()
+            .map(|&d| analytic_gap(m, f, near, far, d))
+            .collect(),
         distances: distances(near, far),
         gpu: gpu_gaps,
         cpu,
@@ -385,17 +451,36 @@ mod tests {
         assert!(inf_rev <= 1e-6, "{inf_rev}");
     }
 
+    /// Many samples per cell: no cell resolves a gap well below one storage
+    /// step (the analytic curve), and none needs ten times more.
+    #[test]
+    fn the_model_follows_the_analytic_curve() {
+        let g = gaps();
+        for ratio in [1e2, 1e4, 1e6, 1e8] {
+            let (n, f) = (1e-3, 1e-3 * ratio);
+            for fmt in FORMATS {
+                for m in MAPPINGS {
+                    let grid = model_cpu(fmt, m, n, f);
+                    for (i, d) in distances(n, f).into_iter().enumerate() {
+                        let a = analytic_gap(m, fmt, n, f, d);
+                        let got = min_resolvable_gap(&grid[i], &g);
+                        let ctx = format!("{fmt:?} {} far/near {ratio:e} d {d:e}", m.name());
+                        if a > 0.1 {
+                            continue;
+                        }
+                        let got = got.unwrap_or_else(|| panic!("{ctx}: none, analytic {a:e}"));
+                        assert!(got >= a / 2.0 && got <= a * 10.0, "{ctx}: {got:e} vs {a:e}");
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn min_gap_needs_every_larger_gap_to_resolve() {
         let g = [1.0, 2.0, 3.0, 4.0];
-        assert_eq!(
-            min_resolvable_gap(&[false, true, true, true], &g),
-            Some(2.0)
-        );
-        assert_eq!(
-            min_resolvable_gap(&[true, false, true, true], &g),
-            Some(3.0)
-        );
-        assert_eq!(min_resolvable_gap(&[true, true, true, false], &g), None);
+        assert_eq!(min_resolvable_gap(&[0.0, 1.0, 0.96, 1.0], &g), Some(2.0));
+        assert_eq!(min_resolvable_gap(&[1.0, 0.9, 1.0, 1.0], &g), Some(3.0));
+        assert_eq!(min_resolvable_gap(&[1.0, 1.0, 1.0, 0.5], &g), None);
     }
 }
