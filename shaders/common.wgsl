@@ -27,9 +27,11 @@ struct Object {
     id: vec4<u32>,
 };
 
-@group(0) @binding(0) var<uniform> camera: Camera;
-@group(0) @binding(1) var<uniform> light: Light;
-@group(1) @binding(0) var<uniform> object: Object;
+// Read-only storage rather than uniform buffers: see SCENE_BUFFER_USAGE in
+// common/src/render.rs (a lavapipe leak). The data are the same.
+@group(0) @binding(0) var<storage, read> camera: Camera;
+@group(0) @binding(1) var<storage, read> light: Light;
+@group(1) @binding(0) var<storage, read> object: Object;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,

@@ -64,6 +64,25 @@ pub fn uniform_entry(
     }
 }
 
+/// A read-only storage buffer entry (`var<storage, read>` in WGSL).
+pub fn storage_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    dynamic: bool,
+    size: Option<u64>,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: dynamic,
+            min_binding_size: size.and_then(wgpu::BufferSize::new),
+        },
+        count: None,
+    }
+}
+
 /// A layout of `entries`.
 pub fn layout(
     gpu: &Gpu,
@@ -109,20 +128,36 @@ pub fn uniform_buffer(gpu: &Gpu, label: &str, bytes: &[u8]) -> wgpu::Buffer {
         })
 }
 
-/// A bind group layout with one uniform buffer of `size` bytes at binding 0,
-/// read by the fragment stage: a variant's parameters for the lit pass.
-pub fn uniform_layout(gpu: &Gpu, label: &str, size: u64) -> wgpu::BindGroupLayout {
-    let entry = uniform_entry(0, wgpu::ShaderStages::FRAGMENT, false, Some(size));
+/// A read-only storage buffer holding `bytes`: a variant's parameters.
+///
+/// Parameters live in storage, not uniform, buffers because lavapipe
+/// (Mesa 22.3) recompiles, and leaks, a large fragment shader on every draw
+/// when its branches test values from a uniform buffer; see
+/// `common::render::SCENE_BUFFER_USAGE`. In WGSL: `var<storage, read>`.
+pub fn params_buffer(gpu: &Gpu, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    gpu.device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+}
+
+/// A bind group layout with one parameter buffer ([`params_buffer`]) of
+/// `size` bytes at binding 0, read by the fragment stage: a variant's
+/// parameters for the lit pass.
+pub fn params_layout(gpu: &Gpu, label: &str, size: u64) -> wgpu::BindGroupLayout {
+    let entry = storage_entry(0, wgpu::ShaderStages::FRAGMENT, false, Some(size));
     layout(gpu, label, &[entry])
 }
 
-/// A uniform buffer holding `bytes`, bound through [`uniform_layout`].
-pub fn uniform_group(
+/// A parameter buffer holding `bytes`, bound through [`params_layout`].
+pub fn params_group(
     gpu: &Gpu,
     layout: &wgpu::BindGroupLayout,
     label: &str,
     bytes: &[u8],
 ) -> wgpu::BindGroup {
-    let buffer = uniform_buffer(gpu, label, bytes);
+    let buffer = params_buffer(gpu, label, bytes);
     group(gpu, label, layout, &[buffer.as_entire_binding()])
 }

@@ -82,10 +82,22 @@ pub struct SceneGpu {
     pub depth_format: wgpu::TextureFormat,
 }
 
-/// A scene uniform (camera, light, object): read by both stages.
-fn uniform_entry(binding: u32, dynamic: bool, size: u64) -> wgpu::BindGroupLayoutEntry {
+/// How the scene's camera, light and object data are bound: read-only
+/// storage buffers, not uniform buffers.
+///
+/// Why not uniforms: lavapipe (Mesa 22.3) recompiles a fragment shader whose
+/// branches test uniform values ("uniform inlining") every time a uniform
+/// buffer is rebound, which here is every draw (the object's dynamic offset),
+/// and never frees the old code: about 1 MB leaked per draw. It does not
+/// inline storage buffers. The WGSL side is `var<storage, read>` in
+/// `shaders/common.wgsl`; the data and its layout are the same.
+pub const SCENE_BUFFER_USAGE: wgpu::BufferUsages =
+    wgpu::BufferUsages::STORAGE.union(wgpu::BufferUsages::COPY_DST);
+
+/// A scene buffer (camera, light, object): read by both stages.
+fn scene_entry(binding: u32, dynamic: bool, size: u64) -> wgpu::BindGroupLayoutEntry {
     let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-    bindings::uniform_entry(binding, stages, dynamic, Some(size))
+    bindings::storage_entry(binding, stages, dynamic, Some(size))
 }
 
 /// Compiles `common.wgsl` followed by a lesson's own WGSL.
@@ -108,31 +120,31 @@ impl SceneGpu {
         let camera_buf = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("camera"),
             size: std::mem::size_of::<CameraUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: SCENE_BUFFER_USAGE,
             mapped_at_creation: false,
         });
         let light_buf = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("lights"),
             size: SLOT * scene.lights.len() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: SCENE_BUFFER_USAGE,
             mapped_at_creation: false,
         });
         let object_buf = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("objects"),
             size: SLOT * scene.objects.len() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: SCENE_BUFFER_USAGE,
             mapped_at_creation: false,
         });
         let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("frame"),
             entries: &[
-                uniform_entry(0, false, std::mem::size_of::<CameraUniform>() as u64),
-                uniform_entry(1, true, std::mem::size_of::<LightUniform>() as u64),
+                scene_entry(0, false, std::mem::size_of::<CameraUniform>() as u64),
+                scene_entry(1, true, std::mem::size_of::<LightUniform>() as u64),
             ],
         });
         let object_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("object"),
-            entries: &[uniform_entry(
+            entries: &[scene_entry(
                 0,
                 true,
                 std::mem::size_of::<ObjectUniform>() as u64,

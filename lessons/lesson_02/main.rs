@@ -15,7 +15,7 @@ use std::collections::BTreeMap;
 
 use clap::ValueEnum;
 use common::app;
-use common::bindings::{uniform_group, uniform_layout};
+use common::bindings::{params_group, params_layout};
 use common::gpu::Gpu;
 use common::lesson::{variant_name, Lesson};
 use common::lit::LitPass;
@@ -154,7 +154,7 @@ impl Lesson for Bias {
         );
         let map_layout = shadow_map::shadow_map_layout(gpu);
         let bias_layout =
-            uniform_layout(gpu, "shadow bias", std::mem::size_of::<ShadowBias>() as u64);
+            params_layout(gpu, "shadow bias", std::mem::size_of::<ShadowBias>() as u64);
         let lit_pipeline = scene.lit_pipeline(
             gpu,
             &module,
@@ -189,7 +189,7 @@ impl Lesson for Bias {
                     _ => ShadowBias::NONE,
                 };
                 let name = variant_name(v);
-                uniform_group(gpu, &bias_layout, &name, bytemuck::bytes_of(&b))
+                params_group(gpu, &bias_layout, &name, bytemuck::bytes_of(&b))
             })
             .collect();
         Ok(Bias {

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 
 use clap::ValueEnum;
 use common::app;
-use common::bindings::{uniform_group, uniform_layout};
+use common::bindings::{params_group, params_layout};
 use common::gpu::Gpu;
 use common::lesson::{variant_name, Lesson};
 use common::lit::LitPass;
@@ -111,7 +111,7 @@ impl Lesson for Pcf {
         );
         let layout = pcf::pcf_map_layout(gpu);
         let filter_layout =
-            uniform_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);
+            params_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);
         let lit_pipeline = scene.lit_pipeline(
             gpu,
             &module,
@@ -133,7 +133,7 @@ impl Lesson for Pcf {
             .iter()
             .map(|&v| {
                 let params = FilterUniform::from(v.filter());
-                uniform_group(
+                params_group(
                     gpu,
                     &filter_layout,
                     &variant_name(v),

@@ -7,13 +7,13 @@
 //! parameters. Culling is in [`super::culling`], the picture of the six
 //! faces in [`super::cross`].
 
-use common::bindings::{self, sampler_entry, texture_entry, uniform_buffer, uniform_entry};
+use common::bindings::{self, params_buffer, sampler_entry, storage_entry, texture_entry};
 use common::camera::{light_uniform, LightUniform};
 use common::glam::dcamera::rh::proj::directx as webgpu;
 use common::glam::dcamera::rh::view::look_at_mat4;
 use common::glam::{DMat4, DVec3, Mat4};
 use common::gpu::Gpu;
-use common::render::{pipeline_layout_for, vertex_state, SceneGpu};
+use common::render::{pipeline_layout_for, vertex_state, SceneGpu, SCENE_BUFFER_USAGE};
 use common::scene::{LightKind, Scene};
 use common::targets::depth_texture;
 use common::timing::Frame;
@@ -115,14 +115,14 @@ impl FaceUniforms {
         let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cube face lights"),
             size: SLOT * 6 * scene.scene.lights.len().max(1) as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: SCENE_BUFFER_USAGE,
             mapped_at_creation: false,
         });
         // Binding 0 (the camera) is unused by the shadow shaders but part of the layout.
         let camera = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cube faces: unused camera"),
             size: 96,
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: SCENE_BUFFER_USAGE,
             mapped_at_creation: false,
         });
         let light_size = std::mem::size_of::<LightUniform>() as u64;
@@ -331,7 +331,7 @@ pub fn cube_map_layout(gpu: &Gpu, params_size: u64) -> wgpu::BindGroupLayout {
     let entries = [
         texture_entry(0, TextureSampleType::Depth, TextureViewDimension::Cube),
         sampler_entry(1, SamplerBindingType::Comparison),
-        uniform_entry(2, ShaderStages::FRAGMENT, false, Some(params_size)),
+        storage_entry(2, ShaderStages::FRAGMENT, false, Some(params_size)),
     ];
     bindings::layout(gpu, "cube shadow map", &entries)
 }
@@ -351,7 +351,7 @@ pub fn cube_map_group(
         compare: Some(wgpu::CompareFunction::LessEqual),
         ..Default::default()
     });
-    let buffer = uniform_buffer(gpu, "cube params", params);
+    let buffer = params_buffer(gpu, "cube params", params);
     cube_group(gpu, layout, map, &sampler, &buffer)
 }
 

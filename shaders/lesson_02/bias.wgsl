@@ -57,7 +57,7 @@ fn biased_visibility(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> f32 {
 // ANCHOR_END: biased_visibility
 
 // This variant's receiver-side bias (all zeros for the shadow-pass fixes).
-@group(3) @binding(0) var<uniform> bias: ShadowBias;
+@group(3) @binding(0) var<storage, read> bias: ShadowBias;
 
 // ANCHOR: fs_lit
 @fragment

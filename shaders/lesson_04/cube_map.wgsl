@@ -21,7 +21,7 @@ struct CubeParams {
     slope: f32,
     pcf: f32,
 };
-@group(2) @binding(2) var<uniform> params: CubeParams;
+@group(2) @binding(2) var<storage, read> params: CubeParams;
 const STORAGE_LINEAR: u32 = 0u;
 const STORAGE_DEPTH_EUCLID: u32 = 2u;
 
