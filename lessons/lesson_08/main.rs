@@ -15,6 +15,10 @@
 //! pixels are the same in all four; the counters say how many volume
 //! fragments each one rasterises and lets through to the stencil.
 //!
+//! A finite far plane is clamped, not clipped, as in lesson 07's `clamp`
+//! (needs DEPTH_CLIP_CONTROL). Bit 7 holds the bounds mark, so the count
+//! wraps at 128 ([`count_bits`]).
+//!
 //! Run: `cargo run --release --bin lesson_08 -- --headless`
 //! Book: chapter "08 depth bounds" (`book/src/lesson_08.md`).
 
