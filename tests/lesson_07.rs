@@ -281,6 +281,21 @@ fn lesson_07_reversed_z_exact_on_deep_range() {
     let inf_off = worst_off_edge(&std_run, "infinite");
     eprintln!("deep range, % wrong > 2 px from an edge: reversed_z {rz_off:.3} (all {rz_all:.3}), clamp {clamp_off:.3}, infinite {inf_off:.3}");
     assert!(rz_all <= 0.5, "reversed_z: {rz_all}% misclassified");
+    // Standard depth cannot even keep the casters in front of the floor
+    // there (the base pass z-fights); reversed-Z sees what the reference sees.
+    let cov = |r: &serde_json::Value, v| support::error(r, v, "coverage_mismatch_pct");
+    let rz_cov = cov(&run.report, "reversed_z");
+    assert!(
+        rz_cov <= 0.05,
+        "reversed_z: {rz_cov}% of pixels see another surface"
+    );
+    for v in ["clamp", "infinite"] {
+        let c = cov(&std_run.report, v);
+        assert!(
+            c > 0.5,
+            "{v}: standard depth should z-fight here, {c}% coverage mismatch"
+        );
+    }
     assert!(
         rz_off <= 0.05,
         "reversed_z: {rz_off}% wrong away from edges"
