@@ -28,6 +28,7 @@ use common::app;
 use common::gpu::Gpu;
 use common::lesson::Lesson;
 use common::render::SceneGpu;
+use common::scene::LightKind;
 use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
@@ -105,6 +106,46 @@ struct ZFail {
     /// Per variant, in variant order: `draws[light]`, and what was left out.
     plans: Vec<(Vec<Vec<CasterDraw>>, PlanStats)>,
     fragments: Option<u64>,
+    /// The camera and lights the reach and plans were made for.
+    view: Vec<f64>,
+}
+
+/// Every variant's draws for every light, in variant order.
+fn plans(volumes: &ShadowVolumes, scene: &SceneGpu) -> Vec<(Vec<Vec<CasterDraw>>, PlanStats)> {
+    let mut plans = Vec::new();
+    for v in Variant::value_variants() {
+        let mut total = PlanStats::default();
+        let mut per_light = Vec::new();
+        for light in 0..scene.scene.lights.len() {
+            let (d, s) = v.draws(volumes, scene, light);
+            total.zpass += s.zpass;
+            total.zfail += s.zfail;
+            total.skipped += s.skipped;
+            per_light.push(d);
+        }
+        plans.push((per_light, total));
+    }
+    plans
+}
+
+/// What the reach and the plans depend on: the camera (far plane, frustum)
+/// and the lights (their distance to each caster). In the window both move.
+fn view_key(scene: &SceneGpu) -> Vec<f64> {
+    let mut key: Vec<f64> = scene
+        .camera
+        .view_proj
+        .to_cols_array()
+        .map(f64::from)
+        .to_vec();
+    for l in &scene.scene.lights {
+        key.extend(match l.kind {
+            LightKind::Directional { direction } => direction.to_array(),
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
+                position.to_array()
+            }
+        });
+    }
+    key
 }
 
 impl Lesson for ZFail {
@@ -124,25 +165,13 @@ impl Lesson for ZFail {
         let reach = volume_reach(scene, &volumes.casters)?;
         volumes.set_reach(gpu, reach);
         // ANCHOR_END: reach
-        let mut plans = Vec::new();
-        for v in Variant::value_variants() {
-            let mut total = PlanStats::default();
-            let mut per_light = Vec::new();
-            for light in 0..scene.scene.lights.len() {
-                let (d, s) = v.draws(&volumes, scene, light);
-                total.zpass += s.zpass;
-                total.zfail += s.zfail;
-                total.skipped += s.skipped;
-                per_light.push(d);
-            }
-            plans.push((per_light, total));
-        }
         Ok(ZFail {
             lit_pipeline: stencil::stencil_lit_pipeline(gpu, scene),
             scene_counters: stencil::scene_counters(scene),
+            plans: plans(&volumes, scene),
             volumes,
-            plans,
             fragments: None,
+            view: view_key(scene),
         })
     }
 
@@ -154,6 +183,15 @@ impl Lesson for ZFail {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        let key = view_key(scene);
+        if key != self.view {
+            // The window moved the camera or a light: redo reach and plans
+            // (a reach that no longer fits the far plane ends the run).
+            self.volumes
+                .set_reach(frame.gpu, volume_reach(scene, &self.volumes.casters)?);
+            self.plans = plans(&self.volumes, scene);
+            self.view = key;
+        }
         let (draws, _) = &self.plans[variant as usize];
         let ext = variant.extrusion();
         if ext == Extrusion::Cpu {
