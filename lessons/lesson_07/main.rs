@@ -159,7 +159,7 @@ impl Lesson for DepthClamp {
             counters.push(c);
         }
         let reversed = ReversedZ::new(gpu, scene).map_err(|e| {
-            format!("variant \"reversed_z\": {e}; run --variant clamp --variant infinite")
+            format!("variant \"reversed_z\": {e}; or run --variant clamp --variant infinite")
         });
         Ok(DepthClamp {
             reversed,
@@ -184,6 +184,8 @@ impl Lesson for DepthClamp {
         if variant == Variant::ReversedZ {
             let r = self.reversed.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?;
             r.render(frame, targets, &self.infinite.volumes);
+            let casters = self.infinite.volumes.casters.len() * r.scene.scene.lights.len();
+            self.counters[variant as usize].insert("casters_drawn".into(), casters as u64);
             return Ok(());
         }
         let (sg, route) = match variant {
