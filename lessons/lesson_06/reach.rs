@@ -75,6 +75,13 @@ pub fn volume_reach(scene: &SceneGpu, casters: &[VolumeCaster]) -> Result<Vec<Ve
                 .iter()
                 .map(|t| point_triangle_distance(l, t.map(|i| world[i as usize])))
                 .fold(f64::INFINITY, f64::min);
+            if d <= 0.0 {
+                bail!(
+                    "camera.far = {far}: light {k} touches object {} ({}), so its shadow volume must reach infinity, past the far plane; use far = \"infinite\", or lesson_07 (depth clamp)",
+                    c.object,
+                    scene.scene.objects[c.object].mesh_name,
+                );
+            }
             let s = reach_factor(range, d);
             // Depth is affine along the extrusion: the deepest point of the
             // volume is a vertex of its back cap (or of the caster).
