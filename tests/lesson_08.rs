@@ -244,11 +244,18 @@ fn lesson_08_finite_far_matches_lesson_07_clamp() {
     ] {
         let file = scene(name);
         let tag = name.trim_end_matches(".toml");
-        let Some(r7) = run_finite(l07, &format!("l08_finite_l07_{tag}"), &file, &["clamp"]) else {
-            return;
+        let r7 = run_finite(l07, &format!("l08_finite_l07_{tag}"), &file, &["clamp"]);
+        let r8 = run_finite(BIN, &format!("l08_finite_{tag}"), &file, &VARIANTS);
+        let (r7, r8) = match (r7, r8) {
+            (Some(r7), Some(r8)) => (r7, r8),
+            // No adapter, or no DEPTH_CLIP_CONTROL: then neither may run.
+            (None, None) => return,
+            (r7, _) => panic!(
+                "{name}: lesson 07 clamp ran: {}, lesson 08 ran: {}",
+                r7.is_some(),
+                r7.is_none()
+            ),
         };
-        let r8 = run_finite(BIN, &format!("l08_finite_{tag}"), &file, &VARIANTS)
-            .unwrap_or_else(|| panic!("{name}: lesson 07 clamps, so lesson 08 must run"));
         let e7 = support::error(&r7.report, "clamp", "misclassified_pct");
         assert!(e7 <= 0.05, "{name}: lesson 07 clamp {e7}%");
         for v in VARIANTS {
@@ -312,7 +319,13 @@ fn lesson_08_count_wraps_at_128_and_warns_there() {
             .expect("run the lesson binary");
         let stderr = String::from_utf8_lossy(&o.stderr).to_string();
         if !o.status.success() {
-            return None; // no adapter, or no DEPTH_CLIP_CONTROL: run_finite's tests cover it
+            // Far = 50 needs depth clamp; without an adapter or the feature, skip.
+            let no_gpu = stderr.contains("no GPU adapter found") && !support::gpu_required();
+            assert!(
+                no_gpu || stderr.contains("DEPTH_CLIP_CONTROL"),
+                "nested_{n}: {stderr}"
+            );
+            return None;
         }
         let report: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
@@ -324,7 +337,6 @@ fn lesson_08_count_wraps_at_128_and_warns_there() {
     };
     let l07 = env!("CARGO_BIN_EXE_lesson_07");
     let Some((e127, w127)) = run(127, BIN, "bounds_scissor") else {
-        assert!(!support::gpu_required(), "lesson_08 failed on nested_127");
         return;
     };
     let (e128, w128) = run(128, BIN, "bounds_scissor").expect("nested_128 runs");
