@@ -67,20 +67,21 @@ fn lesson_04_snapshot() {
         return;
     };
     let variants = run.report["variants"].as_array().expect("variants");
-    assert_eq!(variants.len(), 10);
+    assert_eq!(variants.len(), 11);
     let mut text =
         String::from("reference visibility, light 0 ('#' shadow, '.' lit, ' ' background):\n");
     text += &support::ascii_of(&run.out.join("reference_visibility_l0.png"), 64, 18);
     text += "\n\nlinear_1024 visibility, light 0:\n";
     text += &support::ascii_of(&run.out.join("linear_1024_visibility_l0.png"), 64, 18);
-    text += "\n\nerror against the reference (rounded to whole percent), faces rendered, caster draws:\n";
+    text += "\n\nerror against the reference (rounded to whole percent), faces rendered, caster draws, slope bias (texels × tan θ):\n";
     for v in variants {
         let c = &v["counters"];
         text += &format!(
-            "{}  faces {}  draws {}\n",
+            "{}  faces {}  draws {}  slope {}\n",
             support::error_line(v, 0),
             c["faces_rendered"],
-            c["caster_draws"]
+            c["caster_draws"],
+            c["slope_bias_millitexels"].as_u64().unwrap_or(0) as f64 / 1000.0
         );
     }
     insta::assert_snapshot!("lesson_04", text);

@@ -11,8 +11,10 @@ use common::scene::{LightKind, Scene};
 
 use crate::lesson_01::shadow_map::ShadowPassState;
 
-/// The receiver-side bias of `bias.wgsl` (its `ShadowBias`). Lengths are in shadow-map texels at the receiver, so a setting
-/// fits any scene size, map resolution and light type.
+/// The receiver-side bias of `bias.wgsl` (its `ShadowBias`). Lengths are in
+/// shadow-map texels at the receiver, measured along its depth gradient
+/// (`shadow_texel_size`), so a setting fits any scene size, map resolution,
+/// texel aspect and light type: a receiver at θ needs tan θ / 2 of them.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ShadowBias {
@@ -59,7 +61,9 @@ pub struct SlopeScaledBias {
     pub constant: i32,
     /// Times the triangle's depth slope: its largest depth change per texel.
     pub slope_scale: f32,
-    /// At most this many texel widths of depth, along the light.
+    /// At most this many texels of depth along the light, a texel being its
+    /// larger side at the scene's centre (a clamp has no receiver to measure
+    /// a gradient on).
     pub clamp_texels: f32,
 }
 

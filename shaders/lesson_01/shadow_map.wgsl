@@ -24,17 +24,37 @@ fn outside_shadow_map(world: vec3<f32>, s: vec3<f32>) -> bool {
 // ANCHOR_END: shadow_coords
 
 // ANCHOR: texel_size
-// The width, in world units, of one shadow-map texel where `world` is.
-// x_ndc = (row 0 of view_proj · p) / w and a texel is 2/N of NDC, so a texel
-// is 2w / (N |row 0|) wide (and 2w / (N |row 1|) tall; the larger counts).
-// That is constant for an orthographic light (w = 1) and grows with the
-// distance for a spot light (w = distance along its axis).
-fn shadow_texel_size(world: vec3<f32>) -> f32 {
+// One shadow-map texel where `world` is, in world units, per axis: x along
+// the map's u axis, y along v. x_ndc = (row 0 of view_proj · p) / w and a
+// texel is 2/N of NDC, so a texel is 2w / (N |row 0|) wide and 2w / (N |row 1|)
+// tall. The fit to the scene makes the two differ (a grazing light sees the
+// scene flat: one side is many times the other). Constant for an
+// orthographic light (w = 1); it grows with the distance for a spot light.
+fn shadow_texel_extent(world: vec3<f32>) -> vec2<f32> {
     let w = (light.view_proj * vec4<f32>(world, 1.0)).w;
     let m = light.view_proj;
     let row0 = vec3<f32>(m[0].x, m[1].x, m[2].x);
     let row1 = vec3<f32>(m[0].y, m[1].y, m[2].y);
     let n = f32(textureDimensions(shadow_map).x);
-    return 2.0 * w / (n * min(length(row0), length(row1)));
+    return 2.0 * w / (n * vec2<f32>(length(row0), length(row1)));
+}
+
+// "A texel" for a receiver with unit normal `n`: the texel's width along the
+// direction in which the receiver's depth changes fastest across the map
+// (n's part across the light). Its depth varies by this width × tan θ over
+// one texel, whatever the texels' aspect. Head-on there is no such
+// direction, and the larger side stands in.
+fn shadow_texel_size(world: vec3<f32>, n: vec3<f32>) -> f32 {
+    let e = shadow_texel_extent(world);
+    let l = to_light(world);
+    let g = n - dot(n, l) * l;
+    if length(g) < 1e-4 {
+        return max(e.x, e.y);
+    }
+    let m = light.view_proj;
+    let u = normalize(vec3<f32>(m[0].x, m[1].x, m[2].x));
+    let v = normalize(vec3<f32>(m[0].y, m[1].y, m[2].y));
+    let gh = normalize(g);
+    return e.x * abs(dot(gh, u)) + e.y * abs(dot(gh, v));
 }
 // ANCHOR_END: texel_size

@@ -3,7 +3,9 @@
 
 // ANCHOR: shadow_bias
 // Receiver-side bias (Rust: lesson_02::bias::ShadowBias). Lengths are in
-// shadow-map texels, so one setting fits any scene size and map resolution.
+// shadow-map texels measured along the receiver's depth gradient
+// (`shadow_texel_size`), so one setting fits any scene size, map resolution
+// and texel aspect: a receiver needs tan θ / 2 of them.
 struct ShadowBias {
     // Subtracted from the receiver's depth, in depth units: the seeds' constant.
     depth: f32,
@@ -26,7 +28,7 @@ fn biased_receiver(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> vec3<f32> {
     let cos_t = clamp(dot(n, l), 0.0, 1.0);
     // tan θ of the angle between the normal and the light; 1e4 at grazing.
     let tan_t = sqrt(1.0 - cos_t * cos_t) / max(cos_t, 1e-4);
-    let texel = shadow_texel_size(world);
+    let texel = shadow_texel_size(world, n);
     let along_light = b.toward_light + min(b.slope * tan_t, b.slope_max);
     let along_normal = b.normal * (1.0 - cos_t);
     // Along l a directional or spot light's ray stays the same: only depth changes.
