@@ -177,6 +177,16 @@ fn finite_far_within_criterion(scene: &str, name: &str) -> Option<support::Lesso
             "{scene}, {v}: {interior:.3}% misclassified away from edges"
         );
     }
+    // The plan's z-pass casters (closed by their finite back cap) leave
+    // the same pixels as z-fail everywhere.
+    let vis = |v: &str| support::read_visibility(&run.out.join(format!("{v}_visibility_l0.png")));
+    let (all, sel) = (vis("zfail_quads"), vis("zfail_selective"));
+    let differ = all.1.iter().zip(&sel.1).filter(|(a, b)| a != b).count();
+    assert_eq!(
+        differ, 0,
+        "{scene}: zfail_selective differs in {differ} pixels"
+    );
+    assert!(support::counter(&run.report, "zfail_selective", "casters_zpass") >= 1);
     Some(run)
 }
 

@@ -28,12 +28,12 @@ use common::app;
 use common::gpu::Gpu;
 use common::lesson::Lesson;
 use common::render::SceneGpu;
-use common::scene::LightKind;
+use common::scene::{Far, LightKind};
 use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
 use workbook::lesson_05::extrusion::Extrusion;
-use workbook::lesson_05::stencil::{self, Counting};
+use workbook::lesson_05::stencil::{self, Counting, Method};
 use workbook::lesson_05::volumes::{CasterDraw, LightVolumes, ShadowVolumes};
 use workbook::lesson_06::caps::{self, zfail_counting};
 use workbook::lesson_06::plan::{plan, PlanStats};
@@ -112,12 +112,18 @@ struct ZFail {
 
 /// Every variant's draws for every light, in variant order.
 fn plans(volumes: &ShadowVolumes, scene: &SceneGpu) -> Vec<(Vec<Vec<CasterDraw>>, PlanStats)> {
+    // A finite reach puts the back cap where a view ray can cross it in
+    // front of the surface: z-pass must then count it too.
+    let finite = matches!(scene.scene.camera.far, Far::Finite(_));
     let mut plans = Vec::new();
     for v in Variant::value_variants() {
         let mut total = PlanStats::default();
         let mut per_light = Vec::new();
         for light in 0..scene.scene.lights.len() {
-            let (d, s) = v.draws(volumes, scene, light);
+            let (mut d, s) = v.draws(volumes, scene, light);
+            for d in d.iter_mut().filter(|d| d.method == Method::ZPass) {
+                d.back_cap |= finite;
+            }
             total.zpass += s.zpass;
             total.zfail += s.zfail;
             total.skipped += s.skipped;
