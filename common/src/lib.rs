@@ -52,6 +52,7 @@ pub mod reference;
 pub mod render;
 pub mod report;
 pub mod scene;
+mod scene_file;
 pub mod targets;
 pub mod timing;
 pub mod window;

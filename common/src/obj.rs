@@ -141,22 +141,34 @@ pub fn parse_obj(text: &str, file: &str) -> Result<Mesh> {
         );
     }
 
-    // Drop degenerate triangles.
+    // Drop degenerate triangles, and exact duplicates (the same corners in
+    // the same winding): they change no pixel, but every pass, the BVH and the
+    // silhouette would pay for each copy. One hash lookup per triangle.
     let total = indices.len() / 3;
     let mut kept = Vec::with_capacity(indices.len());
+    let mut seen = std::collections::HashSet::with_capacity(total);
+    let mut duplicates = 0usize;
     for t in indices.chunks_exact(3) {
         let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize]);
         let repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-        if !repeated && face_normal(a, b, c) != Vec3::ZERO {
+        if repeated || face_normal(a, b, c) == Vec3::ZERO {
+            continue;
+        }
+        if seen.insert(winding_key([a, b, c])) {
             kept.extend_from_slice(t);
+        } else {
+            duplicates += 1;
         }
     }
-    let dropped = total - kept.len() / 3;
+    let dropped = total - kept.len() / 3 - duplicates;
     if kept.is_empty() {
         bail!("{file}: every triangle is degenerate ({total} triangles with a repeated vertex or zero area)");
     }
     if dropped > 0 {
         eprintln!("warning: {file}: dropped {dropped} degenerate triangle(s) (repeated vertex or zero area)");
+    }
+    if duplicates > 0 {
+        eprintln!("warning: {file}: dropped {duplicates} duplicate triangle(s) (the same corners and winding as an earlier one)");
     }
 
     // Keep only the vertices that a kept triangle uses.
@@ -238,6 +250,15 @@ fn line_of(bytes: &[u8], offset: usize) -> usize {
         .filter(|&&b| b == b'\n')
         .count()
         + 1
+}
+
+/// A triangle's corners as bits, rotated to start at the smallest: the same
+/// key for `abc`, `bca` and `cab`, another for the reversed winding `acb`
+/// (a two-sided sheet keeps both of its faces).
+fn winding_key(corners: [Vec3; 3]) -> [[u32; 3]; 3] {
+    let k = corners.map(|v| v.to_array().map(f32::to_bits));
+    let first = (0..3).min_by_key(|&i| k[i]).unwrap_or(0);
+    [k[first], k[(first + 1) % 3], k[(first + 2) % 3]]
 }
 
 /// The first line (1-based) for which `bad` says why it is wrong.
@@ -378,6 +399,25 @@ mod tests {
         assert_eq!(m.triangle_count(), 1);
         // Only the vertices of the kept triangle remain.
         assert_eq!(m.positions.len(), 3);
+    }
+
+    #[test]
+    fn obj_drops_exact_duplicates_but_keeps_the_reversed_face() {
+        // Separate `v` lines with equal positions, rotated corners, and the
+        // reversed winding (the back of a two-sided sheet).
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\nf 2 3 1\nf 1 3 2\n";
+        let m = parse_obj(text, "dup.obj").unwrap();
+        assert_eq!(m.triangle_count(), 2);
+        let [a, b] = [0, 1].map(|t| {
+            m.indices[3 * t..3 * t + 3]
+                .iter()
+                .map(|&i| m.positions[i as usize])
+                .collect::<Vec<_>>()
+        });
+        assert_eq!(
+            face_normal(a[0], a[1], a[2]),
+            -face_normal(b[0], b[1], b[2])
+        );
     }
 
     #[test]

@@ -9,14 +9,13 @@ use std::sync::Arc;
 
 use anyhow::{anyhow, bail, Context, Result};
 use glam::{DMat4, DQuat, DVec3, EulerRot, Vec3};
-use serde::Deserialize;
-use toml::Spanned;
 
 use crate::limits::{
     check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
     MAX_SCALE, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
 };
 use crate::mesh::{self, Mesh};
+use crate::scene_file::{FarFile, LightFile, ObjectFile, ScaleFile, SceneFile};
 
 /// The camera's far plane: a distance, or `"infinite"`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -78,154 +77,6 @@ pub struct Scene {
     pub ambient: Vec3,
     pub lights: Vec<Light>,
     pub objects: Vec<Object>,
-}
-
-// ---- the TOML as written -------------------------------------------------
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SceneFile {
-    camera: Spanned<CameraFile>,
-    #[serde(default)]
-    ambient: Option<AmbientFile>,
-    #[serde(default)]
-    lights: Vec<Spanned<LightFile>>,
-    #[serde(default)]
-    objects: Vec<Spanned<ObjectFile>>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CameraFile {
-    eye: [f64; 3],
-    target: [f64; 3],
-    #[serde(default = "default_up")]
-    up: [f64; 3],
-    #[serde(default = "default_fov")]
-    fov_y_deg: f64,
-    #[serde(default = "default_near")]
-    near: f64,
-    #[serde(default = "default_far", deserialize_with = "far_file")]
-    far: FarFile,
-}
-
-/// Written by hand, not `untagged`: serde's message for that names a Rust
-/// type ("did not match any variant of untagged enum FarFile").
-enum FarFile {
-    Number(f64),
-    Word(String),
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct AmbientFile {
-    color: [f32; 3],
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LightFile {
-    #[serde(rename = "type")]
-    kind: String,
-    direction: Option<[f64; 3]>,
-    position: Option<[f64; 3]>,
-    range: Option<f64>,
-    spot_angle_deg: Option<f64>,
-    #[serde(default = "default_white")]
-    color: [f32; 3],
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ObjectFile {
-    mesh: String,
-    #[serde(default)]
-    translate: [f64; 3],
-    #[serde(default)]
-    rotate_deg: [f64; 3],
-    #[serde(default = "default_scale", deserialize_with = "scale_file")]
-    scale: ScaleFile,
-    #[serde(default = "default_grey")]
-    color: [f32; 3],
-    #[serde(default = "default_true")]
-    casts_shadow: bool,
-}
-
-enum ScaleFile {
-    Uniform(f64),
-    PerAxis([f64; 3]),
-}
-
-/// A TOML number as `f64` (integers too).
-fn number(v: &toml::Value) -> Option<f64> {
-    match v {
-        toml::Value::Float(f) => Some(*f),
-        toml::Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    }
-}
-
-/// A value as written, cut short for a one-line message.
-fn written(v: &toml::Value) -> String {
-    let s = v.to_string();
-    if s.chars().count() > 40 {
-        format!("{}...", s.chars().take(40).collect::<String>())
-    } else {
-        s
-    }
-}
-
-fn scale_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<ScaleFile, D::Error> {
-    let v = toml::Value::deserialize(d)?;
-    if let Some(s) = number(&v) {
-        return Ok(ScaleFile::Uniform(s));
-    }
-    if let toml::Value::Array(a) = &v {
-        if let [Some(x), Some(y), Some(z)] = a.iter().map(number).collect::<Vec<_>>()[..] {
-            return Ok(ScaleFile::PerAxis([x, y, z]));
-        }
-    }
-    Err(serde::de::Error::custom(format!(
-        "scale: expected a number or [x, y, z], got {}",
-        written(&v)
-    )))
-}
-
-fn far_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<FarFile, D::Error> {
-    let v = toml::Value::deserialize(d)?;
-    match (&v, number(&v)) {
-        (_, Some(f)) => Ok(FarFile::Number(f)),
-        (toml::Value::String(w), _) => Ok(FarFile::Word(w.clone())),
-        _ => Err(serde::de::Error::custom(format!(
-            "far: expected a number or \"infinite\", got {}",
-            written(&v)
-        ))),
-    }
-}
-
-fn default_up() -> [f64; 3] {
-    [0.0, 1.0, 0.0]
-}
-fn default_fov() -> f64 {
-    50.0
-}
-fn default_near() -> f64 {
-    0.1
-}
-fn default_far() -> FarFile {
-    FarFile::Number(100.0)
-}
-fn default_white() -> [f32; 3] {
-    [1.0; 3]
-}
-fn default_grey() -> [f32; 3] {
-    [0.8; 3]
-}
-fn default_scale() -> ScaleFile {
-    ScaleFile::Uniform(1.0)
-}
-fn default_true() -> bool {
-    true
 }
 
 /// 1-based line of a byte offset, for error messages.
