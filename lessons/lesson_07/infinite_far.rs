@@ -155,4 +155,33 @@ mod tests {
         let p0 = infinite_perspective(1.0, 1.5, 0.1, 0.0) * DVec4::new(0.0, 0.0, -1.0, 0.0);
         assert_eq!(p0.z / p0.w, 1.0);
     }
+
+    /// ε must survive the f32 matrix the GPU gets: with it, every direction
+    /// in front of a tilted camera has clip z < w in f32; with ε = 0, or an
+    /// ε below f32's resolution at 1 (1 − 1e-9 rounds to 1), z = w to the
+    /// bit (the z and w rows agree), on the clip boundary with no margin.
+    #[test]
+    fn epsilon_keeps_every_point_at_infinity_strictly_inside_in_f32() {
+        let view = look_at_mat4(
+            common::glam::DVec3::new(4.2, 4.6, 6.4),
+            common::glam::DVec3::new(0.0, 0.3, -0.4),
+            common::glam::DVec3::Y,
+        );
+        let on_boundary = |eps: f64| {
+            let vp = (infinite_perspective(0.8, 1.7, 0.1, eps) * view).as_mat4();
+            let mut equal = 0;
+            for i in 0..400 {
+                let (a, b) = (i as f32 * 0.37, i as f32 * 0.11);
+                // Directions around the view direction (world space, w = 0).
+                let dir = glam::Vec3::new(-0.5 + a.sin() * 0.3, -0.5 + b.cos() * 0.2, -0.7);
+                let c = vp * dir.extend(0.0);
+                assert!(c.w > 0.0 && c.z <= c.w, "eps {eps}: {c:?} outside");
+                equal += usize::from(c.z == c.w);
+            }
+            equal
+        };
+        assert_eq!(on_boundary(INFINITE_EPSILON), 0, "ε = 2⁻²² leaves a margin");
+        assert_eq!(on_boundary(0.0), 400, "ε = 0: on the boundary");
+        assert_eq!(on_boundary(1e-9), 400, "ε below f32's step at 1 vanishes");
+    }
 }
