@@ -35,7 +35,7 @@ use std::ops::Range;
 
 use anyhow::Result;
 use common::counters::FragmentCounter;
-use common::glam::DVec3;
+use common::glam::{DMat4, DVec3};
 use common::gpu::Gpu;
 use common::lit::LitPass;
 use common::render::SceneGpu;
@@ -148,12 +148,14 @@ impl ShadowVolumes {
     pub fn new(gpu: &Gpu, scene: &SceneGpu, counting: &Counting) -> Result<ShadowVolumes> {
         use wgpu::util::DeviceExt;
         let mut casters = Vec::new();
+        // The origin once: it is a pass over every vertex of the scene.
+        let to_origin = DMat4::from_translation(-scene.scene.origin());
         for (i, o) in scene.scene.objects.iter().enumerate() {
             if !o.casts_shadow {
                 continue;
             }
             let adjacency = caster_adjacency(&o.mesh);
-            let model = scene.scene.model_relative(i);
+            let model = (to_origin * o.model).as_mat4();
             let world: Vec<DVec3> = adjacency
                 .positions
                 .iter()
