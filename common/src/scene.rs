@@ -12,7 +12,7 @@ use glam::{DMat4, DQuat, DVec3, EulerRot, Vec3};
 
 use crate::limits::{
     check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
-    MAX_SCALE, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
+    MAX_REACH_OVER_NEAR, MAX_SCALE, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
 };
 use crate::mesh::{self, Mesh};
 use crate::scene_file::{FarFile, LightFile, ObjectFile, ScaleFile, SceneFile};
@@ -252,8 +252,8 @@ impl Scene {
 
     /// The scene fits in [`crate::limits::MAX_EXTENT`] (objects first, then
     /// the camera, then local lights: the message names the first entry that
-    /// does not fit), and with `far = "infinite"` the farthest point of the
-    /// scene over `near` is within [`MAX_DEPTH_RATIO`].
+    /// does not fit), and the farthest point of the scene (or the far plane,
+    /// if nearer) over `near` is within [`MAX_REACH_OVER_NEAR`].
     fn check_extent(&self) -> Result<()> {
         let mut extent = Extent::default();
         for (i, o) in self.objects.iter().enumerate() {
@@ -271,17 +271,22 @@ impl Scene {
                 extent.add([position], &format!("lights[{i}].position"))?;
             }
         }
-        if c.far == Far::Infinite {
-            let (lo, hi) = (extent.lo, extent.hi);
-            let farthest = (c.eye - lo).abs().max((c.eye - hi).abs()).length();
-            if farthest / c.near > MAX_DEPTH_RATIO {
-                bail!(
-                    "camera.near: the scene reaches {} from the eye, and that over near ({}) must be at most {}; raise near",
-                    short(farthest),
-                    short(c.near),
-                    short(MAX_DEPTH_RATIO)
-                );
-            }
+        // What the depth buffer must resolve: the scene, up to the far plane.
+        let (lo, hi) = (extent.lo, extent.hi);
+        let reach = (c.eye - lo).abs().max((c.eye - hi).abs()).length();
+        let depth = match c.far {
+            Far::Finite(f) => reach.min(f),
+            Far::Infinite => reach,
+        };
+        if depth / c.near > MAX_REACH_OVER_NEAR {
+            bail!(
+                "camera.near: the scene reaches {} from the eye, and that (or far, if nearer) over near ({}) must be at most {}, got {}; raise near to at least {}",
+                short(reach),
+                short(c.near),
+                short(MAX_REACH_OVER_NEAR),
+                short(depth / c.near),
+                short(depth / MAX_REACH_OVER_NEAR)
+            );
         }
         Ok(())
     }
