@@ -24,7 +24,7 @@ pub enum Far {
     Infinite,
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
     pub eye: DVec3,
     pub target: DVec3,
@@ -52,7 +52,7 @@ pub enum LightKind {
     },
 }
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
     pub kind: LightKind,
     pub color: Vec3,
