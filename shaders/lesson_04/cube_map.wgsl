@@ -28,7 +28,9 @@ const STORAGE_DEPTH_EUCLID: u32 = 2u;
 // ANCHOR: linear_distance
 // The linear-distance shadow pass: distance / range, written as the
 // fragment's depth into the Depth32Float cube (R32Float is no render
-// target on GL; a depth texture is, on every backend).
+// target on GL; a depth texture is, on every backend). The price: a fragment
+// stage the hardware-depth pass does not have, and no early depth test
+// (the shader decides the depth, so the test runs after it: late-Z).
 struct LinearOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
