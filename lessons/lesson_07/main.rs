@@ -182,8 +182,8 @@ impl Lesson for DepthClamp {
         variant: Variant,
     ) -> Result<()> {
         if variant == Variant::ReversedZ {
-            let r = self.reversed.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?;
-            r.render(frame, targets, &self.infinite.volumes);
+            let r = self.reversed.as_mut().map_err(|e| anyhow::anyhow!("{e}"))?;
+            r.render(frame, scene, targets, &self.infinite.volumes);
             let casters = self.infinite.volumes.casters.len() * r.scene.scene.lights.len();
             self.counters[variant as usize].insert("casters_drawn".into(), casters as u64);
             return Ok(());

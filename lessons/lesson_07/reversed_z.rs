@@ -94,14 +94,7 @@ impl ReversedZ {
             bail!("wgpu's GL backend rewrites clip z to 2z − w in f32, which discards reversed-Z's precision; run it with --backend vulkan (or metal, dx12)");
         }
         let mut s = SceneGpu::new(gpu, scene.scene.clone(), scene.width, scene.height)?;
-        let c = &s.scene.camera;
-        let o = s.scene.origin();
-        let view = look_at_mat4(c.eye - o, c.target - o, c.up);
-        let aspect = s.width as f64 / s.height as f64;
-        let proj = reversed_infinite_perspective(c.fov_y_deg.to_radians(), aspect, c.near);
-        s.camera.proj = proj.as_mat4();
-        s.camera.view_proj = (proj * view).as_mat4();
-        s.upload_uniforms(gpu);
+        set_reversed_camera(gpu, &mut s);
         let none = wgpu::TextureUsages::empty();
         let depth = render_texture(
             gpu,
@@ -181,7 +174,17 @@ impl ReversedZ {
     // ANCHOR: reversed_render
     /// One frame: base pass (clear depth to 0), then per light the z-fail
     /// volumes and the lit pass, all against the float depth buffer.
-    pub fn render(&self, frame: &mut Frame, targets: &FrameTargets, shadow: &ShadowVolumes) {
+    pub fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        shadow: &ShadowVolumes,
+    ) {
+        // The window orbits the camera and moves lights: follow them.
+        self.scene.scene.camera = scene.scene.camera.clone();
+        self.scene.scene.lights = scene.scene.lights.clone();
+        set_reversed_camera(frame.gpu, &mut self.scene);
         let t = with_depth(targets, &self.depth);
         let s = &self.scene;
         frame.pass("base", |enc, ts| {
@@ -235,6 +238,18 @@ impl ReversedZ {
         }
     }
     // ANCHOR_END: reversed_render
+}
+
+/// Puts the reversed infinite projection into `s`'s camera and uploads it.
+fn set_reversed_camera(gpu: &Gpu, s: &mut SceneGpu) {
+    let c = &s.scene.camera;
+    let o = s.scene.origin();
+    let view = look_at_mat4(c.eye - o, c.target - o, c.up);
+    let aspect = s.width as f64 / s.height as f64;
+    let proj = reversed_infinite_perspective(c.fov_y_deg.to_radians(), aspect, c.near);
+    s.camera.proj = proj.as_mat4();
+    s.camera.view_proj = (proj * view).as_mat4();
+    s.upload_uniforms(gpu);
 }
 
 /// The runner's colour, id and visibility images with another depth buffer
