@@ -76,10 +76,13 @@ impl Report {
             .iter()
             .filter(|v| v.error.coverage_mismatch_pct > COVERAGE_WARN_PCT)
             .collect();
-        let worst = bad.iter().max_by(|a, b| {
-            a.error
-                .coverage_mismatch_pct
-                .total_cmp(&b.error.coverage_mismatch_pct)
+        // The first of the worst, in report order.
+        let worst = bad.iter().copied().reduce(|w, v| {
+            if v.error.coverage_mismatch_pct > w.error.coverage_mismatch_pct {
+                v
+            } else {
+                w
+            }
         })?;
         let others = match bad.len() - 1 {
             0 => String::new(),
