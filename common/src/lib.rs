@@ -19,6 +19,7 @@
 //!
 //! Scenes, meshes and camera math:
 //! - [`scene`]: the TOML scene format of INTERFACES.md, loaded and validated.
+//! - [`scene_file`]: the scene TOML as written, before validation.
 //! - [`limits`]: the magnitudes a scene may have, and numbers in messages.
 //! - [`mesh`]: the mesh type, built-in unit meshes, welding, smooth normals.
 //! - [`obj`]: OBJ files, read through tobj and written for `gen_assets`.
@@ -52,7 +53,7 @@ pub mod reference;
 pub mod render;
 pub mod report;
 pub mod scene;
-mod scene_file;
+pub mod scene_file;
 pub mod targets;
 pub mod timing;
 pub mod window;
