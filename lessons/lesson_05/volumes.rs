@@ -269,15 +269,20 @@ impl ShadowVolumes {
         frame.cpu("silhouette", || {
             cpu.vertices.clear();
             cpu.ranges.clear();
+            let to_origin = DMat4::from_translation(-scene.scene.origin());
             for (k, draws_k) in draws.iter().enumerate() {
                 let light = world_light(scene, k);
                 let mut ranges = vec![VolumeRanges::default(); casters.len()];
+                let mut drawn = vec![false; scene.scene.objects.len()];
+                for d in draws_k {
+                    drawn[d.object] = true;
+                }
                 for (ci, c) in casters.iter().enumerate() {
-                    if !draws_k.iter().any(|d| d.object == c.object) {
+                    if !drawn[c.object] {
                         continue;
                     }
                     // Silhouettes in object space: the light moves, not the mesh.
-                    let model = scene.scene.model_relative(c.object);
+                    let model = (to_origin * scene.scene.objects[c.object].model).as_mat4();
                     let w = reach.get(k).and_then(|r| r.get(ci)).copied();
                     ranges[ci] = cpu_volume_reaching(
                         &c.adjacency,
