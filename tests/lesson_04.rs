@@ -85,6 +85,12 @@ fn lesson_04_snapshot() {
         );
     }
     insta::assert_snapshot!("lesson_04", text);
+    // 3D PCF's raised slope bias is a reported parameter, not a silent one.
+    assert_eq!(counter(&run, "pcf3d_1024", "slope_bias_millitexels"), 2500);
+    assert_eq!(
+        counter(&run, "pcf3d_slope1_1024", "slope_bias_millitexels"),
+        1000
+    );
     // Done-when: the best variant is within 1% of the exact reference.
     let best = pct(&run, "linear_1024", "misclassified_pct");
     assert!(best <= 1.0, "linear_1024 misclassified {best}% > 1%");
