@@ -76,7 +76,8 @@ enum Variant {
     FrontCull,
 }
 
-/// Receiver moved `t` texels towards the light: a constant bias.
+/// Receiver moved `t` texels towards the light: a constant bias. A texel is
+/// measured along the receiver's depth gradient; a receiver at θ needs tan θ / 2.
 const fn toward(t: f32) -> Fix {
     Fix::Receiver(ShadowBias {
         toward_light: t,
