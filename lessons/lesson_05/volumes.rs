@@ -131,6 +131,8 @@ struct CpuGeometry {
 /// Every caster's volume data and the pipelines of both extrusion methods.
 pub struct ShadowVolumes {
     pub casters: Vec<VolumeCaster>,
+    /// `caster_of[object]`: the object's index in `casters`, if it casts.
+    caster_of: Vec<Option<usize>>,
     /// `reach[light][caster]`: the w of extruded vertices (0: infinity).
     reach: Vec<Vec<f32>>,
     /// The same, one [`REACH_SLOT`] per (light, caster), for the quads path;
@@ -215,8 +217,13 @@ impl ShadowVolumes {
                 mapped_at_creation: false,
             })
         });
+        let mut caster_of = vec![None; scene.scene.objects.len()];
+        for (ci, c) in casters.iter().enumerate() {
+            caster_of[c.object] = Some(ci);
+        }
         Ok(ShadowVolumes {
             casters,
+            caster_of,
             reach,
             reach_buffer,
             cpu: CpuGeometry::default(),
@@ -251,10 +258,8 @@ impl ShadowVolumes {
     }
 
     fn caster(&self, object: usize) -> Option<(usize, &VolumeCaster)> {
-        self.casters
-            .iter()
-            .enumerate()
-            .find(|(_, c)| c.object == object)
+        let ci = (*self.caster_of.get(object)?)?;
+        Some((ci, &self.casters[ci]))
     }
 
     // ANCHOR: prepare_cpu
