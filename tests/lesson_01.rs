@@ -73,6 +73,22 @@ fn lesson_01_acne_is_measured_and_edges_improve_with_resolution() {
         fl("res_4096"),
         fl("res_256")
     );
+    // What resolution changes is the texel (and with it the depth error of
+    // the acne, up to half a texel × tan θ), not the acne's share: 16 times
+    // the texels across, a 16th of the texel, and false shadow within a
+    // point of where it was.
+    let texel = |n: &str| {
+        support::variant(&run.report, n)["counters"]["texel_um_u"]
+            .as_u64()
+            .expect("counters.texel_um_u") as f64
+    };
+    let ratio = texel("res_256") / texel("res_4096");
+    assert!(
+        (ratio - 16.0).abs() < 0.1 && (fs("res_256") - fs("res_4096")).abs() < 1.0,
+        "texel 256²/4096² = {ratio:.2}, false shadow {} vs {}",
+        fs("res_256"),
+        fs("res_4096")
+    );
     let receivers = support::variant(&run.report, "res_1024")["error"]["receiver_pixels"]
         .as_u64()
         .unwrap();

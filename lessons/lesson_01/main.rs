@@ -11,6 +11,7 @@
 //! Run: `cargo run --release --bin lesson_01 -- --headless`
 //! Book: chapter "01 depth map" (`book/src/lesson_01.md`).
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use clap::ValueEnum;
@@ -60,6 +61,9 @@ struct DepthMap {
     lit_pipeline: wgpu::RenderPipeline,
     /// One shadow map (and its bind group) per variant, in variant order.
     maps: Vec<(ShadowMap, wgpu::BindGroup)>,
+    /// Light 0's texel at the scene's centre for a 1-texel map, in world
+    /// units along the map's u and v: a map of N texels divides it by N.
+    texel_at_1: Option<(f64, f64)>,
 }
 
 impl Lesson for DepthMap {
@@ -95,6 +99,7 @@ impl Lesson for DepthMap {
             shadow_pipeline,
             lit_pipeline,
             maps,
+            texel_at_1: texel_at_1(&scene.scene),
         })
     }
 
@@ -126,11 +131,33 @@ impl Lesson for DepthMap {
     }
     // ANCHOR_END: render
 
+    /// The texel's two sides, in micrometres: the acne's depth error, up to
+    /// half a texel × tan θ (chapter 01), scales with them.
+    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        let Some((u, v)) = self.texel_at_1 else {
+            return BTreeMap::new();
+        };
+        let um = |x: f64| (x * 1e6 / variant.resolution() as f64).round() as u64;
+        BTreeMap::from([("texel_um_u".into(), um(u)), ("texel_um_v".into(), um(v))])
+    }
+
     fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
         let name = common::lesson::variant_name(variant);
         let (map, _) = &self.maps[variant as usize];
         map.write_png(gpu, &out.join(format!("{name}_depth_map.png")))
     }
+}
+
+/// Light 0's texel sides for a 1-texel map at the scene's centre: a texel
+/// is 2/N of NDC, and x_ndc = (row 0 · p) / w, so it is 2w / (N |row 0|).
+fn texel_at_1(scene: &Scene) -> Option<(f64, f64)> {
+    if scene.lights.is_empty() {
+        return None;
+    }
+    let m = common::camera::light_view_proj(scene, 0)?.as_dmat4();
+    let row = |i: usize| m.row(i).truncate().length();
+    let w = m.w_axis.w; // at the origin-relative centre, p = 0
+    Some((2.0 * w / row(0), 2.0 * w / row(1)))
 }
 
 fn main() -> std::process::ExitCode {
