@@ -78,7 +78,10 @@ fn run_city(bin: &str, name: &str, variant: &str) -> Option<serde_json::Value> {
         }
         panic!("{name} on 20,000 objects failed ({status}):\n{stderr}");
     }
-    eprintln!("{name}: 20,000 objects in {:.1} s", start.elapsed().as_secs_f64());
+    eprintln!(
+        "{name}: 20,000 objects in {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
     let text = std::fs::read_to_string(out.join("report.json")).expect("report.json");
     Some(serde_json::from_str(&text).expect("report.json parses"))
 }
@@ -89,7 +92,9 @@ fn lesson_05_renders_twenty_thousand_objects_right() {
         return;
     };
     let v = support::variant(&report, "zpass_cpu");
-    let pct = v["error"]["misclassified_pct"].as_f64().expect("misclassified");
+    let pct = v["error"]["misclassified_pct"]
+        .as_f64()
+        .expect("misclassified");
     let receivers = v["error"]["receiver_pixels"].as_u64().expect("receivers");
     assert!(receivers > 10_000, "only {receivers} receiver pixels");
     // Stencil volumes are exact up to edge pixels: 0.175 % measured.
@@ -106,7 +111,9 @@ fn lesson_02_renders_twenty_thousand_objects() {
     let v = support::variant(&report, "slope_hw");
     let receivers = v["error"]["receiver_pixels"].as_u64().expect("receivers");
     assert!(receivers > 10_000, "only {receivers} receiver pixels");
-    let pct = v["error"]["misclassified_pct"].as_f64().expect("misclassified");
+    let pct = v["error"]["misclassified_pct"]
+        .as_f64()
+        .expect("misclassified");
     // One 2048² map over a 300-unit city: coarse texels, but biased.
     assert!(pct < 10.0, "lesson_02 slope_hw: {pct} % misclassified");
 }
