@@ -184,4 +184,21 @@ mod tests {
         assert_eq!(on_boundary(0.0), 400, "ε = 0: on the boundary");
         assert_eq!(on_boundary(1e-9), 400, "ε below f32's step at 1 vanishes");
     }
+
+    /// The volume shader's margin for exact infinite projections is this
+    /// lesson's ε, not another number that would override it.
+    #[test]
+    fn volume_shader_margin_is_this_lessons_epsilon() {
+        let wgsl = include_str!("../../shaders/lesson_05/volume.wgsl");
+        let line = wgsl
+            .lines()
+            .find(|l| l.starts_with("const INFINITE_EPSILON: f32 = "))
+            .expect("volume.wgsl declares INFINITE_EPSILON");
+        let value: f32 = line
+            .trim_start_matches("const INFINITE_EPSILON: f32 = ")
+            .trim_end_matches(';')
+            .parse()
+            .expect("a number");
+        assert_eq!(value, INFINITE_EPSILON as f32);
+    }
 }

@@ -26,16 +26,22 @@ fn extrude_to_infinity(world: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(world - light.position_or_dir.xyz, 0.0);
 }
 
-// The clip position of a point at infinity. Under an infinite projection
-// it lands exactly on the far boundary (z = w, depth 1), and rounding can
-// put it a hair outside, where it is clipped away: a back cap or side
-// would silently vanish. Pull such points a hair inside (depth 1 − 1e-6),
-// like the "nudged" infinite projection of Everitt and Kilgard. Under a
-// finite far plane, z is well beyond w and this leaves it alone (lesson 07).
+// The clip position of a point at infinity. Under an exact infinite
+// projection (glam's, which `far = "infinite"` scenes get) it lands on the
+// far boundary, z = w, depth 1, with no margin: rounding can put it a hair
+// outside, where it is clipped away and a back cap or side silently
+// vanishes. Such points get the margin of lesson 07's infinite projection,
+// depth 1 − ε with the same ε (`INFINITE_EPSILON`, 2⁻²²; a test keeps the
+// two equal), as in the "nudged" projection of Everitt and Kilgard. A
+// projection that already has the margin (lesson 07's) is left as it is,
+// so there its ε decides; under a finite far plane z is well beyond w and
+// this leaves it alone too (lesson 07's depth clamp handles that).
+const INFINITE_EPSILON: f32 = 2.384185791015625e-7;
+
 fn project_to_infinity(world: vec3<f32>) -> vec4<f32> {
     var clip = camera.view_proj * extrude_to_infinity(world);
     if abs(clip.z - clip.w) <= 1e-5 * abs(clip.w) {
-        clip.z = clip.w * (1.0 - 1e-6);
+        clip.z = min(clip.z, clip.w * (1.0 - INFINITE_EPSILON));
     }
     return clip;
 }
