@@ -42,6 +42,27 @@ impl SceneGpu {
         extra: &[&wgpu::BindGroupLayout],
         stencil: wgpu::StencilState,
     ) -> wgpu::RenderPipeline {
+        let depth_stencil = wgpu::DepthStencilState {
+            format: self.depth_format,
+            depth_write_enabled: Some(false),
+            // Same vertices, same matrices, @invariant: the depths are equal.
+            depth_compare: Some(wgpu::CompareFunction::LessEqual),
+            stencil,
+            bias: Default::default(),
+        };
+        self.lit_pipeline_with_depth(gpu, module, fs_entry, extra, depth_stencil)
+    }
+
+    /// [`SceneGpu::lit_pipeline`] with another depth test (lesson 07's
+    /// reversed-Z tests `GreaterEqual` on its own depth format).
+    pub fn lit_pipeline_with_depth(
+        &self,
+        gpu: &Gpu,
+        module: &wgpu::ShaderModule,
+        fs_entry: &str,
+        extra: &[&wgpu::BindGroupLayout],
+        depth_stencil: wgpu::DepthStencilState,
+    ) -> wgpu::RenderPipeline {
         let layout = pipeline_layout_for(gpu, &self.frame_layout, &self.object_layout, extra);
         let add = wgpu::BlendState {
             color: wgpu::BlendComponent {
@@ -57,14 +78,7 @@ impl SceneGpu {
                 layout: Some(&layout),
                 vertex: vertex_state(module, "vs_scene"),
                 primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: self.depth_format,
-                    depth_write_enabled: Some(false),
-                    // Same vertices, same matrices, @invariant: the depths are equal.
-                    depth_compare: Some(wgpu::CompareFunction::LessEqual),
-                    stencil,
-                    bias: Default::default(),
-                }),
+                depth_stencil: Some(depth_stencil),
                 multisample: Default::default(),
                 fragment: Some(wgpu::FragmentState {
                     module,

@@ -179,30 +179,18 @@ impl SceneGpu {
                 resource: binding(&object_buf, std::mem::size_of::<ObjectUniform>()),
             }],
         });
-        let module = shader_module(gpu, "base pass", "");
-        let layout = pipeline_layout_for(gpu, &frame_layout, &object_layout, &[]);
-        let base_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("base pass"),
-            layout: Some(&layout),
-            vertex: vertex_state(&module, "vs_scene"),
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
+        let base_pipeline = base_pipeline(
+            gpu,
+            &frame_layout,
+            &object_layout,
+            wgpu::DepthStencilState {
                 format: depth_format,
                 depth_write_enabled: Some(true),
                 depth_compare: Some(wgpu::CompareFunction::Less),
                 stencil: Default::default(),
                 bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_base"),
-                compilation_options: Default::default(),
-                targets: &[Some(COLOR_FORMAT.into()), Some(ID_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+            },
+        );
         let camera = camera_matrices(&scene, width, height);
         let s = SceneGpu {
             scene,
@@ -317,6 +305,19 @@ impl SceneGpu {
         t: &FrameTargets,
         ts: Option<wgpu::RenderPassTimestampWrites>,
     ) {
+        self.base_pass_with(encoder, t, &self.base_pipeline, 1.0, ts);
+    }
+
+    /// [`SceneGpu::base_pass`] with another pipeline and depth clear value
+    /// (lesson 07's reversed-Z clears to 0 and tests `Greater`).
+    pub fn base_pass_with(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        t: &FrameTargets,
+        pipeline: &wgpu::RenderPipeline,
+        clear_depth: f32,
+        ts: Option<wgpu::RenderPassTimestampWrites>,
+    ) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("base pass"),
             color_attachments: &[
@@ -326,7 +327,7 @@ impl SceneGpu {
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &t.depth_view,
                 depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
+                    load: wgpu::LoadOp::Clear(clear_depth),
                     store: wgpu::StoreOp::Store,
                 }),
                 stencil_ops: Some(wgpu::Operations {
@@ -338,11 +339,41 @@ impl SceneGpu {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&self.base_pipeline);
+        pass.set_pipeline(pipeline);
         self.bind_frame(&mut pass, 0);
         self.draw_objects(&mut pass, |_| true);
     }
     // ANCHOR_END: base_pass
+}
+
+/// The base pass's pipeline (`fs_base`: depth, the ambient term, the
+/// object id) with `depth_stencil`. [`SceneGpu::new`] makes the standard
+/// one (`Less` on the scene's depth format).
+pub fn base_pipeline(
+    gpu: &Gpu,
+    frame_layout: &wgpu::BindGroupLayout,
+    object_layout: &wgpu::BindGroupLayout,
+    depth_stencil: wgpu::DepthStencilState,
+) -> wgpu::RenderPipeline {
+    let module = shader_module(gpu, "base pass", "");
+    let layout = pipeline_layout_for(gpu, frame_layout, object_layout, &[]);
+    gpu.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("base pass"),
+            layout: Some(&layout),
+            vertex: vertex_state(&module, "vs_scene"),
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(depth_stencil),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_base"),
+                compilation_options: Default::default(),
+                targets: &[Some(COLOR_FORMAT.into()), Some(ID_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
 }
 
 /// Layout with group 0 (frame), group 1 (object), then the lesson's groups.

@@ -14,8 +14,8 @@ use common::glam::dcamera::rh::view::look_at_mat4;
 use common::glam::{DMat4, DVec4};
 use common::gpu::Gpu;
 use common::lit::LitPass;
-use common::render::{pipeline_layout_for, shader_module, vertex_state, SceneGpu, CLEAR_COLOR};
-use common::targets::{render_texture, FrameTargets, COLOR_FORMAT, ID_FORMAT, VISIBILITY_FORMAT};
+use common::render::{base_pipeline, pipeline_layout_for, SceneGpu};
+use common::targets::{render_texture, FrameTargets};
 use common::timing::Frame;
 
 use crate::lesson_05::extrusion::{volume_shader_module, QUAD_VERTEX_LAYOUT};
@@ -57,14 +57,14 @@ fn reversed_depth(
     write: bool,
     stencil: wgpu::StencilState,
     bias: wgpu::DepthBiasState,
-) -> Option<wgpu::DepthStencilState> {
-    Some(wgpu::DepthStencilState {
+) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
         format: REVERSED_FORMAT,
         depth_write_enabled: Some(write),
         depth_compare: Some(compare),
         stencil,
         bias,
-    })
+    }
 }
 // ANCHOR_END: reversed_states
 
@@ -107,23 +107,12 @@ impl ReversedZ {
         let device = &gpu.device;
         let layout = pipeline_layout_for(gpu, &s.frame_layout, &s.object_layout, &[]);
         use wgpu::CompareFunction::{Greater, GreaterEqual};
-        let module = shader_module(gpu, "reversed base pass", "");
-        let base = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("reversed base pass"),
-            layout: Some(&layout),
-            vertex: vertex_state(&module, "vs_scene"),
-            primitive: Default::default(),
-            depth_stencil: reversed_depth(Greater, true, Default::default(), Default::default()),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_base"),
-                compilation_options: Default::default(),
-                targets: &[Some(COLOR_FORMAT.into()), Some(ID_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let base = base_pipeline(
+            gpu,
+            &s.frame_layout,
+            &s.object_layout,
+            reversed_depth(Greater, true, Default::default(), Default::default()),
+        );
         let vmod = volume_shader_module(gpu, "reversed shadow volume", "");
         let volume = |front_face, cap: bool| {
             let bias = if cap {
@@ -145,7 +134,7 @@ impl ReversedZ {
                     cull_mode: None,
                     ..Default::default()
                 },
-                depth_stencil: reversed_depth(Greater, false, zfail_stencil(), bias),
+                depth_stencil: Some(reversed_depth(Greater, false, zfail_stencil(), bias)),
                 multisample: Default::default(),
                 fragment: None,
                 multiview_mask: None,
@@ -157,9 +146,12 @@ impl ReversedZ {
             [volume(ccw, false), volume(ccw, true)],
             [volume(cw, false), volume(cw, true)],
         ];
-        let lit = lit_pipeline(
+        // Lesson 05's lit pass (`fs_stencil_lit`) with the reversed depth test.
+        let lit = s.lit_pipeline_with_depth(
             gpu,
-            &layout,
+            &volume_shader_module(gpu, "reversed lit pass", ""),
+            "fs_stencil_lit",
+            &[],
             reversed_depth(GreaterEqual, false, lit_stencil(), Default::default()),
         );
         Ok(ReversedZ {
@@ -187,32 +179,9 @@ impl ReversedZ {
         set_reversed_camera(frame.gpu, &mut self.scene);
         let t = with_depth(targets, &self.depth);
         let s = &self.scene;
+        // Reversed: 0 is the farthest depth.
         frame.pass("base", |enc, ts| {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("reversed base pass"),
-                color_attachments: &[
-                    Some(t.color_attachment(wgpu::LoadOp::Clear(CLEAR_COLOR))),
-                    Some(t.id_attachment()),
-                ],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &t.depth_view,
-                    // Reversed: 0 is the farthest depth.
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                }),
-                timestamp_writes: ts.render(),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&self.base);
-            s.bind_frame(&mut pass, 0);
-            s.draw_objects(&mut pass, |_| true);
+            s.base_pass_with(enc, &t, &self.base, 0.0, ts.render())
         });
         for light in 0..s.scene.lights.len() {
             frame.pass("volume", |enc, ts| {
@@ -267,45 +236,4 @@ fn with_depth(t: &FrameTargets, depth: &wgpu::Texture) -> FrameTargets {
         visibility: t.visibility.clone(),
         visibility_views: t.visibility_views.clone(),
     }
-}
-
-/// Lesson 05's lit pass (`fs_stencil_lit`) with the reversed depth test.
-fn lit_pipeline(
-    gpu: &Gpu,
-    layout: &wgpu::PipelineLayout,
-    depth_stencil: Option<wgpu::DepthStencilState>,
-) -> wgpu::RenderPipeline {
-    let module = volume_shader_module(gpu, "reversed lit pass", "");
-    let add = wgpu::BlendState {
-        color: wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        },
-        alpha: wgpu::BlendComponent::OVER,
-    };
-    gpu.device
-        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("reversed lit pass"),
-            layout: Some(layout),
-            vertex: vertex_state(&module, "vs_scene"),
-            primitive: Default::default(),
-            depth_stencil,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_stencil_lit"),
-                compilation_options: Default::default(),
-                targets: &[
-                    Some(wgpu::ColorTargetState {
-                        format: COLOR_FORMAT,
-                        blend: Some(add),
-                        write_mask: wgpu::ColorWrites::ALL,
-                    }),
-                    Some(VISIBILITY_FORMAT.into()),
-                ],
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
 }
