@@ -7,8 +7,8 @@
 
 mod support;
 
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
+use std::time::Duration;
 
 /// Objects in the generated scene: a floor and a grid of boxes.
 const BOXES: usize = 19_999;
@@ -45,43 +45,14 @@ fn run_city(bin: &str, name: &str, variant: &str) -> Option<serde_json::Value> {
     let out = support::out_dir(&format!("many_objects-{name}"));
     let scene = out.join("city.toml");
     std::fs::write(&scene, city_scene()).expect("write the city scene");
-    let start = Instant::now();
-    let mut child = Command::new(bin)
-        .args(["--headless", "--width", "320", "--height", "180"])
+    let mut cmd = Command::new(bin);
+    cmd.args(["--headless", "--width", "320", "--height", "180"])
         .args(["--variant", variant, "--frames", "1", "--scene"])
         .arg(&scene)
         .arg("--out")
-        .arg(&out)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start the lesson");
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("wait for the lesson") {
-            break status;
-        }
-        if start.elapsed() > LIMIT {
-            let _ = child.kill();
-            panic!("{name} on 20,000 objects ran past {LIMIT:?}");
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    };
-    let mut stderr = String::new();
-    use std::io::Read;
-    if let Some(mut e) = child.stderr.take() {
-        let _ = e.read_to_string(&mut stderr);
-    }
-    if !status.success() {
-        if stderr.contains("no GPU adapter found") && !support::gpu_required() {
-            eprintln!("SKIPPED {name}: no GPU adapter (set WORKBOOK_REQUIRE_GPU=1 to make this a failure)");
-            return None;
-        }
-        panic!("{name} on 20,000 objects failed ({status}):\n{stderr}");
-    }
-    eprintln!(
-        "{name}: 20,000 objects in {:.1} s",
-        start.elapsed().as_secs_f64()
-    );
+        .arg(&out);
+    let took = support::run_watched(&mut cmd, name, LIMIT, |_| {})?;
+    eprintln!("{name}: 20,000 objects in {:.1} s", took.as_secs_f64());
     let text = std::fs::read_to_string(out.join("report.json")).expect("report.json");
     Some(serde_json::from_str(&text).expect("report.json parses"))
 }

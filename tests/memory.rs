@@ -10,7 +10,7 @@
 
 mod support;
 
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::Duration;
 
 /// Frames of the short and of the long run.
@@ -32,45 +32,23 @@ fn peak_rss_mb(bin: &str, name: &str, frames: u32) -> Option<f64> {
     let variants = String::from_utf8_lossy(&list.stdout).to_string();
     let first = variants.lines().next().expect("a lesson has variants");
     let out = support::out_dir(&format!("{name}-memory-{frames}"));
-    let mut child = Command::new(bin)
-        .args(["--headless", "--width", "160", "--height", "90"])
+    let mut peak_kb = 0u64;
+    let read_peak = |pid: u32| {
+        let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
+        if let Some(kb) = status
+            .lines()
+            .find_map(|l| l.strip_prefix("VmHWM:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        {
+            peak_kb = peak_kb.max(kb);
+        }
+    };
+    let mut cmd = Command::new(bin);
+    cmd.args(["--headless", "--width", "160", "--height", "90"])
         .args(["--variant", first, "--frames", &frames.to_string()])
         .arg("--out")
-        .arg(&out)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start the lesson");
-    let status_path = format!("/proc/{}/status", child.id());
-    let mut peak_kb = 0u64;
-    let status = loop {
-        if let Ok(text) = std::fs::read_to_string(&status_path) {
-            if let Some(kb) = text
-                .lines()
-                .find_map(|l| l.strip_prefix("VmHWM:"))
-                .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
-            {
-                peak_kb = peak_kb.max(kb);
-            }
-        }
-        if let Some(status) = child.try_wait().expect("wait for the lesson") {
-            break status;
-        }
-        std::thread::sleep(Duration::from_millis(2));
-    };
-    let mut stderr = String::new();
-    use std::io::Read;
-    child
-        .stderr
-        .take()
-        .map(|mut e| e.read_to_string(&mut stderr));
-    if !status.success() {
-        if stderr.contains("no GPU adapter found") && !support::gpu_required() {
-            eprintln!("SKIPPED {name}: no GPU adapter (set WORKBOOK_REQUIRE_GPU=1 to make this a failure)");
-            return None;
-        }
-        panic!("{name} with --frames {frames} failed ({status}):\n{stderr}");
-    }
+        .arg(&out);
+    support::run_watched(&mut cmd, name, Duration::from_secs(600), read_peak)?;
     assert!(peak_kb > 0, "{name}: no VmHWM sample was read");
     Some(peak_kb as f64 / 1024.0)
 }

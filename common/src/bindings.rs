@@ -44,11 +44,12 @@ pub fn sampler_entry(binding: u32, ty: wgpu::SamplerBindingType) -> wgpu::BindGr
     }
 }
 
-/// A uniform buffer of at least `size` bytes (any size with `None`) at
-/// `binding`, read by `visibility`.
-pub fn uniform_entry(
+/// A buffer entry of type `ty`, at least `size` bytes (any size with
+/// `None`), at `binding`, read by `visibility`.
+fn buffer_entry(
     binding: u32,
     visibility: wgpu::ShaderStages,
+    ty: wgpu::BufferBindingType,
     dynamic: bool,
     size: Option<u64>,
 ) -> wgpu::BindGroupLayoutEntry {
@@ -56,12 +57,23 @@ pub fn uniform_entry(
         binding,
         visibility,
         ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
+            ty,
             has_dynamic_offset: dynamic,
             min_binding_size: size.and_then(wgpu::BufferSize::new),
         },
         count: None,
     }
+}
+
+/// A uniform buffer entry (`var<uniform>` in WGSL).
+pub fn uniform_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    dynamic: bool,
+    size: Option<u64>,
+) -> wgpu::BindGroupLayoutEntry {
+    let ty = wgpu::BufferBindingType::Uniform;
+    buffer_entry(binding, visibility, ty, dynamic, size)
 }
 
 /// A read-only storage buffer entry (`var<storage, read>` in WGSL).
@@ -71,16 +83,8 @@ pub fn storage_entry(
     dynamic: bool,
     size: Option<u64>,
 ) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: dynamic,
-            min_binding_size: size.and_then(wgpu::BufferSize::new),
-        },
-        count: None,
-    }
+    let ty = wgpu::BufferBindingType::Storage { read_only: true };
+    buffer_entry(binding, visibility, ty, dynamic, size)
 }
 
 /// A layout of `entries`.

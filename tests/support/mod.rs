@@ -262,3 +262,45 @@ pub fn compare_with_reference(
         );
     }
 }
+
+/// Runs a prepared lesson command (stdout discarded, stderr kept), calling
+/// `poll(pid)` every 2 ms while it runs and killing it past `limit`.
+/// `None` when no adapter exists and none is required (the skip is
+/// printed); a failed run or one past `limit` panics with its stderr.
+pub fn run_watched(
+    cmd: &mut Command,
+    name: &str,
+    limit: std::time::Duration,
+    mut poll: impl FnMut(u32),
+) -> Option<std::time::Duration> {
+    use std::io::Read;
+    let start = std::time::Instant::now();
+    let mut child = cmd
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start the lesson");
+    let status = loop {
+        poll(child.id());
+        if let Some(status) = child.try_wait().expect("wait for the lesson") {
+            break status;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            panic!("{name}: ran past {limit:?}");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    };
+    let mut stderr = String::new();
+    if let Some(mut e) = child.stderr.take() {
+        let _ = e.read_to_string(&mut stderr);
+    }
+    if !status.success() {
+        if stderr.contains("no GPU adapter found") && !gpu_required() {
+            eprintln!("SKIPPED {name}: no GPU adapter (set WORKBOOK_REQUIRE_GPU=1 to make this a failure)");
+            return None;
+        }
+        panic!("{name}: lesson failed ({status}):\n{stderr}");
+    }
+    Some(start.elapsed())
+}
