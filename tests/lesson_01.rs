@@ -180,3 +180,70 @@ fn lesson_01_cpu_timing_fallback_is_labelled() {
         "the table says where the times come from"
     );
 }
+
+/// Outside the default scene's comfort: a spot light (a perspective map)
+/// 10 km from the origin under a finite far plane. Lesson 01 has no bias,
+/// so acne (false shadow) is expected; what must hold is that the map
+/// covers the casters (little false lit), that the GPU and the reference
+/// see the same surfaces, and that a point light is refused in one line.
+#[test]
+fn lesson_01_spot_light_ten_km_out() {
+    let out = support::out_dir("lesson_01_spot_scene");
+    let scene = out.join("spot_10km.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\neye = [10004.0, 3.5, 10006.0]\ntarget = [10000.0, 0.3, 10000.0]\n\
+         near = 0.1\nfar = 60.0\n\n\
+         [[lights]]\ntype = \"spot\"\nposition = [10001.5, 6.0, 10001.0]\n\
+         direction = [-0.25, -1.0, -0.2]\nspot_angle_deg = 70.0\nrange = 30.0\n\n\
+         [[objects]]\nmesh = \"plane\"\ntranslate = [10000.0, 0.0, 10000.0]\nscale = 8.0\n\n\
+         [[objects]]\nmesh = \"cube\"\ntranslate = [10000.0, 0.5, 10000.0]\n\n\
+         [[objects]]\nmesh = \"sphere\"\ntranslate = [9998.8, 0.6, 10000.9]\nscale = 1.2\n",
+    )
+    .unwrap();
+    let scene_arg = scene.to_str().unwrap();
+    let Some(run) = support::run_lesson(
+        BIN,
+        "lesson_01_spot_10km",
+        &[&SIZE[..], &["--scene", scene_arg, "--variant", "res_2048"]].concat(),
+    ) else {
+        return;
+    };
+    let e = |k: &str| support::error(&run.report, "res_2048", k);
+    assert!(
+        e("receiver_pixels") > 5000.0,
+        "receivers: {}",
+        e("receiver_pixels")
+    );
+    assert!(
+        e("false_lit_pct") < 0.5,
+        "false lit {} %",
+        e("false_lit_pct")
+    );
+    assert!(
+        e("coverage_mismatch_pct") < 1.0,
+        "coverage {} %",
+        e("coverage_mismatch_pct")
+    );
+
+    // A point light: one line that names the lesson that handles it.
+    let point = out.join("point.toml");
+    let text = std::fs::read_to_string(&scene)
+        .unwrap()
+        .replace("type = \"spot\"", "type = \"point\"");
+    std::fs::write(&point, text).unwrap();
+    let o = std::process::Command::new(BIN)
+        .args(["--headless", "--scene", point.to_str().unwrap()])
+        .args(SIZE)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .expect("run lesson_01");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    if stderr.contains("no GPU adapter found") && !support::gpu_required() {
+        return;
+    }
+    assert!(!o.status.success(), "a point light must be refused");
+    assert_eq!(stderr.trim().lines().count(), 1, "one line: {stderr}");
+    assert!(stderr.contains("lesson_04"), "names lesson_04: {stderr}");
+}
