@@ -34,7 +34,16 @@ pub struct ErrorStats {
     /// (%) where the two see different objects (or one sees nothing). They
     /// are left out of the receivers; above [`COVERAGE_WARN_PCT`] the run warns.
     pub coverage_mismatch_pct: f64,
+    /// Receivers farther than [`EDGE_MARGIN_PX`] pixels from every edge of
+    /// the reference image: a change of surface, or of lit and shadowed.
+    pub interior_receiver_pixels: u64,
+    /// Misclassified % of the interior receivers: the error that is not
+    /// a matter of edge pixels (the pass criteria "away from silhouettes").
+    pub interior_misclassified_pct: f64,
 }
+
+/// How far (pixels, in x and y) an interior receiver is from every edge.
+pub const EDGE_MARGIN_PX: i64 = 2;
 
 /// Above this coverage mismatch (%) a headless run prints a warning line.
 pub const COVERAGE_WARN_PCT: f64 = 1.0;
@@ -120,6 +129,35 @@ pub fn compare(
         diff.put_pixel(p as u32 % w, p as u32 / w, colour);
     }
 
+    // Interior receivers: no pixel within EDGE_MARGIN_PX sees another
+    // surface or the other side of the reference's lit/shadowed boundary.
+    let class = |p: usize| {
+        let object = reference.hits[p].map_or(0, |h| h.object + 1);
+        (object, ref_vis[p] >= LIT_THRESHOLD)
+    };
+    let (mut interior, mut interior_wrong) = (0u64, 0u64);
+    let m = EDGE_MARGIN_PX;
+    for (p, colour) in diff.pixels().enumerate() {
+        let wrong = *colour == FALSE_SHADOW || *colour == FALSE_LIT;
+        if !wrong && (colour.0[3] != 255 || *colour == NOT_RECEIVER) {
+            continue;
+        }
+        let (x, y) = ((p % w as usize) as i64, (p / w as usize) as i64);
+        let c = class(p);
+        let near_edge = (-m..=m).any(|dy| {
+            (-m..=m).any(|dx| {
+                let (nx, ny) = (x + dx, y + dy);
+                (0..w as i64).contains(&nx)
+                    && (0..h as i64).contains(&ny)
+                    && class((ny * w as i64 + nx) as usize) != c
+            })
+        });
+        if !near_edge {
+            interior += 1;
+            interior_wrong += u64::from(wrong);
+        }
+    }
+
     // With no receivers every count is 0, and so is every figure.
     let of = receivers.max(1) as f64;
     let pct = |count: u64| 100.0 * count as f64 / of;
@@ -130,6 +168,8 @@ pub fn compare(
         false_lit_pct: pct(false_lit),
         mean_abs: abs_sum / of,
         coverage_mismatch_pct: 100.0 * mismatched as f64 / covered.max(1) as f64,
+        interior_receiver_pixels: interior,
+        interior_misclassified_pct: 100.0 * interior_wrong as f64 / interior.max(1) as f64,
     };
     Comparison { stats, diff }
 }
@@ -294,6 +334,30 @@ mod tests {
     }
 
     #[test]
+    fn interior_error_leaves_out_edge_pixels() {
+        // One row of 12 receivers: lit in the reference at 0..6, shadowed at
+        // 6..12. Interior (no other class within 2 px): 0..4 and 8..12.
+        let px: Vec<_> = (0..12)
+            .map(|k| (Some(0), if k < 6 { 1.0 } else { 0.0 }, 0.8))
+            .collect();
+        let r = reference(12, 1, &px);
+        let ids = vec![1; 12];
+        let gpu = |wrong: usize| -> Vec<f32> {
+            (0..12)
+                .map(|k| if (k < 6) != (k == wrong) { 1.0 } else { 0.0 })
+                .collect()
+        };
+        // Wrong at the edge pixel 6 only: 1 of 12 overall, none inside.
+        let edge = compare(&r, 0, &ids, &gpu(6)).stats;
+        assert_eq!(edge.interior_receiver_pixels, 8);
+        assert!((edge.misclassified_pct - 100.0 / 12.0).abs() < 1e-9);
+        assert_eq!(edge.interior_misclassified_pct, 0.0);
+        // Wrong at pixel 10, deep in the shadow: 1 of the 8 interior.
+        let inside = compare(&r, 0, &ids, &gpu(10)).stats;
+        assert!((inside.interior_misclassified_pct - 12.5).abs() < 1e-9);
+    }
+
+    #[test]
     fn no_receivers_gives_zeros() {
         let r = reference(
             3,
@@ -312,7 +376,9 @@ mod tests {
                 // Pixel 0 is covered by neither; pixels 1 (object 0 on both)
                 // and 2 (object 2 in the reference, object 0 on the GPU) are
                 // covered, and pixel 2 is a mismatch.
-                coverage_mismatch_pct: 50.0
+                coverage_mismatch_pct: 50.0,
+                interior_receiver_pixels: 0,
+                interior_misclassified_pct: 0.0,
             }
         );
     }

@@ -41,6 +41,7 @@ pub struct Report {
 /// Sums per-light statistics into one (weighted by receiver pixels).
 pub fn combine(per_light: &[ErrorStats]) -> ErrorStats {
     let n: u64 = per_light.iter().map(|s| s.receiver_pixels).sum();
+    let interior: u64 = per_light.iter().map(|s| s.interior_receiver_pixels).sum();
     let w = |f: fn(&ErrorStats) -> f64| -> f64 {
         if n == 0 {
             0.0
@@ -63,6 +64,16 @@ pub fn combine(per_light: &[ErrorStats]) -> ErrorStats {
             .iter()
             .map(|s| s.coverage_mismatch_pct)
             .fold(0.0, f64::max),
+        interior_receiver_pixels: interior,
+        interior_misclassified_pct: if interior == 0 {
+            0.0
+        } else {
+            per_light
+                .iter()
+                .map(|s| s.interior_misclassified_pct * s.interior_receiver_pixels as f64)
+                .sum::<f64>()
+                / interior as f64
+        },
     }
 }
 
