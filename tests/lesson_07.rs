@@ -274,3 +274,39 @@ fn lesson_07_reversed_z_exact_on_deep_range() {
         );
     }
 }
+
+/// A default run (no `--variant`) renders what the adapter can: on GL it
+/// skips `reversed_z` with one note line naming the backend that handles
+/// it and exits 0; elsewhere the report has every variant.
+#[test]
+fn lesson_07_default_run_skips_only_what_the_adapter_cannot_render() {
+    let out = support::out_dir("lesson_07_default_run");
+    let o = Command::new(BIN)
+        .args(["--headless", "--width", "160", "--height", "90", "--out"])
+        .arg(&out)
+        .output()
+        .expect("run lesson_07");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    if stderr.contains("no GPU adapter found") && !support::gpu_required() {
+        eprintln!("SKIPPED: no GPU adapter");
+        return;
+    }
+    assert!(o.status.success(), "default run failed:\n{stderr}");
+    let text = std::fs::read_to_string(out.join("report.json")).unwrap();
+    let report: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let names: Vec<&str> = report["variants"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v["name"].as_str().unwrap())
+        .collect();
+    let notes: Vec<&str> = stderr.lines().filter(|l| l.starts_with("note:")).collect();
+    if report["adapter"]["backend"].as_str() == Some("Gl") {
+        assert_eq!(names, ["neither", "clamp", "infinite"]);
+        assert_eq!(notes.len(), 1, "one note line: {stderr}");
+        assert!(notes[0].contains("reversed_z") && notes[0].contains("--backend vulkan"));
+    } else {
+        assert_eq!(names, ["neither", "clamp", "infinite", "reversed_z"]);
+        assert!(notes.is_empty(), "no variant skipped: {stderr}");
+    }
+}

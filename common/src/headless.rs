@@ -56,6 +56,13 @@ pub fn run_headless<L: Lesson>(
     let mut rows = Vec::new();
     for &variant in variants {
         let v = variant_name(variant);
+        if let Some(why) = lesson.unavailable(variant) {
+            if !args.variants.is_empty() {
+                anyhow::bail!("{why}");
+            }
+            eprintln!("note: {}: skipped {why}", L::NAME);
+            continue;
+        }
         let mut times = Vec::new();
         for i in 0..WARM_UP_FRAMES + args.frames {
             let mut frame = timer.frame(&gpu);
@@ -89,6 +96,9 @@ pub fn run_headless<L: Lesson>(
             timing_source: timer.source(),
             counters: lesson.counters(variant),
         });
+    }
+    if rows.is_empty() {
+        anyhow::bail!("{}: this adapter can render none of the variants", L::NAME);
     }
     let report = Report {
         lesson: L::NAME.to_string(),

@@ -42,6 +42,14 @@ pub trait Lesson: Sized {
         variant: Self::Variant,
     ) -> Result<()>;
 
+    /// Why this adapter cannot render `variant` (a missing feature, a
+    /// backend that loses its precision), or `None`. A default run (no
+    /// `--variant`) skips such variants with one note line each; asking for
+    /// one by name is an error that prints the reason.
+    fn unavailable(&self, _variant: Self::Variant) -> Option<String> {
+        None
+    }
+
     /// Counters for the report (casters drawn, fragments, ...), after `render`.
     fn counters(&self, _variant: Self::Variant) -> BTreeMap<String, u64> {
         BTreeMap::new()

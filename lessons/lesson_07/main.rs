@@ -173,6 +173,14 @@ impl Lesson for DepthClamp {
         })
     }
 
+    fn unavailable(&self, variant: Variant) -> Option<String> {
+        match variant {
+            Variant::Clamp => self.clamp.as_ref().err().cloned(),
+            Variant::ReversedZ => self.reversed.as_ref().err().cloned(),
+            Variant::Neither | Variant::Infinite => None,
+        }
+    }
+
     // ANCHOR: render
     fn render(
         &mut self,
