@@ -3,7 +3,7 @@
 //! object id). The lit pass that adds each light is in [`crate::lit`].
 
 use anyhow::{anyhow, Result};
-use glam::{DMat4, Mat4};
+use glam::Mat4;
 use wgpu::util::DeviceExt;
 
 use crate::bindings;
@@ -227,10 +227,8 @@ impl SceneGpu {
             gpu.queue
                 .write_buffer(&self.light_buf, SLOT * k as u64, bytemuck::bytes_of(&l));
         }
-        // The origin once, not per object: it is a pass over every vertex.
-        let to_origin = DMat4::from_translation(-self.scene.origin());
-        for (i, o) in self.scene.objects.iter().enumerate() {
-            let model = (to_origin * o.model).as_mat4();
+        let models = self.scene.relative_models();
+        for (i, (o, &model)) in self.scene.objects.iter().zip(&models).enumerate() {
             let u = ObjectUniform {
                 model: model.to_cols_array_2d(),
                 normal_matrix: model.inverse().transpose().to_cols_array_2d(),

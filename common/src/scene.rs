@@ -319,9 +319,15 @@ impl Scene {
         (lo + hi) * 0.5
     }
 
-    /// Object-to-origin-relative matrix in `f32`: `T(-origin) * model`, formed in `f64`.
-    pub fn model_relative(&self, object: usize) -> glam::Mat4 {
-        (DMat4::from_translation(-self.origin()) * self.objects[object].model).as_mat4()
+    /// Every object's origin-relative matrix in `f32`, `T(-origin) * model`,
+    /// formed in `f64`. All at once: [`Scene::origin`] is a pass over every
+    /// vertex, so finding it once per object would be quadratic.
+    pub fn relative_models(&self) -> Vec<glam::Mat4> {
+        let to_origin = DMat4::from_translation(-self.origin());
+        self.objects
+            .iter()
+            .map(|o| (to_origin * o.model).as_mat4())
+            .collect()
     }
 
     /// Every triangle in origin-relative world space, with its object index.

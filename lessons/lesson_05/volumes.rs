@@ -35,7 +35,7 @@ use std::ops::Range;
 
 use anyhow::Result;
 use common::counters::FragmentCounter;
-use common::glam::{DMat4, DVec3};
+use common::glam::DVec3;
 use common::gpu::Gpu;
 use common::lit::LitPass;
 use common::render::SceneGpu;
@@ -150,14 +150,13 @@ impl ShadowVolumes {
     pub fn new(gpu: &Gpu, scene: &SceneGpu, counting: &Counting) -> Result<ShadowVolumes> {
         use wgpu::util::DeviceExt;
         let mut casters = Vec::new();
-        // The origin once: it is a pass over every vertex of the scene.
-        let to_origin = DMat4::from_translation(-scene.scene.origin());
+        let models = scene.scene.relative_models();
         for (i, o) in scene.scene.objects.iter().enumerate() {
             if !o.casts_shadow {
                 continue;
             }
             let adjacency = caster_adjacency(&o.mesh);
-            let model = (to_origin * o.model).as_mat4();
+            let model = models[i];
             let world: Vec<DVec3> = adjacency
                 .positions
                 .iter()
@@ -274,7 +273,7 @@ impl ShadowVolumes {
         frame.cpu("silhouette", || {
             cpu.vertices.clear();
             cpu.ranges.clear();
-            let to_origin = DMat4::from_translation(-scene.scene.origin());
+            let models = scene.scene.relative_models();
             for (k, draws_k) in draws.iter().enumerate() {
                 let light = world_light(scene, k);
                 let mut ranges = vec![VolumeRanges::default(); casters.len()];
@@ -287,7 +286,7 @@ impl ShadowVolumes {
                         continue;
                     }
                     // Silhouettes in object space: the light moves, not the mesh.
-                    let model = (to_origin * scene.scene.objects[c.object].model).as_mat4();
+                    let model = models[c.object];
                     let w = reach.get(k).and_then(|r| r.get(ci)).copied();
                     ranges[ci] = cpu_volume_reaching(
                         &c.adjacency,

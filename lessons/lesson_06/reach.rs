@@ -62,7 +62,7 @@ pub fn volume_reach(scene: &SceneGpu, casters: &[VolumeCaster]) -> Result<Vec<Ve
         };
         let mut per_caster = Vec::new();
         for c in casters {
-            // Origin-relative, like model_relative, with the origin found once.
+            // Origin-relative, like Scene::relative_models, with the origin found once.
             let model = DMat4::from_translation(-origin) * scene.scene.objects[c.object].model;
             let world: Vec<DVec3> = c
                 .adjacency
