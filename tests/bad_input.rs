@@ -2,7 +2,7 @@
 //! panic, never a hang. Each case names what is wrong (file, field, flag).
 
 use std::path::PathBuf;
-use std::process::Command;
+mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_01");
 
@@ -14,19 +14,7 @@ fn dir() -> PathBuf {
 
 /// Runs lesson_01 and returns its single stderr line, asserting failure.
 fn fails(args: &[&str]) -> String {
-    let out = Command::new(BIN)
-        .args([
-            "--headless",
-            "--width",
-            "64",
-            "--height",
-            "36",
-            "--frames",
-            "1",
-        ])
-        .args(args)
-        .arg("--out")
-        .arg(dir().join("out"))
+    let out = support::tiny_headless(BIN, &dir().join("out"), args)
         .output()
         .expect("run lesson_01");
     let stderr = String::from_utf8_lossy(&out.stderr).to_string();

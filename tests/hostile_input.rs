@@ -32,20 +32,7 @@ const FLOOR: &str = "[[objects]]\nmesh = \"plane\"\nscale = 10.0\n";
 const CUBE: &str = "[[objects]]\nmesh = \"cube\"\ntranslate = [0.0, 0.5, 0.0]\n";
 
 fn headless(bin: &str, args: &[&str]) -> Command {
-    let mut c = Command::new(bin);
-    c.args([
-        "--headless",
-        "--width",
-        "64",
-        "--height",
-        "36",
-        "--frames",
-        "1",
-    ])
-    .args(args)
-    .arg("--out")
-    .arg(dir().join("out"));
-    c
+    support::tiny_headless(bin, &dir().join("out"), args)
 }
 
 /// The one error line of a run that must fail (no panic).

@@ -203,9 +203,8 @@ fn segment_crosses(o: Vec3, d: Vec3, t_max: f32, t: &[Vec3; 3]) -> bool {
 /// Report counters about the casters, computed once: mesh validation
 /// (`open_edges`, `nonmanifold_edges`, `degenerate_triangles`, summed over
 /// casters) and `max_volume_overlap` (the largest stencil count found on a
-/// 64 × 36 pixel grid, over all lights). Warns on stderr when the 8-bit
-/// stencil wraps (256 or more).
-pub fn scene_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
+/// 64 × 36 pixel grid, over all lights). No warning: see [`scene_counters`].
+pub fn caster_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
     let mut c = BTreeMap::new();
     for o in scene.scene.objects.iter().filter(|o| o.casts_shadow) {
         let v = validate(&o.mesh);
@@ -217,10 +216,18 @@ pub fn scene_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
         .map(|k| max_volume_overlap(scene, k, 64, 36))
         .max()
         .unwrap_or(0);
+    c.insert("max_volume_overlap".to_string(), overlap as u64);
+    c
+}
+
+/// [`caster_counters`], with a warning on stderr when the 8-bit stencil
+/// count wraps (256 or more overlapping volumes).
+pub fn scene_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
+    let c = caster_counters(scene);
+    let overlap = c["max_volume_overlap"];
     if overlap >= 256 {
         eprintln!("warning: up to {overlap} shadow volumes overlap: the 8-bit stencil count wraps (256 reads as 0, lit)");
     }
-    c.insert("max_volume_overlap".to_string(), overlap as u64);
     c
 }
 

@@ -8,8 +8,7 @@ use std::collections::BTreeMap;
 use common::render::SceneGpu;
 
 use super::bounds_test::COUNT_BITS;
-use crate::lesson_05::adjacency::validate;
-use crate::lesson_05::stencil::max_volume_overlap;
+use crate::lesson_05::stencil::caster_counters;
 
 // ANCHOR: count_wrap
 /// The count's modulus: 128 (bits 0–6).
@@ -19,23 +18,13 @@ pub const COUNT_MODULUS: u32 = COUNT_BITS + 1;
 /// 64 × 36 pixel grid), with the warning where *this* lesson's count
 /// wraps: at 128 overlapping volumes.
 pub fn scene_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
-    let mut c = BTreeMap::new();
-    for o in scene.scene.objects.iter().filter(|o| o.casts_shadow) {
-        let v = validate(&o.mesh);
-        *c.entry("open_edges".to_string()).or_default() += v.boundary_edges as u64;
-        *c.entry("nonmanifold_edges".to_string()).or_default() += v.nonmanifold_edges as u64;
-        *c.entry("degenerate_triangles".to_string()).or_default() += v.degenerate_triangles as u64;
-    }
-    let overlap = (0..scene.scene.lights.len())
-        .map(|k| max_volume_overlap(scene, k, 64, 36))
-        .max()
-        .unwrap_or(0);
-    if overlap >= COUNT_MODULUS {
+    let c = caster_counters(scene);
+    let overlap = c["max_volume_overlap"];
+    if overlap >= u64::from(COUNT_MODULUS) {
         eprintln!(
             "warning: up to {overlap} shadow volumes overlap: lesson_08 counts in stencil bits 0-6, which wrap at {COUNT_MODULUS} (a count of {COUNT_MODULUS} reads as 0, lit); lessons 06 and 07 count to 255"
         );
     }
-    c.insert("max_volume_overlap".to_string(), overlap as u64);
     c
 }
 // ANCHOR_END: count_wrap

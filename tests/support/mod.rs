@@ -304,3 +304,22 @@ pub fn run_watched(
     }
     Some(start.elapsed())
 }
+
+/// `bin --headless` at 64×36, one frame, writing to `out`, then `args`:
+/// the cheapest run, for tests that look at the exit and stderr.
+pub fn tiny_headless(bin: &str, out: &Path, args: &[&str]) -> Command {
+    let mut c = Command::new(bin);
+    c.args([
+        "--headless",
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--frames",
+        "1",
+    ])
+    .args(args)
+    .arg("--out")
+    .arg(out);
+    c
+}
