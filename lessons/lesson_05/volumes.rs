@@ -35,7 +35,7 @@ use std::ops::Range;
 
 use anyhow::Result;
 use common::counters::FragmentCounter;
-use common::glam::DVec3;
+use common::glam::{DVec3, Mat4};
 use common::gpu::Gpu;
 use common::lit::LitPass;
 use common::render::SceneGpu;
@@ -133,6 +133,9 @@ pub struct ShadowVolumes {
     pub casters: Vec<VolumeCaster>,
     /// `caster_of[object]`: the object's index in `casters`, if it casts.
     caster_of: Vec<Option<usize>>,
+    /// Every object's origin-relative model matrix, found once: objects do
+    /// not move (the window moves only the camera and the lights).
+    models: Vec<Mat4>,
     /// `reach[light][caster]`: the w of extruded vertices (0: infinity).
     reach: Vec<Vec<f32>>,
     /// The same, one [`REACH_SLOT`] per (light, caster), for the quads path;
@@ -223,6 +226,7 @@ impl ShadowVolumes {
         Ok(ShadowVolumes {
             casters,
             caster_of,
+            models,
             reach,
             reach_buffer,
             cpu: CpuGeometry::default(),
@@ -270,10 +274,10 @@ impl ShadowVolumes {
         let cpu = &mut self.cpu;
         let casters = &self.casters;
         let reach = &self.reach;
+        let models = &self.models;
         frame.cpu("silhouette", || {
             cpu.vertices.clear();
             cpu.ranges.clear();
-            let models = scene.scene.relative_models();
             for (k, draws_k) in draws.iter().enumerate() {
                 let light = world_light(scene, k);
                 let mut ranges = vec![VolumeRanges::default(); casters.len()];
