@@ -5,15 +5,16 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
+use crate::baseline::Baseline;
 use crate::cli::Args;
 use crate::gpu::Gpu;
 use crate::lesson::{variant_name, Lesson};
 use crate::metrics;
 use crate::reference::try_render_reference;
 use crate::render::SceneGpu;
-use crate::report::{combine, AdapterReport, Report, VariantReport};
+use crate::report::{combine, AdapterReport, BaselineReport, Report, VariantReport};
 use crate::scene::Scene;
-use crate::timing::{median_times, Timer};
+use crate::timing::{median_times, samples, spread_times, FrameTimes, Timer};
 
 /// What a headless run wrote: the report, and the folder it wrote into.
 pub struct HeadlessRun {
@@ -63,15 +64,9 @@ pub fn run_headless<L: Lesson>(
             eprintln!("note: {}: skipped {why}", L::NAME);
             continue;
         }
-        let mut times = Vec::new();
-        for i in 0..WARM_UP_FRAMES + args.frames {
-            let mut frame = timer.frame(&gpu);
-            lesson.render(&mut frame, &sg, &targets, variant)?;
-            let t = frame.finish()?;
-            if i >= WARM_UP_FRAMES {
-                times.push(t);
-            }
-        }
+        let times = timed_frames(&mut timer, &gpu, args.frames, |frame| {
+            lesson.render(frame, &sg, &targets, variant)
+        })?;
         let images = targets.read(&gpu)?;
         let color = image::RgbaImage::from_raw(w, h, images.color.clone())
             .context("colour readback size")?;
@@ -93,6 +88,8 @@ pub fn run_headless<L: Lesson>(
             error: combine(&per_light),
             error_per_light: per_light,
             timing_ms: median_times(&times),
+            timing_spread_ms: spread_times(&times),
+            timing_samples_ms: samples(&times),
             timing_source: timer.source(),
             counters: lesson.counters(variant),
         });
@@ -100,6 +97,13 @@ pub fn run_headless<L: Lesson>(
     if rows.is_empty() {
         anyhow::bail!("{}: this adapter can render none of the variants", L::NAME);
     }
+    // The no-shadow baseline, timed like the variants, after them (its
+    // images are not kept: the targets hold the last variant's frame
+    // until here).
+    let baseline = Baseline::new(&gpu, &sg);
+    let times = timed_frames(&mut timer, &gpu, args.frames, |frame| {
+        baseline.render(frame, &sg, &targets)
+    })?;
     let report = Report {
         lesson: L::NAME.to_string(),
         adapter: AdapterReport {
@@ -112,6 +116,11 @@ pub fn run_headless<L: Lesson>(
         reference_ms: reference.ms,
         frames: args.frames,
         variants: rows,
+        baseline: Some(BaselineReport {
+            timing_ms: median_times(&times),
+            timing_spread_ms: spread_times(&times),
+            timing_samples_ms: samples(&times),
+        }),
     };
     let json = serde_json::to_string_pretty(&report)?;
     std::fs::write(out_dir.join("report.json"), json)
@@ -119,6 +128,27 @@ pub fn run_headless<L: Lesson>(
     Ok(HeadlessRun { report, out_dir })
 }
 // ANCHOR_END: run_headless
+
+// ANCHOR: timed_frames
+/// Renders [`WARM_UP_FRAMES`] untimed frames, then `frames` timed ones.
+fn timed_frames(
+    timer: &mut Timer,
+    gpu: &Gpu,
+    frames: u32,
+    mut render: impl FnMut(&mut crate::timing::Frame) -> Result<()>,
+) -> Result<Vec<FrameTimes>> {
+    let mut times = Vec::new();
+    for i in 0..WARM_UP_FRAMES + frames {
+        let mut frame = timer.frame(gpu);
+        render(&mut frame)?;
+        let t = frame.finish()?;
+        if i >= WARM_UP_FRAMES {
+            times.push(t);
+        }
+    }
+    Ok(times)
+}
+// ANCHOR_END: timed_frames
 
 /// Saves an image, naming the file on failure.
 pub fn save<P, C>(img: &image::ImageBuffer<P, C>, path: &Path) -> Result<()>

@@ -34,6 +34,7 @@
 //! - [`report`]: `report.json` and the terminal table.
 
 pub mod app;
+pub mod baseline;
 pub mod bindings;
 pub mod bvh;
 pub mod camera;

@@ -19,7 +19,7 @@ pub const RECEIVER_MIN_N_DOT_L: f32 = 0.05;
 pub const LIT_THRESHOLD: f32 = 0.5;
 
 /// Error of one light's visibility. Percentages are of receiver pixels.
-#[derive(Serialize, Clone, Debug, PartialEq)]
+#[derive(Serialize, serde::Deserialize, Clone, Debug, PartialEq)]
 pub struct ErrorStats {
     pub receiver_pixels: u64,
     /// `false_shadow_pct + false_lit_pct`.

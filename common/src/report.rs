@@ -2,18 +2,18 @@
 
 use std::collections::BTreeMap;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::metrics::{ErrorStats, COVERAGE_WARN_PCT};
 use crate::timing::TimingSource;
 
-#[derive(Serialize, Clone, Debug)]
+#[derive(Serialize, Deserialize, Clone, Debug)]
 pub struct AdapterReport {
     pub name: String,
     pub backend: String,
 }
 
-#[derive(Serialize, Clone, Debug)]
+#[derive(Serialize, Deserialize, Clone, Debug)]
 pub struct VariantReport {
     pub name: String,
     /// All lights together (pixel counts summed over lights).
@@ -22,11 +22,28 @@ pub struct VariantReport {
     pub error_per_light: Vec<ErrorStats>,
     /// Median milliseconds: `total`, one key per pass, `cpu_*` for CPU work.
     pub timing_ms: BTreeMap<String, f64>,
+    /// The interquartile range `[q25, q75]` of each `timing_ms` key.
+    #[serde(default)]
+    pub timing_spread_ms: BTreeMap<String, [f64; 2]>,
+    /// Every timed frame's milliseconds, key by key (the generator pools
+    /// them over repeated runs).
+    #[serde(default)]
+    pub timing_samples_ms: BTreeMap<String, Vec<f64>>,
     pub timing_source: TimingSource,
     pub counters: BTreeMap<String, u64>,
 }
 
-#[derive(Serialize, Clone, Debug)]
+/// The same frame with the visibility test removed: the base pass and one
+/// unshadowed lit pass per light. What the shadows cost is a variant's
+/// time minus this.
+#[derive(Serialize, Deserialize, Clone, Debug)]
+pub struct BaselineReport {
+    pub timing_ms: BTreeMap<String, f64>,
+    pub timing_spread_ms: BTreeMap<String, [f64; 2]>,
+    pub timing_samples_ms: BTreeMap<String, Vec<f64>>,
+}
+
+#[derive(Serialize, Deserialize, Clone, Debug)]
 pub struct Report {
     pub lesson: String,
     pub adapter: AdapterReport,
@@ -36,6 +53,9 @@ pub struct Report {
     pub reference_ms: f64,
     pub frames: u32,
     pub variants: Vec<VariantReport>,
+    /// The no-shadow baseline, timed like the variants.
+    #[serde(default)]
+    pub baseline: Option<BaselineReport>,
 }
 
 /// Sums per-light statistics into one (weighted by receiver pixels).

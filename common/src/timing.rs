@@ -14,7 +14,7 @@ use crate::gpu::Gpu;
 use crate::readback::QueryReadback;
 
 /// Where the milliseconds came from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum TimingSource {
     GpuTimestamps,
@@ -203,27 +203,53 @@ impl<'a> Frame<'a> {
     }
 }
 
-/// The median of each key over several frames (the report's figure).
-pub fn median_times(frames: &[FrameTimes]) -> BTreeMap<String, f64> {
+/// Every frame's milliseconds, key by key (a pass a frame skipped is 0).
+pub fn samples(frames: &[FrameTimes]) -> BTreeMap<String, Vec<f64>> {
     let mut keys: Vec<&String> = frames.iter().flat_map(|f| f.ms.keys()).collect();
     keys.sort();
     keys.dedup();
     keys.into_iter()
         .map(|k| {
-            let mut v: Vec<f64> = frames
+            let v = frames
                 .iter()
                 .map(|f| f.ms.get(k).copied().unwrap_or(0.0))
                 .collect();
-            v.sort_by(|a, b| a.total_cmp(b));
-            let m = if v.len() % 2 == 1 {
-                v[v.len() / 2]
-            } else {
-                0.5 * (v[v.len() / 2 - 1] + v[v.len() / 2])
-            };
-            (k.clone(), m)
+            (k.clone(), v)
         })
         .collect()
 }
+
+/// The `q`-quantile (0 to 1) of `v`, interpolated linearly between the
+/// sorted samples (the median is `quantile(v, 0.5)`). NaN for no samples.
+pub fn quantile(v: &[f64], q: f64) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    let mut s = v.to_vec();
+    s.sort_by(|a, b| a.total_cmp(b));
+    let x = q.clamp(0.0, 1.0) * (s.len() - 1) as f64;
+    let (i, f) = (x.floor() as usize, x.fract());
+    let j = (i + 1).min(s.len() - 1);
+    s[i] + f * (s[j] - s[i])
+}
+
+// ANCHOR: timing_protocol
+/// The median of each key over several frames (the report's figure).
+pub fn median_times(frames: &[FrameTimes]) -> BTreeMap<String, f64> {
+    samples(frames)
+        .into_iter()
+        .map(|(k, v)| (k, quantile(&v, 0.5)))
+        .collect()
+}
+
+/// The spread of each key: its interquartile range `[q25, q75]`.
+pub fn spread_times(frames: &[FrameTimes]) -> BTreeMap<String, [f64; 2]> {
+    samples(frames)
+        .into_iter()
+        .map(|(k, v)| (k, [quantile(&v, 0.25), quantile(&v, 0.75)]))
+        .collect()
+}
+// ANCHOR_END: timing_protocol
 
 #[cfg(test)]
 mod tests {
@@ -239,5 +265,17 @@ mod tests {
             median_times(&[f(4.0), f(1.0), f(2.0), f(3.0)])["total"],
             2.5
         );
+    }
+
+    #[test]
+    fn spread_is_the_interquartile_range() {
+        let f = |t: f64| FrameTimes {
+            ms: [("total".to_string(), t)].into_iter().collect(),
+        };
+        let frames: Vec<FrameTimes> = [5.0, 1.0, 3.0, 2.0, 4.0].map(f).into();
+        assert_eq!(spread_times(&frames)["total"], [2.0, 4.0]);
+        assert_eq!(samples(&frames)["total"], vec![5.0, 1.0, 3.0, 2.0, 4.0]);
+        assert_eq!(quantile(&[1.0, 2.0], 0.25), 1.25);
+        assert!(quantile(&[], 0.5).is_nan());
     }
 }
