@@ -1,1 +1,323 @@
-fn main() {}
+//! `workbook`: regenerates every measured table, figure and plot of the book
+//! and the README's results table, from real runs of the lessons.
+//!
+//! ```text
+//! cargo run --release --bin workbook -- book
+//! ```
+//!
+//! It runs every lesson headless on its default scene (timed, repeated) and
+//! on every extreme-case scene a chapter cites ([`manifest::RUNS`]), then
+//! writes `book/src/generated/` (tables, and the records the drift test
+//! checks), `book/src/figures/` (figures, plots, diagrams) and the README's
+//! table between its marker comments.
+
+mod diagrams;
+mod manifest;
+mod plots;
+mod record;
+mod runner;
+mod summary;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context, Result};
+use clap::{Parser, Subcommand};
+use common::report::Report;
+use indicatif::{ProgressBar, ProgressStyle};
+
+use manifest::{Run, FIGURES, RUNS, TEXTS};
+use record::{pool, Record, VariantRecord};
+use runner::{RunArgs, Runner};
+
+#[derive(Parser)]
+#[command(about = "The shadow workbook's book generator")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run every lesson and rewrite every generated table, figure and plot.
+    Book {
+        /// Only this lesson's runs (`lesson_04`); the README table and the
+        /// workbook plot are then made from the committed records of the others.
+        #[arg(long, value_name = "LESSON")]
+        only: Option<String>,
+        /// vulkan | gl | ... (the committed tables were made on Vulkan).
+        #[arg(long, default_value = manifest::BACKEND)]
+        backend: String,
+    },
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn main() {
+    if let Err(e) = run(Cli::parse()) {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    let Command::Book { only, backend } = cli.command;
+    if let Some(l) = &only {
+        if !RUNS.iter().any(|r| &r.lesson == l) {
+            bail!("--only: no lesson {l:?} in the manifest (lesson_01 to lesson_08)");
+        }
+    }
+    let start = std::time::Instant::now();
+    let runner = runner_or_build()?;
+    let root = root();
+    let generated = root.join("book/src/generated");
+    let figures = root.join("book/src/figures");
+    let work = root.join("target/book-runs");
+    let runs: Vec<&Run> = RUNS
+        .iter()
+        .filter(|r| only.as_ref().is_none_or(|l| l == r.lesson))
+        .collect();
+    let steps: u64 = runs
+        .iter()
+        .map(|r| if r.timed { manifest::REPEATS } else { 1 } as u64)
+        .sum();
+    let bar = ProgressBar::new(steps);
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs {msg}")
+            .context("progress bar template")?,
+    );
+    for run in &runs {
+        let record = measure(&runner, run, &backend, &work, &bar)?;
+        let dir = generated.join(run.lesson);
+        std::fs::create_dir_all(&dir)?;
+        write(
+            &dir.join(format!("{}.json", run.name)),
+            &serde_json::to_string_pretty(&record)?,
+        )?;
+        let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
+        write(
+            &dir.join(format!("{}.md", run.name)),
+            &record.table(mean_abs),
+        )?;
+        if run.timed {
+            write(
+                &dir.join(format!("{}_passes.md", run.name)),
+                &record.passes_table(),
+            )?;
+        }
+    }
+    bar.finish_with_message("runs done");
+    copy_outputs(&work, &figures, &generated, only.as_deref())?;
+    let records = load_records(&generated)?;
+    write_scenes_tables(&generated, &records)?;
+    let defaults: Vec<&Record> = records.iter().filter(|r| r.frames > 0).collect();
+    write_plots(&figures, &defaults)?;
+    let readme = root.join("README.md");
+    let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
+    let text = summary::splice(&text, &summary::readme_block(&defaults))
+        .with_context(|| format!("README.md has no line {}", summary::BEGIN))?;
+    write(&readme, &text)?;
+    let dir = figures.join("diagrams");
+    std::fs::create_dir_all(&dir)?;
+    diagrams::write_all(&root, &dir)?;
+    println!("regenerated in {:.0} s", start.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// The runner, building the lesson binaries first when one is missing.
+fn runner_or_build() -> Result<Runner> {
+    let exe = std::env::current_exe().context("cannot find the generator's own path")?;
+    if Runner::beside(&exe).is_err() {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        eprintln!("building the lessons: {cargo} build --release --bins");
+        let ok = std::process::Command::new(&cargo)
+            .args(["build", "--release", "--bins"])
+            .current_dir(root())
+            .status()
+            .with_context(|| format!("cannot run {cargo}"))?
+            .success();
+        if !ok {
+            bail!("`cargo build --release --bins` failed");
+        }
+    }
+    Runner::beside(&exe)
+}
+
+/// Runs one manifest entry (repeated when timed) and pools its times.
+fn measure(
+    runner: &Runner,
+    run: &Run,
+    backend: &str,
+    work: &Path,
+    bar: &ProgressBar,
+) -> Result<Record> {
+    let repeats = if run.timed { manifest::REPEATS } else { 1 };
+    let scene = run.scene.map(|s| root().join(s));
+    let args = RunArgs {
+        lesson: run.lesson,
+        scene: scene.as_deref(),
+        width: manifest::WIDTH,
+        height: manifest::HEIGHT,
+        frames: if run.timed { manifest::FRAMES } else { 1 },
+        variants: run.variants,
+        backend: Some(backend),
+    };
+    let mut reports: Vec<Report> = Vec::new();
+    for i in 0..repeats {
+        bar.set_message(format!("{} ({}/{repeats})", run.id(), i + 1));
+        let out = work.join(run.lesson).join(run.name).join(format!("r{i}"));
+        reports.push(runner.run(&args, &out)?);
+        bar.inc(1);
+    }
+    to_record(run, &reports)
+}
+
+/// What the book keeps of a run. Errors and counters must agree between
+/// the repeats (they are deterministic); times are pooled.
+pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
+    let first = &reports[0];
+    let variants = first
+        .variants
+        .iter()
+        .map(|v| {
+            let same: Vec<&common::report::VariantReport> = reports
+                .iter()
+                .filter_map(|r| r.variants.iter().find(|w| w.name == v.name))
+                .collect();
+            if same
+                .iter()
+                .any(|w| w.error != v.error || w.counters != v.counters)
+            {
+                bail!(
+                    "{}: variant {} gave different errors or counters in repeated runs",
+                    run.id(),
+                    v.name
+                );
+            }
+            let maps: Vec<&BTreeMap<String, Vec<f64>>> =
+                same.iter().map(|w| &w.timing_samples_ms).collect();
+            Ok(VariantRecord {
+                name: v.name.clone(),
+                receiver_pixels: v.error.receiver_pixels,
+                misclassified_pct: v.error.misclassified_pct,
+                false_shadow_pct: v.error.false_shadow_pct,
+                false_lit_pct: v.error.false_lit_pct,
+                mean_abs: v.error.mean_abs,
+                coverage_mismatch_pct: v.error.coverage_mismatch_pct,
+                counters: v.counters.clone(),
+                timing: if run.timed { pool(&maps) } else { None },
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let baselines: Vec<&BTreeMap<String, Vec<f64>>> = reports
+        .iter()
+        .filter_map(|r| r.baseline.as_ref().map(|b| &b.timing_samples_ms))
+        .collect();
+    Ok(Record {
+        lesson: run.lesson.to_string(),
+        run: run.name.to_string(),
+        scene: run.scene.unwrap_or("default").to_string(),
+        title: run.title.to_string(),
+        adapter: first.adapter.name.clone(),
+        backend: first.adapter.backend.clone(),
+        width: first.width,
+        height: first.height,
+        repeats: reports.len() as u32,
+        frames: if run.timed { first.frames } else { 0 },
+        timing_source: first
+            .variants
+            .first()
+            .map(|v| format!("{:?}", v.timing_source))
+            .unwrap_or_default()
+            .replace("GpuTimestamps", "GPU timestamps")
+            .replace("CpuWall", "CPU wall clock per pass"),
+        variants,
+        baseline: if run.timed { pool(&baselines) } else { None },
+    })
+}
+
+/// Copies the figures and lesson-written tables of the manifest.
+fn copy_outputs(work: &Path, figures: &Path, generated: &Path, only: Option<&str>) -> Result<()> {
+    for (list, dest_root) in [(FIGURES, figures), (TEXTS, generated)] {
+        for f in list
+            .iter()
+            .filter(|f| only.is_none_or(|l| f.run.starts_with(l)))
+        {
+            let src = work.join(f.run).join("r0").join(f.file);
+            let dest = dest_root.join(f.dest);
+            std::fs::create_dir_all(dest.parent().context("figure path")?)?;
+            std::fs::copy(&src, &dest)
+                .with_context(|| format!("figure {}: cannot copy {}", f.dest, src.display()))?;
+        }
+    }
+    Ok(())
+}
+
+/// Every committed record, by lesson then manifest order.
+pub fn load_records(generated: &Path) -> Result<Vec<Record>> {
+    RUNS.iter()
+        .map(|r| {
+            let path = generated.join(r.lesson).join(format!("{}.json", r.name));
+            let text = std::fs::read_to_string(&path)
+                .with_context(|| format!("{} is missing: run `workbook book`", path.display()))?;
+            serde_json::from_str(&text).with_context(|| format!("{}: not a record", path.display()))
+        })
+        .collect()
+}
+
+/// Below this, an error is drawn on the plots' floor (log axis).
+const ERROR_FLOOR_PCT: f64 = 1e-3;
+
+/// One error-vs-time plot a chapter, and the workbook-wide one.
+fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
+    let mut all = Vec::new();
+    for r in defaults {
+        let series = summary::series(r);
+        let title = format!(
+            "{}: error against time ({}, {}×{})",
+            r.lesson.replace('_', " "),
+            r.adapter,
+            r.width,
+            r.height
+        );
+        let path = figures.join(&r.lesson).join("error_vs_time.svg");
+        std::fs::create_dir_all(path.parent().context("plot path")?)?;
+        let base = r.baseline.as_ref().map(|b| b.total.median);
+        plots::error_vs_time(&path, &title, &series, base, ERROR_FLOOR_PCT)?;
+        all.push(series);
+    }
+    let dir = figures.join("workbook");
+    std::fs::create_dir_all(&dir)?;
+    let title = format!(
+        "Every lesson's variants: error against time ({}, {}×{})",
+        defaults.first().map_or("", |r| r.adapter.as_str()),
+        manifest::WIDTH,
+        manifest::HEIGHT
+    );
+    plots::workbook_plot(&dir.join("error_vs_time.svg"), &title, &all, ERROR_FLOOR_PCT)
+}
+
+/// Each lesson's extreme cases side by side (`scenes.md`).
+fn write_scenes_tables(generated: &Path, records: &[Record]) -> Result<()> {
+    let mut lessons: Vec<&str> = records.iter().map(|r| r.lesson.as_str()).collect();
+    lessons.dedup();
+    for l in lessons {
+        let cases: Vec<&Record> = records
+            .iter()
+            .filter(|r| r.lesson == l && r.frames == 0)
+            .collect();
+        if !cases.is_empty() {
+            write(
+                &generated.join(l).join("scenes.md"),
+                &record::scenes_table(&cases),
+            )?;
+        }
+    }
+    Ok(())
+}
+
+fn write(path: &Path, text: &str) -> Result<()> {
+    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+}

@@ -1,0 +1,316 @@
+//! What the generator keeps of a run (`book/src/generated/<lesson>/<run>.json`)
+//! and the markdown tables made from it. The chapters include the tables;
+//! `tests/generated.rs` re-runs the lessons and compares the error columns
+//! and counters with these records, and the tables with their records.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+/// A median with its interquartile range, in milliseconds.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+pub struct Stat {
+    pub median: f64,
+    pub q25: f64,
+    pub q75: f64,
+}
+
+impl Stat {
+    /// The median and interquartile range of pooled samples.
+    pub fn of(samples: &[f64]) -> Stat {
+        Stat {
+            median: common::timing::quantile(samples, 0.5),
+            q25: common::timing::quantile(samples, 0.25),
+            q75: common::timing::quantile(samples, 0.75),
+        }
+    }
+
+    /// Two times differ measurably only when their spreads do not overlap.
+    pub fn differs_from(&self, other: &Stat) -> bool {
+        self.q75 < other.q25 || other.q75 < self.q25
+    }
+}
+
+/// Frame time and per-pass times, pooled over the repeats.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct Timing {
+    pub total: Stat,
+    pub passes: BTreeMap<String, Stat>,
+}
+
+/// One variant: its error against the reference, counters and times.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct VariantRecord {
+    pub name: String,
+    pub receiver_pixels: u64,
+    pub misclassified_pct: f64,
+    pub false_shadow_pct: f64,
+    pub false_lit_pct: f64,
+    pub mean_abs: f64,
+    pub coverage_mismatch_pct: f64,
+    pub counters: BTreeMap<String, u64>,
+    pub timing: Option<Timing>,
+}
+
+/// One run of one lesson (timed runs pool several processes).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct Record {
+    pub lesson: String,
+    pub run: String,
+    /// The scene file, or `default`.
+    pub scene: String,
+    pub title: String,
+    pub adapter: String,
+    pub backend: String,
+    pub width: u32,
+    pub height: u32,
+    /// Processes and timed frames per process (0 frames: untimed).
+    pub repeats: u32,
+    pub frames: u32,
+    pub timing_source: String,
+    pub variants: Vec<VariantRecord>,
+    pub baseline: Option<Timing>,
+}
+
+/// Pools the samples of every key over `reports`' timing maps.
+pub fn pool(maps: &[&BTreeMap<String, Vec<f64>>]) -> Option<Timing> {
+    let mut all: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    for m in maps {
+        for (k, v) in *m {
+            all.entry(k.clone()).or_default().extend(v);
+        }
+    }
+    let total = Stat::of(all.get("total")?);
+    let passes = all
+        .iter()
+        .filter(|(k, _)| k.as_str() != "total")
+        .map(|(k, v)| (k.clone(), Stat::of(v)))
+        .collect();
+    Some(Timing { total, passes })
+}
+
+/// An error percentage as the tables print it.
+pub fn pct(x: f64) -> String {
+    format!("{x:.3}")
+}
+
+/// A count with thin-space thousands separators: `7 336 928`.
+pub fn count(n: u64) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i) % 3 == 0 {
+            out.push('\u{2009}');
+        }
+        out.push(c);
+    }
+    out
+}
+
+fn ms(x: f64) -> String {
+    if x >= 100.0 {
+        format!("{x:.0}")
+    } else if x >= 10.0 {
+        format!("{x:.1}")
+    } else {
+        format!("{x:.2}")
+    }
+}
+
+/// `18.2 [17.9–18.6]`: a median and its interquartile range.
+pub fn stat(s: &Stat) -> String {
+    format!("{} [{}–{}]", ms(s.median), ms(s.q25), ms(s.q75))
+}
+
+impl Record {
+    /// The line above every table: adapter, resolution, scene, protocol.
+    pub fn header(&self) -> String {
+        let scene = if self.scene == "default" {
+            format!("the default scene (`scenes/{}.toml`)", self.lesson)
+        } else {
+            format!("`{}` ({})", self.scene, self.title)
+        };
+        let timing = if self.frames == 0 {
+            "error and counters only (untimed)".to_string()
+        } else {
+            format!(
+                "times: median of {} runs × {} frames after 2 warm-up frames, [interquartile range], {}",
+                self.repeats,
+                self.frames,
+                self.timing_source.replace('_', " ")
+            )
+        };
+        format!(
+            "*{}, {} · {}×{} · {} · {}*",
+            self.adapter, self.backend, self.width, self.height, scene, timing
+        )
+    }
+
+    /// Counter names that any variant reports, in a stable order.
+    fn counter_keys(&self) -> Vec<String> {
+        let mut keys: Vec<String> = self
+            .variants
+            .iter()
+            .flat_map(|v| v.counters.keys().cloned())
+            .collect();
+        keys.sort();
+        keys.dedup();
+        keys
+    }
+
+    /// The error columns and counters of one variant: the cells the drift
+    /// test compares.
+    pub fn measured_cells(&self, v: &VariantRecord, with_mean_abs: bool) -> Vec<String> {
+        let mut cells = vec![
+            format!("`{}`", v.name),
+            pct(v.misclassified_pct),
+            pct(v.false_shadow_pct),
+            pct(v.false_lit_pct),
+        ];
+        if with_mean_abs {
+            cells.push(pct(100.0 * v.mean_abs));
+        }
+        for k in self.counter_keys() {
+            cells.push(v.counters.get(&k).map_or("—".into(), |&n| count(n)));
+        }
+        cells
+    }
+
+    /// The run's main table: one row a variant (and the no-shadow
+    /// baseline, for timed runs).
+    pub fn table(&self, with_mean_abs: bool) -> String {
+        let mut head = vec![
+            "variant".to_string(),
+            "misclassified %".into(),
+            "false shadow %".into(),
+            "false lit %".into(),
+        ];
+        if with_mean_abs {
+            head.push("mean \\|ΔV\\| %".into());
+        }
+        head.extend(self.counter_keys().iter().map(|k| format!("`{k}`")));
+        let timed = self.frames > 0;
+        if timed {
+            head.extend([
+                "frame ms".to_string(),
+                "shadows cost (vs no shadows)".into(),
+                "vs the fastest".into(),
+            ]);
+        }
+        let fastest = self
+            .variants
+            .iter()
+            .filter_map(|v| v.timing.as_ref().map(|t| (v.name.clone(), t.total)))
+            .min_by(|a, b| a.1.median.total_cmp(&b.1.median));
+        let mut s = format!("{}\n\n", self.header());
+        s += &row(&head);
+        s += &row(&vec!["---".to_string(); head.len()]);
+        if let (true, Some(base)) = (timed, &self.baseline) {
+            let n = head.len() - 4;
+            let mut cells = vec!["no shadows (baseline)".to_string()];
+            cells.extend(vec!["—".to_string(); n]);
+            cells.extend([stat(&base.total), "—".into(), "—".into()]);
+            s += &row(&cells);
+        }
+        for v in &self.variants {
+            let mut cells = self.measured_cells(v, with_mean_abs);
+            if let Some(t) = v.timing.as_ref().filter(|_| timed) {
+                cells.push(stat(&t.total));
+                cells.push(match &self.baseline {
+                    Some(b) if t.total.differs_from(&b.total) => format!(
+                        "{:+.1} ms (×{:.2})",
+                        t.total.median - b.total.median,
+                        t.total.median / b.total.median
+                    ),
+                    Some(_) => "no measurable difference".into(),
+                    None => "—".into(),
+                });
+                cells.push(match &fastest {
+                    Some((name, _)) if *name == v.name => "fastest".into(),
+                    Some((name, f)) if t.total.differs_from(f) => {
+                        format!("{:+.1} ms", t.total.median - f.median)
+                    }
+                    Some((name, _)) => format!("no measurable difference from `{name}`"),
+                    None => "—".into(),
+                });
+            }
+            s += &row(&cells);
+        }
+        s
+    }
+
+    /// Per-pass times of a timed run: median [interquartile range].
+    pub fn passes_table(&self) -> String {
+        let mut keys: Vec<String> = self
+            .variants
+            .iter()
+            .filter_map(|v| v.timing.as_ref())
+            .flat_map(|t| t.passes.keys().cloned())
+            .collect();
+        keys.sort();
+        keys.dedup();
+        let mut head = vec!["variant".to_string()];
+        head.extend(keys.iter().map(|k| format!("`{k}` ms")));
+        let mut s = format!("{}\n\n", self.header());
+        s += &row(&head);
+        s += &row(&vec!["---".to_string(); head.len()]);
+        let mut line = |name: String, t: &Timing| {
+            let mut cells = vec![name];
+            for k in &keys {
+                cells.push(t.passes.get(k).map_or("—".into(), stat));
+            }
+            s += &row(&cells);
+        };
+        if let Some(b) = &self.baseline {
+            line("no shadows (baseline)".into(), b);
+        }
+        for v in &self.variants {
+            if let Some(t) = &v.timing {
+                line(format!("`{}`", v.name), t);
+            }
+        }
+        s
+    }
+}
+
+/// A markdown table row.
+pub fn row(cells: &[String]) -> String {
+    format!("| {} |\n", cells.join(" | "))
+}
+
+/// A lesson's extreme cases side by side: one row a run, one column a
+/// variant, misclassified % in the cells.
+pub fn scenes_table(records: &[&Record]) -> String {
+    let Some(first) = records.first() else {
+        return String::new();
+    };
+    let mut names: Vec<String> = Vec::new();
+    for r in records {
+        for v in &r.variants {
+            if !names.contains(&v.name) {
+                names.push(v.name.clone());
+            }
+        }
+    }
+    let mut s = format!(
+        "*{}, {} · {}×{} · misclassified % of receiver pixels*\n\n",
+        first.adapter, first.backend, first.width, first.height
+    );
+    let mut head = vec!["scene".to_string()];
+    head.extend(names.iter().map(|n| format!("`{n}`")));
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
+    for r in records {
+        let mut cells = vec![format!("{} (`{}`)", r.title, r.scene)];
+        for n in &names {
+            cells.push(
+                r.variants
+                    .iter()
+                    .find(|v| &v.name == n)
+                    .map_or("—".into(), |v| pct(v.misclassified_pct)),
+            );
+        }
+        s += &row(&cells);
+    }
+    s
+}

@@ -1,0 +1,84 @@
+//! The README's results table and the plots' points, from the records of
+//! the lessons' default runs: what each lesson's Pareto front is.
+
+use crate::plots::{pareto_front, Point, Series};
+use crate::record::{pct, row, stat, Record};
+
+/// The README's table sits between these two lines.
+pub const BEGIN: &str = "<!-- results:begin (written by `cargo run --release --bin workbook -- book`; do not edit) -->";
+pub const END: &str = "<!-- results:end -->";
+
+/// One lesson's default run as plot points (variants with times).
+pub fn series(r: &Record) -> Series {
+    Series {
+        name: r.lesson.clone(),
+        points: r
+            .variants
+            .iter()
+            .filter_map(|v| {
+                let t = v.timing.as_ref()?;
+                Some(Point {
+                    label: v.name.clone(),
+                    ms: t.total.median,
+                    ms_low: t.total.q25,
+                    ms_high: t.total.q75,
+                    error_pct: v.misclassified_pct,
+                })
+            })
+            .collect(),
+    }
+}
+
+/// The README block: one row a lesson, its Pareto-optimal variants (no
+/// other variant is both faster and more accurate, by median) with their
+/// error and time, and the no-shadow baseline.
+pub fn readme_block(defaults: &[&Record]) -> String {
+    let Some(first) = defaults.first() else {
+        return format!("{BEGIN}\n{END}\n");
+    };
+    let mut s = format!("{BEGIN}\n{}\n\n", first.header().replace(
+        &format!("the default scene (`scenes/{}.toml`)", first.lesson),
+        "each lesson's default scene",
+    ));
+    s += &row(&[
+        "lesson".into(),
+        "Pareto-optimal variants: misclassified %, frame ms [interquartile range]".into(),
+        "no shadows, ms".into(),
+        "chapter".into(),
+    ]);
+    s += &row(&vec!["---".to_string(); 4]);
+    for r in defaults {
+        let ser = series(r);
+        let front: Vec<String> = pareto_front(&ser.points)
+            .into_iter()
+            .map(|i| {
+                let p = &ser.points[i];
+                let v = &r.variants.iter().find(|v| v.name == p.label).expect("point of a variant");
+                format!(
+                    "`{}`: {} %, {}",
+                    p.label,
+                    pct(p.error_pct),
+                    stat(&v.timing.as_ref().expect("timed").total)
+                )
+            })
+            .collect();
+        let n = r.lesson.trim_start_matches("lesson_");
+        s += &row(&[
+            n.to_string(),
+            front.join("; "),
+            r.baseline.as_ref().map_or("—".into(), |b| stat(&b.total)),
+            format!("[{n}](book/src/{}.md)", r.lesson),
+        ]);
+    }
+    s += END;
+    s += "\n";
+    s
+}
+
+/// `text` with the block between the markers replaced by `block`.
+pub fn splice(text: &str, block: &str) -> Option<String> {
+    let a = text.find(BEGIN)?;
+    let b = text[a..].find(END)? + a + END.len();
+    let b = if text[b..].starts_with('\n') { b + 1 } else { b };
+    Some(format!("{}{block}{}", &text[..a], &text[b..]))
+}

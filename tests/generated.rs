@@ -1,0 +1,221 @@
+//! The book's measured tables must match the code that measures them.
+//!
+//! `cargo run --release --bin workbook -- book` writes, for every run of
+//! `book/generate/manifest.rs`, a record (`book/src/generated/<lesson>/<run>.json`)
+//! and the markdown tables the chapters include. This test fails when:
+//!
+//! - a committed table differs from the table its record makes (a cell
+//!   edited by hand, or a record edited without its table);
+//! - the README's results block differs from the one the records make;
+//! - re-running a lesson gives other error figures or counters than its
+//!   record (the code changed and the book was not regenerated): every run
+//!   of the manifest, on the backend the records were made on, one frame
+//!   (times are not compared);
+//! - a table a lesson writes itself (`manifest::TEXTS`) differs from a re-run's.
+//!
+//! The message names the file, the variant and the cell, and says how to
+//! regenerate.
+
+#[path = "../book/generate/manifest.rs"]
+#[allow(dead_code)]
+mod manifest;
+#[path = "../book/generate/plots.rs"]
+#[allow(dead_code)]
+mod plots;
+#[path = "../book/generate/record.rs"]
+#[allow(dead_code)]
+mod record;
+#[path = "../book/generate/runner.rs"]
+#[allow(dead_code)]
+mod runner;
+#[path = "../book/generate/summary.rs"]
+#[allow(dead_code)]
+mod summary;
+mod support;
+
+use std::path::{Path, PathBuf};
+
+use record::Record;
+
+const REGENERATE: &str = "regenerate with `cargo run --release --bin workbook -- book`";
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn generated() -> PathBuf {
+    root().join("book/src/generated")
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e} ({REGENERATE})", path.display()))
+}
+
+fn record(run: &manifest::Run) -> Record {
+    let path = generated().join(run.lesson).join(format!("{}.json", run.name));
+    serde_json::from_str(&read(&path))
+        .unwrap_or_else(|e| panic!("{}: not a record: {e}", path.display()))
+}
+
+/// The first line where two texts differ, for the failure message.
+fn first_difference(a: &str, b: &str) -> String {
+    for (i, (x, y)) in a.lines().zip(b.lines()).enumerate() {
+        if x != y {
+            return format!("line {}:\n  committed: {x}\n  expected:  {y}", i + 1);
+        }
+    }
+    format!("the line counts differ ({} and {})", a.lines().count(), b.lines().count())
+}
+
+#[test]
+fn committed_tables_are_the_tables_their_records_make() {
+    for run in manifest::RUNS {
+        let r = record(run);
+        let dir = generated().join(run.lesson);
+        let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
+        let mut expected = vec![(format!("{}.md", run.name), r.table(mean_abs))];
+        if run.timed {
+            expected.push((format!("{}_passes.md", run.name), r.passes_table()));
+        }
+        for (file, want) in expected {
+            let got = read(&dir.join(&file));
+            assert!(
+                got == want,
+                "book/src/generated/{}/{file} is not what its record makes ({}); {REGENERATE}",
+                run.lesson,
+                first_difference(&got, &want)
+            );
+        }
+    }
+}
+
+#[test]
+fn the_readme_block_is_the_one_the_records_make() {
+    let records: Vec<Record> = manifest::RUNS.iter().filter(|r| r.timed).map(record).collect();
+    let refs: Vec<&Record> = records.iter().collect();
+    let want = summary::readme_block(&refs);
+    let readme = read(&root().join("README.md"));
+    let spliced = summary::splice(&readme, &want)
+        .unwrap_or_else(|| panic!("README.md has no results markers ({})", summary::BEGIN));
+    assert!(
+        spliced == readme,
+        "README.md's results block is not what the records make ({}); {REGENERATE}",
+        first_difference(&readme, &spliced)
+    );
+}
+
+/// The checker itself: an edited cell must be found.
+#[test]
+fn an_edited_cell_is_caught() {
+    let run = &manifest::RUNS[0];
+    let mut r = record(run);
+    let table = r.table(false);
+    r.variants[0].misclassified_pct += 0.01;
+    assert_ne!(table, r.table(false), "the table must show a changed error cell");
+    let a = "x\n| a | 1.000 |\n";
+    let b = "x\n| a | 1.010 |\n";
+    assert!(first_difference(a, b).starts_with("line 2"));
+}
+
+/// Re-runs one lesson's manifest entries and compares error cells and
+/// counters with their records.
+fn reproduce(lesson: &str) {
+    let exe = PathBuf::from(env!("CARGO_BIN_EXE_lesson_01"));
+    let runner = runner::Runner::beside(&exe).expect("lesson binaries");
+    for run in manifest::RUNS.iter().filter(|r| r.lesson == lesson) {
+        let rec = record(run);
+        let scene = run.scene.map(|s| root().join(s));
+        let args = runner::RunArgs {
+            lesson: run.lesson,
+            scene: scene.as_deref(),
+            width: rec.width,
+            height: rec.height,
+            frames: 1,
+            variants: run.variants,
+            backend: Some(manifest::BACKEND),
+        };
+        let out = support::out_dir(&format!("drift_{}_{}", run.lesson, run.name));
+        let report = match runner.run(&args, &out) {
+            Ok(r) => r,
+            Err(e) if format!("{e:#}").contains("no GPU adapter") && !support::gpu_required() => {
+                eprintln!("SKIPPED drift {}: no GPU adapter (set WORKBOOK_REQUIRE_GPU=1 to make this a failure)", run.id());
+                return;
+            }
+            Err(e) => panic!("{}: {e:#}", run.id()),
+        };
+        let fresh = Record {
+            variants: rec
+                .variants
+                .iter()
+                .map(|v| {
+                    let now = report
+                        .variants
+                        .iter()
+                        .find(|w| w.name == v.name)
+                        .unwrap_or_else(|| panic!("{}: variant {} no longer runs; {REGENERATE}", run.id(), v.name));
+                    record::VariantRecord {
+                        name: now.name.clone(),
+                        receiver_pixels: now.error.receiver_pixels,
+                        misclassified_pct: now.error.misclassified_pct,
+                        false_shadow_pct: now.error.false_shadow_pct,
+                        false_lit_pct: now.error.false_lit_pct,
+                        mean_abs: now.error.mean_abs,
+                        coverage_mismatch_pct: now.error.coverage_mismatch_pct,
+                        counters: now.counters.clone(),
+                        timing: None,
+                    }
+                })
+                .collect(),
+            ..rec.clone()
+        };
+        assert_eq!(
+            report.variants.len(),
+            rec.variants.len(),
+            "{}: the lesson now runs other variants; {REGENERATE}",
+            run.id()
+        );
+        let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
+        for (old, new) in rec.variants.iter().zip(&fresh.variants) {
+            let (a, b) = (rec.measured_cells(old, mean_abs), fresh.measured_cells(new, mean_abs));
+            assert!(
+                a == b,
+                "book/src/generated/{}/{}.md, variant {}: committed {a:?}, measured now {b:?} (error %, then counters); {REGENERATE}",
+                run.lesson,
+                run.name,
+                old.name
+            );
+        }
+        for t in manifest::TEXTS.iter().filter(|t| t.run == run.id()) {
+            let committed = read(&generated().join(t.dest));
+            let now = read(&out.join(t.file));
+            assert!(
+                committed == now,
+                "book/src/generated/{} differs from a re-run's {} ({}); {REGENERATE}",
+                t.dest,
+                t.file,
+                first_difference(&committed, &now)
+            );
+        }
+    }
+}
+
+macro_rules! drift_tests {
+    ($($name:ident: $lesson:literal,)*) => {$(
+        #[test]
+        fn $name() {
+            reproduce($lesson);
+        }
+    )*};
+}
+
+drift_tests! {
+    lesson_01_tables_reproduce: "lesson_01",
+    lesson_02_tables_reproduce: "lesson_02",
+    lesson_03_tables_reproduce: "lesson_03",
+    lesson_04_tables_reproduce: "lesson_04",
+    lesson_05_tables_reproduce: "lesson_05",
+    lesson_06_tables_reproduce: "lesson_06",
+    lesson_07_tables_reproduce: "lesson_07",
+    lesson_08_tables_reproduce: "lesson_08",
+}
