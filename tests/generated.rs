@@ -53,7 +53,9 @@ fn read(path: &Path) -> String {
 }
 
 fn record(run: &manifest::Run) -> Record {
-    let path = generated().join(run.lesson).join(format!("{}.json", run.name));
+    let path = generated()
+        .join(run.lesson)
+        .join(format!("{}.json", run.name));
     serde_json::from_str(&read(&path))
         .unwrap_or_else(|e| panic!("{}: not a record: {e}", path.display()))
 }
@@ -65,7 +67,11 @@ fn first_difference(a: &str, b: &str) -> String {
             return format!("line {}:\n  committed: {x}\n  expected:  {y}", i + 1);
         }
     }
-    format!("the line counts differ ({} and {})", a.lines().count(), b.lines().count())
+    format!(
+        "the line counts differ ({} and {})",
+        a.lines().count(),
+        b.lines().count()
+    )
 }
 
 #[test]
@@ -92,7 +98,11 @@ fn committed_tables_are_the_tables_their_records_make() {
 
 #[test]
 fn the_readme_block_is_the_one_the_records_make() {
-    let records: Vec<Record> = manifest::RUNS.iter().filter(|r| r.timed).map(record).collect();
+    let records: Vec<Record> = manifest::RUNS
+        .iter()
+        .filter(|r| r.timed)
+        .map(record)
+        .collect();
     let refs: Vec<&Record> = records.iter().collect();
     let want = summary::readme_block(&refs);
     let readme = read(&root().join("README.md"));
@@ -112,7 +122,11 @@ fn an_edited_cell_is_caught() {
     let mut r = record(run);
     let table = r.table(false);
     r.variants[0].misclassified_pct += 0.01;
-    assert_ne!(table, r.table(false), "the table must show a changed error cell");
+    assert_ne!(
+        table,
+        r.table(false),
+        "the table must show a changed error cell"
+    );
     let a = "x\n| a | 1.000 |\n";
     let b = "x\n| a | 1.010 |\n";
     assert!(first_difference(a, b).starts_with("line 2"));
@@ -144,6 +158,15 @@ fn reproduce(lesson: &str) {
             }
             Err(e) => panic!("{}: {e:#}", run.id()),
         };
+        assert!(
+            report.adapter.name == rec.adapter && report.adapter.backend == rec.backend,
+            "{}: the records were made on {} ({}), this run got {} ({}): the error figures are compared on the adapter that made them",
+            run.id(),
+            rec.adapter,
+            rec.backend,
+            report.adapter.name,
+            report.adapter.backend
+        );
         let fresh = Record {
             variants: rec
                 .variants
@@ -153,7 +176,13 @@ fn reproduce(lesson: &str) {
                         .variants
                         .iter()
                         .find(|w| w.name == v.name)
-                        .unwrap_or_else(|| panic!("{}: variant {} no longer runs; {REGENERATE}", run.id(), v.name));
+                        .unwrap_or_else(|| {
+                            panic!(
+                                "{}: variant {} no longer runs; {REGENERATE}",
+                                run.id(),
+                                v.name
+                            )
+                        });
                     record::VariantRecord {
                         name: now.name.clone(),
                         receiver_pixels: now.error.receiver_pixels,
@@ -177,7 +206,10 @@ fn reproduce(lesson: &str) {
         );
         let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
         for (old, new) in rec.variants.iter().zip(&fresh.variants) {
-            let (a, b) = (rec.measured_cells(old, mean_abs), fresh.measured_cells(new, mean_abs));
+            let (a, b) = (
+                rec.measured_cells(old, mean_abs),
+                fresh.measured_cells(new, mean_abs),
+            );
             assert!(
                 a == b,
                 "book/src/generated/{}/{}.md, variant {}: committed {a:?}, measured now {b:?} (error %, then counters); {REGENERATE}",
