@@ -168,8 +168,20 @@ fn measure(
     for i in 0..repeats {
         bar.set_message(format!("{} ({}/{repeats})", run.id(), i + 1));
         let out = work.join(run.lesson).join(run.name).join(format!("r{i}"));
+        let t = std::time::Instant::now();
         reports.push(runner.run(&args, &out)?);
         bar.inc(1);
+        if bar.is_hidden() {
+            // Not a terminal (a log): one line a run instead of the bar.
+            eprintln!(
+                "[{}/{}] {} run {}: {:.1} s",
+                bar.position(),
+                bar.length().unwrap_or(0),
+                run.id(),
+                i + 1,
+                t.elapsed().as_secs_f64()
+            );
+        }
     }
     to_record(run, &reports)
 }
@@ -296,7 +308,12 @@ fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
         manifest::WIDTH,
         manifest::HEIGHT
     );
-    plots::workbook_plot(&dir.join("error_vs_time.svg"), &title, &all, ERROR_FLOOR_PCT)
+    plots::workbook_plot(
+        &dir.join("error_vs_time.svg"),
+        &title,
+        &all,
+        ERROR_FLOOR_PCT,
+    )
 }
 
 /// Each lesson's extreme cases side by side (`scenes.md`).
