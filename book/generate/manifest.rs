@@ -114,7 +114,7 @@ pub const RUNS: &[Run] = &[
     case("lesson_06", "finite_far_close_light", "scenes/lesson_06_finite_far_close_light.toml", "far = 200: a point light 0.3 above a box"),
     case("lesson_06", "finite_far_back_cap", "scenes/lesson_06_finite_far_back_cap.toml", "far = 200: the back cap inside the far plane"),
     default("lesson_07"),
-    case("lesson_07", "deep_range", "scenes/lesson_07_deep_range.toml", "near 1e-3, far infinite, objects to 1e4"),
+    case("lesson_07", "deep_range", "scenes/lesson_07_deep_range.toml", "near 1e-3, far 1e5, the objects 400 units away"),
     case("lesson_07", "near_1e-3_far_1e5", "scenes/lesson_07_near_1e-3_far_1e5.toml", "near 1e-3, far 1e5"),
     case("lesson_07", "far_200", "scenes/lesson_08_far_200.toml", "lesson 08's scene, far = 200"),
     case("lesson_07", "far_crossing", "scenes/lesson_08_far_crossing.toml", "far = 15, through two range spheres"),

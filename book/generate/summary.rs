@@ -5,7 +5,8 @@ use crate::plots::{pareto_front, Point, Series};
 use crate::record::{pct, row, stat, Record};
 
 /// The README's table sits between these two lines.
-pub const BEGIN: &str = "<!-- results:begin (written by `cargo run --release --bin workbook -- book`; do not edit) -->";
+pub const BEGIN: &str =
+    "<!-- results:begin (written by `cargo run --release --bin workbook -- book`; do not edit) -->";
 pub const END: &str = "<!-- results:end -->";
 
 /// One lesson's default run as plot points (variants with times).
@@ -36,10 +37,13 @@ pub fn readme_block(defaults: &[&Record]) -> String {
     let Some(first) = defaults.first() else {
         return format!("{BEGIN}\n{END}\n");
     };
-    let mut s = format!("{BEGIN}\n{}\n\n", first.header().replace(
-        &format!("the default scene (`scenes/{}.toml`)", first.lesson),
-        "each lesson's default scene",
-    ));
+    let mut s = format!(
+        "{BEGIN}\n{}\n\n",
+        first.header().replace(
+            &format!("the default scene (`scenes/{}.toml`)", first.lesson),
+            "each lesson's default scene",
+        )
+    );
     s += &row(&[
         "lesson".into(),
         "Pareto-optimal variants: misclassified %, frame ms [interquartile range]".into(),
@@ -53,7 +57,11 @@ pub fn readme_block(defaults: &[&Record]) -> String {
             .into_iter()
             .map(|i| {
                 let p = &ser.points[i];
-                let v = &r.variants.iter().find(|v| v.name == p.label).expect("point of a variant");
+                let v = &r
+                    .variants
+                    .iter()
+                    .find(|v| v.name == p.label)
+                    .expect("point of a variant");
                 format!(
                     "`{}`: {} %, {}",
                     p.label,
@@ -79,6 +87,10 @@ pub fn readme_block(defaults: &[&Record]) -> String {
 pub fn splice(text: &str, block: &str) -> Option<String> {
     let a = text.find(BEGIN)?;
     let b = text[a..].find(END)? + a + END.len();
-    let b = if text[b..].starts_with('\n') { b + 1 } else { b };
+    let b = if text[b..].starts_with('\n') {
+        b + 1
+    } else {
+        b
+    };
     Some(format!("{}{block}{}", &text[..a], &text[b..]))
 }
