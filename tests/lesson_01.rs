@@ -35,6 +35,10 @@ fn lesson_01_snapshot() {
         text += &support::error_line(v, 0);
         text += "\n";
     }
+    text += &support::counter_lines(
+        &run.report,
+        &["draws", "filter_taps_per_pixel", "shadow_fragments"],
+    );
     insta::assert_snapshot!("lesson_01", text);
 }
 

@@ -59,6 +59,10 @@ fn lesson_02_snapshot() {
         text += &support::error_line(v, 1);
         text += "\n";
     }
+    text += &support::counter_lines(
+        &run.report,
+        &["draws", "filter_taps_per_pixel", "shadow_fragments"],
+    );
     insta::assert_snapshot!("lesson_02", text);
 }
 

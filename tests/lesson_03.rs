@@ -61,6 +61,10 @@ fn lesson_03_snapshot() {
             100.0 * support::error(&run.report, name, "mean_abs"),
         );
     }
+    text += &support::counter_lines(
+        &run.report,
+        &["draws", "filter_taps_per_pixel", "shadow_fragments"],
+    );
     insta::assert_snapshot!("lesson_03", text);
 }
 

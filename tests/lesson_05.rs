@@ -37,6 +37,10 @@ fn lesson_05_snapshot() {
         text += &support::error_line(v, 1);
         text += "\n";
     }
+    text += &support::counter_lines(
+        &run.report,
+        &["draws", "volume_triangles", "volume_fragments"],
+    );
     insta::assert_snapshot!("lesson_05", text);
 }
 

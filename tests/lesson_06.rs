@@ -25,6 +25,10 @@ fn lesson_06_snapshot() {
         text += &support::error_line(v, 1);
         text += "\n";
     }
+    text += &support::counter_lines(
+        &run.report,
+        &["draws", "volume_triangles", "volume_fragments"],
+    );
     insta::assert_snapshot!("lesson_06", text);
 }
 
@@ -252,4 +256,37 @@ fn lesson_06_finite_far_back_cap_in_front_of_the_surface() {
     };
     let zpass = support::misclassified(&run, "zpass_quads");
     assert!(zpass <= 0.5, "z-pass without the back cap: {zpass:.3}%");
+}
+
+/// Work saved shows in the counters: the selective plan rasterises fewer
+/// volume fragments than z-fail everywhere; the CPU route submits fewer
+/// triangles than the quads route; z-pass and z-fail update the stencil
+/// at different fragments; every volume fragment is counted at most once
+/// as an update.
+#[test]
+fn lesson_06_counters_show_work_saved() {
+    let Some(run) = support::run_lesson(BIN, "lesson_06_counters", &SIZE) else {
+        return;
+    };
+    let c = |v, k| support::counter(&run.report, v, k);
+    let (selective, all) = (
+        c("zfail_selective", "volume_fragments"),
+        c("zfail_quads", "volume_fragments"),
+    );
+    assert!(
+        selective < all,
+        "zfail_selective rasterises {selective}, zfail_quads {all}"
+    );
+    assert!(
+        c("zfail_cpu", "volume_triangles") < c("zfail_quads", "volume_triangles"),
+        "the CPU route submits only silhouettes"
+    );
+    assert_ne!(
+        c("zpass_quads", "stencil_updates"),
+        c("zfail_quads", "stencil_updates")
+    );
+    for v in ["zpass_quads", "zfail_quads", "zfail_selective"] {
+        assert!(c(v, "stencil_updates") <= c(v, "volume_fragments"), "{v}");
+        assert!(c(v, "draws") > 0 && c(v, "volume_triangles") > 0, "{v}");
+    }
 }

@@ -49,6 +49,7 @@ fn lesson_07_snapshot() {
         text += &support::error_line(v, 0);
         text += "\n";
     }
+    text += &support::counter_lines(&run.report, &["draws", "volume_triangles"]);
     insta::assert_snapshot!("lesson_07", text);
 }
 

@@ -25,6 +25,7 @@ use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
+use workbook::lesson_01::tally::TallyShader;
 
 // ANCHOR: variants
 /// The variants sweep the shadow map's resolution: error against time.
@@ -58,6 +59,11 @@ impl Variant {
 
 struct DepthMap {
     shadow_pipeline: wgpu::RenderPipeline,
+    /// The shadow pipeline that counts its depth writes (`shadow_texels_written`).
+    tally_pipeline: [wgpu::RenderPipeline; 2],
+    /// Per variant: the shadow pass's depth writes and fragments, counted once.
+    texels_written: Vec<Option<(u64, u64)>>,
+    draws: u64,
     lit_pipeline: wgpu::RenderPipeline,
     /// One shadow map (and its bind group) per variant, in variant order.
     maps: Vec<(ShadowMap, wgpu::BindGroup)>,
@@ -84,6 +90,14 @@ impl Lesson for DepthMap {
         let layout = shadow_map::shadow_map_layout(gpu);
         let shadow_pipeline =
             shadow_map::shadow_pipeline(gpu, scene, &module, ShadowPassState::default());
+        let tally = TallyShader::new(gpu);
+        let tally_pipeline = shadow_map::shadow_tally_pipelines(
+            gpu,
+            scene,
+            &module,
+            ShadowPassState::default(),
+            &tally,
+        );
         let lit_pipeline =
             scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
         let maps = Variant::value_variants()
@@ -97,6 +111,9 @@ impl Lesson for DepthMap {
             .collect();
         Ok(DepthMap {
             shadow_pipeline,
+            tally_pipeline,
+            texels_written: vec![None; Variant::value_variants().len()],
+            draws: shadow_map::shadow_map_draws(scene),
             lit_pipeline,
             maps,
             texel_at_1: texel_at_1(&scene.scene),
@@ -111,6 +128,14 @@ impl Lesson for DepthMap {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        if self.texels_written[variant as usize].is_none() {
+            // Once per variant, its own submit: untimed.
+            let n =
+                shadow_map::count_shadow_texels(frame.gpu, scene, variant.resolution(), |_| {
+                    &self.tally_pipeline
+                })?;
+            self.texels_written[variant as usize] = Some(n);
+        }
         let (map, group) = &self.maps[variant as usize];
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
@@ -133,12 +158,23 @@ impl Lesson for DepthMap {
 
     /// The texel's two sides, in micrometres: the acne's depth error, up to
     /// half a texel × tan θ (chapter 01), scales with them.
+    /// Also the standard costs: the shadow pass's depth writes, one tap
+    /// per pixel, the frame's draw calls.
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let Some((u, v)) = self.texel_at_1 else {
-            return BTreeMap::new();
-        };
-        let um = |x: f64| (x * 1e6 / variant.resolution() as f64).round() as u64;
-        BTreeMap::from([("texel_um_u".into(), um(u)), ("texel_um_v".into(), um(v))])
+        let mut c = BTreeMap::from([
+            ("filter_taps_per_pixel".into(), 1),
+            ("draws".into(), self.draws),
+        ]);
+        if let Some((written, fragments)) = self.texels_written[variant as usize] {
+            c.insert("shadow_texels_written".into(), written);
+            c.insert("shadow_fragments".into(), fragments);
+        }
+        if let Some((u, v)) = self.texel_at_1 {
+            let um = |x: f64| (x * 1e6 / variant.resolution() as f64).round() as u64;
+            c.insert("texel_um_u".into(), um(u));
+            c.insert("texel_um_v".into(), um(v));
+        }
+        c
     }
 
     fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {

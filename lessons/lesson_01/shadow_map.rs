@@ -15,6 +15,9 @@ use common::render::{
 use common::scene::{LightKind, Scene};
 use common::targets::depth_texture;
 
+use super::tally::Tally;
+use super::tally::TallyShader;
+
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// A square depth texture seen from the light.
@@ -90,6 +93,42 @@ pub fn shadow_pipeline(
     module: &wgpu::ShaderModule,
     state: ShadowPassState,
 ) -> wgpu::RenderPipeline {
+    shadow_pipeline_with(gpu, scene, module, state, None)
+}
+
+/// The two counting copies of the shadow pipeline of `state`: `[0]` tests
+/// `Less` as the shadow pass does (its depth writes), `[1]` tests nothing
+/// (every fragment rasterised). For [`count_shadow_texels`].
+pub fn shadow_tally_pipelines(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    module: &wgpu::ShaderModule,
+    state: ShadowPassState,
+    tally: &TallyShader,
+) -> [wgpu::RenderPipeline; 2] {
+    let with = |compare| {
+        let f = Some((tally.fragment(), compare));
+        shadow_pipeline_with(gpu, scene, module, state, f)
+    };
+    [
+        with(wgpu::CompareFunction::Less),
+        with(wgpu::CompareFunction::Always),
+    ]
+}
+
+/// [`shadow_pipeline`] with a fragment stage and depth test: a counting
+/// copy ([`shadow_tally_pipelines`]).
+fn shadow_pipeline_with(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    module: &wgpu::ShaderModule,
+    state: ShadowPassState,
+    tally: Option<(wgpu::FragmentState<'_>, wgpu::CompareFunction)>,
+) -> wgpu::RenderPipeline {
+    let (fragment, compare) = match tally {
+        Some((f, c)) => (Some(f), c),
+        None => (None, wgpu::CompareFunction::Less),
+    };
     let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
     gpu.device
         .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -103,12 +142,12 @@ pub fn shadow_pipeline(
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: SHADOW_FORMAT,
                 depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
+                depth_compare: Some(compare),
                 stencil: Default::default(),
                 bias: state.bias,
             }),
             multisample: Default::default(),
-            fragment: None,
+            fragment,
             multiview_mask: None,
             cache: None,
         })
@@ -145,6 +184,71 @@ pub fn shadow_pass(
     scene.draw_objects(&mut pass, |i| scene.casts_shadow(i))
 }
 // ANCHOR_END: shadow_pass
+
+/// The shadow pass's costs over every light, for a `size`² map, counted by
+/// a [`Tally`] through `pipelines(light)` ([`shadow_tally_pipelines`]) into
+/// a fresh map: `.0` its depth writes (the fragments that pass its `Less`
+/// test, in draw order), `.1` the fragments it rasterises. Untimed: its
+/// own submits.
+///
+/// The rasterised count is the same on Vulkan and GL; the depth writes can
+/// differ slightly (GL's depth arrives through another range conversion,
+/// so near-equal depths of a caster's overlapping faces can compare the
+/// other way).
+pub fn count_shadow_texels<'p>(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    size: u32,
+    pipelines: impl Fn(usize) -> &'p [wgpu::RenderPipeline; 2],
+) -> Result<(u64, u64)> {
+    let map = ShadowMap::new(gpu, size);
+    let tally = Tally::new(gpu, size, size);
+    let mut total = [0, 0];
+    for (which, total) in total.iter_mut().enumerate() {
+        *total = count_lights(gpu, scene, &map, &tally, |k| &pipelines(k)[which])?;
+    }
+    Ok((total[0], total[1]))
+}
+
+fn count_lights<'p>(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    map: &ShadowMap,
+    tally: &Tally,
+    tally_pipeline: impl Fn(usize) -> &'p wgpu::RenderPipeline,
+) -> Result<u64> {
+    let mut total = 0;
+    for light in 0..scene.scene.lights.len() {
+        let depth = wgpu::RenderPassDepthStencilAttachment {
+            view: &map.view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Discard,
+            }),
+            stencil_ops: None,
+        };
+        total += tally.count(gpu, Some(depth), |pass| {
+            pass.set_pipeline(tally_pipeline(light));
+            scene.bind_frame(pass, light);
+            scene.draw_objects(pass, |i| scene.casts_shadow(i));
+        })?;
+    }
+    Ok(total)
+}
+
+/// Draw calls of a frame of a shadow-map lesson: the base pass (every
+/// object), then per light the shadow pass (every caster) and the lit
+/// pass (every object).
+pub fn shadow_map_draws(scene: &SceneGpu) -> u64 {
+    let objects = scene.scene.objects.len() as u64;
+    let casters = scene
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.casts_shadow)
+        .count() as u64;
+    objects + scene.scene.lights.len() as u64 * (casters + objects)
+}
 
 /// Refuses point lights: lessons 01–03 render one 2D map per light, which a
 /// point light (lesson 04's cube map) cannot use.

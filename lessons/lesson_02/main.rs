@@ -25,6 +25,7 @@ use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
+use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{ShadowBias, SlopeScaledBias};
 
 /// One map size for every variant: the variants differ only in the bias.
@@ -136,6 +137,14 @@ struct Bias {
     /// The hardware-bias shadow pipeline of each light (the clamp depends on it).
     slope_shadow: Vec<wgpu::RenderPipeline>,
     casters_drawn: u64,
+    /// Counting copies of the shadow pipelines ([`shadow_map::shadow_tally_pipelines`]):
+    /// plain, front-face culled, and hardware bias per light.
+    tally_plain: [wgpu::RenderPipeline; 2],
+    tally_cull: [wgpu::RenderPipeline; 2],
+    tally_slope: Vec<[wgpu::RenderPipeline; 2]>,
+    /// Per variant: the shadow pass's depth writes and fragments, counted once.
+    texels_written: Vec<Option<(u64, u64)>>,
+    draws: u64,
 }
 
 impl Lesson for Bias {
@@ -168,19 +177,23 @@ impl Lesson for Bias {
             shadow_map::shadow_map_group(gpu, &map_layout, &map, wgpu::FilterMode::Nearest);
 
         let pass = |state| shadow_map::shadow_pipeline(gpu, scene, &module, state);
-        let plain_shadow = pass(ShadowPassState::default());
-        let cull_shadow = pass(ShadowPassState {
+        let tally = TallyShader::new(gpu);
+        let count = |state| shadow_map::shadow_tally_pipelines(gpu, scene, &module, state, &tally);
+        let cull = ShadowPassState {
             cull: Some(wgpu::Face::Front),
             ..Default::default()
-        });
+        };
+        let plain_shadow = pass(ShadowPassState::default());
+        let cull_shadow = pass(cull);
         // One per light: the clamp is in texels, converted for each light.
         // (GL cannot clamp: there the slope-scaled bias is unclamped.)
         let Fix::Hardware(slope) = Variant::SlopeHw.fix() else {
             unreachable!("slope_hw is the rasteriser's bias")
         };
-        let slope_shadow = (0..scene.scene.lights.len())
-            .map(|k| pass(slope.pass_state(gpu, &scene.scene, k, MAP_SIZE)))
+        let slope_states: Vec<_> = (0..scene.scene.lights.len())
+            .map(|k| slope.pass_state(gpu, &scene.scene, k, MAP_SIZE))
             .collect();
+        let slope_shadow = slope_states.iter().map(|&s| pass(s)).collect();
 
         let bias_groups = Variant::value_variants()
             .iter()
@@ -202,6 +215,11 @@ impl Lesson for Bias {
             cull_shadow,
             slope_shadow,
             casters_drawn: 0,
+            tally_plain: count(ShadowPassState::default()),
+            tally_cull: count(cull),
+            tally_slope: slope_states.iter().map(|&s| count(s)).collect(),
+            texels_written: vec![None; Variant::value_variants().len()],
+            draws: shadow_map::shadow_map_draws(scene),
         })
     }
 
@@ -214,6 +232,15 @@ impl Lesson for Bias {
         variant: Variant,
     ) -> Result<()> {
         let (fix, bias_group) = (variant.fix(), &self.bias_groups[variant as usize]);
+        if self.texels_written[variant as usize].is_none() {
+            // Once per variant, its own submit: untimed.
+            let n = shadow_map::count_shadow_texels(frame.gpu, scene, MAP_SIZE, |k| match fix {
+                Fix::Receiver(_) => &self.tally_plain,
+                Fix::Hardware(_) => &self.tally_slope[k],
+                Fix::CullFrontFaces => &self.tally_cull,
+            })?;
+            self.texels_written[variant as usize] = Some(n);
+        }
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = 0;
         for light in 0..scene.scene.lights.len() {
@@ -239,11 +266,18 @@ impl Lesson for Bias {
     }
     // ANCHOR_END: render
 
-    fn counters(&self, _variant: Variant) -> BTreeMap<String, u64> {
-        BTreeMap::from([
+    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        let mut c = BTreeMap::from([
             ("shadow_map_size".into(), MAP_SIZE as u64),
             ("casters_drawn".into(), self.casters_drawn),
-        ])
+            ("filter_taps_per_pixel".into(), 1),
+            ("draws".into(), self.draws),
+        ]);
+        if let Some((written, fragments)) = self.texels_written[variant as usize] {
+            c.insert("shadow_texels_written".into(), written);
+            c.insert("shadow_fragments".into(), fragments);
+        }
+        c
     }
 }
 

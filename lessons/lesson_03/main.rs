@@ -27,6 +27,7 @@ use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowMap};
+use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::SlopeScaledBias;
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
@@ -92,6 +93,12 @@ struct Pcf {
     lit_pipeline: wgpu::RenderPipeline,
     /// Lesson 02's slope-scaled bias, one pipeline per light.
     shadow_pipelines: Vec<wgpu::RenderPipeline>,
+    /// Their counting copies ([`shadow_map::shadow_tally_pipelines`]).
+    tally_pipelines: Vec<[wgpu::RenderPipeline; 2]>,
+    /// The shadow pass's depth writes and fragments (the same for every
+    /// variant: the filters differ, the map does not), counted once.
+    texels_written: Option<(u64, u64)>,
+    draws: u64,
 }
 
 impl Lesson for Pcf {
@@ -123,11 +130,17 @@ impl Lesson for Pcf {
         let nearest = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
         let linear = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
         let bias = SlopeScaledBias::RECOMMENDED;
-        let shadow_pipelines = (0..scene.scene.lights.len())
-            .map(|k| {
-                let state = bias.pass_state(gpu, &scene.scene, k, MAP_SIZE);
-                shadow_map::shadow_pipeline(gpu, scene, &module, state)
-            })
+        let states: Vec<_> = (0..scene.scene.lights.len())
+            .map(|k| bias.pass_state(gpu, &scene.scene, k, MAP_SIZE))
+            .collect();
+        let shadow_pipelines = states
+            .iter()
+            .map(|&state| shadow_map::shadow_pipeline(gpu, scene, &module, state))
+            .collect();
+        let tally = TallyShader::new(gpu);
+        let tally_pipelines = states
+            .iter()
+            .map(|&state| shadow_map::shadow_tally_pipelines(gpu, scene, &module, state, &tally))
             .collect();
         let filter_groups = Variant::value_variants()
             .iter()
@@ -148,6 +161,9 @@ impl Lesson for Pcf {
             linear,
             lit_pipeline,
             shadow_pipelines,
+            tally_pipelines,
+            texels_written: None,
+            draws: shadow_map::shadow_map_draws(scene),
         })
     }
 
@@ -159,6 +175,13 @@ impl Lesson for Pcf {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        if self.texels_written.is_none() {
+            // Once, its own submit: untimed.
+            let n = shadow_map::count_shadow_texels(frame.gpu, scene, MAP_SIZE, |k| {
+                &self.tally_pipelines[k]
+            })?;
+            self.texels_written = Some(n);
+        }
         let filter_group = &self.filter_groups[variant as usize];
         let map_group = match variant.filter().sampler() {
             wgpu::FilterMode::Linear => &self.linear,
@@ -185,11 +208,18 @@ impl Lesson for Pcf {
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let (taps, texels) = variant.filter().taps();
-        BTreeMap::from([
+        let mut c = BTreeMap::from([
             ("taps".into(), taps),
+            ("filter_taps_per_pixel".into(), taps),
             ("texels_read".into(), texels),
             ("shadow_map_size".into(), MAP_SIZE as u64),
-        ])
+            ("draws".into(), self.draws),
+        ]);
+        if let Some((written, fragments)) = self.texels_written {
+            c.insert("shadow_texels_written".into(), written);
+            c.insert("shadow_fragments".into(), fragments);
+        }
+        c
     }
 }
 

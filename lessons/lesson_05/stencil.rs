@@ -26,6 +26,7 @@ use super::extrusion::{
     world_light, Extrusion, CPU_VERTEX_LAYOUT, QUAD_VERTEX_LAYOUT, REACH_VERTEX_LAYOUT,
 };
 use super::silhouette::{casts_two_sided, LightDir};
+use crate::lesson_01::tally::TallyShader;
 
 /// How the stencil counts a caster's volume faces: z-pass (here) or
 /// z-fail (lesson 06, `lesson_06::caps`).
@@ -231,6 +232,15 @@ pub fn scene_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
     c
 }
 
+/// What a volume pipeline is for: counting in the stencil, or one of the
+/// counting copies (pipeline statistics, a tally).
+#[derive(Clone)]
+enum Role {
+    Stencil(wgpu::StencilState),
+    Statistics,
+    Tally { depth_test: bool },
+}
+
 /// `[mirrored][cap]`: one counting rule's pipelines.
 type PipelineSet = [[wgpu::RenderPipeline; 2]; 2];
 
@@ -240,6 +250,9 @@ pub struct VolumePipelines {
     zpass: PipelineSet,
     zfail: Option<PipelineSet>,
     count: wgpu::RenderPipeline,
+    /// `[depth_test][cap]`: counting copies for a [`Tally`](crate::lesson_01::tally::Tally),
+    /// without a depth test or with the volume pass's `Less` (and the cap bias).
+    tally: [[wgpu::RenderPipeline; 2]; 2],
 }
 
 impl VolumePipelines {
@@ -267,25 +280,43 @@ impl VolumePipelines {
         };
         let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
         let targets = [Some(wgpu::TextureFormat::R8Unorm.into())];
-        let make = |stencil: Option<wgpu::StencilState>, front_face, cap: bool| {
-            let (depth_stencil, fragment) = match stencil {
+        let tally = TallyShader::new(gpu);
+        let make = |kind: Role, front_face, cap: bool| {
+            let bias = if cap {
+                counting.cap_bias
+            } else {
+                Default::default()
+            };
+            let (depth_stencil, fragment) = match kind {
+                // Tally copies: stencil untouched, depth as the volume pass
+                // tests it (`Less`), or not at all (`Always`).
+                Role::Tally { depth_test } => (
+                    Some(wgpu::DepthStencilState {
+                        format: scene.depth_format,
+                        depth_write_enabled: Some(false),
+                        depth_compare: Some(if depth_test {
+                            wgpu::CompareFunction::Less
+                        } else {
+                            wgpu::CompareFunction::Always
+                        }),
+                        stencil: Default::default(),
+                        bias,
+                    }),
+                    Some(tally.fragment()),
+                ),
                 // No colour, no depth write: the stencil is the only output.
-                Some(stencil) => (
+                Role::Stencil(stencil) => (
                     Some(wgpu::DepthStencilState {
                         format: scene.depth_format,
                         depth_write_enabled: Some(false),
                         depth_compare: Some(wgpu::CompareFunction::Less),
                         stencil,
-                        bias: if cap {
-                            counting.cap_bias
-                        } else {
-                            Default::default()
-                        },
+                        bias,
                     }),
                     None,
                 ),
                 // Counting copy: no depth test, a fragment shader to count.
-                None => (
+                Role::Statistics => (
                     None,
                     Some(wgpu::FragmentState {
                         module: &module,
@@ -322,8 +353,8 @@ impl VolumePipelines {
         let set = |s: &wgpu::StencilState| {
             let caps = |f| {
                 [
-                    make(Some(s.clone()), f, false),
-                    make(Some(s.clone()), f, true),
+                    make(Role::Stencil(s.clone()), f, false),
+                    make(Role::Stencil(s.clone()), f, true),
                 ]
             };
             [caps(wgpu::FrontFace::Ccw), caps(wgpu::FrontFace::Cw)]
@@ -331,7 +362,11 @@ impl VolumePipelines {
         Ok(VolumePipelines {
             zpass: set(&counting.zpass),
             zfail: counting.zfail.as_ref().map(set),
-            count: make(None, wgpu::FrontFace::Ccw, false),
+            count: make(Role::Statistics, wgpu::FrontFace::Ccw, false),
+            tally: [false, true].map(|depth_test| {
+                let kind = Role::Tally { depth_test };
+                [false, true].map(|cap| make(kind.clone(), wgpu::FrontFace::Ccw, cap))
+            }),
         })
     }
 
@@ -341,6 +376,11 @@ impl VolumePipelines {
     /// The copy that counts rasterised fragments (no depth test).
     pub fn counting(&self) -> &wgpu::RenderPipeline {
         &self.count
+    }
+
+    /// The tally copy: with the volume pass's depth test or none.
+    pub fn tally(&self, depth_test: bool, cap: bool) -> &wgpu::RenderPipeline {
+        &self.tally[depth_test as usize][cap as usize]
     }
 
     pub fn get(&self, method: Method, mirrored: bool, cap: bool) -> &wgpu::RenderPipeline {

@@ -49,6 +49,51 @@ use super::extrusion::{
 };
 use super::silhouette::caster_adjacency;
 use super::stencil::{Counting, Method, VolumePipelines};
+use crate::lesson_01::tally::Tally;
+
+/// Which pipelines [`ShadowVolumes::draw_casters`] draws with: the volume
+/// pass's own, or a counting copy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DrawRole {
+    /// Counting in the stencil (the volume pass).
+    Stencil,
+    /// No depth test, for pipeline statistics ([`FragmentCounter`]).
+    Statistics,
+    /// For a [`Tally`]: with the volume pass's depth test, or none.
+    Tally { depth_test: bool },
+}
+
+/// A frame's volume costs ([`ShadowVolumes::count_costs`]), over every light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct VolumeCosts {
+    /// Fragments the volumes rasterise (no depth test): exact.
+    pub fragments: u64,
+    /// Stencil writes: z-pass faces where the depth test passes, z-fail
+    /// faces where it fails.
+    pub stencil_updates: u64,
+    /// Triangles submitted for the volumes (sides and caps).
+    pub triangles: u64,
+    /// Draw calls of the volume passes.
+    pub draws: u64,
+}
+
+impl VolumeCosts {
+    /// The standard report keys (`volume_fragments`, `stencil_updates`,
+    /// `volume_triangles`) into `c`, and `draws`: `other_draws` (base and
+    /// lit passes) plus the volume passes'.
+    pub fn insert_into(&self, c: &mut std::collections::BTreeMap<String, u64>, other_draws: u64) {
+        c.insert("volume_fragments".into(), self.fragments);
+        c.insert("stencil_updates".into(), self.stencil_updates);
+        c.insert("volume_triangles".into(), self.triangles);
+        c.insert("draws".into(), other_draws + self.draws);
+    }
+}
+
+/// Draw calls of a frame's base pass and lit passes: every object, once in
+/// the base pass and once per light.
+pub fn base_and_lit_draws(scene: &SceneGpu) -> u64 {
+    scene.scene.objects.len() as u64 * (1 + scene.scene.lights.len() as u64)
+}
 
 /// One caster's volume in one light's volume pass.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -145,6 +190,7 @@ pub struct ShadowVolumes {
     cpu_pipelines: VolumePipelines,
     quad_pipelines: VolumePipelines,
     counter: Option<FragmentCounter>,
+    tally: Tally,
 }
 
 impl ShadowVolumes {
@@ -233,6 +279,7 @@ impl ShadowVolumes {
             cpu_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Cpu, counting)?,
             quad_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Quads, counting)?,
             counter: FragmentCounter::new(gpu, scene.width, scene.height),
+            tally: Tally::new(gpu, scene.width, scene.height),
         })
     }
 
@@ -326,7 +373,7 @@ impl ShadowVolumes {
         pass: &mut wgpu::RenderPass<'_>,
         scene: &SceneGpu,
         v: LightVolumes<'_>,
-        counting: bool,
+        role: DrawRole,
     ) -> u32 {
         let pipes = match v.extrusion {
             Extrusion::Cpu => &self.cpu_pipelines,
@@ -338,9 +385,10 @@ impl ShadowVolumes {
             let Some((ci, c)) = self.caster(d.object) else {
                 continue;
             };
-            let pipeline = |cap: bool| match counting {
-                true => pipes.counting(),
-                false => pipes.get(d.method, c.mirrored, cap),
+            let pipeline = |cap: bool| match role {
+                DrawRole::Stencil => pipes.get(d.method, c.mirrored, cap),
+                DrawRole::Statistics => pipes.counting(),
+                DrawRole::Tally { depth_test } => pipes.tally(depth_test, cap),
             };
             scene.bind_object(pass, c.object);
             match v.extrusion {
@@ -388,7 +436,7 @@ impl ShadowVolumes {
         ts: Option<wgpu::RenderPassTimestampWrites>,
     ) -> u32 {
         let mut pass = targets.stencil_pass(encoder, "volume pass", ts, None);
-        self.draw_casters(&mut pass, scene, volumes, false)
+        self.draw_casters(&mut pass, scene, volumes, DrawRole::Stencil)
     }
     // ANCHOR_END: volume_pass
 
@@ -434,10 +482,90 @@ impl ShadowVolumes {
                         extrusion,
                         draws,
                     };
-                    self.draw_casters(pass, scene, v, true);
+                    self.draw_casters(pass, scene, v, DrawRole::Statistics);
                 }
             })
             .ok()
+    }
+
+    // ANCHOR: count_costs
+    /// The volumes' costs for `draws[light]`, every light ([`VolumeCosts`]),
+    /// counted by a [`Tally`] against the frame's depth in `targets`: call
+    /// it after a frame (and after `prepare_cpu` for the CPU path). Exact
+    /// and the same on Vulkan and GL. Untimed: its own submits.
+    pub fn count_costs(
+        &self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        extrusion: Extrusion,
+        draws: &[Vec<CasterDraw>],
+    ) -> Result<VolumeCosts> {
+        let mut costs = VolumeCosts::default();
+        for (light, d) in draws.iter().enumerate() {
+            let (calls, tris) = self.submitted(light, extrusion, d);
+            costs.draws += calls;
+            costs.triangles += tris;
+        }
+        // Tally `draws` filtered by `keep`, with or without the depth test.
+        let tally = |keep: fn(&CasterDraw) -> bool, depth_test: bool| -> Result<u64> {
+            let keep_ds = wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            };
+            let depth = wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth_view,
+                depth_ops: Some(keep_ds),
+                stencil_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+            };
+            self.tally.count(gpu, Some(depth), |pass| {
+                for (light, d) in draws.iter().enumerate() {
+                    let kept: Vec<CasterDraw> = d.iter().copied().filter(keep).collect();
+                    let v = LightVolumes {
+                        light,
+                        extrusion,
+                        draws: &kept,
+                    };
+                    self.draw_casters(pass, scene, v, DrawRole::Tally { depth_test });
+                }
+            })
+        };
+        let zpass = |d: &CasterDraw| d.method == Method::ZPass;
+        let zfail = |d: &CasterDraw| d.method == Method::ZFail;
+        costs.fragments = tally(|_| true, false)?;
+        let zfail_all = if draws.iter().flatten().any(zfail) {
+            tally(zfail, false)? - tally(zfail, true)?
+        } else {
+            0
+        };
+        costs.stencil_updates = tally(zpass, true)? + zfail_all;
+        Ok(costs)
+    }
+    // ANCHOR_END: count_costs
+
+    /// Draw calls and triangles of one light's volume pass.
+    fn submitted(&self, light: usize, extrusion: Extrusion, draws: &[CasterDraw]) -> (u64, u64) {
+        let (mut calls, mut tris) = (0, 0);
+        for d in draws {
+            let Some((ci, c)) = self.caster(d.object) else {
+                continue;
+            };
+            let ranges = match extrusion {
+                Extrusion::Cpu => match self.cpu.ranges.get(light).and_then(|r| r.get(ci)) {
+                    Some(r) => r,
+                    None => continue,
+                },
+                Extrusion::Quads => &c.quad_ranges,
+            };
+            for (r, _) in d.ranges(ranges) {
+                calls += 1;
+                tris += r.len() as u64 / 3;
+            }
+        }
+        (calls, tris)
     }
 
     /// The fragment counter (lesson 08 counts its own volumes with it).

@@ -37,7 +37,7 @@ use common::timing::Frame;
 use common::{anyhow, Result};
 use workbook::lesson_05::extrusion::Extrusion;
 use workbook::lesson_05::stencil::{self, Counting};
-use workbook::lesson_05::volumes::{CasterDraw, LightVolumes, ShadowVolumes};
+use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes};
 use workbook::lesson_06::caps::{self, zfail_counting};
 use workbook::lesson_07::infinite_far::{infinite_scene, DepthMapping};
 use workbook::lesson_07::precision_study::{self as study, DepthFormat};
@@ -107,6 +107,8 @@ struct DepthClamp {
     /// statistics) and depth precision.
     counters: Vec<BTreeMap<String, u64>>,
     study_written: Cell<bool>,
+    /// Per variant: the exact volume costs are still to count.
+    pending: Vec<bool>,
 }
 
 /// Relative gap in parts per billion; 10⁹ means "not even Δd = d resolves".
@@ -170,6 +172,7 @@ impl Lesson for DepthClamp {
             scene_counters: stencil::scene_counters(scene),
             counters,
             study_written: Cell::new(false),
+            pending: vec![false; Variant::value_variants().len()],
         })
     }
 
@@ -226,12 +229,20 @@ impl Lesson for DepthClamp {
                 "casters_drawn".into(),
                 draws.iter().map(|d| d.len() as u64).sum(),
             );
-            if let Some(f) = route
-                .volumes
-                .count_fragments(frame.gpu, sg, Extrusion::Quads, &draws)
-            {
-                c.insert("volume_fragments".into(), f);
+            let (gpu, ext) = (frame.gpu, Extrusion::Quads);
+            if let Some(f) = route.volumes.count_fragments(gpu, sg, ext, &draws) {
+                // llvmpipe counts 16 per 4×4 block: not the fragment count.
+                c.insert("fragment_shader_invocations".into(), f);
             }
+            // The depth is this frame's, not yet drawn: the first frame's
+            // costs wait for the second call, untimed in their own submits.
+            self.pending[variant as usize] = true;
+        } else if std::mem::take(&mut self.pending[variant as usize]) {
+            let costs =
+                route
+                    .volumes
+                    .count_costs(frame.gpu, sg, targets, Extrusion::Quads, &draws)?;
+            costs.insert_into(c, base_and_lit_draws(sg));
         }
         Ok(())
     }

@@ -323,3 +323,23 @@ pub fn tiny_headless(bin: &str, out: &Path, args: &[&str]) -> Command {
     .arg(out);
     c
 }
+
+/// The snapshot's cost counters: for every variant, `keys` that it has
+/// (keys a variant lacks, such as a skipped variant's, are left out). Only
+/// counters that are the same on Vulkan and GL belong here.
+pub fn counter_lines(report: &serde_json::Value, keys: &[&str]) -> String {
+    let mut out = String::from("\ncounters (the same on Vulkan and GL):\n");
+    for v in report["variants"].as_array().into_iter().flatten() {
+        let c = &v["counters"];
+        let parts: Vec<String> = keys
+            .iter()
+            .filter_map(|k| c[*k].as_u64().map(|n| format!("{k} {n}")))
+            .collect();
+        out += &format!(
+            "{:<18} {}\n",
+            v["name"].as_str().unwrap_or("?"),
+            parts.join("  ")
+        );
+    }
+    out
+}
