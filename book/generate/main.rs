@@ -65,7 +65,7 @@ fn main() {
 fn run(cli: Cli) -> Result<()> {
     let Command::Book { only, backend } = cli.command;
     if let Some(l) = &only {
-        if !RUNS.iter().any(|r| &r.lesson == l) {
+        if !RUNS.iter().any(|r| r.lesson == l) {
             bail!("--only: no lesson {l:?} in the manifest (lesson_01 to lesson_08)");
         }
     }
