@@ -84,6 +84,7 @@ fn lesson_04_snapshot() {
             c["slope_bias_millitexels"].as_u64().unwrap_or(0) as f64 / 1000.0
         );
     }
+    text += &support::counter_lines(&run.report, &["draws", "filter_taps_per_pixel"]);
     insta::assert_snapshot!("lesson_04", text);
     // 3D PCF's raised slope bias is a reported parameter, not a silent one.
     assert_eq!(counter(&run, "pcf3d_1024", "slope_bias_millitexels"), 2500);
@@ -135,6 +136,27 @@ fn lesson_04_culling_changes_no_pixel_and_draws_less() {
     assert!(
         f < nf && d < nd,
         "culling must draw less: faces {f} vs {nf}, draws {d} vs {nd}"
+    );
+    // The standard costs: the unculled frame makes more draw calls and
+    // rasterises more shadow fragments (the crate past the range), but
+    // writes exactly the same texels: what culling leaves out writes nothing.
+    let c = |v, k| counter(&run, v, k);
+    assert!(
+        c("nocull_1024", "draws") > c("linear_1024", "draws"),
+        "draws: unculled {} vs culled {}",
+        c("nocull_1024", "draws"),
+        c("linear_1024", "draws")
+    );
+    assert!(
+        c("nocull_1024", "shadow_fragments") > c("linear_1024", "shadow_fragments"),
+        "shadow fragments: unculled {} vs culled {}",
+        c("nocull_1024", "shadow_fragments"),
+        c("linear_1024", "shadow_fragments")
+    );
+    assert_eq!(
+        c("nocull_1024", "shadow_texels_written"),
+        c("linear_1024", "shadow_texels_written"),
+        "culling left out casters that write texels"
     );
 }
 

@@ -147,6 +147,12 @@ impl FaceUniforms {
         FaceUniforms { buffer, group }
     }
 
+    /// Binds face `face` of light `light` as group 0.
+    pub fn bind(&self, pass: &mut wgpu::RenderPass<'_>, light: usize, face: usize) {
+        let offset = (SLOT * (6 * light + face) as u64) as u32;
+        pass.set_bind_group(0, &self.group, &[offset]);
+    }
+
     /// Writes the six faces' view-projections of light `light`.
     pub fn write(&self, gpu: &Gpu, scene: &Scene, light: usize, near: f64) {
         let Some((pos, range)) = point_light(scene, light) else {
@@ -234,11 +240,32 @@ pub fn cube_shadow_pipeline(
     storage: DepthStorage,
     unclipped: bool,
 ) -> wgpu::RenderPipeline {
-    let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
     let (vs, fs) = match storage {
         DepthStorage::Linear { vs_entry, fs_entry } => (vs_entry, Some(fs_entry)),
         DepthStorage::Hardware => ("vs_light_depth", None),
     };
+    let fragment = fs.map(|entry| wgpu::FragmentState {
+        module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        targets: &[],
+    });
+    let compare = wgpu::CompareFunction::Less;
+    cube_pipeline_with(gpu, scene, module, vs, fragment, compare, unclipped)
+}
+
+/// A cube-face pipeline with vertex entry `vs`, `fragment` and depth test
+/// `compare`: the shadow pass, or a counting copy of it (`super::costs`).
+pub(crate) fn cube_pipeline_with(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    module: &wgpu::ShaderModule,
+    vs: &str,
+    fragment: Option<wgpu::FragmentState<'_>>,
+    compare: wgpu::CompareFunction,
+    unclipped: bool,
+) -> wgpu::RenderPipeline {
+    let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
     gpu.device
         .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("cube shadow pass"),
@@ -251,17 +278,12 @@ pub fn cube_shadow_pipeline(
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: CUBE_FORMAT,
                 depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
+                depth_compare: Some(compare),
                 stencil: Default::default(),
                 bias: Default::default(),
             }),
             multisample: Default::default(),
-            fragment: fs.map(|entry| wgpu::FragmentState {
-                module,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                targets: &[],
-            }),
+            fragment,
             multiview_mask: None,
             cache: None,
         })
@@ -310,11 +332,7 @@ pub fn cube_shadow_passes(
                 multiview_mask: None,
             });
             pass.set_pipeline(pipeline);
-            pass.set_bind_group(
-                0,
-                &faces.group,
-                &[(SLOT * (6 * light + face) as u64) as u32],
-            );
+            faces.bind(&mut pass, light, face);
             stats.caster_draws += scene.draw_objects(&mut pass, |i| list.contains(&i)) as u64;
         });
         map.empty[face] = list.is_empty();

@@ -23,6 +23,8 @@ use common::scene::{LightKind, Scene};
 use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
+use workbook::lesson_01::tally::TallyShader;
+use workbook::lesson_04::costs::{self, PCF3D_TAPS};
 use workbook::lesson_04::cross::write_cross_png;
 use workbook::lesson_04::cube_map::{
     self, CubeParams, CubeShadowMap, CubeStats, FaceUniforms, Storage,
@@ -134,12 +136,18 @@ struct Prepared {
 struct CubeShadows {
     lit_pipeline: wgpu::RenderPipeline,
     shadow_pipelines: Vec<wgpu::RenderPipeline>,
+    /// Their counting copies ([`costs::cube_tally_pipelines`]).
+    tally_pipelines: Vec<[wgpu::RenderPipeline; 2]>,
+    /// Per variant: the face passes' depth writes and fragments, counted once.
+    texels_written: Vec<Option<(u64, u64)>>,
     maps: Vec<CubeShadowMap>,
     /// In variant order.
     prepared: Vec<Prepared>,
     faces: FaceUniforms,
     spheres: Vec<Sphere>,
     stats: CubeStats,
+    /// The last frame's draw calls ([`costs::frame_draws`]).
+    draws: u64,
 }
 
 impl Lesson for CubeShadows {
@@ -169,8 +177,10 @@ impl Lesson for CubeShadows {
         let lit_pipeline =
             scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
         let has_unclipped = gpu.has(wgpu::Features::DEPTH_CLIP_CONTROL);
-        let (mut maps, mut shadow_pipelines, mut keys, mut prepared) = (
+        let tally = TallyShader::new(gpu);
+        let (mut maps, mut shadow_pipelines, mut tally_pipelines, mut keys, mut prepared) = (
             Vec::<CubeShadowMap>::new(),
+            Vec::new(),
             Vec::new(),
             Vec::new(),
             Vec::new(),
@@ -197,6 +207,9 @@ impl Lesson for CubeShadows {
                 .unwrap_or_else(|| {
                     shadow_pipelines.push(cube_map::cube_shadow_pipeline(
                         gpu, scene, &module, storage, unclipped,
+                    ));
+                    tally_pipelines.push(costs::cube_tally_pipelines(
+                        gpu, scene, &module, storage, unclipped, &tally,
                     ));
                     keys.push((storage, unclipped));
                     keys.len() - 1
@@ -236,11 +249,14 @@ impl Lesson for CubeShadows {
         Ok(CubeShadows {
             lit_pipeline,
             shadow_pipelines,
+            tally_pipelines,
+            texels_written: vec![None; Variant::value_variants().len()],
             maps,
             prepared,
             faces,
             spheres,
             stats: CubeStats::default(),
+            draws: 0,
         })
     }
 
@@ -252,27 +268,17 @@ impl Lesson for CubeShadows {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        if self.texels_written[variant as usize].is_none() {
+            // Once per variant, its own submits: untimed.
+            self.texels_written[variant as usize] =
+                Some(self.count_texels(frame.gpu, scene, variant)?);
+        }
         let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         self.stats = CubeStats::default();
         for light in 0..scene.scene.lights.len() {
-            let (pos, range) = cube_map::point_light(&scene.scene, light)
-                .expect("check_scene allows point and spot lights");
             self.faces.write(frame.gpu, &scene.scene, light, p.near);
-            // Leave out what the light cannot see: casters past its range,
-            // and per face, casters whose bounding sphere misses the frustum.
-            let spheres = &self.spheres;
-            let casters = |face: usize| -> Vec<usize> {
-                (0..spheres.len())
-                    .filter(|&o| scene.casts_shadow(o))
-                    .filter(|&o| {
-                        let c = spheres[o].centre - pos;
-                        let r = spheres[o].radius;
-                        !v.cull
-                            || (c.length() - r < range && culling::sphere_touches_face(c, r, face))
-                    })
-                    .collect()
-            };
+            let casters = |face| face_casters(scene, &self.spheres, light, v.cull, face);
             let map = &mut self.maps[p.map];
             let s = cube_map::cube_shadow_passes(
                 frame,
@@ -294,13 +300,23 @@ impl Lesson for CubeShadows {
                 )
             });
         }
+        self.draws = costs::frame_draws(scene, self.stats.caster_draws);
         Ok(())
     }
     // ANCHOR_END: render
 
+    /// Also the standard costs: the face passes' depth writes and
+    /// fragments, the lit pass's taps per pixel, the frame's draw calls.
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let p = &self.prepared[variant as usize];
-        BTreeMap::from([
+        let taps = if variant.settings().pcf > 0.0 {
+            PCF3D_TAPS
+        } else {
+            1
+        };
+        let mut c = BTreeMap::from([
+            ("filter_taps_per_pixel".into(), taps),
+            ("draws".into(), self.draws),
             ("faces_rendered".into(), self.stats.faces_rendered),
             ("caster_draws".into(), self.stats.caster_draws),
             ("unclipped_depth".into(), u64::from(p.unclipped)),
@@ -310,7 +326,12 @@ impl Lesson for CubeShadows {
                 "slope_bias_millitexels".into(),
                 (variant.settings().slope * 1000.0).round() as u64,
             ),
-        ])
+        ]);
+        if let Some((written, fragments)) = self.texels_written[variant as usize] {
+            c.insert("shadow_texels_written".into(), written);
+            c.insert("shadow_fragments".into(), fragments);
+        }
+        c
     }
 
     fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
@@ -318,6 +339,50 @@ impl Lesson for CubeShadows {
         let path = out.join(format!("{}_cube_map.png", variant_name(variant)));
         write_cross_png(gpu, map, 128, &path)
     }
+}
+
+impl CubeShadows {
+    /// Every light's face passes for `variant`, counted ([`costs::count_light_texels`]).
+    fn count_texels(&self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) -> Result<(u64, u64)> {
+        let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
+        let mut total = (0, 0);
+        for light in 0..scene.scene.lights.len() {
+            self.faces.write(gpu, &scene.scene, light, p.near);
+            let (written, fragments) = costs::count_light_texels(
+                gpu,
+                scene,
+                &self.tally_pipelines[p.pipeline],
+                &self.faces,
+                v.size,
+                light,
+                |face| face_casters(scene, &self.spheres, light, v.cull, face),
+            )?;
+            total = (total.0 + written, total.1 + fragments);
+        }
+        Ok(total)
+    }
+}
+
+/// The casters drawn into face `face` of light `light`. With `cull`, what
+/// the light cannot see is left out: casters past its range, and casters
+/// whose bounding sphere misses the face's frustum.
+fn face_casters(
+    scene: &SceneGpu,
+    spheres: &[Sphere],
+    light: usize,
+    cull: bool,
+    face: usize,
+) -> Vec<usize> {
+    let (pos, range) = cube_map::point_light(&scene.scene, light)
+        .expect("check_scene allows point and spot lights");
+    (0..spheres.len())
+        .filter(|&o| scene.casts_shadow(o))
+        .filter(|&o| {
+            let c = spheres[o].centre - pos;
+            let r = spheres[o].radius;
+            !cull || (c.length() - r < range && culling::sphere_touches_face(c, r, face))
+        })
+        .collect()
 }
 
 fn main() -> std::process::ExitCode {

@@ -51,6 +51,19 @@ fn fs_cube_linear(in: LinearOut) -> @builtin(frag_depth) f32 {
 }
 // ANCHOR_END: linear_distance
 
+// The counting copy of fs_cube_linear (lesson_04::costs): the same depth,
+// and 1.0 added into the tally target per fragment that passes the test.
+struct LinearTallyOut {
+    @builtin(frag_depth) depth: f32,
+    @location(0) one: vec4<f32>,
+};
+
+@fragment
+fn fs_cube_linear_tally(in: LinearOut) -> LinearTallyOut {
+    let depth = distance(in.world, light.position_or_dir.xyz) / light.color_range.w;
+    return LinearTallyOut(depth, vec4<f32>(1.0));
+}
+
 // ANCHOR: receiver_depth
 // What the cube would store for a point at distance `d` along `v` (v: from
 // the light to the receiver), in the storage's units.
