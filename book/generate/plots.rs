@@ -58,6 +58,15 @@ const DESC_FONT: f64 = 17.0;
 const TITLE_FONT: f64 = 22.0;
 const LABEL_FONT: f64 = 15.5;
 const FONT: &str = "sans-serif";
+/// The error-vs-time plots' canvas width: the plot and, right of it, the
+/// legend column.
+const WIDE: u32 = 960;
+/// Space around the chart, px.
+const MARGIN: f64 = 14.0;
+/// A title is shrunk down to this size (px) before it is wrapped.
+const TITLE_MIN_PX: f64 = 14.0;
+/// The widest a legend line may be outside the plot before it wraps, px.
+const LEGEND_TEXT_MAX: f64 = 190.0;
 
 const X_DESC: &str = "median frame time, ms (bars: interquartile range)";
 const Y_DESC: &str = "misclassified % of receiver pixels (log)";
@@ -238,7 +247,8 @@ pub fn scaling_plot(
 
         let root = SVGBackend::new(path, (WIDTH, HEIGHT)).into_drawing_area();
         root.fill(&WHITE)?;
-        let chart = build_chart(&root, title, &xa, &ya, x_label, y_label)?;
+        let area = titled(&root, title, 0.0)?;
+        let chart = build_chart(&area, &xa, &ya, x_label, y_label)?;
         let plot = plot_rect(&chart);
         let to_px = |x: f64, y: f64| -> (f64, f64) {
             let (px, py) = chart.backend_coord(&(xa.t(x), ya.t(y)));
@@ -350,18 +360,40 @@ fn tradeoff_plot(
         X_DESC.to_string()
     };
 
-    let root = SVGBackend::new(path, (WIDTH, HEIGHT)).into_drawing_area();
+    // The legend goes in a column right of the plot, where it hides nothing.
+    let root = SVGBackend::new(path, (WIDE, HEIGHT)).into_drawing_area();
     root.fill(&WHITE)?;
-    let chart = build_chart(&root, title, &xa, &ya, &x_desc, Y_DESC)?;
+    let area = titled(&root, title, legend_column_width(&legend) + LEGEND_GAP)?;
+    let chart = build_chart(&area, &xa, &ya, &x_desc, Y_DESC)?;
     let plot = plot_rect(&chart);
     let to_px = |ms: f64, err: f64| -> (f64, f64) {
         let (px, py) = chart.backend_coord(&(xa.t(ms), ya.t(err)));
         (px as f64, py as f64)
     };
     let mut obstacles: Vec<Rect> = Vec::new();
-    // What the legend must not hide: notes and markers.
-    let mut markers: Vec<Rect> = Vec::new();
     let label_px = LABEL_FONT / 1.24;
+
+    // The baseline.
+    if let Some(b) = baseline_ms.filter(|b| b.is_finite() && *b > 0.0) {
+        let x = to_px(b, floor).0;
+        draw_dashed(&root, (x, plot.y0), (x, plot.y1), GREY.stroke_width(2))?;
+        let text = "no shadows";
+        let w = text_w(text, label_px);
+        let x0 = if x + 4.0 + w <= plot.x1 {
+            x + 4.0
+        } else {
+            x - 4.0 - w
+        };
+        let r = Rect::new(x0, plot.y0 + 4.0, w, label_px);
+        draw_text(&root, text, (r.x0, r.y0), GREY)?;
+        obstacles.push(r);
+        obstacles.push(Rect {
+            x0: x - 2.0,
+            y0: plot.y0,
+            x1: x + 2.0,
+            y1: plot.y1,
+        });
+    }
 
     // The floor line and its note.
     if clamped {
@@ -379,49 +411,40 @@ fn tradeoff_plot(
             .filter(|p| p.error_pct < floor)
             .map(|p| to_px(p.ms, floor))
             .collect();
-        let candidates = [
-            Rect::new(plot.x1 - w - 6.0, y - h - 3.0, w, h),
-            Rect::new(plot.x0 + 6.0, y - h - 3.0, w, h),
-            Rect::new(plot.x1 - w - 6.0, y + 3.0, w, h),
-            Rect::new(plot.x0 + 6.0, y + 3.0, w, h),
-        ];
+        // Above the line, else below; right first, then sliding left: the
+        // first spot clear of the points on the line and of the baseline.
+        let base_x = baseline_ms
+            .filter(|b| b.is_finite() && *b > 0.0)
+            .map(|b| to_px(b, floor).0);
+        let mut candidates = Vec::new();
+        for top in [y - h - 3.0, y + 3.0] {
+            let mut x = plot.x1 - w - 6.0;
+            while x >= plot.x0 + 6.0 {
+                candidates.push(Rect::new(x, top, w, h));
+                x -= 10.0;
+            }
+            candidates.push(Rect::new(plot.x0 + 6.0, top, w, h));
+        }
         let r = candidates
             .iter()
             .copied()
             .filter(|r| r.y1 <= plot.y1)
             .min_by_key(|r| {
-                on_floor
+                let hidden = on_floor
                     .iter()
                     .filter(|q| r.grow(8.0).contains(**q))
-                    .count()
+                    .count();
+                let crossed = base_x.is_some_and(|x| x > r.x0 - 4.0 && x < r.x1 + 4.0);
+                2 * hidden + crossed as usize
             })
-            .unwrap_or(candidates[0]);
+            .unwrap_or(Rect::new(plot.x1 - w - 6.0, y - h - 3.0, w, h));
+        // On white, where it must cross the baseline.
+        root.draw(&Rectangle::new(
+            [ipx((r.x0 - 2.0, r.y0 - 1.0)), ipx((r.x1 + 2.0, r.y1 + 1.0))],
+            WHITE.mix(0.85).filled(),
+        ))?;
         draw_text(&root, &note, (r.x0, r.y0), GREY)?;
         obstacles.push(r);
-        markers.push(r);
-    }
-
-    // The baseline.
-    if let Some(b) = baseline_ms.filter(|b| b.is_finite() && *b > 0.0) {
-        let x = to_px(b, floor).0;
-        draw_dashed(&root, (x, plot.y0), (x, plot.y1), GREY.stroke_width(2))?;
-        let text = "no shadows";
-        let w = text_w(text, label_px);
-        let x0 = if x + 4.0 + w <= plot.x1 {
-            x + 4.0
-        } else {
-            x - 4.0 - w
-        };
-        let r = Rect::new(x0, plot.y0 + 4.0, w, label_px);
-        draw_text(&root, text, (r.x0, r.y0), GREY)?;
-        obstacles.push(r);
-        markers.push(r);
-        obstacles.push(Rect {
-            x0: x - 2.0,
-            y0: plot.y0,
-            x1: x + 2.0,
-            y1: plot.y1,
-        });
     }
 
     // Error bars, fronts, markers; then the legend; then the labels.
@@ -506,8 +529,7 @@ fn tradeoff_plot(
             }
         }
     }
-    markers.extend(drawn.iter().map(|d| around(d.px, 5.0)));
-    draw_legend(&root, plot, &legend, &mut obstacles, &markers)?;
+    draw_legend_column(&root, (plot.x1 + LEGEND_GAP, plot.y0), &legend)?;
 
     // Labels: the front's first, then by time, so that placement is stable.
     let mut order: Vec<usize> = (0..drawn.len()).filter(|&k| drawn[k].wanted).collect();
@@ -518,14 +540,17 @@ fn tradeoff_plot(
             .then(drawn[a].px.1.total_cmp(&drawn[b].px.1))
             .then(a.cmp(&b))
     });
+    let all_px: Vec<(f64, f64)> = drawn.iter().map(|d| d.px).collect();
+    let widths: Vec<f64> = drawn.iter().map(|d| text_w(&d.label, label_px)).collect();
+    let placed = place_labels(&all_px, &order, &widths, label_px, plot, &obstacles);
     let single = plotted.len() == 1;
-    for k in order {
+    for (k, r, leader) in placed {
         let d = &drawn[k];
-        let w = text_w(&d.label, label_px);
-        let (r, far) = place(d.px, 6.0, w, label_px, plot, &obstacles);
-        if far {
-            let target = r.nearest(d.px);
-            draw_path(&root, &[d.px, target], GREY.mix(0.5).stroke_width(1))?;
+        if let Some(end) = leader {
+            let (dx, dy) = (end.0 - d.px.0, end.1 - d.px.1);
+            let len = dx.hypot(dy).max(1e-9);
+            let start = (d.px.0 + dx / len * 6.5, d.px.1 + dy / len * 6.5);
+            draw_path(&root, &[start, end], GREY.mix(0.7).stroke_width(1))?;
         }
         let colour = if single {
             RGBColor(30, 30, 30)
@@ -533,7 +558,6 @@ fn tradeoff_plot(
             darker(d.colour)
         };
         draw_text(&root, &d.label, (r.x0, r.y0), colour)?;
-        obstacles.push(r);
     }
     root.present()?;
     Ok(())
@@ -724,16 +748,15 @@ impl Ranged for Ticks {
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticks, Ticks>>;
 
 fn build_chart<'a, 'b>(
-    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
-    title: &str,
+    area: &'a Root<'b>,
     xa: &Axis,
     ya: &Axis,
     x_desc: &str,
     y_desc: &str,
 ) -> Result<Chart<'a, 'b>> {
-    let mut chart = ChartBuilder::on(root)
-        .caption(title, (FONT, TITLE_FONT))
-        .margin(14)
+    let mut chart = ChartBuilder::on(area)
+        .margin(MARGIN as u32)
+        .margin_top(6)
         .x_label_area_size(50)
         .y_label_area_size(68)
         .build_cartesian_2d(Ticks::of(xa), Ticks::of(ya))?;
@@ -752,6 +775,58 @@ fn build_chart<'a, 'b>(
         .axis_style(BLACK.mix(0.8))
         .draw()?;
     Ok(chart)
+}
+
+/// The title's font size (px) and lines: one line at the largest size from
+/// the title font down to [`TITLE_MIN_PX`] whose estimated width ([`text_w`])
+/// fits `avail`, else two lines split at the space that makes the longer one
+/// shortest, at the largest size that fits (never below 8 px).
+fn title_lines(title: &str, avail: f64) -> (f64, Vec<String>) {
+    let full = TITLE_FONT / 1.24;
+    let fit = |lines: &[String]| {
+        let n = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0);
+        // text_w(l, px) <= avail, solved for px.
+        ((avail - 2.0) / (0.56 * n.max(1) as f64)).min(full)
+    };
+    let one = vec![title.to_string()];
+    let px = fit(&one);
+    if px >= TITLE_MIN_PX {
+        return (px, one);
+    }
+    let chars: Vec<char> = title.chars().collect();
+    let split = (0..chars.len())
+        .filter(|&i| chars[i] == ' ')
+        .min_by_key(|&i| i.max(chars.len() - i - 1));
+    let Some(i) = split else {
+        return (px.max(8.0), one);
+    };
+    let two = vec![
+        chars[..i].iter().collect::<String>(),
+        chars[i + 1..].iter().collect::<String>(),
+    ];
+    (fit(&two).max(8.0), two)
+}
+
+/// Draws `title` centred across the top of `root`, fitted to its width, and
+/// returns the area below it, less `right` pixels on the right (a column for
+/// a legend outside the plot).
+fn titled<'b>(root: &Root<'b>, title: &str, right: f64) -> Result<Root<'b>> {
+    let (w, _) = root.dim_in_pixel();
+    let (px, lines) = title_lines(title, w as f64 - 2.0 * MARGIN);
+    let line_h = (px * 1.25).ceil();
+    let style = TextStyle::from((FONT, px * 1.24).into_font())
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Center, VPos::Top));
+    for (k, line) in lines.iter().enumerate() {
+        let y = MARGIN + line_h * k as f64;
+        root.draw(&Text::new(
+            line.clone(),
+            ipx((w as f64 / 2.0, y)),
+            style.clone(),
+        ))?;
+    }
+    let top = MARGIN + line_h * lines.len() as f64 + 4.0;
+    Ok(root.margin(top as i32, 0, 0, right.ceil() as i32))
 }
 
 fn plot_rect(chart: &Chart<'_, '_>) -> Rect {
@@ -936,19 +1011,7 @@ fn draw_legend(
         let top = b.y0 + pad + row_h * k as f64;
         let mid = top + text_px / 2.0;
         let (sx0, sx1) = (b.x0 + pad, b.x0 + pad + swatch_w - 6.0);
-        let sc = ((sx0 + sx1) / 2.0, mid);
-        match row.swatch {
-            Swatch::None => {}
-            Swatch::Marker(m, c, filled) => draw_marker(root, m, sc, 5.0, c, filled)?,
-            Swatch::Line(c, false) => {
-                draw_path(root, &[(sx0, mid), (sx1, mid)], c.stroke_width(2))?
-            }
-            Swatch::Line(c, true) => draw_dashed(root, (sx0, mid), (sx1, mid), c.stroke_width(2))?,
-            Swatch::LineMarker(m, c) => {
-                draw_path(root, &[(sx0, mid), (sx1, mid)], c.stroke_width(2))?;
-                draw_marker(root, m, sc, 4.5, c, true)?;
-            }
-        }
+        draw_swatch(root, &row.swatch, sx0, sx1, mid)?;
         let text_x = if matches!(row.swatch, Swatch::None) {
             sx0
         } else {
@@ -957,6 +1020,106 @@ fn draw_legend(
         draw_text(root, &row.text, (text_x, top), RGBColor(30, 30, 30))?;
     }
     obstacles.push(b);
+    Ok(())
+}
+
+/// A legend row's text in lines no wider than [`LEGEND_TEXT_MAX`] (a word
+/// longer than that stays whole).
+fn wrap(text: &str, px: f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(l) if text_w(&format!("{l} {word}"), px) <= LEGEND_TEXT_MAX => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+const LEGEND_PAD: f64 = 8.0;
+const LEGEND_SWATCH_W: f64 = 30.0;
+/// Between the plot and a legend column, px.
+const LEGEND_GAP: f64 = 12.0;
+
+/// The width of the legend column [`draw_legend_column`] draws.
+fn legend_column_width(rows: &[LegendRow]) -> f64 {
+    let text_px = LABEL_FONT / 1.24;
+    let text = rows
+        .iter()
+        .flat_map(|r| {
+            let indent = if matches!(r.swatch, Swatch::None) {
+                0.0
+            } else {
+                LEGEND_SWATCH_W
+            };
+            wrap(&r.text, text_px)
+                .into_iter()
+                .map(move |l| indent + text_w(&l, text_px))
+        })
+        .fold(0.0, f64::max);
+    (LEGEND_PAD * 2.0 + text).ceil()
+}
+
+/// Draws the legend as a box with its top-left corner at `at`, outside the
+/// plot (long texts wrapped), so that it hides no data.
+fn draw_legend_column(root: &Root, at: (f64, f64), rows: &[LegendRow]) -> Result<()> {
+    if rows.is_empty() {
+        return Ok(());
+    }
+    let text_px = LABEL_FONT / 1.24;
+    let line_h = text_px + 4.0;
+    let row_gap = 6.0;
+    let wrapped: Vec<Vec<String>> = rows.iter().map(|r| wrap(&r.text, text_px)).collect();
+    let w = legend_column_width(rows);
+    let h = LEGEND_PAD * 2.0
+        + wrapped
+            .iter()
+            .map(|l| line_h * l.len() as f64 - 4.0)
+            .sum::<f64>()
+        + row_gap * (rows.len() - 1) as f64;
+    let b = Rect::new(at.0, at.1, w, h);
+    root.draw(&Rectangle::new(
+        [ipx((b.x0, b.y0)), ipx((b.x1, b.y1))],
+        BLACK.mix(0.35).stroke_width(1),
+    ))?;
+    let mut top = b.y0 + LEGEND_PAD;
+    for (row, lines) in rows.iter().zip(&wrapped) {
+        let mid = top + text_px / 2.0;
+        let (sx0, sx1) = (b.x0 + LEGEND_PAD, b.x0 + LEGEND_PAD + LEGEND_SWATCH_W - 6.0);
+        draw_swatch(root, &row.swatch, sx0, sx1, mid)?;
+        let text_x = if matches!(row.swatch, Swatch::None) {
+            sx0
+        } else {
+            b.x0 + LEGEND_PAD + LEGEND_SWATCH_W
+        };
+        for (k, l) in lines.iter().enumerate() {
+            draw_text(
+                root,
+                l,
+                (text_x, top + line_h * k as f64),
+                RGBColor(30, 30, 30),
+            )?;
+        }
+        top += line_h * lines.len() as f64 - 4.0 + row_gap;
+    }
+    Ok(())
+}
+
+fn draw_swatch(root: &Root, swatch: &Swatch, sx0: f64, sx1: f64, mid: f64) -> Result<()> {
+    let sc = ((sx0 + sx1) / 2.0, mid);
+    match *swatch {
+        Swatch::None => {}
+        Swatch::Marker(m, c, filled) => draw_marker(root, m, sc, 5.0, c, filled)?,
+        Swatch::Line(c, false) => draw_path(root, &[(sx0, mid), (sx1, mid)], c.stroke_width(2))?,
+        Swatch::Line(c, true) => draw_dashed(root, (sx0, mid), (sx1, mid), c.stroke_width(2))?,
+        Swatch::LineMarker(m, c) => {
+            draw_path(root, &[(sx0, mid), (sx1, mid)], c.stroke_width(2))?;
+            draw_marker(root, m, sc, 4.5, c, true)?;
+        }
+    }
     Ok(())
 }
 
@@ -1033,42 +1196,311 @@ fn segment_box(a: (f64, f64), b: (f64, f64)) -> Rect {
     }
 }
 
-/// Where a `w` x `h` label for the point at `c` (marker radius `r`) goes: the
-/// first of a fixed list of spots, nearest first, that stays in the plot and
-/// clear of every obstacle, else the spot with the least overlap. The flag
-/// says the label is away from its point (draw a leader line).
-fn place(c: (f64, f64), r: f64, w: f64, h: f64, plot: Rect, obstacles: &[Rect]) -> (Rect, bool) {
-    let mut best = (
-        f64::INFINITY,
-        Rect::new(c.0 + r + 3.0, c.1 - h / 2.0, w, h),
-        false,
-    );
-    for ring in 0..5 {
-        let d = r + 3.0 + ring as f64 * (h * 0.9);
-        let diag = d * 0.75;
-        let spots = [
-            (c.0 + d, c.1 - h / 2.0),
-            (c.0 - d - w, c.1 - h / 2.0),
-            (c.0 + diag, c.1 - diag - h),
-            (c.0 + diag, c.1 + diag),
-            (c.0 - diag - w, c.1 - diag - h),
-            (c.0 - diag - w, c.1 + diag),
-            (c.0 - w / 2.0, c.1 - d - h),
-            (c.0 - w / 2.0, c.1 + d),
-        ];
-        for (x, y) in spots {
-            let rect = Rect::new(x, y, w, h);
-            let cost =
-                1e3 * rect.outside(&plot) + obstacles.iter().map(|o| rect.overlap(o)).sum::<f64>();
-            if cost == 0.0 {
-                return (rect, ring >= 2);
+/// Within this distance (px) of each other, points whose labels cannot
+/// touch them unambiguously are labelled together in one column.
+const CROWD_PX: f64 = 36.0;
+/// A touching label's gap to its marker's centre, px.
+const TOUCH_PX: f64 = 9.0;
+
+/// The distance from `p` to the nearest point of `r`.
+fn rect_dist(r: &Rect, p: (f64, f64)) -> f64 {
+    let n = r.nearest(p);
+    (n.0 - p.0).hypot(n.1 - p.1)
+}
+
+/// Places the labels of the points `order` (indices into `pts`, in order of
+/// priority; `widths[k]` and `h` the label sizes) in `plot`, around
+/// `obstacles`. Each label either touches its own point, nearer to it than to
+/// any other point of `pts` by a clear margin, or, where points crowd, goes
+/// in a column beside its group, joined to its point by a leader line
+/// ending at the returned point. Returns (index, label box, leader end).
+fn place_labels(
+    pts: &[(f64, f64)],
+    order: &[usize],
+    widths: &[f64],
+    h: f64,
+    plot: Rect,
+    obstacles: &[Rect],
+) -> Vec<Label> {
+    let close = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).hypot(a.1 - b.1) <= CROWD_PX;
+    // Points that cannot have a touching label, and their labelled
+    // neighbours, go to columns; repeat until the rest all touch.
+    let mut crowded = vec![false; pts.len()];
+    let (mut out, mut obs) = loop {
+        let mut obs = obstacles.to_vec();
+        let mut out = Vec::new();
+        let mut failed = Vec::new();
+        for &k in order.iter().filter(|&&k| !crowded[k]) {
+            match touching_spot(pts, k, widths[k], h, plot, &obs) {
+                Some(r) => {
+                    obs.push(r);
+                    out.push((k, r, None));
+                }
+                None => failed.push(k),
             }
-            if cost < best.0 {
-                best = (cost, rect, ring >= 2);
+        }
+        if failed.is_empty() {
+            break (out, obs);
+        }
+        for f in failed {
+            for &j in order {
+                if j == f || close(pts[j], pts[f]) {
+                    crowded[j] = true;
+                }
+            }
+        }
+    };
+    // The crowded points in groups (linked within CROWD_PX), in order of
+    // their first member.
+    let mut group_of: Vec<Option<usize>> = vec![None; pts.len()];
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for &k in order.iter().filter(|&&k| crowded[k]) {
+        if group_of[k].is_some() {
+            continue;
+        }
+        let g = groups.len();
+        let mut members = vec![k];
+        group_of[k] = Some(g);
+        let mut i = 0;
+        while i < members.len() {
+            let m = members[i];
+            for &j in order {
+                if crowded[j] && group_of[j].is_none() && close(pts[j], pts[m]) {
+                    group_of[j] = Some(g);
+                    members.push(j);
+                }
+            }
+            i += 1;
+        }
+        groups.push(members);
+    }
+    for g in groups {
+        let labels: Vec<Rect> = out.iter().map(|o| o.1).collect();
+        let column = place_column(pts, &g, widths, h, plot, &obs, &labels);
+        for &(k, r, end) in &column {
+            obs.push(r);
+            out.push((k, r, Some(end)));
+        }
+    }
+    out
+}
+
+/// A spot for point `k`'s label right beside its marker: in the plot, clear
+/// of the obstacles, and nearer to point `k` than to any other point by at
+/// least 5 px; the first such of eight spots around the marker, if any.
+fn touching_spot(
+    pts: &[(f64, f64)],
+    k: usize,
+    w: f64,
+    h: f64,
+    plot: Rect,
+    obstacles: &[Rect],
+) -> Option<Rect> {
+    let c = pts[k];
+    let d = TOUCH_PX;
+    let diag = d * 0.75;
+    let spots = [
+        (c.0 + d, c.1 - h / 2.0),
+        (c.0 - d - w, c.1 - h / 2.0),
+        (c.0 + diag, c.1 - diag - h),
+        (c.0 + diag, c.1 + diag),
+        (c.0 - diag - w, c.1 - diag - h),
+        (c.0 - diag - w, c.1 + diag),
+        (c.0 - w / 2.0, c.1 - d - h),
+        (c.0 - w / 2.0, c.1 + d),
+    ];
+    spots.iter().map(|&(x, y)| Rect::new(x, y, w, h)).find(|r| {
+        let own = rect_dist(r, c);
+        r.outside(&plot) == 0.0
+            && obstacles.iter().all(|o| r.overlap(o) == 0.0)
+            && pts
+                .iter()
+                .enumerate()
+                .all(|(j, &q)| j == k || rect_dist(r, q) >= own + 5.0)
+    })
+}
+
+/// The distance from `p` to the segment a-b.
+fn seg_dist(a: (f64, f64), b: (f64, f64), p: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a.0 + t * dx - p.0).hypot(a.1 + t * dy - p.1)
+}
+
+/// Whether the segment a-b meets the rectangle `r`.
+fn seg_hits(a: (f64, f64), b: (f64, f64), r: &Rect) -> bool {
+    if r.contains(a) || r.contains(b) {
+        return true;
+    }
+    let corners = [(r.x0, r.y0), (r.x1, r.y0), (r.x1, r.y1), (r.x0, r.y1)];
+    (0..4).any(|i| crosses(a, b, corners[i], corners[(i + 1) % 4]))
+}
+
+/// A placed label: the point's index, the label box and, where it has one,
+/// its leader's end.
+type Label = (usize, Rect, Option<(f64, f64)>);
+
+/// A column label: the point's index, the label box and its leader's end.
+type Placed = (usize, Rect, (f64, f64));
+
+/// Whether the segments a-b and c-d cross.
+fn crosses(a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f64, f64)) -> bool {
+    let side = |p: (f64, f64), q: (f64, f64), r: (f64, f64)| {
+        (q.0 - p.0) * (r.1 - p.1) - (q.1 - p.1) * (r.0 - p.0)
+    };
+    let (d1, d2) = (side(c, d, a), side(c, d, b));
+    let (d3, d4) = (side(a, b, c), side(a, b, d));
+    d1 * d2 < 0.0 && d3 * d4 < 0.0
+}
+
+/// The labels of `group` stacked in a column right or left of it, the
+/// column's side, offset and the rows' order chosen to overlap the least of
+/// the obstacles (and stay in the plot), then for the shortest leader lines
+/// with the fewest crossings. Returns (index, label box, leader end).
+fn place_column(
+    pts: &[(f64, f64)],
+    group: &[usize],
+    widths: &[f64],
+    h: f64,
+    plot: Rect,
+    obstacles: &[Rect],
+    labels: &[Rect],
+) -> Vec<Placed> {
+    let row = h + 3.0;
+    let n = group.len();
+    let col_h = row * n as f64 - 3.0;
+    let col_w = group.iter().map(|&k| widths[k]).fold(0.0, f64::max);
+    let gx0 = group
+        .iter()
+        .map(|&k| pts[k].0)
+        .fold(f64::INFINITY, f64::min);
+    let gx1 = group
+        .iter()
+        .map(|&k| pts[k].0)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let gy0 = group
+        .iter()
+        .map(|&k| pts[k].1)
+        .fold(f64::INFINITY, f64::min);
+    let gy1 = group
+        .iter()
+        .map(|&k| pts[k].1)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let cy = (gy0 + gy1) / 2.0;
+    // Row k's box and its leader end, for a column at x0 (its left edge)
+    // and top y0.
+    let layout = |right: bool, x0: f64, y0: f64, rows: &[usize]| -> Vec<Placed> {
+        rows.iter()
+            .enumerate()
+            .map(|(i, &k)| {
+                let y = y0 + row * i as f64;
+                let (r, end) = if right {
+                    let r = Rect::new(x0, y, widths[k], h);
+                    (r, (r.x0 - 2.0, y + h / 2.0))
+                } else {
+                    let r = Rect::new(x0 + col_w - widths[k], y, widths[k], h);
+                    (r, (r.x1 + 2.0, y + h / 2.0))
+                };
+                (k, r, end)
+            })
+            .collect()
+    };
+    // Leader crossings, then total length, of an arrangement.
+    let score = |rows: &[Placed]| -> (usize, f64) {
+        let mut crossings = 0;
+        for i in 0..rows.len() {
+            for j in i + 1..rows.len() {
+                if crosses(pts[rows[i].0], rows[i].2, pts[rows[j].0], rows[j].2) {
+                    crossings += 1;
+                }
+            }
+        }
+        let len = rows
+            .iter()
+            .map(|&(k, _, e)| (e.0 - pts[k].0).hypot(e.1 - pts[k].1))
+            .sum();
+        (crossings, len)
+    };
+    let others: Vec<(f64, f64)> = (0..pts.len())
+        .filter(|j| !group.contains(j))
+        .map(|j| pts[j])
+        .collect();
+    let mut best: Option<((f64, usize, f64), Vec<Placed>)> = None;
+    for right in [true, false] {
+        for gap in [18.0, 34.0, 56.0, 84.0, 120.0, 170.0] {
+            let x0 = if right { gx1 + gap } else { gx0 - gap - col_w };
+            for s in 0..=30 {
+                // 0, -1, +1, -2, +2, ... rows up or down.
+                let shift = if s % 2 == 1 { -((s + 1) / 2) } else { s / 2 } as f64;
+                let y0 = cy - col_h / 2.0 + shift * row;
+                // The rows' order: by height, then improved by swapping
+                // neighbours while that removes crossings or shortens leaders.
+                let mut rows: Vec<usize> = group.to_vec();
+                rows.sort_by(|&a, &b| {
+                    pts[a]
+                        .1
+                        .total_cmp(&pts[b].1)
+                        .then(pts[a].0.total_cmp(&pts[b].0))
+                        .then(a.cmp(&b))
+                });
+                for _ in 0..n * n {
+                    let mut improved = false;
+                    for i in 0..n.saturating_sub(1) {
+                        let now = score(&layout(right, x0, y0, &rows));
+                        rows.swap(i, i + 1);
+                        let then = score(&layout(right, x0, y0, &rows));
+                        if then.0 < now.0 || (then.0 == now.0 && then.1 < now.1 - 1e-9) {
+                            improved = true;
+                        } else {
+                            rows.swap(i, i + 1);
+                        }
+                    }
+                    if !improved {
+                        break;
+                    }
+                }
+                let placed = layout(right, x0, y0, &rows);
+                let mut cost = 0.0;
+                for (_, r, _) in &placed {
+                    cost += 1e3 * r.outside(&plot);
+                    cost += obstacles.iter().map(|o| r.overlap(o)).sum::<f64>();
+                    // A label beside another point would read as its label.
+                    let near = others.iter().filter(|&&q| rect_dist(r, q) < 10.0).count();
+                    cost += 200.0 * near as f64;
+                }
+                // A leader over another point or through a label misleads.
+                for &(k, _, e) in &placed {
+                    let a = pts[k];
+                    let hits = (0..pts.len())
+                        .filter(|&j| j != k && seg_dist(a, e, pts[j]) < 7.0)
+                        .count()
+                        + labels
+                            .iter()
+                            .filter(|r| seg_hits(a, e, &r.grow(1.0)))
+                            .count();
+                    cost += 300.0 * hits as f64;
+                }
+                let (crossings, len) = score(&placed);
+                let key = (cost, crossings, len);
+                let better = match &best {
+                    None => true,
+                    Some((b, _)) => {
+                        key.0 < b.0
+                            || (key.0 == b.0 && (key.1 < b.1 || (key.1 == b.1 && key.2 < b.2)))
+                    }
+                };
+                if better {
+                    best = Some((key, placed));
+                }
             }
         }
     }
-    (best.1, best.2)
+    best.map(|b| b.1).unwrap_or_default()
 }
 
 fn min_of(it: impl Iterator<Item = f64>) -> f64 {
