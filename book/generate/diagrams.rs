@@ -23,19 +23,54 @@ type P = (f64, f64);
 /// Writes the four diagrams into `dir` and returns the file names written.
 pub fn write_all(root: &Path, dir: &Path) -> Result<Vec<String>> {
     std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
-    let diagrams = [
-        ("acne_staircase.svg", acne_staircase(root)?),
-        ("zpass_zfail_ray.svg", zpass_zfail_ray()?),
-        ("cube_faces.svg", cube_faces()?),
-        ("range_sphere.svg", range_sphere(root)?),
-    ];
     let mut names = Vec::new();
-    for (name, svg) in diagrams {
+    for (name, svg) in render(root)? {
         let path = dir.join(name);
         std::fs::write(&path, svg).with_context(|| format!("{}: cannot write", path.display()))?;
         names.push(name.to_string());
     }
     Ok(names)
+}
+
+/// The four diagrams, as (file name, SVG text).
+fn render(root: &Path) -> Result<[(&'static str, String); 4]> {
+    Ok([
+        ("acne_staircase.svg", acne_staircase(root)?),
+        ("zpass_zfail_ray.svg", zpass_zfail_ray()?),
+        ("cube_faces.svg", cube_faces()?),
+        ("range_sphere.svg", range_sphere(root)?),
+    ])
+}
+
+/// Estimated width of one line of text: 0.6 em a character, generous for
+/// sans-serif, so that what fits by this estimate fits when rendered.
+fn text_width(s: &str, size: f64) -> f64 {
+    0.6 * size * s.chars().count() as f64
+}
+
+/// The estimated horizontal extent of a text drawn at `x` with `anchor`.
+fn text_span(x: f64, size: f64, anchor: &str, s: &str) -> (f64, f64) {
+    let w = text_width(s, size);
+    match anchor {
+        "start" => (x, x + w),
+        "end" => (x - w, x),
+        _ => (x - w / 2.0, x + w / 2.0),
+    }
+}
+
+/// Greedy word wrap of `s` into lines no wider than `width` (estimated).
+fn wrap(s: &str, size: f64, width: f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in s.split_whitespace() {
+        match lines.last_mut() {
+            Some(l) if text_width(l, size) + text_width(&format!(" {word}"), size) <= width => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
 }
 
 /// Two attributes from a point: `x="…" y="…"`.
@@ -67,9 +102,11 @@ fn add(p: P, dx: f64, dy: f64) -> P {
 
 impl Svg {
     fn new(w: f64, h: f64, title: &str) -> Svg {
-        let body = String::new();
-        let mut s = Svg { w, h, body };
-        s.rect((0.0, 0.0), (w, h), r##"fill="#fff""##);
+        let mut s = Svg {
+            w,
+            h,
+            body: String::new(),
+        };
         s.text((w / 2.0, 24.0), 17.0, "middle", title);
         s
     }
@@ -103,12 +140,23 @@ impl Svg {
         let attrs = format!(r#"{at} font-size="{size:.0}" text-anchor="{anchor}""#);
         let _ = writeln!(self.body, "<text {attrs}>{s}</text>");
     }
-    fn texts(&mut self, at: P, size: f64, anchor: &str, lines: &[String]) {
+    /// Lines one under another; returns the baseline a next line would take.
+    fn texts(&mut self, at: P, size: f64, anchor: &str, lines: &[String]) -> f64 {
         for (i, l) in lines.iter().enumerate() {
             self.text((at.0, at.1 + (size + 5.0) * i as f64), size, anchor, l);
         }
+        at.1 + (size + 5.0) * lines.len() as f64
     }
-    fn finish(self) -> String {
+    /// `s` wrapped to `width` and drawn as lines; returns the next baseline.
+    fn para(&mut self, at: P, size: f64, anchor: &str, width: f64, s: &str) -> f64 {
+        self.texts(at, size, anchor, &wrap(s, size, width))
+    }
+    /// The document; the white background is drawn here, so that `h` may
+    /// be set once the content's height is known.
+    fn finish(mut self) -> String {
+        let body = std::mem::take(&mut self.body);
+        self.rect((0.0, 0.0), (self.w, self.h), r##"fill="#fff""##);
+        self.body += &body;
         format!(
             concat!(
                 r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.0} {h:.0}" font-family="sans-serif">"#,
@@ -144,17 +192,12 @@ fn acne_staircase(root: &Path) -> Result<String> {
             hw,
         ),
     ];
-    let title = "Shadow acne: the staircase of stored depths (lesson 02, default scene)";
-    let mut s = Svg::new(780.0, 880.0, title);
-    let theta = cos.acos().to_degrees();
-    let head = [
-        format!("The floor at θ = {theta:.1}° to the light, seen edge-on along its depth gradient: its depth grows"),
-        format!("tan θ = {tan:.3} texel-steps per texel; one texel-step = {dpt:.3e} depth (depth_per_texel, {LESSON_02_MAP_SIZE}² map)."),
-    ];
-    s.texts((390.0, 46.0), 13.0, "middle", &head);
-    for (k, (name, b)) in panels.iter().enumerate() {
-        acne_panel(&mut s, 85.0 + 180.0 * k as f64, name, tan, *b);
-    }
+    let (w, theta) = (780.0, cos.acos().to_degrees());
+    let head = format!(
+        "The floor at θ = {theta:.1}° to the light, seen edge-on along its depth gradient: its depth \
+         grows tan θ = {tan:.3} texel-steps per texel; one texel-step = {dpt:.3e} depth \
+         (depth_per_texel, {LESSON_02_MAP_SIZE}² map)."
+    );
     let legend = [
         (
             "#1f5fbf",
@@ -165,11 +208,21 @@ fn acne_staircase(root: &Path) -> Result<String> {
         ("#d62728", "acne: the sample shadows itself"),
         ("#2ca02c", "sample lit"),
     ];
+    let title = "Shadow acne: the staircase of stored depths (lesson 02, default scene)";
+    let mut s = Svg::new(w, 0.0, title);
+    let mut top = s.para((w / 2.0, 46.0), 12.0, "middle", w - 40.0, &head) - 4.0;
+    for (name, b) in &panels {
+        top = acne_panel(&mut s, top, name, tan, *b);
+    }
     for (i, (c, t)) in legend.iter().enumerate() {
-        let (x, y) = (80.0 + 400.0 * (i % 2) as f64, 818.0 + 18.0 * (i / 2) as f64);
+        let (x, y) = (
+            80.0 + 400.0 * (i % 2) as f64,
+            top + 14.0 + 18.0 * (i / 2) as f64,
+        );
         s.rect((x, y - 10.0), (14.0, 10.0), &fill(c, "none"));
         s.text((x + 20.0, y), 12.0, "start", t);
     }
+    s.h = top + 14.0 + 18.0 * legend.len().div_ceil(2) as f64;
     Ok(s.finish())
 }
 
@@ -212,14 +265,16 @@ fn hardware_shift(scene: &Scene, dpt: f64, b: &SlopeScaledBias) -> Result<f64> {
     Ok((b.slope_scale as f64 * slope + b.constant as f64 * unit).min(clamp) / dpt)
 }
 
-fn acne_panel(s: &mut Svg, top: f64, name: &str, tan: f64, bias: f64) {
+/// One bias's panel below `top`: its name, how much of the surface has
+/// acne, and the staircase. Returns the top of whatever comes next.
+fn acne_panel(s: &mut Svg, top: f64, name: &str, tan: f64, bias: f64) -> f64 {
     const TEXELS: usize = 6;
     const SAMPLES: usize = 8;
     let (left, px, end) = (80.0, 110.0, TEXELS as f64 - 0.5);
     let (d0, d1) = (-0.5 * tan - 0.3, end * tan + bias + 0.3);
     let ky = 130.0 / (d1 - d0);
-    let at = |x: f64, d: f64| (left + (x + 0.5) * px, top + 20.0 + (d - d0) * ky);
-    s.text((left, top + 10.0), 12.0, "start", name);
+    let at = |x: f64, d: f64| (left + (x + 0.5) * px, top + 36.0 + (d - d0) * ky);
+    s.text((left, top + 12.0), 13.0, "start", name);
     for i in 0..=TEXELS {
         let x = i as f64 - 0.5;
         s.line(at(x, d0), at(x, d1), &stroke("#ccc", 1.0, ""));
@@ -253,8 +308,10 @@ fn acne_panel(s: &mut Svg, top: f64, name: &str, tan: f64, bias: f64) {
     }
     s.line(at(-0.5, -0.5 * tan), at(end, end * tan), INK);
     let pct = 100.0 * (0.5 - bias / tan).clamp(0.0, 1.0);
-    let count = format!("acne {pct:.1} % ({red}/{} samples)", TEXELS * SAMPLES);
-    s.text((at(end, d0).0, top + 10.0), 12.0, "end", &count);
+    let n = TEXELS * SAMPLES;
+    let count = format!("acne on {pct:.1} % of the surface ({red} of {n} samples shown)");
+    s.text((left, top + 28.0), 12.0, "start", &count);
+    at(0.0, d1).1 + 30.0
 }
 
 // ---------------------------------------------------------------- z-pass / z-fail
@@ -347,7 +404,7 @@ fn inside(poly: &[P], p: P) -> bool {
 
 fn zpass_zfail_ray() -> Result<String> {
     let title = "One view ray, two ways to count shadow-volume faces (lessons 05 and 06)";
-    let mut s = Svg::new(800.0, 560.0, title);
+    let mut s = Svg::new(800.0, 0.0, title);
     let poly = volume();
     let cases = [
         ("eye outside the volume", (6.0, 4.5), (1.5, 0.0)),
@@ -356,12 +413,11 @@ fn zpass_zfail_ray() -> Result<String> {
     for (k, (name, eye, target)) in cases.into_iter().enumerate() {
         ray_panel(&mut s, 20.0 + 395.0 * k as f64, name, &poly, eye, target);
     }
-    let notes = [
-        "Each crossing: +1 where the ray enters the volume (a front face), −1 where it leaves (a back face).",
-        "z-pass adds the crossings in front of the surface (depth test passes); z-fail counts those behind it,",
-        "as back − front (depth test fails), out to the back cap at infinity. A non-zero count means shadow.",
-    ];
-    s.texts((400.0, 505.0), 12.0, "middle", &notes.map(String::from));
+    let notes = "Each crossing counts +1 where the ray enters the volume (a front face), −1 where it \
+        leaves (a back face). z-pass adds those between the eye and the surface (green: the depth \
+        test passes); z-fail adds those behind it (purple: the depth test fails), signs flipped, out \
+        to the back cap at infinity. A non-zero count means shadow.";
+    s.h = s.para((400.0, 500.0), 12.0, "middle", 760.0, notes);
     Ok(s.finish())
 }
 
@@ -420,10 +476,10 @@ fn ray_panel(s: &mut Svg, left: f64, name: &str, poly: &[P], eye: P, target: P) 
         let terms = [terms.join(" "), "nothing".into()][terms.is_empty() as usize].clone();
         format!("{terms} = {sum} → {verdict} ({right})")
     };
-    let where_ = ["outside: lit", "inside the volume: in shadow"][truth as usize];
+    let where_ = ["outside the volume: lit", "inside the volume: in shadow"][truth as usize];
     let lines = [
-        format!("z-pass, eye → surface (green): {}", total(&zpass)),
-        format!("z-fail, beyond it (purple): {}", total(&zfail)),
+        format!("z-pass (green): {}", total(&zpass)),
+        format!("z-fail (purple): {}", total(&zfail)),
         format!("truth: the point is {where_}"),
     ];
     s.texts((left + 4.0, 440.0), 13.0, "start", &lines);
@@ -481,7 +537,7 @@ fn face_uv(face: usize) -> Result<(DVec3, DVec3)> {
 fn cube_faces() -> Result<String> {
     let (cell, left, top) = (165.0, 30.0, 50.0);
     let title = "The six cube faces as lesson 04's cross writes them (CUBE_FACES)";
-    let mut s = Svg::new(left * 2.0 + 4.0 * cell, 630.0, title);
+    let mut s = Svg::new(left * 2.0 + 4.0 * cell, 0.0, title);
     let mut placed = Vec::new();
     for (face, &(forward, up)) in CUBE_FACES.iter().enumerate() {
         let cross = CROSS.iter().find(|c| c.0 == forward);
@@ -515,12 +571,12 @@ fn cube_faces() -> Result<String> {
             }
         }
     }
-    let notes = [
-        "Index = the layer wgpu reads for that face. u, v: the texel column (right) and row (down)".into(),
-        "directions of each face's view-projection (face_view_proj), checked to match at every shared edge.".into(),
-        "The empty cells are black in the lesson's PNG.".to_string(),
-    ];
-    s.texts((left, top + 3.0 * cell + 30.0), 13.0, "start", &notes);
+    let notes =
+        "Index = the layer wgpu reads for that face. u, v: the texel column (right) and row \
+        (down) directions of each face's view-projection (face_view_proj), checked to match at \
+        every shared edge. The empty cells are black in the lesson's PNG.";
+    let width = s.w - 2.0 * left;
+    s.h = s.para((left, top + 3.0 * cell + 30.0), 13.0, "start", width, notes);
     Ok(s.finish())
 }
 
@@ -538,7 +594,7 @@ fn range_sphere(root: &Path) -> Result<String> {
     let bounds = sphere_depth_bounds(proj, near, c, range).context("sphere behind the camera")?;
     let sc = sphere_scissor(proj, near, c, range, w, h).context("sphere off screen")?;
     let title = "A point light's range sphere: depth bounds and scissor (lesson 08, light 0)";
-    let mut s = Svg::new(800.0, 430.0, title);
+    let mut s = Svg::new(800.0, 0.0, title);
     let (p, eye) = (vec_text(position), vec_text(scene.camera.eye));
     let head = format!("light 0 at {p}, range {range}; camera at {eye}, {w}×{h}, near {near}");
     s.text(
@@ -547,7 +603,7 @@ fn range_sphere(root: &Path) -> Result<String> {
         "middle",
         &format!("{head}, far infinite"),
     );
-    range_top_view(&mut s, c, range, proj, near, bounds);
+    let bottom = range_top_view(&mut s, c, range, proj, near, bounds);
     // (b) The screen, with the sphere's outline and the scissor.
     let (sx, sy, ks) = (430.0, 95.0, 0.55);
     let px = |p: P| (sx + p.0 * ks, sy + p.1 * ks);
@@ -572,19 +628,28 @@ fn range_sphere(root: &Path) -> Result<String> {
     let pct = 100.0 * sc.area() as f64 / (w * h) as f64;
     let (zmin, zmax) = bounds;
     let (x, y, sw, sh) = (sc.x, sc.y, sc.width, sc.height);
-    let lines = [
-        format!("(a) Depth bounds (sphere_depth_bounds): [{zmin:.6}, {zmax:.6}]; a pixel whose stored depth"),
-        "lies outside them cannot be lit by this light, and its shadow-volume fragments are dropped.".into(),
-        "(b) Yellow: the sphere's outline on screen; red dashed: its scissor (sphere_scissor),".into(),
+    let notes = [
+        format!(
+            "(a) Depth bounds (sphere_depth_bounds): [{zmin:.6}, {zmax:.6}]; a pixel whose stored \
+             depth lies outside them cannot be lit by this light, and its shadow-volume fragments \
+             are dropped."
+        ),
+        "(b) Yellow: the sphere's outline on screen; red dashed: its scissor (sphere_scissor):"
+            .into(),
         format!("x {x}, y {y}, {sw} × {sh} px = {pct:.1} % of the screen."),
     ];
-    s.texts((25.0, 350.0), 13.0, "start", &lines);
+    let mut y = bottom + 34.0;
+    for n in notes {
+        y = s.para((25.0, y), 13.0, "start", 750.0, &n);
+    }
+    s.h = y - 4.0;
     Ok(s.finish())
 }
 
 /// Panel (a): the camera, its view axis, the sphere, and the near, zmin
 /// and zmax planes, seen from above (view distance right, view x down).
-fn range_top_view(s: &mut Svg, c: DVec3, range: f64, proj: DMat4, near: f64, z: (f32, f32)) {
+/// Returns the baseline of its lowest labels.
+fn range_top_view(s: &mut Svg, c: DVec3, range: f64, proj: DMat4, near: f64, z: (f32, f32)) -> f64 {
     let r = range * (1.0 + SPHERE_MARGIN);
     let (d_c, x_c) = (-c.z, c.x);
     let far_d = d_c + r + 1.0;
@@ -641,8 +706,15 @@ fn range_top_view(s: &mut Svg, c: DVec3, range: f64, proj: DMat4, near: f64, z: 
     for (d, label, colour, anchor, y) in planes {
         let x = at(d, 0.0).0;
         s.line((x, y_lo), (x, y_hi), &stroke(colour, 2.0, ""));
+        // An end-anchored label that would leave the canvas starts at its line instead.
+        let anchor = if text_span(x, 12.0, anchor, &label).0 < 0.0 {
+            "start"
+        } else {
+            anchor
+        };
         s.text((x, y), 12.0, anchor, &label);
     }
+    y_hi + 14.0
 }
 
 /// The sphere's silhouette on screen, in pixels: its tangent circle seen
@@ -661,4 +733,57 @@ fn sphere_outline(c: DVec3, r: f64, proj: DMat4, w: u32, h: u32) -> Vec<P> {
             ((p.x + 1.0) * 0.5 * w as f64, (1.0 - p.y) * 0.5 * h as f64)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The value of attribute `name` in a tag's attribute text.
+    fn attr(tag: &str, name: &str) -> f64 {
+        let key = format!(" {name}=\"");
+        let at = tag.find(&key).map(|i| i + key.len()).expect(name);
+        tag[at..at + tag[at..].find('"').unwrap()]
+            .parse()
+            .expect(name)
+    }
+
+    /// Every text of every diagram lies inside its canvas by the same width
+    /// estimate the layout uses, and no two texts' boxes overlap.
+    #[test]
+    fn texts_inside_the_canvas_and_apart() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        for (name, svg) in render(root).unwrap() {
+            let svg_tag = &svg[..svg.find('>').unwrap()];
+            let (w, h) = (attr(svg_tag, "width"), attr(svg_tag, "height"));
+            let mut boxes: Vec<(f64, f64, f64, f64, String)> = Vec::new();
+            for part in svg.split("<text").skip(1) {
+                let (tag, rest) = part.split_once('>').unwrap();
+                let text = rest.split_once("</text>").unwrap().0;
+                let text = text.replace("&lt;", "<").replace("&amp;", "&");
+                let anchor = tag
+                    .split("text-anchor=\"")
+                    .nth(1)
+                    .unwrap()
+                    .split('"')
+                    .next();
+                let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
+                let (x0, x1) = text_span(x, size, anchor.unwrap(), &text);
+                let (y0, y1) = (y - 0.8 * size, y + 0.25 * size);
+                assert!(
+                    x0 >= 0.0 && x1 <= w,
+                    "{name}: {text:?} spans x {x0:.0}..{x1:.0} of {w}"
+                );
+                assert!(
+                    y0 >= 0.0 && y1 <= h,
+                    "{name}: {text:?} spans y {y0:.0}..{y1:.0} of {h}"
+                );
+                for (a0, a1, b0, b1, other) in &boxes {
+                    let apart = x1 <= *a0 || *a1 <= x0 || y1 <= *b0 || *b1 <= y0;
+                    assert!(apart, "{name}: {text:?} overlaps {other:?}");
+                }
+                boxes.push((x0, x1, y0, y1, text));
+            }
+        }
+    }
 }
