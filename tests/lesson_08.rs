@@ -33,7 +33,8 @@ fn differing_pixels(a: &Path, b: &Path) -> usize {
 
 /// Every variant's frame and visibility PNGs equal `unbounded`'s, pixel for
 /// pixel; every variant within 0.5 % of the reference; and each limit lets
-/// fewer volume fragments through to the stencil.
+/// fewer volume fragments through to the stencil, and both together make
+/// fewer stencil writes (exact counts on every backend: a tally).
 fn check_identical_and_cheaper(run: &support::LessonRun) {
     let lights = support::variant(&run.report, "unbounded")["error_per_light"]
         .as_array()
@@ -54,14 +55,6 @@ fn check_identical_and_cheaper(run: &support::LessonRun) {
             .unwrap();
         assert!(e <= 0.5, "{v}: {e}% misclassified");
     }
-    // GL has no fragment counter (its occlusion queries only say "any").
-    if support::variant(&run.report, "unbounded")["counters"]["stencil_fragments"].is_null() {
-        assert_eq!(
-            run.report["adapter"]["backend"], "Gl",
-            "only GL may lack the fragment counter"
-        );
-        return;
-    }
     let f = |v| counter(&run.report, v, "stencil_fragments");
     assert!(
         f("scissor") < f("unbounded"),
@@ -79,6 +72,13 @@ fn check_identical_and_cheaper(run: &support::LessonRun) {
         f("bounds_scissor") <= f("scissor").min(f("depth_bounds")),
         "both together must save the most"
     );
+    let u = |v| counter(&run.report, v, "stencil_updates");
+    assert!(
+        u("bounds_scissor") < u("unbounded"),
+        "bounds + scissor must write the stencil less: {} vs {}",
+        u("bounds_scissor"),
+        u("unbounded")
+    );
 }
 
 #[test]
@@ -93,6 +93,9 @@ fn lesson_08_snapshot() {
         text += &support::error_line(v, 0);
         text += "\n";
     }
+    // Not the fragment counts: the unscissored volumes, which run to
+    // infinity, rasterise a couple of fragments differently on GL.
+    text += &support::counter_lines(&run.report, &["draws", "volume_triangles"]);
     insta::assert_snapshot!("lesson_08", text);
 }
 
@@ -104,9 +107,6 @@ fn lesson_08_bounds_and_scissor_keep_pixels_identical() {
         return;
     };
     check_identical_and_cheaper(&run);
-    if run.report["adapter"]["backend"] == "Gl" {
-        return;
-    }
     let (all, both) = (
         counter(&run.report, "unbounded", "stencil_fragments"),
         counter(&run.report, "bounds_scissor", "stencil_fragments"),

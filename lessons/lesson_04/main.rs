@@ -363,6 +363,7 @@ impl CubeShadows {
     }
 }
 
+// ANCHOR: face_casters
 /// The casters drawn into face `face` of light `light`. With `cull`, what
 /// the light cannot see is left out: casters past its range, and casters
 /// whose bounding sphere misses the face's frustum.
@@ -384,6 +385,7 @@ fn face_casters(
         })
         .collect()
 }
+// ANCHOR_END: face_casters
 
 fn main() -> std::process::ExitCode {
     app::main::<CubeShadows>()

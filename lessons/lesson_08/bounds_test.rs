@@ -2,16 +2,14 @@
 //! test (`VK_EXT_depth_bounds_test`, `GL_EXT_depth_bounds_test`).
 //! [`BoundedVolumes`] emulates it with two full-screen triangles and the
 //! fixed-function depth test: stencil bit 7 is set exactly where
-//! zmin ≤ stored depth ≤ zmax, and the volume pass tests that bit. It
-//! counts the fragments that reach the stencil update with an occlusion
-//! query (core WebGPU, so it works on GL too).
+//! zmin ≤ stored depth ≤ zmax, and the volume pass tests that bit. Its
+//! costs are counted in [`super::costs`].
 
 use anyhow::Result;
 use common::bindings::{self, uniform_entry};
 use common::counters::FragmentCounter;
 use common::fullscreen::Fullscreen;
 use common::gpu::Gpu;
-use common::readback::QueryReadback;
 use common::render::{pipeline_layout_for, SceneGpu};
 use common::targets::FrameTargets;
 
@@ -42,7 +40,7 @@ struct Caster {
 }
 
 /// `[mirrored][cap]`: the pipelines one volume draw picks from.
-type Pipes<'a> = [[&'a wgpu::RenderPipeline; 2]; 2];
+pub(super) type Pipes<'a> = [[&'a wgpu::RenderPipeline; 2]; 2];
 
 /// Z-fail shadow volumes whose stencil updates can be limited to one
 /// light's depth bounds (emulated) and scissor rectangle.
@@ -50,17 +48,12 @@ pub struct BoundedVolumes {
     casters: Vec<Caster>,
     /// `[bounded][mirrored][cap]`: the z-fail pipelines.
     volume: [[[wgpu::RenderPipeline; 2]; 2]; 2],
-    /// `[bounded]`: depth test off, no writes: counts what reaches the stencil.
-    count: [wgpu::RenderPipeline; 2],
     /// No depth-stencil, an R8 target: for the pipeline-statistics counter.
     rasterised: wgpu::RenderPipeline,
     mark_max: wgpu::RenderPipeline,
     mark_min: wgpu::RenderPipeline,
     bounds_buf: wgpu::Buffer,
     bounds_group: wgpu::BindGroup,
-    queries: wgpu::QuerySet,
-    readback: QueryReadback,
-    lights: u32,
 }
 
 /// Which of the two savings a volume pass uses.
@@ -239,18 +232,13 @@ impl BoundedVolumes {
                 cache: None,
             })
         };
-        use wgpu::CompareFunction::{Always, Greater, GreaterEqual, Less};
+        use wgpu::CompareFunction::{Greater, GreaterEqual, Less};
         use wgpu::StencilOperation::{Keep, Replace, Zero};
         let bounded = |b: bool, m: bool| {
             [false, true].map(|cap| {
                 let ds = cap_ds(Less, bounded_volume_stencil(b), cap);
                 volume("bounded volume", Some(ds), m)
             })
-        };
-        let counting = |b: bool| {
-            let mut st = bounded_volume_stencil(b);
-            st.write_mask = 0;
-            volume("bounded volume count", Some(ds(Always, st)), false)
         };
         let marker = |vs_entry, compare, stencil| {
             Fullscreen {
@@ -269,20 +257,19 @@ impl BoundedVolumes {
                 [bounded(false, false), bounded(false, true)],
                 [bounded(true, false), bounded(true, true)],
             ],
-            count: [counting(false), counting(true)],
             rasterised: volume("volume fragments", None, false),
             mark_max: marker("vs_bound_max", GreaterEqual, marker_stencil(Replace, Zero)),
             mark_min: marker("vs_bound_min", Greater, marker_stencil(Zero, Keep)),
             bounds_buf,
             bounds_group,
-            queries: device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("bounded fragments"),
-                ty: wgpu::QueryType::Occlusion,
-                count: lights,
-            }),
-            readback: QueryReadback::new(gpu, lights, "occlusion query"),
-            lights,
         })
+    }
+
+    /// Draw calls and triangles of one light's volumes (every caster's
+    /// sides and caps), without the two bounds-marker triangles.
+    pub fn volume_draws(&self) -> (u64, u64) {
+        let ranges = self.casters.iter().flat_map(|c| &c.ranges);
+        ranges.fold((0, 0), |(d, t), (r, _)| (d + 1, t + r.len() as u64 / 3))
     }
 
     /// Uploads light `k`'s depth bounds (before the frame is submitted).
@@ -292,7 +279,9 @@ impl BoundedVolumes {
             .write_buffer(&self.bounds_buf, SLOT * k as u64, bytemuck::cast_slice(&v));
     }
 
-    fn draw_volumes(
+    /// Draws light `light`'s volumes (every caster: sides and caps) with
+    /// `pipes[mirrored][cap]`. Returns the casters drawn.
+    pub(super) fn draw_volumes(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         scene: &SceneGpu,
@@ -314,7 +303,7 @@ impl BoundedVolumes {
 
     /// Scissor and the bit-7 marker for one light, inside an open pass.
     /// Returns whether the depth-bounds test applies.
-    fn limit(&self, pass: &mut wgpu::RenderPass<'_>, b: &BoundedLight) -> bool {
+    pub(super) fn limit(&self, pass: &mut wgpu::RenderPass<'_>, b: &BoundedLight) -> bool {
         let Some(bounds) = b.bounds.flatten() else {
             return false;
         };
@@ -357,54 +346,6 @@ impl BoundedVolumes {
         self.draw_volumes(&mut pass, scene, b.light, pipes)
     }
     // ANCHOR_END: bounded_volume_pass
-
-    /// Counts, for every light, the volume fragments that reach the stencil
-    /// update (after scissor and bounds), with one occlusion query per light
-    /// (depth test off). Uses the frame's depth: call it after a frame.
-    /// Its own submit; it overwrites the stencil. `None` on GL: wgpu's GL
-    /// backend implements occlusion queries as ANY_SAMPLES_PASSED (0 or 1).
-    pub fn count_stencil_fragments(
-        &self,
-        gpu: &Gpu,
-        scene: &SceneGpu,
-        targets: &FrameTargets,
-        lights: &[BoundedLight],
-    ) -> Result<Option<Vec<u64>>> {
-        if gpu.info.backend == wgpu::Backend::Gl {
-            return Ok(None);
-        }
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        let lights = &lights[..lights.len().min(self.lights as usize)];
-        for (k, b) in lights.iter().enumerate() {
-            let mut pass = targets.stencil_pass(
-                &mut enc,
-                "count bounded fragments",
-                None,
-                Some(&self.queries),
-            );
-            if b.limits != Limits::default() && b.bounds == Some(None) {
-                // Nothing drawn: an empty query reads 0.
-                pass.begin_occlusion_query(k as u32);
-                pass.end_occlusion_query();
-                continue;
-            }
-            // The marker triangles first, outside the query: only volumes count.
-            let bounded = self.limit(&mut pass, b);
-            pass.set_stencil_reference(BOUNDS_BIT);
-            pass.begin_occlusion_query(k as u32);
-            self.draw_volumes(
-                &mut pass,
-                scene,
-                b.light,
-                [[&self.count[bounded as usize]; 2]; 2],
-            );
-            pass.end_occlusion_query();
-        }
-        let n = lights.len() as u32;
-        self.readback.resolve(&mut enc, &self.queries, n);
-        gpu.queue.submit([enc.finish()]);
-        Ok(Some(self.readback.read(gpu, n)?))
-    }
 
     /// Fragments the volumes rasterise (after the scissor, before any depth
     /// or stencil test), from pipeline statistics; `None` without them (GL).

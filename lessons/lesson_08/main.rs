@@ -35,9 +35,10 @@ use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
 use workbook::lesson_05::extrusion::volume_shader_module;
-use workbook::lesson_05::volumes::ShadowVolumes;
+use workbook::lesson_05::volumes::{base_and_lit_draws, ShadowVolumes};
 use workbook::lesson_06::caps::zfail_counting;
 use workbook::lesson_08::bounds_test::{bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits};
+use workbook::lesson_08::costs::VolumeTally;
 use workbook::lesson_08::count_bits;
 use workbook::lesson_08::range_sphere::{all_bounds, LightBounds};
 
@@ -80,6 +81,8 @@ fn bounded_lights(bounds: &[Option<Option<LightBounds>>], limits: Limits) -> Vec
 
 struct DepthBounds {
     bounded: BoundedVolumes,
+    /// The counting copies of the volume pass ([`VolumeTally::count`]).
+    tally: VolumeTally,
     volumes: ShadowVolumes,
     lit_pipeline: wgpu::RenderPipeline,
     bounds: Vec<Option<Option<LightBounds>>>,
@@ -106,6 +109,7 @@ impl Lesson for DepthBounds {
         );
         Ok(DepthBounds {
             bounded: BoundedVolumes::new(gpu, scene, &volumes, unclipped_depth)?,
+            tally: VolumeTally::new(gpu, scene, unclipped_depth),
             lit_pipeline: scene.lit_pipeline(
                 gpu,
                 &module,
@@ -171,10 +175,10 @@ impl Lesson for DepthBounds {
 
 impl DepthBounds {
     // ANCHOR: count
-    /// The counters: fragments that reach the stencil update and fragments
-    /// rasterised (occlusion queries; not on GL, where they only say
-    /// "any"), fragment-shader invocations (pipeline statistics, where the
-    /// adapter has them), the scissor area.
+    /// The counters: the volume passes' exact costs (fragments rasterised,
+    /// reaching the stencil, writing it; triangles; draw calls: a tally, on
+    /// every backend), fragment-shader invocations (pipeline statistics,
+    /// where the adapter has them), the scissor area.
     fn count(
         &mut self,
         gpu: &Gpu,
@@ -185,25 +189,10 @@ impl DepthBounds {
         let lim = variant.limits();
         let lights = bounded_lights(&self.bounds, lim);
         let mut c = BTreeMap::new();
-        if let Some(s) = self
-            .bounded
-            .count_stencil_fragments(gpu, scene, targets, &lights)?
-        {
-            c.insert("stencil_fragments".to_string(), s.iter().sum());
-        }
-        // Rasterised: the same occlusion query without the depth-bounds mark
-        // (the emulated test comes after rasterisation; the scissor before).
-        let scissor_only = Limits {
-            depth_bounds: false,
-            ..lim
-        };
-        let raster = bounded_lights(&self.bounds, scissor_only);
-        if let Some(r) = self
-            .bounded
-            .count_stencil_fragments(gpu, scene, targets, &raster)?
-        {
-            c.insert("volume_fragments".to_string(), r.iter().sum());
-        }
+        let costs = self
+            .tally
+            .count(gpu, scene, targets, &self.bounded, &lights)?;
+        costs.insert_into(&mut c, base_and_lit_draws(scene));
         // Pipeline statistics: llvmpipe counts 16 per 4×4 block shaded.
         let invocations =
             self.bounded
