@@ -28,6 +28,9 @@ mod record;
 #[path = "../book/generate/runner.rs"]
 #[allow(dead_code)]
 mod runner;
+#[path = "../book/generate/scaling.rs"]
+#[allow(dead_code)]
+mod scaling;
 #[path = "../book/generate/summary.rs"]
 #[allow(dead_code)]
 mod summary;
@@ -93,6 +96,25 @@ fn committed_tables_are_the_tables_their_records_make() {
                 first_difference(&got, &want)
             );
         }
+    }
+}
+
+#[test]
+fn committed_scaling_tables_are_the_tables_their_records_make() {
+    let sweeps = scaling::load_sweeps(&root()).expect("scaling records");
+    assert!(
+        !sweeps.is_empty(),
+        "no scaling records under book/src/generated/scaling; {REGENERATE}"
+    );
+    for s in &sweeps {
+        let file = scaling::table_file(s);
+        let got = read(&generated().join("scaling").join(&file));
+        let want = scaling::table(s);
+        assert!(
+            got == want,
+            "book/src/generated/scaling/{file} is not what its record makes ({}); {REGENERATE}",
+            first_difference(&got, &want)
+        );
     }
 }
 

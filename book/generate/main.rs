@@ -16,6 +16,7 @@ mod manifest;
 mod plots;
 mod record;
 mod runner;
+mod scaling;
 mod summary;
 
 use std::collections::BTreeMap;
@@ -107,6 +108,9 @@ fn run(cli: Cli) -> Result<()> {
                 &record.passes_table(),
             )?;
         }
+    }
+    if only.is_none() {
+        scaling::run(&runner, &root, &work, &backend, &bar)?;
     }
     bar.finish_with_message("runs done");
     copy_outputs(&work, &figures, &generated, only.as_deref())?;
