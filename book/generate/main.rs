@@ -242,13 +242,7 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
         height: first.height,
         repeats: reports.len() as u32,
         frames: if run.timed { first.frames } else { 0 },
-        timing_source: first
-            .variants
-            .first()
-            .map(|v| format!("{:?}", v.timing_source))
-            .unwrap_or_default()
-            .replace("GpuTimestamps", "GPU timestamps")
-            .replace("CpuWall", "CPU wall clock per pass"),
+        timing_source: record::timing_source(first),
         variants,
         baseline: if run.timed { pool(&baselines) } else { None },
     })

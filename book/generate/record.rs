@@ -89,6 +89,15 @@ pub fn pool(maps: &[&BTreeMap<String, Vec<f64>>]) -> Option<Timing> {
     Some(Timing { total, passes })
 }
 
+/// Where a report's times came from, in words.
+pub fn timing_source(report: &common::report::Report) -> String {
+    match report.variants.first().map(|v| v.timing_source) {
+        Some(common::timing::TimingSource::GpuTimestamps) => "GPU timestamps".into(),
+        Some(common::timing::TimingSource::CpuWall) => "CPU wall clock per pass".into(),
+        None => String::new(),
+    }
+}
+
 /// An error percentage as the tables print it.
 pub fn pct(x: f64) -> String {
     format!("{x:.3}")

@@ -681,13 +681,7 @@ fn measure(
         width: if single_size { WIDTH } else { 0 },
         height: if single_size { HEIGHT } else { 0 },
         frames: first.frames,
-        timing_source: first
-            .variants
-            .first()
-            .map(|v| format!("{:?}", v.timing_source))
-            .unwrap_or_default()
-            .replace("GpuTimestamps", "GPU timestamps")
-            .replace("CpuWall", "CPU wall clock per pass"),
+        timing_source: crate::record::timing_source(first),
         passes,
         counters,
         points,
