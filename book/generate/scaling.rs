@@ -681,7 +681,7 @@ fn measure(
         width: if single_size { WIDTH } else { 0 },
         height: if single_size { HEIGHT } else { 0 },
         frames: first.frames,
-        timing_source: crate::record::timing_source(first),
+        timing_source: crate::record::timing_source(&first),
         passes,
         counters,
         points,
