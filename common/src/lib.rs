@@ -31,6 +31,7 @@
 //! - [`metrics`]: error of a GPU visibility image against the reference.
 //! - [`timing`]: GPU timestamp queries per pass, with a labelled CPU fallback.
 //! - [`counters`]: deterministic cost counters (fragments rasterised).
+//! - [`baseline`]: the no-shadow baseline frame every lesson is timed against.
 //! - [`report`]: `report.json` and the terminal table.
 
 pub mod app;
