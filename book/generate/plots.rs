@@ -49,7 +49,6 @@ pub struct Curve {
     pub expected: String,
 }
 
-const WIDTH: u32 = 720;
 const HEIGHT: u32 = 480;
 /// plotters writes `font-size = size / 1.24` into the SVG; these give 12.9,
 /// 13.7, 17.7 and 12.5 px.
@@ -58,8 +57,8 @@ const DESC_FONT: f64 = 17.0;
 const TITLE_FONT: f64 = 22.0;
 const LABEL_FONT: f64 = 15.5;
 const FONT: &str = "sans-serif";
-/// The error-vs-time plots' canvas width: the plot and, right of it, the
-/// legend column.
+/// The canvas width of every plot: the plot and, right of it, the legend
+/// column.
 const WIDE: u32 = 960;
 /// Space around the chart, px.
 const MARGIN: f64 = 14.0;
@@ -211,8 +210,10 @@ pub fn workbook_plot(path: &Path, title: &str, series: &[Series], floor: f64) ->
 }
 
 /// A log-log scaling plot: one line with markers per curve, legend entries
-/// "<name>: expected <expected>, measured slope <s:.2>" (slope from
-/// [`loglog_slope`]). Non-positive values cannot be drawn and are left out.
+/// "<name>", "expected <expected>", "measured slope <s:.2>" (slope from
+/// [`loglog_slope`]) in a column right of the plot. The x axis is labelled at
+/// the data's x values (or at least at the first and last). Non-positive
+/// values cannot be drawn and are left out.
 pub fn scaling_plot(
     path: &Path,
     title: &str,
@@ -236,52 +237,55 @@ pub fn scaling_plot(
         if all.is_empty() {
             return Err(anyhow!("no positive points to plot"));
         }
-        let xa = Axis::log(
-            min_of(all.iter().map(|p| p.0)),
-            max_of(all.iter().map(|p| p.0)),
-        );
+        let mut xs: Vec<f64> = all.iter().map(|p| p.0).collect();
+        xs.sort_by(f64::total_cmp);
+        xs.dedup();
+        let xa = Axis::log(xs[0], xs[xs.len() - 1]).ticks_at(&xs);
         let ya = Axis::log(
             min_of(all.iter().map(|p| p.1)),
             max_of(all.iter().map(|p| p.1)),
         );
 
-        let root = SVGBackend::new(path, (WIDTH, HEIGHT)).into_drawing_area();
+        let legend: Vec<LegendRow> = curves
+            .iter()
+            .enumerate()
+            .map(|(i, c)| LegendRow {
+                swatch: Swatch::LineMarker(
+                    Marker::ALL[i % Marker::ALL.len()],
+                    COLOURS[i % COLOURS.len()],
+                ),
+                text: format!(
+                    "{}\nexpected {}\nmeasured slope {:.2}",
+                    c.name,
+                    c.expected,
+                    loglog_slope(&c.xs, &c.ys)
+                ),
+            })
+            .collect();
+
+        // The legend goes in a column right of the plot, where it hides
+        // nothing; the canvas grows when that column is taller than it
+        // (90 px: the title, up to two lines, and the margins).
+        let height = HEIGHT.max((legend_column_height(&legend) + 90.0).ceil() as u32);
+        let root = SVGBackend::new(path, (WIDE, height)).into_drawing_area();
         root.fill(&WHITE)?;
-        let area = titled(&root, title, 0.0)?;
+        let area = titled(&root, title, legend_column_width(&legend) + LEGEND_GAP)?;
         let chart = build_chart(&area, &xa, &ya, x_label, y_label)?;
         let plot = plot_rect(&chart);
         let to_px = |x: f64, y: f64| -> (f64, f64) {
             let (px, py) = chart.backend_coord(&(xa.t(x), ya.t(y)));
             (px as f64, py as f64)
         };
-
-        let mut obstacles = Vec::new();
-        let mut markers = Vec::new();
-        let mut legend = Vec::new();
-        for (i, (c, p)) in curves.iter().zip(&pts).enumerate() {
+        for (i, p) in pts.iter().enumerate() {
             let colour = COLOURS[i % COLOURS.len()];
             let marker = Marker::ALL[i % Marker::ALL.len()];
             let px: Vec<(f64, f64)> = p.iter().map(|&(x, y)| to_px(x, y)).collect();
             draw_path(&root, &px, colour.stroke_width(2))?;
             for &q in &px {
                 draw_marker(&root, marker, q, 4.0, colour, true)?;
-                obstacles.push(around(q, 5.0));
-                markers.push(around(q, 5.0));
             }
-            for w in px.windows(2) {
-                obstacles.push(segment_box(w[0], w[1]));
-            }
-            legend.push(LegendRow {
-                swatch: Swatch::LineMarker(marker, colour),
-                text: format!(
-                    "{}: expected {}, measured slope {:.2}",
-                    c.name,
-                    c.expected,
-                    loglog_slope(&c.xs, &c.ys)
-                ),
-            });
         }
-        draw_legend(&root, plot, &legend, &mut obstacles, &markers)?;
+        draw_legend_column(&root, (plot.x1 + LEGEND_GAP, plot.y0), &legend)?;
         root.present()?;
         Ok(())
     };
@@ -575,6 +579,8 @@ struct Axis {
     bold: Vec<f64>,
     light: Vec<f64>,
     decimals: usize,
+    /// Log labels in full ([`fmt_exact`]) rather than rounded ([`fmt_num`]).
+    exact: bool,
 }
 
 impl Axis {
@@ -606,6 +612,7 @@ impl Axis {
             bold,
             light,
             decimals: (-step.log10().floor()).max(0.0) as usize,
+            exact: false,
         }
     }
 
@@ -651,7 +658,61 @@ impl Axis {
             bold,
             light,
             decimals: 0,
+            exact: false,
         }
+    }
+
+    /// This log axis labelled at `values` (sorted, distinct, positive: the
+    /// data's x) when they are few and far enough apart for their labels,
+    /// its own ticks as the light grid; else its own labelled ticks plus the
+    /// first and last value (ticks too close to those dropped). Either way
+    /// the data's ends are labelled, in full.
+    fn ticks_at(mut self, values: &[f64]) -> Axis {
+        if !self.log || values.is_empty() {
+            return self;
+        }
+        let ts: Vec<f64> = values.iter().map(|v| v.log10()).collect();
+        let span = self.hi - self.lo;
+        // The plot is about this wide (px) next to a legend column.
+        let px_per_t = 560.0 / span;
+        let label_w = values
+            .iter()
+            .map(|&v| text_w(&fmt_exact(v), TICK_FONT / 1.24))
+            .fold(0.0, f64::max);
+        let min_gap = ts
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(f64::INFINITY, f64::min);
+        self.exact = true;
+        if ts.len() <= 8 && min_gap * px_per_t >= label_w + 12.0 {
+            let near = |t: &f64| ts.iter().any(|d| (d - t).abs() < span / 40.0);
+            let mut light: Vec<f64> = self
+                .bold
+                .iter()
+                .chain(&self.light)
+                .copied()
+                .filter(|t| !near(t))
+                .collect();
+            light.sort_by(f64::total_cmp);
+            self.bold = ts;
+            self.light = light;
+        } else {
+            let (first, last) = (ts[0], ts[ts.len() - 1]);
+            let room = (label_w + 12.0) / px_per_t;
+            let mut bold: Vec<f64> = self
+                .bold
+                .iter()
+                .copied()
+                .filter(|t| (t - first).abs() >= room && (t - last).abs() >= room)
+                .collect();
+            bold.push(first);
+            if last > first {
+                bold.push(last);
+            }
+            bold.sort_by(f64::total_cmp);
+            self.bold = bold;
+        }
+        self
     }
 
     /// A value in plotting space.
@@ -665,7 +726,9 @@ impl Axis {
 
     /// A tick label for a value in plotting space.
     fn label(&self, t: f64) -> String {
-        if self.log {
+        if self.log && self.exact {
+            fmt_exact(10f64.powf(t))
+        } else if self.log {
             fmt_num(10f64.powf(t))
         } else {
             format!("{:.*}", self.decimals, t)
@@ -701,6 +764,24 @@ fn fmt_num(v: f64) -> String {
     } else {
         s
     }
+}
+
+/// A value as the tables print it: a whole number in full, its thousands
+/// apart (`1 048 576`), anything else as [`fmt_num`].
+fn fmt_exact(v: f64) -> String {
+    let r = v.round();
+    if !(v.is_finite() && r >= 1.0 && (v - r).abs() <= 1e-9 * r && r < 1e15) {
+        return fmt_num(v);
+    }
+    let digits = format!("{}", r as u64);
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
 }
 
 /// A linear f64 coordinate whose ticks are the axis's own (plotters'
@@ -754,11 +835,18 @@ fn build_chart<'a, 'b>(
     x_desc: &str,
     y_desc: &str,
 ) -> Result<Chart<'a, 'b>> {
+    // Room for the widest y tick label and, left of it, the y description.
+    let y_labels_w = ya
+        .bold
+        .iter()
+        .map(|t| text_w(&ya.label(*t), TICK_FONT / 1.24))
+        .fold(0.0, f64::max);
+    let y_area = 68.max((y_labels_w + 34.0).ceil() as u32);
     let mut chart = ChartBuilder::on(area)
         .margin(MARGIN as u32)
         .margin_top(6)
         .x_label_area_size(50)
-        .y_label_area_size(68)
+        .y_label_area_size(y_area)
         .build_cartesian_2d(Ticks::of(xa), Ticks::of(ya))?;
     let xf = |v: &f64| xa.label(*v);
     let yf = |v: &f64| ya.label(*v);
@@ -957,84 +1045,25 @@ struct LegendRow {
     text: String,
 }
 
-/// Draws the legend in the plot corner that hides the fewest of `keep`
-/// (markers, notes), then the least obstacle area, and adds its box to the
-/// obstacles.
-fn draw_legend(
-    root: &Root,
-    plot: Rect,
-    rows: &[LegendRow],
-    obstacles: &mut Vec<Rect>,
-    keep: &[Rect],
-) -> Result<()> {
-    if rows.is_empty() {
-        return Ok(());
-    }
-    let text_px = LABEL_FONT / 1.24;
-    let row_h = text_px + 7.0;
-    let swatch_w = 30.0;
-    let pad = 8.0;
-    let w = pad * 2.0
-        + swatch_w
-        + rows
-            .iter()
-            .map(|r| text_w(&r.text, text_px))
-            .fold(0.0, f64::max);
-    let h = pad * 2.0 + row_h * rows.len() as f64 - 7.0;
-    let inset = 6.0;
-    let corners = [
-        Rect::new(plot.x1 - w - inset, plot.y0 + inset, w, h),
-        Rect::new(plot.x0 + inset, plot.y0 + inset, w, h),
-        Rect::new(plot.x1 - w - inset, plot.y1 - h - inset, w, h),
-        Rect::new(plot.x0 + inset, plot.y1 - h - inset, w, h),
-    ];
-    let mut best = corners[0];
-    let mut best_cost = f64::INFINITY;
-    for c in corners {
-        let hidden = keep.iter().filter(|k| c.grow(2.0).overlap(k) > 0.0).count();
-        let cost = 1e6 * hidden as f64 + obstacles.iter().map(|o| c.overlap(o)).sum::<f64>();
-        if cost < best_cost {
-            best = c;
-            best_cost = cost;
-        }
-    }
-    let b = best;
-    root.draw(&Rectangle::new(
-        [ipx((b.x0, b.y0)), ipx((b.x1, b.y1))],
-        WHITE.mix(0.9).filled(),
-    ))?;
-    root.draw(&Rectangle::new(
-        [ipx((b.x0, b.y0)), ipx((b.x1, b.y1))],
-        BLACK.mix(0.35).stroke_width(1),
-    ))?;
-    for (k, row) in rows.iter().enumerate() {
-        let top = b.y0 + pad + row_h * k as f64;
-        let mid = top + text_px / 2.0;
-        let (sx0, sx1) = (b.x0 + pad, b.x0 + pad + swatch_w - 6.0);
-        draw_swatch(root, &row.swatch, sx0, sx1, mid)?;
-        let text_x = if matches!(row.swatch, Swatch::None) {
-            sx0
-        } else {
-            b.x0 + pad + swatch_w
-        };
-        draw_text(root, &row.text, (text_x, top), RGBColor(30, 30, 30))?;
-    }
-    obstacles.push(b);
-    Ok(())
-}
-
 /// A legend row's text in lines no wider than [`LEGEND_TEXT_MAX`] (a word
-/// longer than that stays whole).
+/// longer than that stays whole); a `\n` starts a new line.
 fn wrap(text: &str, px: f64) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
-    for word in text.split(' ') {
-        match lines.last_mut() {
-            Some(l) if text_w(&format!("{l} {word}"), px) <= LEGEND_TEXT_MAX => {
-                l.push(' ');
-                l.push_str(word);
-            }
-            _ => lines.push(word.to_string()),
+    for para in text.split('\n') {
+        let mut line: Option<String> = None;
+        for word in para.split(' ') {
+            line = match line {
+                Some(l) if text_w(&format!("{l} {word}"), px) <= LEGEND_TEXT_MAX => {
+                    Some(format!("{l} {word}"))
+                }
+                Some(l) => {
+                    lines.push(l);
+                    Some(word.to_string())
+                }
+                None => Some(word.to_string()),
+            };
         }
+        lines.extend(line);
     }
     lines
 }
@@ -1043,6 +1072,8 @@ const LEGEND_PAD: f64 = 8.0;
 const LEGEND_SWATCH_W: f64 = 30.0;
 /// Between the plot and a legend column, px.
 const LEGEND_GAP: f64 = 12.0;
+/// Between two rows of a legend column, px.
+const LEGEND_ROW_GAP: f64 = 6.0;
 
 /// The width of the legend column [`draw_legend_column`] draws.
 fn legend_column_width(rows: &[LegendRow]) -> f64 {
@@ -1063,6 +1094,15 @@ fn legend_column_width(rows: &[LegendRow]) -> f64 {
     (LEGEND_PAD * 2.0 + text).ceil()
 }
 
+/// The height of the legend column [`draw_legend_column`] draws.
+fn legend_column_height(rows: &[LegendRow]) -> f64 {
+    let text_px = LABEL_FONT / 1.24;
+    let line_h = text_px + 4.0;
+    let lines: usize = rows.iter().map(|r| wrap(&r.text, text_px).len()).sum();
+    LEGEND_PAD * 2.0 + line_h * lines as f64 - 4.0 * rows.len() as f64
+        + LEGEND_ROW_GAP * rows.len().saturating_sub(1) as f64
+}
+
 /// Draws the legend as a box with its top-left corner at `at`, outside the
 /// plot (long texts wrapped), so that it hides no data.
 fn draw_legend_column(root: &Root, at: (f64, f64), rows: &[LegendRow]) -> Result<()> {
@@ -1071,15 +1111,10 @@ fn draw_legend_column(root: &Root, at: (f64, f64), rows: &[LegendRow]) -> Result
     }
     let text_px = LABEL_FONT / 1.24;
     let line_h = text_px + 4.0;
-    let row_gap = 6.0;
+    let row_gap = LEGEND_ROW_GAP;
     let wrapped: Vec<Vec<String>> = rows.iter().map(|r| wrap(&r.text, text_px)).collect();
     let w = legend_column_width(rows);
-    let h = LEGEND_PAD * 2.0
-        + wrapped
-            .iter()
-            .map(|l| line_h * l.len() as f64 - 4.0)
-            .sum::<f64>()
-        + row_gap * (rows.len() - 1) as f64;
+    let h = legend_column_height(rows);
     let b = Rect::new(at.0, at.1, w, h);
     root.draw(&Rectangle::new(
         [ipx((b.x0, b.y0)), ipx((b.x1, b.y1))],
@@ -1569,6 +1604,26 @@ mod tests {
         let b = Axis::log(0.3, 2.0);
         let labels: Vec<String> = b.bold.iter().map(|t| b.label(*t)).collect();
         assert_eq!(labels, ["0.5", "1", "2"]);
+    }
+
+    #[test]
+    fn scaling_x_axis_labels_the_data_ends() {
+        let xs = [256.0, 512.0, 1024.0, 2048.0, 4096.0];
+        let a = Axis::log(256.0, 4096.0).ticks_at(&xs);
+        let labels: Vec<String> = a.bold.iter().map(|t| a.label(*t)).collect();
+        assert_eq!(labels, ["256", "512", "1 024", "2 048", "4 096"]);
+        // Too many values for a label each: round ticks plus both ends.
+        let many: Vec<f64> = (0..40).map(|k| 3.0 * 1.3f64.powi(k)).collect();
+        let b = Axis::log(many[0], many[39]).ticks_at(&many);
+        let labels: Vec<String> = b.bold.iter().map(|t| b.label(*t)).collect();
+        assert_eq!(labels.first().map(String::as_str), Some("3"));
+        assert_eq!(
+            labels.last().map(String::as_str),
+            Some(fmt_exact(many[39]).as_str())
+        );
+        assert!(labels.len() > 2, "{labels:?}");
+        assert_eq!(fmt_exact(1_048_576.0), "1 048 576");
+        assert_eq!(fmt_exact(0.25), "0.25");
     }
 
     #[test]
