@@ -127,17 +127,7 @@ impl SceneGpu {
                     },
                 }),
             ],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &t.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-            }),
+            depth_stencil_attachment: Some(t.depth_attachment_loaded()),
             timestamp_writes: ts,
             occlusion_query_set: None,
             multiview_mask: None,

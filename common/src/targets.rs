@@ -136,6 +136,22 @@ impl FrameTargets {
         }
     }
 
+    /// The frame's depth and stencil, loaded and kept: for the passes that
+    /// test against the base pass's depth (lit passes, counting copies).
+    pub fn depth_attachment_loaded(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        wgpu::RenderPassDepthStencilAttachment {
+            view: &self.depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            }),
+        }
+    }
+
     pub fn id_attachment(&self) -> wgpu::RenderPassColorAttachment<'_> {
         wgpu::RenderPassColorAttachment {
             view: &self.id_view,

@@ -42,7 +42,8 @@ const ADD: wgpu::BlendState = wgpu::BlendState {
     },
 };
 
-const TARGETS: [Option<wgpu::ColorTargetState>; 1] = [Some(wgpu::ColorTargetState {
+/// The one colour target of every counting pipeline: `R16Float`, added.
+pub const TALLY_TARGETS: [Option<wgpu::ColorTargetState>; 1] = [Some(wgpu::ColorTargetState {
     format: TALLY_FORMAT,
     blend: Some(ADD),
     write_mask: wgpu::ColorWrites::RED,
@@ -72,7 +73,7 @@ impl TallyShader {
             module: &self.module,
             entry_point: Some("fs_tally"),
             compilation_options: Default::default(),
-            targets: &TARGETS,
+            targets: &TALLY_TARGETS,
         }
     }
 }

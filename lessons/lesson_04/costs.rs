@@ -11,30 +11,11 @@ use common::render::SceneGpu;
 use common::targets::depth_texture;
 
 use super::cube_map::{cube_pipeline_with, DepthStorage, FaceUniforms, CUBE_FORMAT};
-use crate::lesson_01::tally::{Tally, TallyShader, TALLY_FORMAT};
+use crate::lesson_01::tally::{Tally, TallyShader, TALLY_TARGETS};
 
 /// Texture lookups per lit pixel of the 3D PCF variants: the 20 directions
 /// of `pcf_offset` in `shaders/lesson_04/cube_map.wgsl`.
 pub const PCF3D_TAPS: u64 = 20;
-
-/// The tally target of the linear-distance copy (`fs_cube_linear_tally`):
-/// every fragment adds its 1.0, as [`TallyShader`]'s do.
-const LINEAR_TALLY_TARGETS: [Option<wgpu::ColorTargetState>; 1] = [Some(wgpu::ColorTargetState {
-    format: TALLY_FORMAT,
-    blend: Some(wgpu::BlendState {
-        color: wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        },
-        alpha: wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        },
-    }),
-    write_mask: wgpu::ColorWrites::RED,
-})];
 
 /// The two counting copies of the face pipeline of `storage`: `[0]` tests
 /// `Less` as the face pass does (its depth writes), `[1]` tests nothing
@@ -56,7 +37,7 @@ pub fn cube_tally_pipelines(
                     module,
                     entry_point: Some("fs_cube_linear_tally"),
                     compilation_options: Default::default(),
-                    targets: &LINEAR_TALLY_TARGETS,
+                    targets: &TALLY_TARGETS,
                 },
             ),
             DepthStorage::Hardware => ("vs_light_depth", tally.fragment()),

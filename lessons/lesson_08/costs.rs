@@ -139,14 +139,15 @@ impl VolumeTally {
             }
             let tally = |bounds_test: bool, depth_test: bool| {
                 let p = &self.pipelines[bounds_test as usize][depth_test as usize];
-                self.tally.count(gpu, Some(frame_depth(targets)), |pass| {
-                    if let (true, Some(lb)) = (b.limits.scissor, b.bounds.flatten()) {
-                        let s = lb.scissor;
-                        pass.set_scissor_rect(s.x, s.y, s.width, s.height);
-                    }
-                    pass.set_stencil_reference(super::bounds_test::BOUNDS_BIT);
-                    volumes.draw_volumes(pass, scene, b.light, [[&p[0], &p[1]]; 2]);
-                })
+                self.tally
+                    .count(gpu, Some(targets.depth_attachment_loaded()), |pass| {
+                        if let (true, Some(lb)) = (b.limits.scissor, b.bounds.flatten()) {
+                            let s = lb.scissor;
+                            pass.set_scissor_rect(s.x, s.y, s.width, s.height);
+                        }
+                        pass.set_stencil_reference(super::bounds_test::BOUNDS_BIT);
+                        volumes.draw_volumes(pass, scene, b.light, [[&p[0], &p[1]]; 2]);
+                    })
             };
             let rasterised = tally(false, false)?;
             let reaching = if bounded {
@@ -163,20 +164,4 @@ impl VolumeTally {
         Ok(costs)
     }
     // ANCHOR_END: count_costs
-}
-
-/// The frame's depth and stencil, loaded and kept: the tallies test
-/// against them and write neither.
-fn frame_depth(targets: &FrameTargets) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-    wgpu::RenderPassDepthStencilAttachment {
-        view: &targets.depth_view,
-        depth_ops: Some(wgpu::Operations {
-            load: wgpu::LoadOp::Load,
-            store: wgpu::StoreOp::Store,
-        }),
-        stencil_ops: Some(wgpu::Operations {
-            load: wgpu::LoadOp::Load,
-            store: wgpu::StoreOp::Store,
-        }),
-    }
 }

@@ -90,18 +90,7 @@ impl ShadowVolumes {
         }
         // Tally `draws` filtered by `keep`, with or without the depth test.
         let tally = |keep: fn(&CasterDraw) -> bool, depth_test: bool| -> Result<u64> {
-            let keep_ds = wgpu::Operations {
-                load: wgpu::LoadOp::Load,
-                store: wgpu::StoreOp::Store,
-            };
-            let depth = wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth_view,
-                depth_ops: Some(keep_ds),
-                stencil_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-            };
+            let depth = targets.depth_attachment_loaded();
             self.tally.count(gpu, Some(depth), |pass| {
                 for (light, d) in draws.iter().enumerate() {
                     let kept: Vec<CasterDraw> = d.iter().copied().filter(keep).collect();
