@@ -8,7 +8,7 @@ use clap::Parser;
 
 use crate::cli::Args;
 use crate::headless::run_headless;
-use crate::lesson::{all_variants, select_variants, variant_name, Lesson};
+use crate::lesson::{all_variants, exercise_variants, select_variants, variant_name, Lesson};
 use crate::scene::Scene;
 
 /// A lesson's `main`: parse the command line, run, and turn any error into
@@ -54,7 +54,12 @@ fn display_available() -> bool {
 /// Runs as the command line says: list variants, headless, or the window.
 fn run<L: Lesson>(args: &Args) -> Result<()> {
     if args.list_variants {
-        let names: Vec<String> = all_variants::<L>().into_iter().map(variant_name).collect();
+        // The lesson's variants, then its exercises (run only when named).
+        let names: Vec<String> = all_variants::<L>()
+            .into_iter()
+            .chain(exercise_variants::<L>())
+            .map(variant_name)
+            .collect();
         return print_stdout(&(names.join("\n") + "\n"));
     }
     let variants = select_variants::<L>(&args.variants)?;

@@ -74,9 +74,27 @@ pub fn variant_name<V: ValueEnum>(v: V) -> String {
         .unwrap_or_default()
 }
 
-/// Every variant of `L`, in report order.
+/// The prefix of an exercise's variant name (`exercise_slope_bias`): the
+/// student's code from the chapter's exercises, run only when asked for by
+/// name (`--variant exercise_...`, or the grader).
+pub const EXERCISE_PREFIX: &str = "exercise_";
+
+/// Whether `v` is an exercise (its name starts with [`EXERCISE_PREFIX`]).
+pub fn is_exercise<V: ValueEnum>(v: V) -> bool {
+    variant_name(v).starts_with(EXERCISE_PREFIX)
+}
+
+/// Every variant of `L` a default run shows, in report order: the
+/// lesson's own, without its exercises.
 pub fn all_variants<L: Lesson>() -> Vec<L::Variant> {
-    L::Variant::value_variants().to_vec()
+    let all = L::Variant::value_variants().iter().copied();
+    all.filter(|&v| !is_exercise(v)).collect()
+}
+
+/// The exercises of `L`'s chapter, in order.
+pub fn exercise_variants<L: Lesson>() -> Vec<L::Variant> {
+    let all = L::Variant::value_variants().iter().copied();
+    all.filter(|&v| is_exercise(v)).collect()
 }
 
 /// The variants `--variant` asked for (all when none), by name.
@@ -89,7 +107,7 @@ pub fn select_variants<L: Lesson>(asked: &[String]) -> Result<Vec<L::Variant>> {
         .map(|a| {
             L::Variant::from_str(a, false).map_err(|_| {
                 let known: Vec<String> =
-                    all_variants::<L>().into_iter().map(variant_name).collect();
+                    L::Variant::value_variants().iter().map(|&v| variant_name(v)).collect();
                 anyhow::anyhow!(
                     "--variant: unknown variant {a:?} (known: {})",
                     known.join(", ")
