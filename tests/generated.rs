@@ -170,12 +170,13 @@ fn reproduce(lesson: &str) {
             frames: 1,
             variants: run.variants,
             backend: Some(manifest::BACKEND),
+            adapter: Some(manifest::ADAPTER),
         };
         let out = support::out_dir(&format!("drift_{}_{}", run.lesson, run.name));
         let report = match runner.run(&args, &out) {
             Ok(r) => r,
             Err(e) if format!("{e:#}").contains("no GPU adapter") && !support::gpu_required() => {
-                eprintln!("SKIPPED drift {}: no GPU adapter (set WORKBOOK_REQUIRE_GPU=1 to make this a failure)", run.id());
+                eprintln!("SKIPPED drift {}: no GPU adapter (WORKBOOK_ALLOW_NO_GPU=1)", run.id());
                 return;
             }
             Err(e) => panic!("{}: {e:#}", run.id()),

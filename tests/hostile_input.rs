@@ -133,7 +133,7 @@ fn serde_messages_name_the_field() {
 #[test]
 fn frames_have_an_upper_bound() {
     let e = error_line(
-        &Command::new(L01)
+        &support::lesson_command(L01)
             .args(["--headless", "--frames", "10000"])
             .output()
             .unwrap(),
@@ -148,7 +148,7 @@ fn a_failed_write_to_stdout_is_an_error() {
         eprintln!("SKIPPED: no /dev/full on this system");
         return;
     };
-    let list = Command::new(L01)
+    let list = support::lesson_command(L01)
         .arg("--list-variants")
         .stdout(full.try_clone().unwrap())
         .output()

@@ -7,7 +7,6 @@
 
 mod support;
 
-use std::process::Command;
 use std::time::Duration;
 
 /// Objects in the generated scene: a floor and a grid of boxes.
@@ -45,7 +44,7 @@ fn run_city(bin: &str, name: &str, variant: &str) -> Option<serde_json::Value> {
     let out = support::out_dir(&format!("many_objects-{name}"));
     let scene = out.join("city.toml");
     std::fs::write(&scene, city_scene()).expect("write the city scene");
-    let mut cmd = Command::new(bin);
+    let mut cmd = support::lesson_command(bin);
     cmd.args(["--headless", "--width", "320", "--height", "180"])
         .args(["--variant", variant, "--frames", "1", "--scene"])
         .arg(&scene)

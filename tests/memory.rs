@@ -43,7 +43,7 @@ fn peak_rss_mb(bin: &str, name: &str, frames: u32) -> Option<f64> {
             peak_kb = peak_kb.max(kb);
         }
     };
-    let mut cmd = Command::new(bin);
+    let mut cmd = support::lesson_command(bin);
     cmd.args(["--headless", "--width", "160", "--height", "90"])
         .args(["--variant", first, "--frames", &frames.to_string()])
         .arg("--out")

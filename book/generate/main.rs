@@ -167,6 +167,7 @@ fn measure(
         frames: if run.timed { manifest::FRAMES } else { 1 },
         variants: run.variants,
         backend: Some(backend),
+        adapter: Some(manifest::ADAPTER),
     };
     let mut reports: Vec<Report> = Vec::new();
     for i in 0..repeats {

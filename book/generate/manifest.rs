@@ -16,6 +16,10 @@ pub const REPEATS: u32 = 3;
 pub const FRAMES: u32 = 5;
 /// The backend the committed tables were made on (the drift test pins it).
 pub const BACKEND: &str = "vulkan";
+/// The adapter every record is made on: a software rasteriser (llvmpipe),
+/// so the tables do not depend on the machine's GPU, and the drift tests
+/// (`tests/generated.rs`) can repeat them anywhere Mesa is installed.
+pub const ADAPTER: &str = "software";
 
 /// Lessons whose tables show the mean |ΔV| (fractional visibility).
 pub const MEAN_ABS_LESSONS: &[&str] = &["lesson_03"];

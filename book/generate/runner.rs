@@ -22,6 +22,8 @@ pub struct RunArgs<'a> {
     /// Only these variants (all when empty).
     pub variants: &'a [&'a str],
     pub backend: Option<&'a str>,
+    /// `--adapter` (`software` pins lavapipe/llvmpipe); the default when `None`.
+    pub adapter: Option<&'a str>,
 }
 
 /// Finds the lesson binaries: beside this executable (`target/release/`).
@@ -78,6 +80,9 @@ impl Runner {
         }
         if let Some(b) = a.backend {
             cmd.args(["--backend", b]);
+        }
+        if let Some(ad) = a.adapter {
+            cmd.args(["--adapter", ad]);
         }
         let output = cmd
             .output()

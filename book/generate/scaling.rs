@@ -19,6 +19,7 @@ use common::report::Report;
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
+use crate::manifest;
 use crate::plots::{self, Curve};
 use crate::record::{count, pct, row, stat, Stat};
 use crate::runner::{RunArgs, Runner};
@@ -573,6 +574,7 @@ fn measure(
             frames: FRAMES,
             variants: &step.variants,
             backend: Some(backend),
+            adapter: Some(manifest::ADAPTER),
         };
         let out = work.join("runs").join(plan.name).join(format!("p{i}"));
         let report = runner

@@ -36,4 +36,9 @@ pub struct Args {
     /// vulkan | gl | metal | dx12 (WGPU_BACKEND is honoured too).
     #[arg(long)]
     pub backend: Option<String>,
+    /// any (the default: your GPU if you have one) | software (lavapipe or
+    /// llvmpipe, as the tests and the grader use) | part of an adapter's
+    /// name. WORKBOOK_ADAPTER is honoured too.
+    #[arg(long, value_name = "any|software|NAME")]
+    pub adapter: Option<String>,
 }

@@ -28,6 +28,56 @@ pub struct Gpu {
     pub features: wgpu::Features,
 }
 
+/// Which adapter to open (`--adapter`, else `WORKBOOK_ADAPTER`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AdapterChoice {
+    /// The system's preferred (high-performance) adapter: a real GPU if
+    /// there is one. The default.
+    Any,
+    /// A software rasteriser (lavapipe, llvmpipe): the adapter the
+    /// snapshots and the grader's targets were recorded on, so a result
+    /// does not depend on the reader's GPU.
+    Software,
+    /// The first adapter whose name contains this text (any case).
+    Named(String),
+}
+
+impl AdapterChoice {
+    /// Parses `any`, `software` or a name fragment.
+    pub fn parse(text: &str) -> Result<AdapterChoice> {
+        match text.trim().to_ascii_lowercase().as_str() {
+            "" => bail!("--adapter: empty (expected any, software or part of an adapter's name)"),
+            "any" => Ok(AdapterChoice::Any),
+            "software" | "cpu" => Ok(AdapterChoice::Software),
+            name => Ok(AdapterChoice::Named(name.to_string())),
+        }
+    }
+
+    /// `--adapter` if given, else `WORKBOOK_ADAPTER`, else [`AdapterChoice::Any`].
+    pub fn from_flag_or_env(flag: Option<&str>) -> Result<AdapterChoice> {
+        match flag {
+            Some(f) => AdapterChoice::parse(f),
+            None => match std::env::var("WORKBOOK_ADAPTER") {
+                Ok(v) if !v.trim().is_empty() => {
+                    AdapterChoice::parse(&v).map_err(|e| anyhow!("WORKBOOK_ADAPTER: {e}"))
+                }
+                _ => Ok(AdapterChoice::Any),
+            },
+        }
+    }
+
+    fn accepts(&self, info: &wgpu::AdapterInfo) -> bool {
+        match self {
+            AdapterChoice::Any => true,
+            AdapterChoice::Software => info.device_type == wgpu::DeviceType::Cpu,
+            AdapterChoice::Named(n) => info.name.to_ascii_lowercase().contains(n),
+        }
+    }
+}
+
+/// The line printed when `--adapter software` finds none.
+pub const NO_SOFTWARE_ADAPTER_HINT: &str = "no GPU adapter found that is a software rasteriser (--adapter software, which the tests and the grader use): install Mesa's lavapipe/llvmpipe with `apt-get install -y mesa-vulkan-drivers libgl1-mesa-dri libegl1`, or pass --adapter any (WORKBOOK_ADAPTER=any) to use your GPU, whose figures may differ from the recorded ones";
+
 /// Parses a `--backend` value (also used for `WGPU_BACKEND`).
 pub fn parse_backend(name: &str) -> Result<wgpu::Backends> {
     match name.trim().to_ascii_lowercase().as_str() {
@@ -40,12 +90,15 @@ pub fn parse_backend(name: &str) -> Result<wgpu::Backends> {
 }
 
 impl Gpu {
-    /// Opens a device. `backend` (from `--backend`) wins over `WGPU_BACKEND`.
+    /// Opens a device. `backend` (from `--backend`) wins over `WGPU_BACKEND`,
+    /// `adapter` (from `--adapter`) over `WORKBOOK_ADAPTER`.
     /// `display` is the window system connection in windowed mode (GL needs it).
     pub fn new(
         backend: Option<&str>,
+        adapter: Option<&str>,
         display: Option<Box<dyn wgpu::wgt::WgpuHasDisplayHandle>>,
     ) -> Result<Gpu> {
+        let choice = AdapterChoice::from_flag_or_env(adapter)?;
         let backends = match backend {
             Some(b) => parse_backend(b)?,
             None => match std::env::var("WGPU_BACKEND") {
@@ -81,18 +134,31 @@ impl Gpu {
             desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
             desc.display = display.take();
             let instance = wgpu::Instance::new(desc);
-            let options = wgpu::RequestAdapterOptions {
-                power_preference: wgpu::PowerPreference::HighPerformance,
-                force_fallback_adapter: false,
-                compatible_surface: None,
-                ..Default::default()
+            let adapter = if choice == AdapterChoice::Any {
+                let options = wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::HighPerformance,
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    ..Default::default()
+                };
+                pollster::block_on(instance.request_adapter(&options)).ok()
+            } else {
+                let all = pollster::block_on(instance.enumerate_adapters(tier));
+                all.into_iter().find(|a| choice.accepts(&a.get_info()))
             };
-            if let Ok(adapter) = pollster::block_on(instance.request_adapter(&options)) {
+            if let Some(adapter) = adapter {
                 found = Some((instance, adapter));
                 break;
             }
         }
-        let (instance, adapter) = found.ok_or_else(|| anyhow!("{NO_ADAPTER_HINT}"))?;
+        let (instance, adapter) = found.ok_or_else(|| match &choice {
+            AdapterChoice::Any => anyhow!("{NO_ADAPTER_HINT}"),
+            AdapterChoice::Software => anyhow!("{NO_SOFTWARE_ADAPTER_HINT}"),
+            AdapterChoice::Named(n) => anyhow!(
+                "no GPU adapter found whose name contains {n:?} (--adapter): \
+                 `vulkaninfo --summary` lists yours; --adapter any takes the default"
+            ),
+        })?;
         let info = adapter.get_info();
         let features = adapter.features() & OPTIONAL_FEATURES;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {

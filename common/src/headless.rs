@@ -38,7 +38,7 @@ pub fn run_headless<L: Lesson>(
         .unwrap_or_else(|| PathBuf::from("out").join(L::NAME));
     std::fs::create_dir_all(&out_dir)
         .with_context(|| format!("--out: cannot create {}", out_dir.display()))?;
-    let gpu = Gpu::new(args.backend.as_deref(), None)?;
+    let gpu = Gpu::new(args.backend.as_deref(), args.adapter.as_deref(), None)?;
     let scene_name = scene.name.clone();
     let sg = SceneGpu::new(&gpu, scene, args.width, args.height)?;
     let targets = sg.frame_targets(&gpu);

@@ -97,7 +97,11 @@ impl<L: Lesson> App<L> {
             el.create_window(attrs)
                 .map_err(|e| anyhow!("cannot create a window: {e}"))?,
         );
-        let gpu = Gpu::new(self.args.backend.as_deref(), None)?;
+        let gpu = Gpu::new(
+            self.args.backend.as_deref(),
+            self.args.adapter.as_deref(),
+            None,
+        )?;
         let surface = gpu
             .instance
             .create_surface(window.clone())

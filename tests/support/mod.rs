@@ -8,10 +8,36 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// With `WORKBOOK_REQUIRE_GPU=1` (CI sets it), a lesson that finds no
-/// adapter fails the test. Without it, the test says loudly that it skipped.
+/// Called when a lesson found no adapter. A GPU test without a GPU proves
+/// nothing, so by default the test FAILS here, with the line that says
+/// what to install. Only with `WORKBOOK_ALLOW_NO_GPU=1` does it return
+/// `false`, and the caller skips with a loud `SKIPPED` line.
 pub fn gpu_required() -> bool {
-    std::env::var("WORKBOOK_REQUIRE_GPU").is_ok_and(|v| v == "1")
+    if std::env::var("WORKBOOK_ALLOW_NO_GPU").is_ok_and(|v| v == "1") {
+        return false;
+    }
+    panic!(
+        "no GPU adapter found: install Mesa's software rasterisers \
+         (`apt-get install -y mesa-vulkan-drivers libgl1-mesa-dri libegl1`); \
+         WORKBOOK_ALLOW_NO_GPU=1 skips the GPU tests instead, and then they prove nothing"
+    );
+}
+
+/// The adapter the tests run the lessons on: the software rasteriser the
+/// snapshots were recorded on (lavapipe/llvmpipe), unless
+/// `WORKBOOK_ADAPTER` says otherwise (`any` for your GPU).
+pub fn test_adapter() -> String {
+    std::env::var("WORKBOOK_ADAPTER")
+        .ok()
+        .filter(|v| !v.trim().is_empty())
+        .unwrap_or_else(|| "software".into())
+}
+
+/// A lesson binary's command, on [`test_adapter`].
+pub fn lesson_command(bin: &str) -> Command {
+    let mut c = Command::new(bin);
+    c.env("WORKBOOK_ADAPTER", test_adapter());
+    c
 }
 
 pub struct LessonRun {
@@ -43,7 +69,7 @@ pub fn run_lesson_env(
     env: &[(&str, &str)],
 ) -> Option<LessonRun> {
     let out = out_dir(name);
-    let o = Command::new(bin)
+    let o = lesson_command(bin)
         .envs(env.iter().copied())
         .arg("--headless")
         .arg("--out")
@@ -55,7 +81,7 @@ pub fn run_lesson_env(
     let stdout = String::from_utf8_lossy(&o.stdout).to_string();
     if !o.status.success() {
         if stderr.contains("no GPU adapter found") && !gpu_required() {
-            eprintln!("SKIPPED {name}: no GPU adapter (set WORKBOOK_REQUIRE_GPU=1 to make this a failure)");
+            eprintln!("SKIPPED {name}: no GPU adapter (WORKBOOK_ALLOW_NO_GPU=1)");
             return None;
         }
         panic!("{name}: lesson failed ({}):\n{stderr}\n{stdout}", o.status);
@@ -297,7 +323,7 @@ pub fn run_watched(
     }
     if !status.success() {
         if stderr.contains("no GPU adapter found") && !gpu_required() {
-            eprintln!("SKIPPED {name}: no GPU adapter (set WORKBOOK_REQUIRE_GPU=1 to make this a failure)");
+            eprintln!("SKIPPED {name}: no GPU adapter (WORKBOOK_ALLOW_NO_GPU=1)");
             return None;
         }
         panic!("{name}: lesson failed ({status}):\n{stderr}");
@@ -308,7 +334,7 @@ pub fn run_watched(
 /// `bin --headless` at 64×36, one frame, writing to `out`, then `args`:
 /// the cheapest run, for tests that look at the exit and stderr.
 pub fn tiny_headless(bin: &str, out: &Path, args: &[&str]) -> Command {
-    let mut c = Command::new(bin);
+    let mut c = lesson_command(bin);
     c.args([
         "--headless",
         "--width",

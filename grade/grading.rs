@@ -1,0 +1,451 @@
+//! Grading: run each exercise of a chapter as its lesson's variant, on the
+//! scenes its spec names (and an instructor's hidden scenes), measure it
+//! against the exact reference like every other variant, and say in words
+//! what a failure most likely means.
+//!
+//! Shared by the `grade` binary and `tests/exercises.rs`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use serde::Serialize;
+use serde_json::Value;
+
+use crate::runner::{RunArgs, Runner};
+use crate::spec::{Check, Exercise, Side, Spec, Target};
+
+/// How to grade.
+pub struct Options {
+    /// The workbook's root (specs, `scenes/`).
+    pub root: PathBuf,
+    /// Where the runs go: `<out>/<lesson>/<exercise>/<scene>/`.
+    pub out: PathBuf,
+    /// `--adapter`: `software` unless the student asks for another.
+    pub adapter: String,
+    pub backend: Option<String>,
+    /// An instructor's hidden scenes (`--scenes DIR`): `DIR/*.toml` for
+    /// every lesson, `DIR/lesson_NN/*.toml` for one.
+    pub hidden: Option<PathBuf>,
+    /// Grade on the hidden scenes only (not on the spec's own scenes).
+    pub hidden_only: bool,
+}
+
+/// One check's outcome (the JSON's `checks`).
+#[derive(Clone, Debug, Serialize)]
+pub struct CheckResult {
+    pub scene: String,
+    pub hidden: bool,
+    pub metric: String,
+    pub measured: Option<f64>,
+    pub target: Option<f64>,
+    /// `"<= 0.42 (slope_hw 0.32 + 0.1)"`.
+    pub target_text: String,
+    pub passed: bool,
+    /// The likely cause, when it failed.
+    pub feedback: Option<String>,
+    /// Whether `feedback` came from one of the exercise's hints.
+    pub hinted: bool,
+    pub diff_image: Option<String>,
+}
+
+/// One exercise's grade: the grader's JSON has one per exercise.
+#[derive(Clone, Debug, Serialize)]
+pub struct ExerciseResult {
+    pub lesson: String,
+    pub exercise: String,
+    pub title: String,
+    pub passed: bool,
+    /// The deciding check: the first that failed, else the first.
+    pub metric: String,
+    pub scene: String,
+    pub measured: Option<f64>,
+    pub target: Option<f64>,
+    /// One line: pass, or the likely cause of the failure.
+    pub feedback: String,
+    pub diff_image: Option<String>,
+    /// The chapter section to reread.
+    pub section: String,
+    pub task: String,
+    pub checks: Vec<CheckResult>,
+    /// Hidden scenes the lesson itself refuses (its own line), not graded.
+    pub skipped_scenes: Vec<String>,
+    /// The snapshot text (mask, error figures, counters) on the spec's
+    /// scenes; `tests/exercises.rs` compares it with the one recorded from
+    /// the reference solution.
+    #[serde(skip)]
+    pub snapshot: String,
+}
+
+/// The scene files of `--scenes DIR` that apply to `lesson`.
+pub fn hidden_scenes(dir: &Path, lesson: &str) -> Result<Vec<PathBuf>> {
+    let mut found = Vec::new();
+    for d in [dir.to_path_buf(), dir.join(lesson)] {
+        if !d.is_dir() {
+            continue;
+        }
+        let entries =
+            std::fs::read_dir(&d).with_context(|| format!("--scenes: cannot read {}", d.display()))?;
+        for e in entries {
+            let p = e?.path();
+            if p.extension().is_some_and(|x| x == "toml") {
+                found.push(p);
+            }
+        }
+    }
+    found.sort();
+    Ok(found)
+}
+
+/// A run's variant by name.
+fn variant<'a>(report: &'a Value, name: &str) -> Option<&'a Value> {
+    report["variants"]
+        .as_array()?
+        .iter()
+        .find(|v| v["name"] == name)
+}
+
+/// A metric of a variant: an error figure or `counters.<name>`.
+fn metric(report: &Value, variant_name: &str, metric: &str) -> Option<f64> {
+    let v = variant(report, variant_name)?;
+    match metric.strip_prefix("counters.") {
+        Some(c) => v["counters"][c].as_f64(),
+        None => v["error"][metric].as_f64(),
+    }
+}
+
+/// Prints a figure with as many decimals as small figures need.
+pub fn fmt(x: f64) -> String {
+    if x == x.trunc() && x.abs() < 1e15 {
+        format!("{x:.0}")
+    } else if x.abs() >= 100.0 {
+        format!("{x:.1}")
+    } else if x.abs() >= 0.1 {
+        format!("{x:.2}")
+    } else {
+        format!("{x:.4}")
+    }
+}
+
+/// Resolves a target on one run: its number and how it reads.
+fn resolve(t: &Target, report: &Value, metric_name: &str) -> Option<(f64, String)> {
+    let op = match t.side {
+        Side::AtMost => "<=",
+        Side::AtLeast => ">=",
+    };
+    match (t.value, t.variant) {
+        (Some(v), _) => Some((v, format!("{op} {}", fmt(v)))),
+        (None, Some(name)) => {
+            let base = metric(report, name, metric_name)?;
+            let v = base * t.factor + t.slack;
+            let mut text = format!("{op} {} ({name} {}", fmt(v), fmt(base));
+            if t.factor != 1.0 {
+                text += &format!(" x {}", fmt(t.factor));
+            }
+            if t.slack != 0.0 {
+                text += &format!(" + {}", fmt(t.slack));
+            }
+            text.push(')');
+            Some((v, text))
+        }
+        (None, None) => None,
+    }
+}
+
+/// The first hint whose condition holds on this run, filled in.
+fn likely_cause(ex: &Exercise, report: &Value) -> Option<String> {
+    ex.hints.iter().find_map(|h| {
+        let value = metric(report, &ex.variant, &h.metric)?;
+        let (limit, _) = resolve(&h.target(), report, &h.metric)?;
+        let holds = match h.target().side {
+            Side::AtLeast => value > limit,
+            Side::AtMost => value < limit,
+        };
+        holds.then(|| h.say.replace("{value}", &fmt(value)))
+    })
+}
+
+/// A scene's label and its path (`None`: the lesson's default scene).
+fn scene_of(root: &Path, scene: &str) -> (String, Option<PathBuf>) {
+    if scene == "default" {
+        ("default".into(), None)
+    } else {
+        (scene.into(), Some(root.join("scenes").join(scene)))
+    }
+}
+
+/// One run of the exercise (and the variants it is compared with) on a
+/// scene. `Err` carries the lesson's own error line.
+fn run_scene(
+    runner: &Runner,
+    opts: &Options,
+    lesson: &str,
+    ex: &Exercise,
+    scene: Option<&Path>,
+    out: &Path,
+    variants: &[String],
+) -> Result<Value> {
+    let names: Vec<&str> = variants.iter().map(String::as_str).collect();
+    let args = RunArgs {
+        lesson,
+        scene,
+        width: ex.width,
+        height: ex.height,
+        frames: 1,
+        variants: &names,
+        backend: opts.backend.as_deref(),
+        adapter: Some(&opts.adapter),
+    };
+    let report = runner.run(&args, out)?;
+    Ok(serde_json::to_value(report)?)
+}
+
+/// The text mask and figures the snapshot records for one scene.
+fn snapshot_part(ex: &Exercise, label: &str, report: &Value, out: &Path) -> Result<String> {
+    let png = out.join(format!("{}_visibility_l0.png", ex.variant));
+    let img = image::open(&png)
+        .with_context(|| format!("{}: cannot read", png.display()))?
+        .to_luma_alpha8();
+    let (w, h) = img.dimensions();
+    let ids: Vec<u32> = img.pixels().map(|p| u32::from(p.0[1] > 0)).collect();
+    let vis: Vec<f32> = img.pixels().map(|p| p.0[0] as f32 / 255.0).collect();
+    let mask = common::metrics::ascii_mask(&ids, &vis, w, h, 64, 18);
+    let f = |m: &str| metric(report, &ex.variant, m).unwrap_or(f64::NAN);
+    let mut text = format!(
+        "scene {label}: light 0 ('#' shadow, '.' lit, ' ' background)\n{mask}\n\
+         misclassified {:.1} %  false shadow {:.1} %  false lit {:.1} %  mean |dV| {:.2} %\n",
+        f("misclassified_pct"),
+        f("false_shadow_pct"),
+        f("false_lit_pct"),
+        100.0 * f("mean_abs"),
+    );
+    for c in &ex.snapshot_counters {
+        let v = metric(report, &ex.variant, &format!("counters.{c}"));
+        text += &format!("{c} {}\n", v.map_or("missing".into(), fmt));
+    }
+    Ok(text + "\n")
+}
+
+/// Grades one check on one run.
+fn grade_check(
+    ex: &Exercise,
+    check: &Check,
+    label: &str,
+    hidden: bool,
+    report: &Value,
+    out: &Path,
+) -> CheckResult {
+    let measured = metric(report, &ex.variant, &check.metric);
+    let target = resolve(&check.bound.target(), report, &check.metric);
+    let passed = match (measured, &target) {
+        (Some(m), Some((t, _))) => match check.bound.target().side {
+            Side::AtMost => m <= *t,
+            Side::AtLeast => m >= *t,
+        },
+        _ => false,
+    };
+    let diff = out.join(format!("{}_diff_l0.png", ex.variant));
+    let cause = if passed { None } else { likely_cause(ex, report) };
+    let hinted = cause.is_some();
+    let feedback = (!passed).then(|| match (measured, &target) {
+        (None, _) => format!(
+            "the report has no {} for {}: does the exercise variant run?",
+            check.metric, ex.variant
+        ),
+        (_, None) => format!("the report has no {} to compare with", check.metric),
+        (Some(m), Some((_, t))) => cause.unwrap_or_else(|| {
+            format!(
+                "{} {} on {label}, target {t}",
+                check.metric.trim_start_matches("counters."),
+                fmt(m)
+            )
+        }),
+    });
+    CheckResult {
+        scene: label.to_string(),
+        hidden,
+        metric: check.metric.clone(),
+        measured,
+        target: target.as_ref().map(|t| t.0),
+        target_text: target.map_or("(no target)".into(), |t| t.1),
+        passed,
+        feedback,
+        hinted,
+        diff_image: diff.is_file().then(|| diff.display().to_string()),
+    }
+}
+
+/// A failed run's result for every check on that scene.
+fn failed_run(ex: &Exercise, checks: &[&Check], label: &str, hidden: bool, why: &str) -> Vec<CheckResult> {
+    checks
+        .iter()
+        .map(|c| CheckResult {
+            scene: label.to_string(),
+            hidden,
+            metric: c.metric.clone(),
+            measured: None,
+            target: None,
+            target_text: "(not run)".into(),
+            passed: false,
+            feedback: Some(format!("{} did not run on {label}: {why}", ex.variant)),
+            hinted: false,
+            diff_image: None,
+        })
+        .collect()
+}
+
+/// Grades one exercise of `lesson`.
+pub fn grade_exercise(
+    runner: &Runner,
+    opts: &Options,
+    lesson: &str,
+    ex: &Exercise,
+) -> Result<ExerciseResult> {
+    let mut variants = vec![ex.variant.clone()];
+    variants.extend(ex.compared_variants());
+    let base = opts.out.join(lesson).join(&ex.variant);
+    let mut checks = Vec::new();
+    let mut snapshot = format!(
+        "{lesson} {}: {} (the reference solution's result)\n\n",
+        ex.variant, ex.title
+    );
+    let own_scenes = if opts.hidden_only { vec![] } else { ex.scenes() };
+    for scene in own_scenes {
+        let (label, path) = scene_of(&opts.root, &scene);
+        let out = base.join(label.trim_end_matches(".toml"));
+        let on_scene: Vec<&Check> = ex.checks.iter().filter(|c| c.scene == scene).collect();
+        match run_scene(runner, opts, lesson, ex, path.as_deref(), &out, &variants) {
+            Ok(report) => {
+                snapshot += &snapshot_part(ex, &label, &report, &out)?;
+                for c in on_scene {
+                    checks.push(grade_check(ex, c, &label, false, &report, &out));
+                }
+            }
+            Err(e) => checks.extend(failed_run(ex, &on_scene, &label, false, &format!("{e:#}"))),
+        }
+    }
+    let mut skipped = Vec::new();
+    if let Some(dir) = &opts.hidden {
+        let hidden: Vec<&Check> = ex.checks.iter().filter(|c| c.hidden).collect();
+        for scene in hidden_scenes(dir, lesson)? {
+            let label = scene
+                .file_name()
+                .map_or("hidden".into(), |n| n.to_string_lossy().to_string());
+            let out = base.join("hidden").join(label.trim_end_matches(".toml"));
+            match run_scene(runner, opts, lesson, ex, Some(&scene), &out, &variants) {
+                Ok(report) => {
+                    for c in &hidden {
+                        checks.push(grade_check(ex, c, &label, true, &report, &out));
+                    }
+                }
+                Err(e) => {
+                    // Does the lesson itself refuse this scene (its own
+                    // variants fail too), or only the student's variant?
+                    let own = &variants[1..];
+                    let refused = !own.is_empty()
+                        && run_scene(runner, opts, lesson, ex, Some(&scene), &out, own).is_err();
+                    if refused {
+                        skipped.push(format!("{label}: {e:#}"));
+                    } else {
+                        let why = format!("{e:#}");
+                        checks.extend(failed_run(ex, &hidden, &label, true, &why));
+                    }
+                }
+            }
+        }
+    }
+    let passed = !checks.is_empty() && checks.iter().all(|c| c.passed);
+    let d = match checks.iter().find(|c| !c.passed).or(checks.first()) {
+        Some(c) => c.clone(),
+        None => CheckResult {
+            scene: "(none)".into(),
+            hidden: true,
+            metric: "(none)".into(),
+            measured: None,
+            target: None,
+            target_text: "(not run)".into(),
+            passed: false,
+            feedback: Some("the lesson refused every hidden scene, so nothing was graded".into()),
+            hinted: false,
+            diff_image: None,
+        },
+    };
+    let feedback = match &d.feedback {
+        Some(f) => f.clone(),
+        None => format!(
+            "passed: {} {} on {}, target {}",
+            d.metric,
+            d.measured.map_or("?".into(), fmt),
+            d.scene,
+            d.target_text
+        ),
+    };
+    Ok(ExerciseResult {
+        lesson: lesson.to_string(),
+        exercise: ex.variant.clone(),
+        title: ex.title.clone(),
+        passed,
+        metric: d.metric.clone(),
+        scene: d.scene.clone(),
+        measured: d.measured,
+        target: d.target,
+        feedback,
+        diff_image: d.diff_image.clone(),
+        section: format!("book/src/{}", ex.section),
+        task: ex.task.clone(),
+        checks,
+        skipped_scenes: skipped,
+        snapshot,
+    })
+}
+
+/// Grades every exercise of `lesson` (or only `only`).
+pub fn grade_lesson(
+    runner: &Runner,
+    opts: &Options,
+    lesson: &str,
+    only: Option<&str>,
+) -> Result<Vec<ExerciseResult>> {
+    let spec = Spec::load(&Spec::path(&opts.root, lesson), &opts.root.join("scenes"))?;
+    let mut results = Vec::new();
+    for ex in spec
+        .exercises
+        .iter()
+        .filter(|e| only.is_none_or(|o| o == e.variant))
+    {
+        results.push(grade_exercise(runner, opts, lesson, ex)?);
+    }
+    Ok(results)
+}
+
+/// The lines a student reads for one exercise.
+pub fn describe(r: &ExerciseResult) -> String {
+    let verdict = if r.passed { "PASS" } else { "FAIL" };
+    let mut s = format!("{verdict} {} {}: {}\n", r.lesson, r.exercise, r.title);
+    if !r.passed {
+        s += &format!("     task: {}\n", r.task);
+    }
+    for c in &r.checks {
+        let mark = if c.passed { "ok  " } else { "FAIL" };
+        let hidden = if c.hidden { " (hidden scene)" } else { "" };
+        s += &format!(
+            "  {mark} {}{hidden}: {} {} (target {})\n",
+            c.scene,
+            c.metric,
+            c.measured.map_or("not measured".into(), fmt),
+            c.target_text
+        );
+        if let Some(f) = &c.feedback {
+            s += &format!("       likely cause: {f}\n");
+        }
+        if let (false, Some(d)) = (c.passed, &c.diff_image) {
+            s += &format!("       diff image (red: false shadow, green: false lit): {d}\n");
+        }
+    }
+    for k in &r.skipped_scenes {
+        s += &format!("  skip {k}\n");
+    }
+    if !r.passed {
+        s += &format!("     reread: {}\n", r.section);
+    }
+    s
+}

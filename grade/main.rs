@@ -1,0 +1,206 @@
+//! `grade`: grades the chapters' exercises against the exact reference.
+//!
+//! ```text
+//! cargo run --release --bin grade                  # every chapter
+//! cargo run --release --bin grade -- lesson_02     # one chapter
+//! cargo run --release --bin grade -- lesson_02 --exercise exercise_slope_bias
+//! cargo run --release --bin grade -- --scenes hidden/   # an instructor's scenes
+//! ```
+//!
+//! Each exercise runs as its lesson's variant (`--variant exercise_...`) on
+//! the scenes its chapter's `exercises.toml` names, and each check compares
+//! a measured figure with its target. For each exercise it prints pass or
+//! fail, the figures, the likely cause in words, the section to reread and
+//! the diff image, and writes the results as JSON (`--json`, default
+//! `target/grade/grade.json`). It grades on the software rasteriser
+//! (lavapipe/llvmpipe) unless `--adapter` names another, so a grade does
+//! not depend on the student's GPU. Exit code: 0 when every exercise
+//! passed, 1 when one failed, 2 when grading itself could not run.
+//! Book: "Coursework: assigning and grading the exercises" (`book/src/coursework.md`).
+
+#[path = "../book/generate/runner.rs"]
+mod runner;
+
+mod grading;
+mod spec;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{bail, Context, Result};
+use clap::Parser;
+
+#[derive(Parser, Debug)]
+#[command(about = "Grade the workbook's exercises against the exact reference")]
+struct Cli {
+    /// Chapters to grade (`lesson_02`); every chapter with exercises when none.
+    lessons: Vec<String>,
+    /// Grade only this exercise (`exercise_slope_bias`).
+    #[arg(long)]
+    exercise: Option<String>,
+    /// A folder of hidden scene files: `DIR/*.toml` for every chapter,
+    /// `DIR/lesson_NN/*.toml` for one. Every exercise's hidden checks run on them.
+    #[arg(long, value_name = "DIR")]
+    scenes: Option<PathBuf>,
+    /// Where to write the results as JSON (default `<out>/grade.json`).
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+    /// Where the runs' images go (default `target/grade`).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// software (default: lavapipe/llvmpipe, what the targets were set on) |
+    /// any (your GPU) | part of an adapter's name.
+    #[arg(long, default_value = "software")]
+    adapter: String,
+    /// vulkan | gl | metal | dx12 (WGPU_BACKEND is honoured too).
+    #[arg(long)]
+    backend: Option<String>,
+    /// For maintainers (CI): grade the starter code and succeed only if
+    /// EVERY exercise fails with a likely cause from its hints, which
+    /// proves that the checks can fail and that each says why.
+    #[arg(long)]
+    check_starters: bool,
+}
+
+/// The workbook's root: where this binary was built from.
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The chapters that have an `exercises.toml`, in order.
+fn chapters_with_exercises(root: &Path) -> Result<Vec<String>> {
+    let mut v = Vec::new();
+    for e in std::fs::read_dir(root.join("lessons")).context("cannot list lessons/")? {
+        let p = e?.path();
+        if p.join("exercises.toml").is_file() {
+            v.push(p.file_name().unwrap_or_default().to_string_lossy().to_string());
+        }
+    }
+    v.sort();
+    Ok(v)
+}
+
+/// Under `cargo run`, rebuilds the lesson binaries with this build's
+/// features first, so the grade is of the code as it is now.
+fn rebuild_lessons() -> Result<()> {
+    let Some(cargo) = std::env::var_os("CARGO") else {
+        return Ok(());
+    };
+    let mut cmd = std::process::Command::new(cargo);
+    cmd.args(["build", "--release", "--bins", "--quiet"])
+        .current_dir(root());
+    if cfg!(feature = "solutions") {
+        cmd.args(["--features", "solutions"]);
+    }
+    let status = cmd.status().context("cannot run cargo to build the lessons")?;
+    if !status.success() {
+        bail!("the lessons do not build: fix the compile errors above, then grade again");
+    }
+    Ok(())
+}
+
+fn run(cli: Cli) -> Result<bool> {
+    if cli.check_starters && cfg!(feature = "solutions") {
+        bail!("--check-starters grades the starter code: build without --features solutions");
+    }
+    let root = root();
+    let lessons = if cli.lessons.is_empty() {
+        chapters_with_exercises(&root)?
+    } else {
+        cli.lessons.clone()
+    };
+    for l in &lessons {
+        if !spec::Spec::path(&root, l).is_file() {
+            bail!("{l}: no such chapter with exercises (expected lessons/{l}/exercises.toml)");
+        }
+    }
+    if let Some(d) = &cli.scenes {
+        if !d.is_dir() {
+            bail!("--scenes: {} is not a folder", d.display());
+        }
+    }
+    common::gpu::AdapterChoice::parse(&cli.adapter)?;
+    rebuild_lessons()?;
+    let exe = std::env::current_exe().context("cannot find the grade binary's own path")?;
+    let runner = runner::Runner::beside(&exe)?;
+    let out = cli.out.clone().unwrap_or_else(|| root.join("target/grade"));
+    let opts = grading::Options {
+        root: root.clone(),
+        out: out.clone(),
+        adapter: cli.adapter.clone(),
+        backend: cli.backend.clone(),
+        hidden: cli.scenes.clone(),
+        hidden_only: false,
+    };
+    let mut all = Vec::new();
+    for l in &lessons {
+        let results = grading::grade_lesson(&runner, &opts, l, cli.exercise.as_deref())?;
+        for r in &results {
+            print!("{}", grading::describe(r));
+            // Beside the runs: what `tests/exercises.rs` compares with the
+            // snapshot recorded from the reference solution.
+            let dir = out.join(&r.lesson).join(&r.exercise);
+            std::fs::create_dir_all(&dir)
+                .and_then(|()| std::fs::write(dir.join("snapshot.txt"), &r.snapshot))
+                .with_context(|| format!("cannot write {}", dir.display()))?;
+        }
+        all.extend(results);
+    }
+    if all.is_empty() {
+        bail!(
+            "--exercise {}: no such exercise in {}",
+            cli.exercise.as_deref().unwrap_or("?"),
+            lessons.join(", ")
+        );
+    }
+    let json = cli.json.unwrap_or_else(|| out.join("grade.json"));
+    if let Some(dir) = json.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let text = serde_json::to_string_pretty(&all)? + "\n";
+    std::fs::write(&json, text).with_context(|| format!("cannot write {}", json.display()))?;
+    let passed = all.iter().filter(|r| r.passed).count();
+    println!(
+        "graded {} exercises: {passed} passed, {} failed ({}; results in {})",
+        all.len(),
+        all.len() - passed,
+        if cfg!(feature = "solutions") {
+            "reference solutions"
+        } else {
+            "your code"
+        },
+        json.display()
+    );
+    if cli.check_starters {
+        let bad: Vec<String> = all
+            .iter()
+            .filter(|r| r.passed || !r.checks.iter().any(|c| c.hinted))
+            .map(|r| format!("{} {}", r.lesson, r.exercise))
+            .collect();
+        if !bad.is_empty() {
+            println!(
+                "starter check FAILED: these starters pass, or fail without a hint naming the cause: {}",
+                bad.join(", ")
+            );
+            return Ok(false);
+        }
+        println!(
+            "starter check passed: all {} starters fail, each with its likely cause",
+            all.len()
+        );
+        return Ok(true);
+    }
+    Ok(passed == all.len())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(1),
+        Err(e) => {
+            eprintln!("error: grade: {}", format!("{e:#}").replace('\n', " "));
+            ExitCode::from(2)
+        }
+    }
+}

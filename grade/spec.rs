@@ -1,0 +1,297 @@
+//! The grading spec of a chapter: `lessons/lesson_NN/exercises.toml`.
+//!
+//! Each `[[exercise]]` names its variant (`exercise_<topic>`), the section
+//! of the chapter to reread, its checks (a measured figure against a
+//! target, on a scene) and its hints (the likely cause of a failure, in
+//! words). The book includes these files, so the targets a student reads
+//! are the targets the grader applies.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context, Result};
+use serde::Deserialize;
+
+/// One chapter's exercises.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    #[serde(rename = "exercise", default)]
+    pub exercises: Vec<Exercise>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Exercise {
+    /// The lesson variant that runs the student's code: `exercise_<topic>`.
+    pub variant: String,
+    pub title: String,
+    /// `lesson_NN.md#heading-anchor`, under `book/src/`.
+    pub section: String,
+    /// One line: what to write, and where.
+    pub task: String,
+    /// Counters the snapshot records (exercises about work saved).
+    #[serde(default)]
+    pub snapshot_counters: Vec<String>,
+    #[serde(default = "default_width")]
+    pub width: u32,
+    #[serde(default = "default_height")]
+    pub height: u32,
+    #[serde(rename = "check", default)]
+    pub checks: Vec<Check>,
+    #[serde(rename = "hint", default)]
+    pub hints: Vec<Hint>,
+}
+
+fn default_width() -> u32 {
+    320
+}
+
+fn default_height() -> u32 {
+    180
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A measured figure against its target, on one scene.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct Check {
+    /// `"default"` (the lesson's own scene) or a file in `scenes/`.
+    pub scene: String,
+    /// `misclassified_pct`, `false_shadow_pct`, `false_lit_pct`, `mean_abs`
+    /// (an error figure of report.json) or `counters.<name>`.
+    pub metric: String,
+    #[serde(flatten)]
+    pub bound: Bound,
+    /// Also checked on every scene of `grade --scenes DIR`.
+    #[serde(default)]
+    pub hidden: bool,
+}
+
+/// A target: a number, or a lesson variant's value on the same scene,
+/// times `factor`, plus `slack`.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct Bound {
+    pub at_most: Option<f64>,
+    pub at_least: Option<f64>,
+    pub at_most_variant: Option<String>,
+    pub at_least_variant: Option<String>,
+    #[serde(default = "one")]
+    pub factor: f64,
+    #[serde(default)]
+    pub slack: f64,
+}
+
+/// The likely cause of a failure, printed when its condition holds.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct Hint {
+    pub metric: String,
+    pub above: Option<f64>,
+    pub below: Option<f64>,
+    pub above_variant: Option<String>,
+    pub below_variant: Option<String>,
+    #[serde(default = "one")]
+    pub factor: f64,
+    #[serde(default)]
+    pub slack: f64,
+    /// The sentence; `{value}` is the hint metric's measured value.
+    pub say: String,
+}
+
+/// Which way a target points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    AtMost,
+    AtLeast,
+}
+
+/// A target resolved to one side and a number or a variant.
+pub struct Target<'a> {
+    pub side: Side,
+    pub value: Option<f64>,
+    pub variant: Option<&'a str>,
+    pub factor: f64,
+    pub slack: f64,
+}
+
+impl Bound {
+    pub fn target(&self) -> Target<'_> {
+        let (side, value, variant) = match (
+            self.at_most,
+            self.at_least,
+            &self.at_most_variant,
+            &self.at_least_variant,
+        ) {
+            (Some(v), None, None, None) => (Side::AtMost, Some(v), None),
+            (None, Some(v), None, None) => (Side::AtLeast, Some(v), None),
+            (None, None, Some(n), None) => (Side::AtMost, None, Some(n.as_str())),
+            (None, None, None, Some(n)) => (Side::AtLeast, None, Some(n.as_str())),
+            _ => unreachable!("validated by Spec::load"),
+        };
+        Target {
+            side,
+            value,
+            variant,
+            factor: self.factor,
+            slack: self.slack,
+        }
+    }
+
+    fn count(&self) -> usize {
+        [
+            self.at_most.is_some(),
+            self.at_least.is_some(),
+            self.at_most_variant.is_some(),
+            self.at_least_variant.is_some(),
+        ]
+        .iter()
+        .filter(|b| **b)
+        .count()
+    }
+}
+
+impl Hint {
+    /// The hint's condition as a target that must be exceeded.
+    pub fn target(&self) -> Target<'_> {
+        let (side, value, variant) = match (
+            self.above,
+            self.below,
+            &self.above_variant,
+            &self.below_variant,
+        ) {
+            (Some(v), None, None, None) => (Side::AtLeast, Some(v), None),
+            (None, Some(v), None, None) => (Side::AtMost, Some(v), None),
+            (None, None, Some(n), None) => (Side::AtLeast, None, Some(n.as_str())),
+            (None, None, None, Some(n)) => (Side::AtMost, None, Some(n.as_str())),
+            _ => unreachable!("validated by Spec::load"),
+        };
+        Target {
+            side,
+            value,
+            variant,
+            factor: self.factor,
+            slack: self.slack,
+        }
+    }
+}
+
+/// The error figures a metric may name, besides `counters.<name>`.
+const ERROR_METRICS: [&str; 4] = [
+    "misclassified_pct",
+    "false_shadow_pct",
+    "false_lit_pct",
+    "mean_abs",
+];
+
+fn check_metric(metric: &str, at: &str) -> Result<()> {
+    let ok = ERROR_METRICS.contains(&metric)
+        || metric
+            .strip_prefix("counters.")
+            .is_some_and(|c| !c.is_empty());
+    if !ok {
+        bail!(
+            "{at}: metric {metric:?} is not one of {} or counters.<name>",
+            ERROR_METRICS.join(", ")
+        );
+    }
+    Ok(())
+}
+
+impl Spec {
+    /// The spec file of `lesson` under the workbook's `root`.
+    pub fn path(root: &Path, lesson: &str) -> PathBuf {
+        root.join("lessons").join(lesson).join("exercises.toml")
+    }
+
+    /// Reads and checks a spec: every error names the file and the field.
+    pub fn load(path: &Path, scenes_dir: &Path) -> Result<Spec> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read the exercise spec", path.display()))?;
+        let spec: Spec = toml::from_str(&text).map_err(|e| {
+            let msg = e.message().replace('\n', " ");
+            anyhow::anyhow!("{}: not a valid exercise spec: {msg}", path.display())
+        })?;
+        if spec.exercises.is_empty() {
+            bail!("{}: no [[exercise]] in the spec", path.display());
+        }
+        for ex in &spec.exercises {
+            let at = format!("{}: exercise {:?}", path.display(), ex.variant);
+            if !ex.variant.starts_with(common::lesson::EXERCISE_PREFIX) {
+                bail!("{at}: variant must start with \"exercise_\"");
+            }
+            if ex.checks.is_empty() {
+                bail!("{at}: no [[exercise.check]]");
+            }
+            if !ex.checks.iter().any(|c| c.hidden) {
+                bail!("{at}: no check has hidden = true, so hidden scenes would grade nothing");
+            }
+            for c in &ex.checks {
+                let at = format!("{at}, check on {:?}", c.scene);
+                check_metric(&c.metric, &at)?;
+                if c.bound.count() != 1 {
+                    bail!("{at}: give exactly one of at_most, at_least, at_most_variant, at_least_variant");
+                }
+                if c.scene != "default" && !scenes_dir.join(&c.scene).is_file() {
+                    bail!("{at}: scene file scenes/{} does not exist", c.scene);
+                }
+                if !(c.bound.factor.is_finite() && c.bound.slack.is_finite()) {
+                    bail!("{at}: factor and slack must be finite numbers");
+                }
+            }
+            for h in &ex.hints {
+                let at = format!("{at}, hint {:?}", h.say);
+                check_metric(&h.metric, &at)?;
+                let n = [
+                    h.above.is_some(),
+                    h.below.is_some(),
+                    h.above_variant.is_some(),
+                    h.below_variant.is_some(),
+                ]
+                .iter()
+                .filter(|b| **b)
+                .count();
+                if n != 1 {
+                    bail!("{at}: give exactly one of above, below, above_variant, below_variant");
+                }
+            }
+        }
+        Ok(spec)
+    }
+}
+
+impl Exercise {
+    /// The lesson variants the checks and hints compare with.
+    pub fn compared_variants(&self) -> Vec<String> {
+        let mut v: Vec<String> = Vec::new();
+        let names = self
+            .checks
+            .iter()
+            .flat_map(|c| [&c.bound.at_most_variant, &c.bound.at_least_variant])
+            .chain(
+                self.hints
+                    .iter()
+                    .flat_map(|h| [&h.above_variant, &h.below_variant]),
+            );
+        for n in names.flatten() {
+            if !v.contains(n) {
+                v.push(n.clone());
+            }
+        }
+        v
+    }
+
+    /// The distinct scenes its checks use, in order.
+    pub fn scenes(&self) -> Vec<String> {
+        let mut v: Vec<String> = Vec::new();
+        for c in &self.checks {
+            if !v.contains(&c.scene) {
+                v.push(c.scene.clone());
+            }
+        }
+        v
+    }
+}

@@ -1,0 +1,152 @@
+//! The chapters' exercises, graded: one test per exercise.
+//!
+//! Each test grades one exercise as `cargo run --release --bin grade` does
+//! (the same code: `grade/grading.rs`): it runs the exercise variant on
+//! the scenes of its chapter's `exercises.toml` and checks every target
+//! against the exact reference, failing with the grader's feedback (the
+//! likely cause, the section to reread, the diff image). Then it compares
+//! the result with the snapshot recorded from the reference solution.
+//!
+//! With the starter code (the default build) every test here fails: that
+//! is the student's to-do list. With `--features solutions` every test
+//! passes. CI runs both (`.ci/run`).
+
+mod support;
+
+#[path = "../book/generate/runner.rs"]
+mod runner;
+
+#[path = "../grade/spec.rs"]
+mod spec;
+
+#[path = "../grade/grading.rs"]
+mod grading;
+
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn options(hidden: Option<PathBuf>) -> grading::Options {
+    let hidden_only = hidden.is_some();
+    let backend = std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "auto".into());
+    grading::Options {
+        root: root(),
+        out: Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("grade-{backend}")),
+        adapter: support::test_adapter(),
+        backend: None,
+        hidden,
+        hidden_only,
+    }
+}
+
+fn runner() -> runner::Runner {
+    runner::Runner::beside(Path::new(env!("CARGO_BIN_EXE_lesson_01"))).expect("lesson binaries")
+}
+
+fn spec(lesson: &str) -> spec::Spec {
+    spec::Spec::load(&spec::Spec::path(&root(), lesson), &root().join("scenes"))
+        .unwrap_or_else(|e| panic!("{e:#}"))
+}
+
+/// `true` when the run found no adapter and skipping is allowed.
+fn no_adapter(r: &grading::ExerciseResult) -> bool {
+    let none = r
+        .checks
+        .iter()
+        .any(|c| c.feedback.as_deref().is_some_and(|f| f.contains("no GPU adapter found")));
+    if none && !support::gpu_required() {
+        eprintln!("SKIPPED {}: no GPU adapter (WORKBOOK_ALLOW_NO_GPU=1)", r.exercise);
+        return true;
+    }
+    false
+}
+
+/// Grades one exercise; fails with the grader's feedback, then compares
+/// the snapshot recorded from the reference solution.
+fn grade(lesson: &str, exercise: &str) {
+    let spec = spec(lesson);
+    let ex = spec
+        .exercises
+        .iter()
+        .find(|e| e.variant == exercise)
+        .unwrap_or_else(|| panic!("{lesson}: no exercise {exercise} in its exercises.toml"));
+    let r = grading::grade_exercise(&runner(), &options(None), lesson, ex)
+        .unwrap_or_else(|e| panic!("{lesson} {exercise}: {e:#}"));
+    if no_adapter(&r) {
+        return;
+    }
+    assert!(r.passed, "\n{}", grading::describe(&r));
+    insta::assert_snapshot!(format!("{lesson}__{exercise}"), r.snapshot);
+}
+
+/// One test per exercise: `test_name: lesson exercise`.
+macro_rules! exercises {
+    ($($test:ident : $lesson:ident $exercise:ident),* $(,)?) => {
+        /// Every exercise the tests grade, as (lesson, variant).
+        const EXERCISES: &[(&str, &str)] = &[$((stringify!($lesson), stringify!($exercise))),*];
+        $(
+            #[test]
+            fn $test() {
+                grade(stringify!($lesson), stringify!($exercise));
+            }
+        )*
+    };
+}
+
+exercises! {
+    l01_tight_frustum: lesson_01 exercise_tight_frustum,
+}
+
+/// Every exercise of every chapter's spec has its test above, and every
+/// chapter has at least two.
+#[test]
+fn every_exercise_is_graded() {
+    for n in 1..=8 {
+        let lesson = format!("lesson_{n:02}");
+        let spec = spec(&lesson);
+        assert!(
+            spec.exercises.len() >= 2,
+            "{lesson}: {} exercises in its spec, want at least 2",
+            spec.exercises.len()
+        );
+        for ex in &spec.exercises {
+            assert!(
+                EXERCISES.contains(&(lesson.as_str(), ex.variant.as_str())),
+                "{lesson} {}: in the spec but not graded by tests/exercises.rs",
+                ex.variant
+            );
+        }
+    }
+}
+
+/// An instructor's hidden scenes (`grade --scenes tests/hidden_scenes`):
+/// two scenes that no chapter and no snapshot uses, a low sun and a point
+/// lamp. Every exercise's hidden checks run on those its lesson accepts
+/// (each lesson accepts at least one), and the reference solutions pass.
+#[test]
+fn hidden_scenes_are_graded() {
+    let dir = root().join("tests/hidden_scenes");
+    let mut failures = String::new();
+    for n in 1..=8 {
+        let lesson = format!("lesson_{n:02}");
+        let results = grading::grade_lesson(&runner(), &options(Some(dir.clone())), &lesson, None)
+            .unwrap_or_else(|e| panic!("{lesson}: {e:#}"));
+        for r in &results {
+            if no_adapter(r) {
+                return;
+            }
+            assert!(
+                r.checks.iter().any(|c| c.hidden),
+                "{lesson} {}: no hidden scene was graded (skipped: {:?})",
+                r.exercise,
+                r.skipped_scenes
+            );
+            if !r.passed {
+                failures += &grading::describe(r);
+            }
+        }
+    }
+    assert!(failures.is_empty(), "on the hidden scenes:\n{failures}");
+}
