@@ -83,8 +83,8 @@ pub fn hidden_scenes(dir: &Path, lesson: &str) -> Result<Vec<PathBuf>> {
         if !d.is_dir() {
             continue;
         }
-        let entries =
-            std::fs::read_dir(&d).with_context(|| format!("--scenes: cannot read {}", d.display()))?;
+        let entries = std::fs::read_dir(&d)
+            .with_context(|| format!("--scenes: cannot read {}", d.display()))?;
         for e in entries {
             let p = e?.path();
             if p.extension().is_some_and(|x| x == "toml") {
@@ -244,7 +244,11 @@ fn grade_check(
         _ => false,
     };
     let diff = out.join(format!("{}_diff_l0.png", ex.variant));
-    let cause = if passed { None } else { likely_cause(ex, report) };
+    let cause = if passed {
+        None
+    } else {
+        likely_cause(ex, report)
+    };
     let hinted = cause.is_some();
     let feedback = (!passed).then(|| match (measured, &target) {
         (None, _) => format!(
@@ -275,7 +279,13 @@ fn grade_check(
 }
 
 /// A failed run's result for every check on that scene.
-fn failed_run(ex: &Exercise, checks: &[&Check], label: &str, hidden: bool, why: &str) -> Vec<CheckResult> {
+fn failed_run(
+    ex: &Exercise,
+    checks: &[&Check],
+    label: &str,
+    hidden: bool,
+    why: &str,
+) -> Vec<CheckResult> {
     checks
         .iter()
         .map(|c| CheckResult {
@@ -308,7 +318,11 @@ pub fn grade_exercise(
         "{lesson} {}: {} (the reference solution's result)\n\n",
         ex.variant, ex.title
     );
-    let own_scenes = if opts.hidden_only { vec![] } else { ex.scenes() };
+    let own_scenes = if opts.hidden_only {
+        vec![]
+    } else {
+        ex.scenes()
+    };
     for scene in own_scenes {
         let (label, path) = scene_of(&opts.root, &scene);
         let out = base.join(label.trim_end_matches(".toml"));

@@ -73,7 +73,12 @@ fn chapters_with_exercises(root: &Path) -> Result<Vec<String>> {
     for e in std::fs::read_dir(root.join("lessons")).context("cannot list lessons/")? {
         let p = e?.path();
         if p.join("exercises.toml").is_file() {
-            v.push(p.file_name().unwrap_or_default().to_string_lossy().to_string());
+            v.push(
+                p.file_name()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+                    .to_string(),
+            );
         }
     }
     v.sort();
@@ -92,7 +97,9 @@ fn rebuild_lessons() -> Result<()> {
     if cfg!(feature = "solutions") {
         cmd.args(["--features", "solutions"]);
     }
-    let status = cmd.status().context("cannot run cargo to build the lessons")?;
+    let status = cmd
+        .status()
+        .context("cannot run cargo to build the lessons")?;
     if !status.success() {
         bail!("the lessons do not build: fix the compile errors above, then grade again");
     }

@@ -52,12 +52,16 @@ fn spec(lesson: &str) -> spec::Spec {
 
 /// `true` when the run found no adapter and skipping is allowed.
 fn no_adapter(r: &grading::ExerciseResult) -> bool {
-    let none = r
-        .checks
-        .iter()
-        .any(|c| c.feedback.as_deref().is_some_and(|f| f.contains("no GPU adapter found")));
+    let none = r.checks.iter().any(|c| {
+        c.feedback
+            .as_deref()
+            .is_some_and(|f| f.contains("no GPU adapter found"))
+    });
     if none && !support::gpu_required() {
-        eprintln!("SKIPPED {}: no GPU adapter (WORKBOOK_ALLOW_NO_GPU=1)", r.exercise);
+        eprintln!(
+            "SKIPPED {}: no GPU adapter (WORKBOOK_ALLOW_NO_GPU=1)",
+            r.exercise
+        );
         return true;
     }
     false

@@ -106,8 +106,10 @@ pub fn select_variants<L: Lesson>(asked: &[String]) -> Result<Vec<L::Variant>> {
         .iter()
         .map(|a| {
             L::Variant::from_str(a, false).map_err(|_| {
-                let known: Vec<String> =
-                    L::Variant::value_variants().iter().map(|&v| variant_name(v)).collect();
+                let known: Vec<String> = L::Variant::value_variants()
+                    .iter()
+                    .map(|&v| variant_name(v))
+                    .collect();
                 anyhow::anyhow!(
                     "--variant: unknown variant {a:?} (known: {})",
                     known.join(", ")
