@@ -151,17 +151,24 @@ fn resolve(t: &Target, report: &Value, metric_name: &str) -> Option<(f64, String
     }
 }
 
-/// The first hint whose condition holds on this run, filled in.
-fn likely_cause(ex: &Exercise, report: &Value) -> Option<String> {
-    ex.hints.iter().find_map(|h| {
-        let value = metric(report, &ex.variant, &h.metric)?;
-        let (limit, _) = resolve(&h.target(), report, &h.metric)?;
-        let holds = match h.target().side {
-            Side::AtLeast => value > limit,
-            Side::AtMost => value < limit,
-        };
-        holds.then(|| h.say.replace("{value}", &fmt(value)))
-    })
+/// The likely cause: of the hints whose condition holds on this run, the
+/// first about the failing check's own metric, else the first; filled in.
+fn likely_cause(ex: &Exercise, report: &Value, failing_metric: &str) -> Option<String> {
+    let holding: Vec<(&str, String)> = ex
+        .hints
+        .iter()
+        .filter_map(|h| {
+            let value = metric(report, &ex.variant, &h.metric)?;
+            let (limit, _) = resolve(&h.target(), report, &h.metric)?;
+            let holds = match h.target().side {
+                Side::AtLeast => value > limit,
+                Side::AtMost => value < limit,
+            };
+            holds.then(|| (h.metric.as_str(), h.say.replace("{value}", &fmt(value))))
+        })
+        .collect();
+    let own = holding.iter().find(|(m, _)| *m == failing_metric);
+    own.or(holding.first()).map(|(_, say)| say.clone())
 }
 
 /// A scene's label and its path (`None`: the lesson's default scene).
@@ -247,7 +254,7 @@ fn grade_check(
     let cause = if passed {
         None
     } else {
-        likely_cause(ex, report)
+        likely_cause(ex, report, &check.metric)
     };
     let hinted = cause.is_some();
     let feedback = (!passed).then(|| match (measured, &target) {
