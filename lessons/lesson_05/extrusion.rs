@@ -24,7 +24,9 @@ use common::gpu::Gpu;
 use common::render::{shader_module, SceneGpu};
 use common::scene::LightKind;
 
-use super::silhouette::{face_facing, light_facing_triangles_for, silhouette_edges_for, LightDir};
+use super::silhouette::{
+    face_facing, light_facing_triangles_for, silhouette_edges_for, LightDir, SilhouetteEdge,
+};
 
 /// The volume WGSL (`shaders/lesson_05/volume.wgsl`), after `common.wgsl`.
 pub const VOLUME_WGSL: &str = include_str!("../../shaders/lesson_05/volume.wgsl");
@@ -110,6 +112,18 @@ pub fn cpu_volume_reaching(
     reach_w: f32,
     out: &mut Vec<CpuVertex>,
 ) -> VolumeRanges {
+    cpu_volume_parts(adj, light, reach_w, CpuParts::default(), out)
+}
+
+/// [`cpu_volume_reaching`], with the sides or the caps found by `parts`
+/// where it says so (an exercise's code), else by the lesson's own.
+pub fn cpu_volume_parts(
+    adj: &Adjacency,
+    light: LightDir,
+    reach_w: f32,
+    parts: CpuParts,
+    out: &mut Vec<CpuVertex>,
+) -> VolumeRanges {
     let facing = face_facing(adj, light);
     let v = |i: u32, w: f32| CpuVertex {
         position: adj.positions[i as usize].to_array(),
@@ -118,7 +132,11 @@ pub fn cpu_volume_reaching(
     };
     let directional = matches!(light, LightDir::Directional(_));
     let start = out.len() as u32;
-    for e in silhouette_edges_for(adj, &facing) {
+    let edges = match parts.sides {
+        Some(sides) => sides(adj, light),
+        None => silhouette_edges_for(adj, &facing),
+    };
+    for e in edges {
         // The lit face runs a → b; its side of the volume, seen from
         // outside, runs b → a → a∞ → b∞ (counter-clockwise, like the caps).
         out.extend([v(e.a, 1.0), v(e.b, 0.0), v(e.b, 1.0)]);
@@ -128,15 +146,24 @@ pub fn cpu_volume_reaching(
         }
     }
     let sides_end = out.len() as u32;
-    let lit = light_facing_triangles_for(adj, &facing);
-    for t in &lit {
+    // The front cap: the light-facing triangles. The back cap: the same
+    // triangles at infinity, reversed.
+    let (front, back) = match parts.caps {
+        Some(caps) => caps(adj, light),
+        None => {
+            let lit = light_facing_triangles_for(adj, &facing);
+            let back = lit.iter().map(|t| [t[0], t[2], t[1]]).collect();
+            (lit, back)
+        }
+    };
+    for t in &front {
         out.extend(t.map(|i| v(i, 1.0)));
     }
     let front_end = out.len() as u32;
     if !directional {
-        // The back cap: the same triangles at infinity, reversed.
-        for t in &lit {
-            out.extend([v(t[0], 0.0), v(t[2], 0.0), v(t[1], 0.0)]);
+        // Directional: the back cap shrinks to a point at infinity.
+        for t in &back {
+            out.extend(t.map(|i| v(i, 0.0)));
         }
     }
     VolumeRanges {
@@ -146,6 +173,23 @@ pub fn cpu_volume_reaching(
     }
 }
 // ANCHOR_END: cpu_volume
+
+/// A silhouette finder: the edges to extrude, as
+/// [`silhouette_edges`](super::silhouette::silhouette_edges) gives them.
+pub type SidesFn = fn(&Adjacency, LightDir) -> Vec<SilhouetteEdge>;
+
+/// A cap builder: (front cap, back cap) triangles, welded ids, each wound
+/// as drawn (the back cap's vertices go to infinity).
+pub type CapsFn = fn(&Adjacency, LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>);
+
+/// Which parts of the CPU path's volume an exercise's code builds
+/// ([`cpu_volume_parts`]); `None`: the lesson's own. The default is the
+/// lesson's own everywhere.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CpuParts {
+    pub sides: Option<SidesFn>,
+    pub caps: Option<CapsFn>,
+}
 
 // ANCHOR: degenerate_quads
 /// The quads path, built once: one degenerate quad per manifold edge whose
@@ -240,6 +284,42 @@ pub fn world_light(scene: &SceneGpu, k: usize) -> LightDir {
         LightKind::Directional { direction } => LightDir::Directional(direction.as_vec3()),
         LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
             LightDir::Point((position - o).as_vec3())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lesson_05::silhouette::{light_facing_triangles, silhouette_edges};
+    use common::glam::Vec3;
+    use common::mesh::builtin;
+
+    /// The lesson's caps, as a [`CapsFn`] would give them.
+    fn lesson_caps(adj: &Adjacency, light: LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+        let front = light_facing_triangles(adj, light);
+        let back = front.iter().map(|t| [t[0], t[2], t[1]]).collect();
+        (front, back)
+    }
+
+    #[test]
+    fn parts_given_as_functions_build_the_same_volume() {
+        let adj = Adjacency::new(&builtin("knot").unwrap());
+        let parts = CpuParts {
+            sides: Some(silhouette_edges),
+            caps: Some(lesson_caps),
+        };
+        for light in [
+            LightDir::Point(Vec3::new(1.0, 3.0, 0.5)),
+            LightDir::Directional(Vec3::new(-0.4, -1.0, 0.3)),
+        ] {
+            for reach in [0.0, 0.25] {
+                let (mut own, mut given) = (Vec::new(), Vec::new());
+                let r = cpu_volume_reaching(&adj, light, reach, &mut own);
+                let s = cpu_volume_parts(&adj, light, reach, parts, &mut given);
+                assert_eq!((r, &own), (s, &given), "{light:?}, reach {reach}");
+                assert!(!own.is_empty());
+            }
         }
     }
 }

@@ -24,7 +24,9 @@ use common::render::SceneGpu;
 use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
-use workbook::lesson_05::extrusion::Extrusion;
+use workbook::lesson_05::cull::kept_draws;
+use workbook::lesson_05::exercises;
+use workbook::lesson_05::extrusion::{CpuParts, Extrusion};
 use workbook::lesson_05::stencil::{self, Counting};
 use workbook::lesson_05::volumes::{
     base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes, VolumeCosts,
@@ -41,30 +43,53 @@ enum Variant {
     /// Degenerate quads built once, extruded in the vertex shader.
     #[value(name = "zpass_quads")]
     ZpassQuads,
+    /// Exercise 1: `zpass_cpu` with your `silhouette_edges`.
+    #[value(name = "exercise_silhouette_edges")]
+    ExerciseSilhouetteEdges,
+    /// Exercise 2: `zpass_cpu` drawing only the casters your
+    /// `volume_can_matter` keeps.
+    #[value(name = "exercise_skip_casters")]
+    ExerciseSkipCasters,
 }
 
 impl Variant {
     fn extrusion(self) -> Extrusion {
         match self {
-            Variant::ZpassCpu => Extrusion::Cpu,
             Variant::ZpassQuads => Extrusion::Quads,
+            _ => Extrusion::Cpu,
+        }
+    }
+
+    /// The parts of the CPU path that an exercise's code builds.
+    fn cpu_parts(self) -> CpuParts {
+        match self {
+            Variant::ExerciseSilhouetteEdges => CpuParts {
+                sides: Some(exercises::silhouette_edges),
+                caps: None,
+            },
+            _ => CpuParts::default(),
         }
     }
 }
 // ANCHOR_END: variants
+
+/// How many variants (exercises included): the per-variant arrays.
+const VARIANTS: usize = 4;
 
 struct ZPass {
     volumes: ShadowVolumes,
     lit_pipeline: wgpu::RenderPipeline,
     /// `draws[light]`: every caster, z-pass, sides only.
     draws: Vec<Vec<CasterDraw>>,
+    /// The same, of the casters `exercise_skip_casters` keeps (per frame).
+    kept: Vec<Vec<CasterDraw>>,
     /// Computed once: mesh validation and the largest stencil count.
     scene_counters: BTreeMap<String, u64>,
     /// Per variant: fragment-shader invocations (pipeline statistics,
     /// Vulkan only), the exact volume costs, and frames rendered.
-    invocations: [Option<u64>; 2],
-    costs: [Option<VolumeCosts>; 2],
-    frames: [u32; 2],
+    invocations: [Option<u64>; VARIANTS],
+    costs: [Option<VolumeCosts>; VARIANTS],
+    frames: [u32; VARIANTS],
     casters_drawn: u64,
     base_draws: u64,
 }
@@ -82,9 +107,10 @@ impl Lesson for ZPass {
             scene_counters: stencil::scene_counters(scene),
             volumes,
             draws,
-            invocations: [None; 2],
-            costs: [None; 2],
-            frames: [0; 2],
+            kept: Vec::new(),
+            invocations: [None; VARIANTS],
+            costs: [None; VARIANTS],
+            frames: [0; VARIANTS],
             casters_drawn: 0,
             base_draws: base_and_lit_draws(scene),
         })
@@ -99,13 +125,20 @@ impl Lesson for ZPass {
         variant: Variant,
     ) -> Result<()> {
         let ext = variant.extrusion();
+        if variant == Variant::ExerciseSkipCasters {
+            self.kept = kept_draws(&self.volumes, scene, exercises::volume_can_matter);
+        }
+        let all = match variant {
+            Variant::ExerciseSkipCasters => &self.kept,
+            _ => &self.draws,
+        };
         if ext == Extrusion::Cpu {
             // Doom 3's way: find every silhouette on the CPU, every frame.
-            self.volumes.prepare_cpu(frame, scene, &self.draws);
+            (self.volumes).prepare_cpu_with(frame, scene, all, variant.cpu_parts());
         }
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = 0;
-        for (light, draws) in self.draws.iter().enumerate() {
+        for (light, draws) in all.iter().enumerate() {
             let volumes = LightVolumes {
                 light,
                 extrusion: ext,
@@ -123,7 +156,7 @@ impl Lesson for ZPass {
         let n = &mut self.frames[variant as usize];
         *n += 1;
         if *n == 2 {
-            let (gpu, draws) = (frame.gpu, &self.draws);
+            let (gpu, draws) = (frame.gpu, all);
             let v = variant as usize;
             self.invocations[v] = self.volumes.count_fragments(gpu, scene, ext, draws);
             self.costs[v] = Some(self.volumes.count_costs(gpu, scene, targets, ext, draws)?);

@@ -2,7 +2,16 @@
 //! to infinity, and counting the volumes in the stencil.
 
 pub mod adjacency;
+pub mod cull;
 pub mod extrusion;
 pub mod silhouette;
 pub mod stencil;
 pub mod volumes;
+
+/// The chapter's exercises: the starter code a student fills in, or with
+/// `--features solutions`, the reference solutions (`solutions/lesson_05.rs`).
+#[cfg(not(feature = "solutions"))]
+pub mod exercises;
+#[cfg(feature = "solutions")]
+#[path = "../../solutions/lesson_05.rs"]
+pub mod exercises;

@@ -44,7 +44,7 @@ use common::timing::Frame;
 
 use super::adjacency::Adjacency;
 use super::extrusion::{
-    cpu_volume_reaching, degenerate_quads, world_light, CpuVertex, Extrusion, QuadVertex,
+    cpu_volume_parts, degenerate_quads, world_light, CpuParts, CpuVertex, Extrusion, QuadVertex,
     VolumeRanges, REACH_SLOT,
 };
 use super::silhouette::caster_adjacency;
@@ -288,6 +288,18 @@ impl ShadowVolumes {
     /// and the casters in `draws[light]`, uploaded in one write. Timed as
     /// `cpu_silhouette`.
     pub fn prepare_cpu(&mut self, frame: &mut Frame, scene: &SceneGpu, draws: &[Vec<CasterDraw>]) {
+        self.prepare_cpu_with(frame, scene, draws, CpuParts::default());
+    }
+
+    /// [`prepare_cpu`](Self::prepare_cpu) with the sides or caps built by
+    /// `parts` (an exercise's code, [`CpuParts`]).
+    pub fn prepare_cpu_with(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        draws: &[Vec<CasterDraw>],
+        parts: CpuParts,
+    ) {
         let gpu = frame.gpu;
         let cpu = &mut self.cpu;
         let casters = &self.casters;
@@ -310,10 +322,11 @@ impl ShadowVolumes {
                     // Silhouettes in object space: the light moves, not the mesh.
                     let model = models[c.object];
                     let w = reach.get(k).and_then(|r| r.get(ci)).copied();
-                    ranges[ci] = cpu_volume_reaching(
+                    ranges[ci] = cpu_volume_parts(
                         &c.adjacency,
                         light.to_object_space(model),
                         w.unwrap_or(0.0),
+                        parts,
                         &mut cpu.vertices,
                     );
                 }

@@ -32,13 +32,14 @@ use common::scene::{Far, LightKind};
 use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
-use workbook::lesson_05::extrusion::Extrusion;
+use workbook::lesson_05::extrusion::{world_light, CpuParts, Extrusion};
 use workbook::lesson_05::stencil::{self, Counting, Method};
 use workbook::lesson_05::volumes::{
     base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes, VolumeCosts,
 };
 use workbook::lesson_06::caps::{self, zfail_counting};
-use workbook::lesson_06::plan::{plan, PlanStats};
+use workbook::lesson_06::exercises;
+use workbook::lesson_06::plan::{near_rectangle, plan, plan_with, PlanStats};
 use workbook::lesson_06::reach::volume_reach;
 
 // ANCHOR: variants
@@ -60,13 +61,30 @@ enum Variant {
     /// nothing where the volume cannot reach the view.
     #[value(name = "zfail_selective")]
     ZfailSelective,
+    /// Exercise 1: `zfail_selective` with your `needs_zfail`.
+    #[value(name = "exercise_choose_method")]
+    ExerciseChooseMethod,
+    /// Exercise 2: `zfail_cpu` with the caps of your `volume_caps`.
+    #[value(name = "exercise_light_cap")]
+    ExerciseLightCap,
 }
 
 impl Variant {
     fn extrusion(self) -> Extrusion {
         match self {
-            Variant::ZfailCpu => Extrusion::Cpu,
+            Variant::ZfailCpu | Variant::ExerciseLightCap => Extrusion::Cpu,
             _ => Extrusion::Quads,
+        }
+    }
+
+    /// The parts of the CPU path that an exercise's code builds.
+    fn cpu_parts(self) -> CpuParts {
+        match self {
+            Variant::ExerciseLightCap => CpuParts {
+                sides: None,
+                caps: Some(exercises::volume_caps),
+            },
+            _ => CpuParts::default(),
         }
     }
 
@@ -81,6 +99,12 @@ impl Variant {
         let mut draws = volumes.all(caps::zfail);
         match self {
             Variant::ZfailSelective => return plan(volumes, scene, light),
+            Variant::ExerciseChooseMethod => {
+                let near_rect = near_rectangle(scene.camera.view_proj.as_dmat4());
+                let l = world_light(scene, light);
+                let student = |c, r| exercises::needs_zfail(c, r, l, &near_rect);
+                return plan_with(volumes, scene, light, student);
+            }
             Variant::ZpassQuads => {
                 let stats = PlanStats {
                     zpass: n,
@@ -90,7 +114,7 @@ impl Variant {
             }
             Variant::ZfailNoFrontCap => draws.iter_mut().for_each(|d| d.front_cap = false),
             Variant::ZfailNoBackCap => draws.iter_mut().for_each(|d| d.back_cap = false),
-            Variant::ZfailCpu | Variant::ZfailQuads => {}
+            Variant::ZfailCpu | Variant::ZfailQuads | Variant::ExerciseLightCap => {}
         }
         let stats = PlanStats {
             zfail: n,
@@ -212,7 +236,7 @@ impl Lesson for ZFail {
         let (draws, _) = &self.plans[variant as usize];
         let ext = variant.extrusion();
         if ext == Extrusion::Cpu {
-            self.volumes.prepare_cpu(frame, scene, draws);
+            (self.volumes).prepare_cpu_with(frame, scene, draws, variant.cpu_parts());
         }
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for (light, draws) in draws.iter().enumerate() {

@@ -5,3 +5,11 @@
 pub mod caps;
 pub mod plan;
 pub mod reach;
+
+/// The chapter's exercises: the starter code a student fills in, or with
+/// `--features solutions`, the reference solutions (`solutions/lesson_06.rs`).
+#[cfg(not(feature = "solutions"))]
+pub mod exercises;
+#[cfg(feature = "solutions")]
+#[path = "../../solutions/lesson_06.rs"]
+pub mod exercises;

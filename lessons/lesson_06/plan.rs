@@ -4,10 +4,11 @@
 //! the 2005 article), else z-pass without caps. The counts, and so the
 //! pixels, are the same as with z-fail everywhere.
 
-use common::glam::{DMat4, DVec3, DVec4};
+use common::glam::{DMat4, DVec3};
 use common::render::SceneGpu;
 
 use super::caps::zfail;
+pub use crate::lesson_05::cull::frustum_planes;
 use crate::lesson_05::extrusion::world_light;
 use crate::lesson_05::silhouette::LightDir;
 use crate::lesson_05::volumes::{CasterDraw, ShadowVolumes};
@@ -31,7 +32,6 @@ pub fn plan(
     light: usize,
 ) -> (Vec<CasterDraw>, PlanStats) {
     let view_proj = scene.camera.view_proj.as_dmat4();
-    let frustum = frustum_planes(view_proj);
     let near_rect = near_rectangle(view_proj);
     let l = world_light(scene, light);
     let (l_point, l_dir) = match l {
@@ -39,6 +39,27 @@ pub fn plan(
         LightDir::Directional(d) => (None, Some(d.as_dvec3())),
     };
     let pyramid = occlusion_pyramid(&near_rect, l_point, l_dir);
+    let reaches_near = |center: DVec3, radius: f64| match &pyramid {
+        Some(planes) => !planes.iter().any(|(n, d)| n.dot(center) + d < -radius),
+        None => true, // degenerate pyramid: be safe
+    };
+    plan_with(volumes, scene, light, reaches_near)
+}
+
+/// [`plan`] with the choice of z-fail made by `needs_zfail(center,
+/// radius)` of each caster's bounding sphere (lesson 06's exercise puts
+/// the student's test there).
+pub fn plan_with(
+    volumes: &ShadowVolumes,
+    scene: &SceneGpu,
+    light: usize,
+    needs_zfail: impl Fn(DVec3, f64) -> bool,
+) -> (Vec<CasterDraw>, PlanStats) {
+    let frustum = frustum_planes(scene.camera.view_proj.as_dmat4());
+    let (l_point, l_dir) = match world_light(scene, light) {
+        LightDir::Point(p) => (Some(p.as_dvec3()), None),
+        LightDir::Directional(d) => (None, Some(d.as_dvec3())),
+    };
     let mut stats = PlanStats::default();
     let mut out = Vec::new();
     for c in &volumes.casters {
@@ -58,11 +79,7 @@ pub fn plan(
             stats.skipped += 1;
             continue;
         }
-        let reaches_near = match &pyramid {
-            Some(planes) => !planes.iter().any(|(n, d)| n.dot(c.center) + d < -c.radius),
-            None => true, // degenerate pyramid: be safe
-        };
-        if reaches_near {
+        if needs_zfail(c.center, c.radius) {
             stats.zfail += 1;
             out.push(zfail(c.object));
         } else {
@@ -73,27 +90,6 @@ pub fn plan(
     (out, stats)
 }
 // ANCHOR_END: plan
-
-/// Planes `(n, d)` with n·p + d ≥ 0 inside, from a WebGPU view-projection
-/// (depth in [0, 1]). A far plane at infinity is left out.
-pub fn frustum_planes(vp: DMat4) -> Vec<(DVec3, f64)> {
-    let r = |i: usize| vp.row(i);
-    let candidates = [
-        r(3) + r(0),
-        r(3) - r(0),
-        r(3) + r(1),
-        r(3) - r(1),
-        r(2),
-        r(3) - r(2),
-    ];
-    candidates
-        .iter()
-        .filter_map(|p: &DVec4| {
-            let len = p.truncate().length();
-            (len > 1e-9 * p.length().max(1.0)).then(|| (p.truncate() / len, p.w / len))
-        })
-        .collect()
-}
 
 /// The four world corners of the near-plane rectangle.
 pub fn near_rectangle(vp: DMat4) -> [DVec3; 4] {

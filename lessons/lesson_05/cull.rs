@@ -1,0 +1,63 @@
+//! Leaving casters out (lesson 05's second exercise, and lesson 06's plan):
+//! the view frustum's planes, and the draws of the casters whose volume a
+//! test says can matter.
+
+use common::glam::{DVec3, DVec4};
+use common::render::SceneGpu;
+use common::scene::LightKind;
+
+use super::extrusion::world_light;
+use super::silhouette::LightDir;
+use super::volumes::{CasterDraw, ShadowVolumes};
+
+/// Planes `(n, d)`, `n` of unit length, with n·p + d ≥ 0 inside, from a
+/// WebGPU view-projection (depth in [0, 1]). A far plane at infinity is
+/// left out.
+pub fn frustum_planes(vp: common::glam::DMat4) -> Vec<(DVec3, f64)> {
+    let r = |i: usize| vp.row(i);
+    let candidates = [
+        r(3) + r(0),
+        r(3) - r(0),
+        r(3) + r(1),
+        r(3) - r(1),
+        r(2),
+        r(3) - r(2),
+    ];
+    candidates
+        .iter()
+        .filter_map(|p: &DVec4| {
+            let len = p.truncate().length();
+            (len > 1e-9 * p.length().max(1.0)).then(|| (p.truncate() / len, p.w / len))
+        })
+        .collect()
+}
+
+/// A test "can this caster's volume matter?" (lesson 05's exercise
+/// `volume_can_matter`): the caster's bounding sphere (centre, radius), the
+/// light, its range (`None`: directional), and the view frustum's planes,
+/// all origin-relative world space.
+pub type CanMatterFn = fn(DVec3, f64, LightDir, Option<f64>, &[(DVec3, f64)]) -> bool;
+
+/// Per light, z-pass draws of the casters `can_matter` keeps.
+pub fn kept_draws(
+    volumes: &ShadowVolumes,
+    scene: &SceneGpu,
+    can_matter: CanMatterFn,
+) -> Vec<Vec<CasterDraw>> {
+    let frustum = frustum_planes(scene.camera.view_proj.as_dmat4());
+    (0..scene.scene.lights.len())
+        .map(|k| {
+            let light = world_light(scene, k);
+            let range = match scene.scene.lights[k].kind {
+                LightKind::Directional { .. } => None,
+                LightKind::Point { range, .. } | LightKind::Spot { range, .. } => Some(range),
+            };
+            volumes
+                .casters
+                .iter()
+                .filter(|c| can_matter(c.center, c.radius, light, range, &frustum))
+                .map(|c| CasterDraw::zpass(c.object))
+                .collect()
+        })
+        .collect()
+}
