@@ -24,6 +24,7 @@ use common::scene::Scene;
 use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
+use workbook::lesson_01::exercise_pass;
 use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
 use workbook::lesson_01::tally::TallyShader;
 
@@ -41,6 +42,12 @@ enum Variant {
     Res2048,
     #[value(name = "res_4096")]
     Res4096,
+    /// Exercise 1: the student's light box (`exercises::fit_light_box`), 1024².
+    #[value(name = "exercise_tight_frustum")]
+    ExerciseTightFrustum,
+    /// Exercise 2: the student's shadow test (`depth_compare`), 1024².
+    #[value(name = "exercise_depth_compare")]
+    ExerciseDepthCompare,
 }
 
 impl Variant {
@@ -52,6 +59,7 @@ impl Variant {
             Variant::Res1024 => 1024,
             Variant::Res2048 => 2048,
             Variant::Res4096 => 4096,
+            Variant::ExerciseTightFrustum | Variant::ExerciseDepthCompare => 1024,
         }
     }
 }
@@ -70,6 +78,16 @@ struct DepthMap {
     /// Light 0's texel at the scene's centre for a 1-texel map, in world
     /// units along the map's u and v: a map of N texels divides it by N.
     texel_at_1: Option<(f64, f64)>,
+    /// The shadow map's layout, for the exercise's lit pipeline.
+    map_layout: wgpu::BindGroupLayout,
+    /// `exercise_depth_compare`'s lit pipeline, compiled when it first runs.
+    exercise_lit: Option<wgpu::RenderPipeline>,
+    /// Per light, `exercise_tight_frustum`'s view-projection, and whether
+    /// the light buffer holds it now (the other variants restore the lesson's).
+    tight: Vec<Option<common::glam::Mat4>>,
+    tight_written: bool,
+    /// [`DepthMap::texel_at_1`] with `exercise_tight_frustum`'s matrix.
+    tight_texel_at_1: Option<(f64, f64)>,
 }
 
 impl Lesson for DepthMap {
@@ -109,6 +127,9 @@ impl Lesson for DepthMap {
                 (map, group)
             })
             .collect();
+        let tight: Vec<_> = (0..scene.scene.lights.len())
+            .map(|k| exercise_pass::tight_light_view_proj(&scene.scene, k))
+            .collect();
         Ok(DepthMap {
             shadow_pipeline,
             tally_pipeline,
@@ -116,7 +137,15 @@ impl Lesson for DepthMap {
             draws: shadow_map::shadow_map_draws(scene),
             lit_pipeline,
             maps,
-            texel_at_1: texel_at_1(&scene.scene),
+            texel_at_1: texel_at_1(
+                &scene.scene,
+                common::camera::light_view_proj(&scene.scene, 0),
+            ),
+            map_layout: layout,
+            exercise_lit: None,
+            tight_texel_at_1: texel_at_1(&scene.scene, tight.first().copied().flatten()),
+            tight,
+            tight_written: false,
         })
     }
 
@@ -128,6 +157,7 @@ impl Lesson for DepthMap {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        self.exercise_setup(frame.gpu, scene, variant);
         if self.texels_written[variant as usize].is_none() {
             // Once per variant, its own submit: untimed.
             let n =
@@ -137,6 +167,11 @@ impl Lesson for DepthMap {
             self.texels_written[variant as usize] = Some(n);
         }
         let (map, group) = &self.maps[variant as usize];
+        let lit = match variant {
+            Variant::ExerciseDepthCompare => self.exercise_lit.as_ref(),
+            _ => None,
+        }
+        .unwrap_or(&self.lit_pipeline);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
             // Pass 1: depth from the light. Pass 2: compare and add the light.
@@ -147,7 +182,7 @@ impl Lesson for DepthMap {
                 scene.lit_pass(
                     enc,
                     targets,
-                    LitPass::new(light, &self.lit_pipeline, &[group]),
+                    LitPass::new(light, lit, &[group]),
                     ts.render(),
                 )
             });
@@ -169,7 +204,11 @@ impl Lesson for DepthMap {
             c.insert("shadow_texels_written".into(), written);
             c.insert("shadow_fragments".into(), fragments);
         }
-        if let Some((u, v)) = self.texel_at_1 {
+        let texel = match variant {
+            Variant::ExerciseTightFrustum => self.tight_texel_at_1,
+            _ => self.texel_at_1,
+        };
+        if let Some((u, v)) = texel {
             let um = |x: f64| (x * 1e6 / variant.resolution() as f64).round() as u64;
             c.insert("texel_um_u".into(), um(u));
             c.insert("texel_um_v".into(), um(v));
@@ -184,13 +223,35 @@ impl Lesson for DepthMap {
     }
 }
 
-/// Light 0's texel sides for a 1-texel map at the scene's centre: a texel
-/// is 2/N of NDC, and x_ndc = (row 0 · p) / w, so it is 2w / (N |row 0|).
-fn texel_at_1(scene: &Scene) -> Option<(f64, f64)> {
+impl DepthMap {
+    /// Before an exercise runs: its light matrix into the light buffer
+    /// (`exercise_tight_frustum`; the others put the lesson's back) and its
+    /// lit pipeline (`exercise_depth_compare`).
+    fn exercise_setup(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) {
+        let tight = variant == Variant::ExerciseTightFrustum;
+        if tight || self.tight_written {
+            for (k, m) in self.tight.iter().enumerate() {
+                let lesson = common::camera::light_view_proj(&scene.scene, k);
+                let m = if tight { *m } else { lesson };
+                scene.write_light_view_proj(gpu, k, m.unwrap_or_default());
+            }
+            self.tight_written = tight;
+        }
+        if variant == Variant::ExerciseDepthCompare && self.exercise_lit.is_none() {
+            let p = exercise_pass::depth_compare_pipeline(gpu, scene, &self.map_layout);
+            self.exercise_lit = Some(p);
+        }
+    }
+}
+
+/// Light 0's texel sides for a 1-texel map at the scene's centre, with
+/// light matrix `m`: a texel is 2/N of NDC, and x_ndc = (row 0 · p) / w,
+/// so it is 2w / (N |row 0|).
+fn texel_at_1(scene: &Scene, m: Option<common::glam::Mat4>) -> Option<(f64, f64)> {
     if scene.lights.is_empty() {
         return None;
     }
-    let m = common::camera::light_view_proj(scene, 0)?.as_dmat4();
+    let m = m?.as_dmat4();
     let row = |i: usize| m.row(i).truncate().length();
     let w = m.w_axis.w; // at the origin-relative centre, p = 0
     Some((2.0 * w / row(0), 2.0 * w / row(1)))

@@ -27,6 +27,7 @@ use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{ShadowBias, SlopeScaledBias};
+use workbook::lesson_02::exercise_pass::{self, Exercise};
 
 /// One map size for every variant: the variants differ only in the bias.
 const MAP_SIZE: u32 = 1024;
@@ -43,6 +44,9 @@ enum Fix {
     Hardware(SlopeScaledBias),
     /// In the shadow pass: store the back faces, not the lit front faces.
     CullFrontFaces,
+    /// The chapter's exercise: the student's WGSL in the lit pass
+    /// (`shaders/lesson_02/exercises.wgsl`), the plain shadow pass.
+    Exercise(Exercise),
 }
 
 /// The usual fixes, and a sweep of constant biases in texels: acne falls,
@@ -75,6 +79,10 @@ enum Variant {
     NormalOffset,
     #[value(name = "front_cull")]
     FrontCull,
+    #[value(name = "exercise_slope_bias")]
+    ExerciseSlopeBias,
+    #[value(name = "exercise_grazing_bias")]
+    ExerciseGrazingBias,
 }
 
 /// Receiver moved `t` texels towards the light: a constant bias. A texel is
@@ -120,6 +128,8 @@ impl Variant {
                 ..ShadowBias::NONE
             }),
             Variant::FrontCull => Fix::CullFrontFaces,
+            Variant::ExerciseSlopeBias => Fix::Exercise(Exercise::SlopeBias),
+            Variant::ExerciseGrazingBias => Fix::Exercise(Exercise::GrazingBias),
         }
     }
 }
@@ -132,6 +142,10 @@ struct Bias {
     map: ShadowMap,
     map_group: wgpu::BindGroup,
     lit_pipeline: wgpu::RenderPipeline,
+    /// The layouts of groups 2 and 3, for the exercises' lit pipelines.
+    layouts: [wgpu::BindGroupLayout; 2],
+    /// The exercises' lit pipelines, compiled when an exercise first runs.
+    exercise_lit: Vec<(Exercise, wgpu::RenderPipeline)>,
     plain_shadow: wgpu::RenderPipeline,
     cull_shadow: wgpu::RenderPipeline,
     /// The hardware-bias shadow pipeline of each light (the clamp depends on it).
@@ -211,6 +225,8 @@ impl Lesson for Bias {
             map,
             map_group,
             lit_pipeline,
+            layouts: [map_layout, bias_layout],
+            exercise_lit: Vec::new(),
             plain_shadow,
             cull_shadow,
             slope_shadow,
@@ -235,17 +251,33 @@ impl Lesson for Bias {
         if self.texels_written[variant as usize].is_none() {
             // Once per variant, its own submit: untimed.
             let n = shadow_map::count_shadow_texels(frame.gpu, scene, MAP_SIZE, |k| match fix {
-                Fix::Receiver(_) => &self.tally_plain,
+                Fix::Receiver(_) | Fix::Exercise(_) => &self.tally_plain,
                 Fix::Hardware(_) => &self.tally_slope[k],
                 Fix::CullFrontFaces => &self.tally_cull,
             })?;
             self.texels_written[variant as usize] = Some(n);
         }
+        if let Fix::Exercise(e) = fix {
+            if !self.exercise_lit.iter().any(|(x, _)| *x == e) {
+                let [map, bias] = &self.layouts;
+                let p = exercise_pass::lit_pipeline(frame.gpu, scene, e, &[map, bias]);
+                self.exercise_lit.push((e, p));
+            }
+        }
+        let lit = match fix {
+            Fix::Exercise(e) => self
+                .exercise_lit
+                .iter()
+                .find(|(x, _)| *x == e)
+                .map(|(_, p)| p),
+            _ => None,
+        }
+        .unwrap_or(&self.lit_pipeline);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = 0;
         for light in 0..scene.scene.lights.len() {
             let shadow = match fix {
-                Fix::Receiver(_) => &self.plain_shadow,
+                Fix::Receiver(_) | Fix::Exercise(_) => &self.plain_shadow,
                 Fix::Hardware(_) => &self.slope_shadow[light],
                 Fix::CullFrontFaces => &self.cull_shadow,
             };
@@ -256,7 +288,7 @@ impl Lesson for Bias {
                 scene.lit_pass(
                     enc,
                     targets,
-                    LitPass::new(light, &self.lit_pipeline, &[&self.map_group, bias_group]),
+                    LitPass::new(light, lit, &[&self.map_group, bias_group]),
                     ts.render(),
                 )
             });

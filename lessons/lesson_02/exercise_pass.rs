@@ -1,0 +1,45 @@
+//! The lit passes of lesson 02's exercises (`exercise_slope_bias`,
+//! `exercise_grazing_bias`): the student's WGSL ([`super::exercises`])
+//! plugged into the lesson's lookup (`shaders/lesson_02/exercise_lit.wgsl`).
+//! Compiled only when an exercise runs, so that the lesson's own variants
+//! never depend on the exercise code.
+
+use common::gpu::Gpu;
+use common::render::SceneGpu;
+
+use crate::lesson_01::shadow_map;
+
+/// Which exercise's lit pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exercise {
+    SlopeBias,
+    GrazingBias,
+}
+
+impl Exercise {
+    fn entry(self) -> &'static str {
+        match self {
+            Exercise::SlopeBias => "fs_exercise_slope_bias",
+            Exercise::GrazingBias => "fs_exercise_grazing_bias",
+        }
+    }
+}
+
+/// The exercise's lit pipeline: bias.wgsl, the exercises' WGSL and
+/// `exercise_lit.wgsl` in one module, bound like the lesson's own lit pass
+/// (`layouts`: the shadow map at group 2, the bias at group 3).
+pub fn lit_pipeline(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    exercise: Exercise,
+    layouts: &[&wgpu::BindGroupLayout],
+) -> wgpu::RenderPipeline {
+    let wgsl = format!(
+        "{}\n{}\n{}",
+        include_str!("../../shaders/lesson_02/bias.wgsl"),
+        super::exercises::EXERCISES_WGSL,
+        include_str!("../../shaders/lesson_02/exercise_lit.wgsl"),
+    );
+    let module = shadow_map::shader_module(gpu, "lesson_02 exercises", &wgsl);
+    scene.lit_pipeline(gpu, &module, exercise.entry(), layouts, Default::default())
+}
