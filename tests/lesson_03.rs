@@ -48,13 +48,13 @@ fn lesson_03_snapshot() {
     let mut text = String::from(
         "per variant: taps (depth comparisons per pixel), texels read, and the error against the\n",
     );
+    text += "hard-edged reference: misclassified in percent (two decimals: the filters differ by\n";
     text +=
-        "hard-edged reference: misclassified in percent (one decimal) and mean |V - V_ref| in\n";
-    text += "percent (whole: it moves by tenths between Vulkan and GL)\n\n";
+        "hundredths) and mean |V - V_ref| in percent (one decimal: it grows with the kernel)\n\n";
     for v in run.report["variants"].as_array().expect("variants") {
         let name = v["name"].as_str().unwrap();
         text += &format!(
-            "{name:<14} taps {:>2}  texels {:>2}  misclassified {:>5.1}%  mean |dV| {:>3.0}%\n",
+            "{name:<14} taps {:>2}  texels {:>2}  misclassified {:>5.2}%  mean |dV| {:>4.1}%\n",
             support::counter(&run.report, name, "taps"),
             support::counter(&run.report, name, "texels_read"),
             support::error(&run.report, name, "misclassified_pct"),

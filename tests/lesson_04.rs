@@ -73,12 +73,15 @@ fn lesson_04_snapshot() {
     text += &support::ascii_of(&run.out.join("reference_visibility_l0.png"), 64, 18);
     text += "\n\nlinear_1024 visibility, light 0:\n";
     text += &support::ascii_of(&run.out.join("linear_1024_visibility_l0.png"), 64, 18);
-    text += "\n\nerror against the reference (rounded to whole percent), faces rendered, caster draws, slope bias (texels × tan θ):\n";
+    text += "\n\nerror against the reference in percent (two decimals: the variants differ by\n";
+    text += "hundredths), mean |V - V_ref| in percent, faces rendered, caster draws, slope bias\n";
+    text += "(texels × tan θ):\n";
     for v in variants {
         let c = &v["counters"];
         text += &format!(
-            "{}  faces {}  draws {}  slope {}\n",
-            support::error_line(v, 0),
+            "{}  mean |dV| {:.2}%  faces {}  draws {}  slope {}\n",
+            support::error_line(v, 2),
+            100.0 * v["error"]["mean_abs"].as_f64().unwrap_or(f64::NAN),
             c["faces_rendered"],
             c["caster_draws"],
             c["slope_bias_millitexels"].as_u64().unwrap_or(0) as f64 / 1000.0

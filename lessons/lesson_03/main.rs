@@ -29,6 +29,7 @@ use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowMap};
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::SlopeScaledBias;
+use workbook::lesson_03::exercises;
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
 /// Lesson 02's map size: the filters differ, the map does not.
@@ -55,6 +56,11 @@ enum Variant {
     Poisson16,
     #[value(name = "depth_avg_3x3")]
     DepthAvg3x3,
+    /// The chapter's exercises (`exercises.wgsl`), run only when named.
+    #[value(name = "exercise_pcf_kernel")]
+    ExercisePcfKernel,
+    #[value(name = "exercise_rotated_poisson")]
+    ExerciseRotatedPoisson,
 }
 
 impl Variant {
@@ -79,6 +85,9 @@ impl Variant {
                 radius: 2.5,
             },
             Variant::DepthAvg3x3 => Filter::DepthAverage { n: 3 },
+            // Graded against pcf_5x5 and poisson_16 (exercises.toml).
+            Variant::ExercisePcfKernel => Filter::ExerciseGrid { n: 5 },
+            Variant::ExerciseRotatedPoisson => Filter::ExerciseDisk { radius: 2.5 },
         }
     }
 }
@@ -111,11 +120,13 @@ impl Lesson for Pcf {
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
-        let module = shadow_map::shader_module(
-            gpu,
-            "lesson_03",
+        // The lesson's filters, then the exercises' functions.
+        let source = format!(
+            "{}\n{}",
             include_str!("../../shaders/lesson_03/pcf.wgsl"),
+            exercises::EXERCISES_WGSL
         );
+        let module = shadow_map::shader_module(gpu, "lesson_03", &source);
         let layout = pcf::pcf_map_layout(gpu);
         let filter_layout =
             params_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);

@@ -23,6 +23,12 @@ pub enum Filter {
     Poisson { taps: u32, radius: f32 },
     /// Average N×N stored depths, then compare once: filtering depth.
     DepthAverage { n: u32 },
+    /// Exercise 1 (`exercise_pcf_kernel` in `exercises.wgsl`): the
+    /// student's N×N grid with the receiver plane, radius N / 2.
+    ExerciseGrid { n: u32 },
+    /// Exercise 2 (`exercise_rotated_poisson`): the student's 16 bilinear
+    /// taps on a disk of `radius` texels, rotated per pixel.
+    ExerciseDisk { radius: f32 },
 }
 
 impl Filter {
@@ -33,13 +39,18 @@ impl Filter {
             Filter::Hardware2x2 => (1, 4),
             Filter::Poisson { taps, .. } => (taps as u64, 4 * taps as u64),
             Filter::DepthAverage { n } => (1, (n * n) as u64),
+            // What the exercise asks for (the starter takes one tap).
+            Filter::ExerciseGrid { n } => ((n * n) as u64, (n * n) as u64),
+            Filter::ExerciseDisk { .. } => (16, 64),
         }
     }
 
     /// Linear filtering for the taps that blend 2×2 texels.
     pub fn sampler(self) -> wgpu::FilterMode {
         match self {
-            Filter::Hardware2x2 | Filter::Poisson { .. } => wgpu::FilterMode::Linear,
+            Filter::Hardware2x2 | Filter::Poisson { .. } | Filter::ExerciseDisk { .. } => {
+                wgpu::FilterMode::Linear
+            }
             _ => wgpu::FilterMode::Nearest,
         }
     }
@@ -83,6 +94,19 @@ impl From<Filter> for FilterUniform {
                 ..u
             },
             Filter::DepthAverage { n } => FilterUniform { mode: 3, n, ..u },
+            Filter::ExerciseGrid { n } => FilterUniform {
+                mode: 4,
+                n,
+                receiver_plane: 1,
+                ..u
+            },
+            Filter::ExerciseDisk { radius } => FilterUniform {
+                mode: 5,
+                taps: 16,
+                radius,
+                receiver_plane: 1,
+                ..u
+            },
         }
     }
 }

@@ -181,6 +181,9 @@ pub enum Storage {
     Depth,
     /// Hardware depth compared with |v| instead: the naive mistake.
     DepthEuclid,
+    /// Hardware depth, the receiver converted by the chapter's exercise
+    /// (`exercise_cube_depth` in `exercises.wgsl`).
+    DepthExercise,
 }
 
 impl Storage {
@@ -191,7 +194,9 @@ impl Storage {
                 vs_entry: "vs_cube_linear",
                 fs_entry: "fs_cube_linear",
             },
-            Storage::Depth | Storage::DepthEuclid => DepthStorage::Hardware,
+            Storage::Depth | Storage::DepthEuclid | Storage::DepthExercise => {
+                DepthStorage::Hardware
+            }
         }
     }
 }
@@ -206,7 +211,7 @@ pub struct CubeParams {
     /// 2 / face resolution: a texel's width 1 m from the light.
     pub texel_at_1m: f32,
     /// 0 linear distance, 1 hardware depth, 2 hardware depth compared with
-    /// the Euclidean distance ([`Storage`] in order).
+    /// the Euclidean distance, 3 the exercise's ([`Storage`] in order).
     pub storage: u32,
     /// 1: clamp the receiver to the light's range.
     pub clamp_range: u32,

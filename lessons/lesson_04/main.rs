@@ -15,6 +15,7 @@ use std::path::Path;
 
 use clap::ValueEnum;
 use common::app;
+use common::glam::DVec3;
 use common::gpu::Gpu;
 use common::lesson::{variant_name, Lesson};
 use common::lit::LitPass;
@@ -30,6 +31,7 @@ use workbook::lesson_04::cube_map::{
     self, CubeParams, CubeShadowMap, CubeStats, FaceUniforms, Storage,
 };
 use workbook::lesson_04::culling::{self, Sphere};
+use workbook::lesson_04::exercises;
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -56,6 +58,11 @@ enum Variant {
     Clipped1024,
     #[value(name = "no_range_clamp_1024")]
     NoRangeClamp1024,
+    /// The chapter's exercises (`exercises.rs`, `exercises.wgsl`), run only when named.
+    #[value(name = "exercise_cull_faces")]
+    ExerciseCullFaces,
+    #[value(name = "exercise_cube_depth")]
+    ExerciseCubeDepth,
 }
 
 #[derive(Clone, Copy)]
@@ -69,8 +76,9 @@ struct Settings {
     bias_world: f32,
     /// 3D PCF radius in texels; 0 is one hard tap.
     pcf: f32,
-    /// Skip empty faces and out-of-range casters (the unculled frame must match).
-    cull: bool,
+    /// Skip out-of-range casters, and per face the casters this test says
+    /// the face cannot see (the unculled frame must match); `None`: no culling.
+    cull: Option<FaceTest>,
     /// Near-plane clipping off (DEPTH_CLIP_CONTROL) so casters nearer than it still cast.
     unclipped: bool,
     /// Clamp receivers beyond the range to the far plane.
@@ -86,7 +94,7 @@ const BASE: Settings = Settings {
     slope: 1.0,
     bias_world: 0.0,
     pcf: 0.0,
-    cull: true,
+    cull: Some(culling::sphere_touches_face),
     unclipped: true,
     clamp_range: true,
 };
@@ -106,9 +114,12 @@ impl Variant {
             // as counters.slope_bias_millitexels, and without it below.
             Variant::Pcf3d1024 => Settings { pcf: PCF3D_RADIUS, slope: BASE.slope + PCF3D_RADIUS, ..BASE },
             Variant::Pcf3dSlope1_1024 => Settings { pcf: PCF3D_RADIUS, ..BASE },
-            Variant::Nocull1024 => Settings { cull: false, ..BASE },
+            Variant::Nocull1024 => Settings { cull: None, ..BASE },
             Variant::Clipped1024 => Settings { unclipped: false, ..BASE },
             Variant::NoRangeClamp1024 => Settings { clamp_range: false, ..BASE },
+            // Graded against linear_1024 and depth_1024 (exercises.toml).
+            Variant::ExerciseCullFaces => Settings { cull: Some(exercise_face_test), ..BASE },
+            Variant::ExerciseCubeDepth => Settings { storage: Storage::DepthExercise, ..BASE },
         }
     }
 }
@@ -123,6 +134,14 @@ const PCF3D_RADIUS: f32 = 1.5;
 const NEAR: f64 = 0.05;
 const NEAR_FALLBACK: f64 = 0.001;
 // ANCHOR_END: variants
+
+/// Whether a sphere (centre relative to the light, radius) can touch a face.
+type FaceTest = fn(DVec3, f64, usize) -> bool;
+
+/// `exercise_cull_faces`: the student's [`exercises::faces_touched`].
+fn exercise_face_test(centre: DVec3, radius: f64, face: usize) -> bool {
+    exercises::faces_touched(centre, radius)[face]
+}
 
 /// One variant on this device: its pipeline, lit-pass bind group, map and near plane.
 struct Prepared {
@@ -167,11 +186,13 @@ impl Lesson for CubeShadows {
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
-        let module = shader_module(
-            gpu,
-            "lesson_04",
+        // The lesson's shader, then the exercise's function.
+        let source = format!(
+            "{}\n{}",
             include_str!("../../shaders/lesson_04/cube_map.wgsl"),
+            exercises::EXERCISES_WGSL
         );
+        let module = shader_module(gpu, "lesson_04", &source);
         let params_size = std::mem::size_of::<CubeParams>() as u64;
         let layout = cube_map::cube_map_layout(gpu, params_size);
         let lit_pipeline =
@@ -366,12 +387,12 @@ impl CubeShadows {
 // ANCHOR: face_casters
 /// The casters drawn into face `face` of light `light`. With `cull`, what
 /// the light cannot see is left out: casters past its range, and casters
-/// whose bounding sphere misses the face's frustum.
+/// whose bounding sphere misses the face's frustum (`touches`).
 fn face_casters(
     scene: &SceneGpu,
     spheres: &[Sphere],
     light: usize,
-    cull: bool,
+    cull: Option<FaceTest>,
     face: usize,
 ) -> Vec<usize> {
     let (pos, range) = cube_map::point_light(&scene.scene, light)
@@ -381,7 +402,7 @@ fn face_casters(
         .filter(|&o| {
             let c = spheres[o].centre - pos;
             let r = spheres[o].radius;
-            !cull || (c.length() - r < range && culling::sphere_touches_face(c, r, face))
+            cull.is_none_or(|touches| c.length() - r < range && touches(c, r, face))
         })
         .collect()
 }

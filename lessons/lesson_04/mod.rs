@@ -5,3 +5,11 @@ pub mod costs;
 pub mod cross;
 pub mod cube_map;
 pub mod culling;
+
+/// The chapter's exercises: the starter code a student fills in, or with
+/// `--features solutions`, the reference solutions (`solutions/lesson_04.rs`).
+#[cfg(not(feature = "solutions"))]
+pub mod exercises;
+#[cfg(feature = "solutions")]
+#[path = "../../solutions/lesson_04.rs"]
+pub mod exercises;

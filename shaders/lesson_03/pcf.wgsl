@@ -8,7 +8,8 @@
 
 // Rust: lessons/lesson_03.rs `FilterUniform`.
 struct Filter {
-    // 0: N×N grid, 1: hardware 2×2, 2: rotated Poisson disk, 3: average depths.
+    // 0: N×N grid, 1: hardware 2×2, 2: rotated Poisson disk, 3: average depths;
+    // the exercises (exercises.wgsl): 4: exercise_pcf_kernel, 5: exercise_rotated_poisson.
     mode: u32,
     // Grid and depth average: N.
     n: u32,
@@ -140,6 +141,8 @@ fn fs_lit(in: VertexOut) -> LitOut {
             // One tap; the sampler compares the 4 nearest texels and blends.
             case 1u: { v = textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z); }
             case 2u: { v = pcf_poisson(s, in.clip.xy, gradient); }
+            case 4u: { v = exercise_pcf_kernel(s, i32(pcf.n) / 2, gradient); }
+            case 5u: { v = exercise_rotated_poisson(s, in.clip.xy, pcf.radius, gradient); }
             default: { v = depth_average(s, i32(pcf.n)); }
         }
     }

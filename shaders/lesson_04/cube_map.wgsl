@@ -10,7 +10,8 @@ struct CubeParams {
     // 2 / face resolution: a texel's width 1 m from the light.
     texel_at_1m: f32,
     // 0 linear distance, 1 hardware depth, 2 hardware depth compared with
-    // the Euclidean distance (the naive mistake).
+    // the Euclidean distance (the naive mistake), 3 hardware depth from the
+    // chapter's exercise (exercise_cube_depth in exercises.wgsl).
     storage: u32,
     // 1: clamp the receiver to the light's range.
     clamp_range: u32,
@@ -24,6 +25,7 @@ struct CubeParams {
 @group(2) @binding(2) var<storage, read> params: CubeParams;
 const STORAGE_LINEAR: u32 = 0u;
 const STORAGE_DEPTH_EUCLID: u32 = 2u;
+const STORAGE_DEPTH_EXERCISE: u32 = 3u;
 
 // ANCHOR: linear_distance
 // The linear-distance shadow pass: distance / range, written as the
@@ -71,7 +73,9 @@ fn receiver_depth(v: vec3<f32>, d: f32) -> f32 {
     let far = light.color_range.w;
     let near = params.near;
     var z = d / far;
-    if params.storage != STORAGE_LINEAR {
+    if params.storage == STORAGE_DEPTH_EXERCISE {
+        z = exercise_cube_depth(v, d, near, far);
+    } else if params.storage != STORAGE_LINEAR {
         // The face that holds v looks along v's major axis; its depth is a
         // function of the distance along that axis, not of |v|.
         let a = abs(v);
