@@ -105,18 +105,30 @@ pub fn infinite_perspective(fov_y_rad: f64, aspect: f64, near: f64, eps: f64) ->
 /// The scene's camera with its far plane moved to infinity (with ε).
 /// A second `SceneGpu` holds it: its own camera uniform, the same objects.
 pub fn infinite_scene(gpu: &Gpu, scene: &SceneGpu) -> Result<SceneGpu> {
+    projected_scene(gpu, scene, |fov_y, aspect, near| {
+        infinite_perspective(fov_y, aspect, near, INFINITE_EPSILON)
+    })
+}
+// ANCHOR_END: infinite_camera
+
+/// A second `SceneGpu` for `scene` whose camera uses the projection
+/// `proj(fov_y_rad, aspect, near)` (origin-relative view, as the runner's).
+pub fn projected_scene(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    proj: impl Fn(f64, f64, f64) -> DMat4,
+) -> Result<SceneGpu> {
     let mut s = SceneGpu::new(gpu, scene.scene.clone(), scene.width, scene.height)?;
     let c = &s.scene.camera;
     let o = s.scene.origin();
     let view = look_at_mat4(c.eye - o, c.target - o, c.up);
     let aspect = s.width as f64 / s.height as f64;
-    let proj = infinite_perspective(c.fov_y_deg.to_radians(), aspect, c.near, INFINITE_EPSILON);
+    let proj = proj(c.fov_y_deg.to_radians(), aspect, c.near);
     s.camera.proj = proj.as_mat4();
     s.camera.view_proj = (proj * view).as_mat4();
     s.upload_uniforms(gpu);
     Ok(s)
 }
-// ANCHOR_END: infinite_camera
 
 #[cfg(test)]
 mod tests {

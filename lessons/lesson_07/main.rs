@@ -29,7 +29,7 @@ use clap::ValueEnum;
 use common::app;
 use common::gpu::Gpu;
 use common::headless::save;
-use common::lesson::Lesson;
+use common::lesson::{is_exercise, Lesson};
 use common::render::SceneGpu;
 use common::scene::{Far, Scene};
 use common::targets::FrameTargets;
@@ -39,6 +39,7 @@ use workbook::lesson_05::extrusion::Extrusion;
 use workbook::lesson_05::stencil::{self, Counting};
 use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes};
 use workbook::lesson_06::caps::{self, zfail_counting};
+use workbook::lesson_07::exercise_cameras as cameras;
 use workbook::lesson_07::infinite_far::{infinite_scene, DepthMapping};
 use workbook::lesson_07::precision_study::{self as study, DepthFormat};
 use workbook::lesson_07::precision_table;
@@ -60,6 +61,13 @@ enum Variant {
     /// Reversed-Z in Depth32Float, far plane at infinity.
     #[value(name = "reversed_z")]
     ReversedZ,
+    /// Exercise 1: your infinite projection (`exercises::infinite_projection`).
+    #[value(name = "exercise_infinite_projection")]
+    ExerciseInfiniteProjection,
+    /// Exercise 2: the infinite far plane, near fitted to the scene
+    /// (`exercises::adaptive_near`).
+    #[value(name = "exercise_adaptive_near")]
+    ExerciseAdaptiveNear,
 }
 
 impl Variant {
@@ -69,10 +77,25 @@ impl Variant {
             Variant::Infinite => DepthMapping::Infinite,
             Variant::ReversedZ => DepthMapping::InfiniteReversed,
             Variant::Neither | Variant::Clamp => DepthMapping::Standard,
+            Variant::ExerciseInfiniteProjection | Variant::ExerciseAdaptiveNear => {
+                DepthMapping::Infinite
+            }
+        }
+    }
+
+    /// The exercise's slot in `DepthClamp::exercises`, and its camera.
+    fn exercise(self) -> Option<(usize, ExerciseCamera)> {
+        match self {
+            Variant::ExerciseInfiniteProjection => Some((0, cameras::infinite_projection_scene)),
+            Variant::ExerciseAdaptiveNear => Some((1, cameras::adaptive_near_scene)),
+            _ => None,
         }
     }
 }
 // ANCHOR_END: variants
+
+/// Makes an exercise's camera: a second `SceneGpu` with its projection.
+type ExerciseCamera = fn(&Gpu, &SceneGpu) -> Result<SceneGpu>;
 
 /// One way of drawing: the scene (camera), its volumes and lit pipeline.
 struct Route {
@@ -109,6 +132,8 @@ struct DepthClamp {
     study_written: Cell<bool>,
     /// Per variant: the exact volume costs are still to count.
     pending: Vec<bool>,
+    /// The exercises' cameras and volumes, made when first drawn.
+    exercises: [Option<(SceneGpu, Route)>; 2],
 }
 
 /// Relative gap in parts per billion; 10⁹ means "not even Δd = d resolves".
@@ -145,6 +170,10 @@ impl Lesson for DepthClamp {
         };
         let mut counters = Vec::new();
         for &v in Variant::value_variants() {
+            if is_exercise(v) {
+                counters.push(BTreeMap::new());
+                continue;
+            }
             let row = study::study_one(gpu, format, v.mapping(), near, far)?;
             let n = row.distances.len();
             let c: BTreeMap<String, u64> = [
@@ -173,6 +202,7 @@ impl Lesson for DepthClamp {
             counters,
             study_written: Cell::new(false),
             pending: vec![false; Variant::value_variants().len()],
+            exercises: [None, None],
         })
     }
 
@@ -180,7 +210,7 @@ impl Lesson for DepthClamp {
         match variant {
             Variant::Clamp => self.clamp.as_ref().err().cloned(),
             Variant::ReversedZ => self.reversed.as_ref().err().cloned(),
-            Variant::Neither | Variant::Infinite => None,
+            _ => None,
         }
     }
 
@@ -199,8 +229,27 @@ impl Lesson for DepthClamp {
             self.counters[variant as usize].insert("casters_drawn".into(), casters as u64);
             return Ok(());
         }
+        if let Some((k, camera)) = variant.exercise() {
+            if self.exercises[k].is_none() {
+                let sg = camera(frame.gpu, scene)?;
+                let route = Route::new(frame.gpu, &sg, false)?;
+                if variant == Variant::ExerciseAdaptiveNear {
+                    let near = cameras::adapted_near(scene);
+                    let clipped = cameras::vertices_before_near(scene, near);
+                    let c = &mut self.counters[variant as usize];
+                    c.insert("vertices_before_near".into(), clipped);
+                }
+                self.exercises[k] = Some((sg, route));
+            }
+        }
         let (sg, route) = match variant {
             Variant::ReversedZ => unreachable!("drawn above"),
+            Variant::ExerciseInfiniteProjection | Variant::ExerciseAdaptiveNear => {
+                let (sg, route) = self.exercises[variant.exercise().expect("an exercise").0]
+                    .as_ref()
+                    .expect("made above");
+                (sg, route)
+            }
             Variant::Neither => (scene, &self.finite),
             Variant::Clamp => (
                 scene,

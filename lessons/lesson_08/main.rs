@@ -40,6 +40,7 @@ use workbook::lesson_06::caps::zfail_counting;
 use workbook::lesson_08::bounds_test::{bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits};
 use workbook::lesson_08::costs::VolumeTally;
 use workbook::lesson_08::count_bits;
+use workbook::lesson_08::exercise_bounds::{exercise_bounds, Student};
 use workbook::lesson_08::range_sphere::{all_bounds, LightBounds};
 
 // ANCHOR: variants
@@ -53,14 +54,36 @@ enum Variant {
     DepthBounds,
     #[value(name = "bounds_scissor")]
     BoundsScissor,
+    /// Exercise 1: the scissor from `exercises::scissor_rect`.
+    #[value(name = "exercise_scissor_rect")]
+    ExerciseScissorRect,
+    /// Exercise 2: the depth bounds from `exercises::depth_bounds`.
+    #[value(name = "exercise_depth_bounds")]
+    ExerciseDepthBounds,
 }
 
 impl Variant {
     /// Which of the two limits the variant's volume pass uses.
     fn limits(self) -> Limits {
         Limits {
-            scissor: matches!(self, Variant::Scissor | Variant::BoundsScissor),
-            depth_bounds: matches!(self, Variant::DepthBounds | Variant::BoundsScissor),
+            scissor: matches!(
+                self,
+                Variant::Scissor | Variant::BoundsScissor | Variant::ExerciseScissorRect
+            ),
+            depth_bounds: matches!(
+                self,
+                Variant::DepthBounds | Variant::BoundsScissor | Variant::ExerciseDepthBounds
+            ),
+        }
+    }
+
+    /// Every light's bounds: the range sphere's, or for an exercise, with
+    /// one of them from the student's code.
+    fn bounds(self, scene: &SceneGpu) -> Vec<Option<Option<LightBounds>>> {
+        match self {
+            Variant::ExerciseScissorRect => exercise_bounds(scene, Student::Scissor),
+            Variant::ExerciseDepthBounds => exercise_bounds(scene, Student::DepthBounds),
+            _ => all_bounds(scene),
         }
     }
 }
@@ -134,7 +157,7 @@ impl Lesson for DepthBounds {
         variant: Variant,
     ) -> Result<()> {
         // Per frame: the sphere → bounds and scissor of every light.
-        let bounds = frame.cpu("bounds", || all_bounds(scene));
+        let bounds = frame.cpu("bounds", || variant.bounds(scene));
         for (k, b) in bounds.iter().enumerate() {
             if let Some(Some(b)) = b {
                 self.bounded.write_bounds(frame.gpu, k, b);

@@ -4,4 +4,13 @@
 pub mod bounds_test;
 pub mod costs;
 pub mod count_bits;
+pub mod exercise_bounds;
 pub mod range_sphere;
+
+/// The chapter's exercises: the starter code a student fills in, or with
+/// `--features solutions`, the reference solutions (`solutions/lesson_08.rs`).
+#[cfg(not(feature = "solutions"))]
+pub mod exercises;
+#[cfg(feature = "solutions")]
+#[path = "../../solutions/lesson_08.rs"]
+pub mod exercises;
