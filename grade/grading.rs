@@ -69,9 +69,13 @@ pub struct ExerciseResult {
     pub checks: Vec<CheckResult>,
     /// Hidden scenes the lesson itself refuses (its own line), not graded.
     pub skipped_scenes: Vec<String>,
+    /// The adapter and backend the runs used (`"llvmpipe (LLVM 15.0.6,
+    /// 256 bits)"`, `"Vulkan"`); empty when nothing ran.
+    pub adapter: String,
+    pub backend: String,
     /// The snapshot text (mask, error figures, counters) on the spec's
     /// scenes; `tests/exercises.rs` compares it with the one recorded from
-    /// the reference solution.
+    /// the reference solution on the same backend.
     #[serde(skip)]
     pub snapshot: String,
 }
@@ -321,6 +325,7 @@ pub fn grade_exercise(
     variants.extend(ex.compared_variants());
     let base = opts.out.join(lesson).join(&ex.variant);
     let mut checks = Vec::new();
+    let mut adapter = (String::new(), String::new());
     let mut snapshot = format!(
         "{lesson} {}: {} (the reference solution's result)\n\n",
         ex.variant, ex.title
@@ -336,6 +341,8 @@ pub fn grade_exercise(
         let on_scene: Vec<&Check> = ex.checks.iter().filter(|c| c.scene == scene).collect();
         match run_scene(runner, opts, lesson, ex, path.as_deref(), &out, &variants) {
             Ok(report) => {
+                let name = |k: &str| report["adapter"][k].as_str().unwrap_or("").to_string();
+                adapter = (name("name"), name("backend"));
                 snapshot += &snapshot_part(ex, &label, &report, &out)?;
                 for c in on_scene {
                     checks.push(grade_check(ex, c, &label, false, &report, &out));
@@ -415,6 +422,8 @@ pub fn grade_exercise(
         task: ex.task.clone(),
         checks,
         skipped_scenes: skipped,
+        adapter: adapter.0,
+        backend: adapter.1,
         snapshot,
     })
 }

@@ -295,3 +295,78 @@ impl Exercise {
         v
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+[[exercise]]
+variant = "exercise_x"
+title = "X"
+section = "lesson_02.md#exercise-1-x"
+task = "write x()"
+
+[[exercise.check]]
+scene = "default"
+metric = "misclassified_pct"
+at_most_variant = "slope_hw"
+slack = 0.1
+hidden = true
+
+[[exercise.hint]]
+metric = "false_shadow_pct"
+above = 1.0
+say = "acne {value}"
+"#;
+
+    fn load(text: &str) -> Result<Spec> {
+        let dir = std::env::temp_dir().join(format!("grade-spec-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join(format!(
+            "{:x}.toml",
+            text.len() * 31 + text.bytes().map(u64::from).sum::<u64>() as usize
+        ));
+        std::fs::write(&p, text).unwrap();
+        Spec::load(&p, &dir)
+    }
+
+    #[test]
+    fn a_good_spec_loads_and_names_its_compared_variants() {
+        let s = load(GOOD).unwrap();
+        assert_eq!(s.exercises[0].compared_variants(), vec!["slope_hw"]);
+        assert_eq!(s.exercises[0].scenes(), vec!["default"]);
+        let t = s.exercises[0].checks[0].bound.target();
+        assert_eq!(
+            (t.side, t.variant, t.slack),
+            (Side::AtMost, Some("slope_hw"), 0.1)
+        );
+    }
+
+    #[test]
+    fn bad_specs_are_one_line_naming_the_field() {
+        for (bad, want) in [
+            (
+                GOOD.replace("at_most_variant", "at_mast_variant"),
+                "unknown field",
+            ),
+            (GOOD.replace("exercise_x", "x"), "must start with"),
+            (GOOD.replace("misclassified_pct", "misclasified"), "metric"),
+            (GOOD.replace("hidden = true", "hidden = false"), "hidden"),
+            (
+                GOOD.replace("scene = \"default\"", "scene = \"nowhere.toml\""),
+                "does not exist",
+            ),
+            (
+                GOOD.replace("slack = 0.1", "slack = 0.1\nat_most = 2.0"),
+                "exactly one",
+            ),
+            (GOOD.replace("above = 1.0", ""), "exactly one"),
+            ("title = 3".to_string(), "not a valid exercise spec"),
+        ] {
+            let e = format!("{:#}", load(&bad).unwrap_err());
+            assert!(e.contains(want), "want {want:?} in: {e}");
+            assert!(!e.contains('\n'), "one line: {e}");
+        }
+    }
+}

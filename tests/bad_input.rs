@@ -213,3 +213,43 @@ fn no_adapter_says_what_to_install() {
         "{e}"
     );
 }
+
+/// The grader's own bad input: one line, exit code 2, before any run.
+#[test]
+fn grade_bad_input_is_one_line() {
+    let grade = env!("CARGO_BIN_EXE_grade");
+    let missing = dir().join("no_such_folder");
+    for (args, want) in [
+        (vec!["lesson_99"], "lesson_99: no such chapter"),
+        (
+            vec!["lesson_01", "--scenes", missing.to_str().unwrap()],
+            "--scenes",
+        ),
+        (vec!["lesson_01", "--adapter", " "], "--adapter"),
+    ] {
+        let out = std::process::Command::new(grade)
+            .args(&args)
+            .env_remove("CARGO")
+            .output()
+            .expect("run grade");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(lines.len(), 1, "{args:?}: want one line, got {stderr}");
+        assert!(
+            lines[0].contains(want),
+            "{args:?}: want {want:?} in {}",
+            lines[0]
+        );
+    }
+}
+
+/// `--adapter` with a name no adapter has: one line naming the flag.
+#[test]
+fn unknown_adapter_is_one_line() {
+    let e = fails(&["--adapter", "no-such-gpu-9000"]);
+    assert!(
+        e.contains("--adapter") && e.contains("no-such-gpu-9000"),
+        "{e}"
+    );
+}

@@ -176,7 +176,10 @@ fn reproduce(lesson: &str) {
         let report = match runner.run(&args, &out) {
             Ok(r) => r,
             Err(e) if format!("{e:#}").contains("no GPU adapter") && !support::gpu_required() => {
-                eprintln!("SKIPPED drift {}: no GPU adapter (WORKBOOK_ALLOW_NO_GPU=1)", run.id());
+                eprintln!(
+                    "SKIPPED drift {}: no GPU adapter (WORKBOOK_ALLOW_NO_GPU=1)",
+                    run.id()
+                );
                 return;
             }
             Err(e) => panic!("{}: {e:#}", run.id()),

@@ -250,7 +250,7 @@ fn lesson_01_spot_light_ten_km_out() {
         .unwrap()
         .replace("type = \"spot\"", "type = \"point\"");
     std::fs::write(&point, text).unwrap();
-    let o = std::process::Command::new(BIN)
+    let o = support::lesson_command(BIN)
         .args(["--headless", "--scene", point.to_str().unwrap()])
         .args(SIZE)
         .arg("--out")

@@ -295,7 +295,7 @@ fn lesson_04_light_far_from_the_origin() {
 /// A directional light is refused with one line that names lessons 01-03.
 #[test]
 fn lesson_04_refuses_directional_lights() {
-    let o = std::process::Command::new(BIN)
+    let o = support::lesson_command(BIN)
         .args(["--headless", "--scene", &scene("lesson_01.toml"), "--out"])
         .arg(support::out_dir("lesson_04_directional"))
         .output()

@@ -200,7 +200,7 @@ fn lesson_06_finite_far_light_close_to_caster() {
 /// on stderr that points to lesson 07.
 fn expect_refusal(scene: &std::path::Path, name: &str) {
     let out = support::out_dir(name);
-    let o = std::process::Command::new(BIN)
+    let o = support::lesson_command(BIN)
         .args(["--headless", "--out", out.to_str().unwrap(), "--scene"])
         .arg(scene)
         .args(SIZE)

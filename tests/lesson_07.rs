@@ -5,8 +5,6 @@
 
 mod support;
 
-use std::process::Command;
-
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_07");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
@@ -105,7 +103,7 @@ fn lesson_07_volume_crossing_finite_far_plane() {
 #[test]
 fn lesson_07_clamp_renders_right_or_names_the_missing_feature() {
     let out = support::out_dir("lesson_07_clamp");
-    let o = Command::new(BIN)
+    let o = support::lesson_command(BIN)
         .args(["--headless", "--out"])
         .arg(&out)
         .args(SIZE)
@@ -207,7 +205,7 @@ fn lesson_07_extreme_near_1e_3_far_1e5() {
 /// Returns the run where it rendered.
 fn run_or_refused(name: &str, args: &[&str]) -> Option<support::LessonRun> {
     let out = support::out_dir(name);
-    let o = Command::new(BIN)
+    let o = support::lesson_command(BIN)
         .args(["--headless", "--out"])
         .arg(&out)
         .args(args)
@@ -302,7 +300,7 @@ fn lesson_07_reversed_z_exact_on_deep_range() {
 #[test]
 fn lesson_07_default_run_skips_only_what_the_adapter_cannot_render() {
     let out = support::out_dir("lesson_07_default_run");
-    let o = Command::new(BIN)
+    let o = support::lesson_command(BIN)
         .args(["--headless", "--width", "160", "--height", "90", "--out"])
         .arg(&out)
         .output()

@@ -216,7 +216,7 @@ fn lesson_08_camera_inside_light_sphere() {
 /// adapter exists and none is required.
 fn run_finite(bin: &str, name: &str, file: &str, variants: &[&str]) -> Option<support::LessonRun> {
     let out = support::out_dir(name);
-    let mut cmd = std::process::Command::new(bin);
+    let mut cmd = support::lesson_command(bin);
     cmd.args(["--headless", "--out"]).arg(&out).args(SIZE);
     cmd.args(["--scene", file]);
     for v in variants {
@@ -324,7 +324,7 @@ fn lesson_08_count_wraps_at_128_and_warns_there() {
         let file = dir.join(format!("nested_{n}.toml"));
         std::fs::write(&file, nested_scene(n)).unwrap();
         let out = support::out_dir(&format!("lesson_08_nested_{n}_{variant}"));
-        let o = std::process::Command::new(bin)
+        let o = support::lesson_command(bin)
             .args(["--headless", "--out"])
             .arg(&out)
             .args(SIZE)
