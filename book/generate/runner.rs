@@ -90,7 +90,10 @@ impl Runner {
         if !output.status.success() {
             let err = String::from_utf8_lossy(&output.stderr);
             let line = err.lines().last().unwrap_or("(no message)");
-            bail!("{} {:?} failed: {line}", a.lesson, a.scene);
+            let scene = a
+                .scene
+                .map_or("its default scene".into(), |s| s.display().to_string());
+            bail!("{} on {scene} failed: {line}", a.lesson);
         }
         let path = out.join("report.json");
         let text = std::fs::read_to_string(&path)
