@@ -118,64 +118,55 @@ pub struct Target<'a> {
     pub slack: f64,
 }
 
+/// One side of a target: a number or a variant, and which way it points.
+type Limit<'a> = (Option<f64>, &'a Option<String>, Side);
+
+/// The one limit given (validated by [`Spec::load`]) as a target.
+fn target_of<'a>(limits: [Limit<'a>; 2], factor: f64, slack: f64) -> Target<'a> {
+    let (value, variant, side) = limits
+        .into_iter()
+        .find(|(v, n, _)| v.is_some() || n.is_some())
+        .expect("validated by Spec::load");
+    Target {
+        side,
+        value,
+        variant: variant.as_deref(),
+        factor,
+        slack,
+    }
+}
+
+/// How many of the four ways to give a limit are used (one is right).
+fn given(limits: &[Limit; 2]) -> usize {
+    let count = |(v, n, _): &Limit| usize::from(v.is_some()) + usize::from(n.is_some());
+    limits.iter().map(count).sum()
+}
+
 impl Bound {
-    pub fn target(&self) -> Target<'_> {
-        let (side, value, variant) = match (
-            self.at_most,
-            self.at_least,
-            &self.at_most_variant,
-            &self.at_least_variant,
-        ) {
-            (Some(v), None, None, None) => (Side::AtMost, Some(v), None),
-            (None, Some(v), None, None) => (Side::AtLeast, Some(v), None),
-            (None, None, Some(n), None) => (Side::AtMost, None, Some(n.as_str())),
-            (None, None, None, Some(n)) => (Side::AtLeast, None, Some(n.as_str())),
-            _ => unreachable!("validated by Spec::load"),
-        };
-        Target {
-            side,
-            value,
-            variant,
-            factor: self.factor,
-            slack: self.slack,
-        }
+    fn limits(&self) -> [Limit<'_>; 2] {
+        [
+            (self.at_most, &self.at_most_variant, Side::AtMost),
+            (self.at_least, &self.at_least_variant, Side::AtLeast),
+        ]
     }
 
-    fn count(&self) -> usize {
-        [
-            self.at_most.is_some(),
-            self.at_least.is_some(),
-            self.at_most_variant.is_some(),
-            self.at_least_variant.is_some(),
-        ]
-        .iter()
-        .filter(|b| **b)
-        .count()
+    pub fn target(&self) -> Target<'_> {
+        target_of(self.limits(), self.factor, self.slack)
     }
 }
 
 impl Hint {
-    /// The hint's condition as a target that must be exceeded.
+    /// The hint's condition: the measured value lies beyond this target
+    /// (`above`: greater than it; `below`: less).
+    fn limits(&self) -> [Limit<'_>; 2] {
+        [
+            (self.below, &self.below_variant, Side::AtMost),
+            (self.above, &self.above_variant, Side::AtLeast),
+        ]
+    }
+
     pub fn target(&self) -> Target<'_> {
-        let (side, value, variant) = match (
-            self.above,
-            self.below,
-            &self.above_variant,
-            &self.below_variant,
-        ) {
-            (Some(v), None, None, None) => (Side::AtLeast, Some(v), None),
-            (None, Some(v), None, None) => (Side::AtMost, Some(v), None),
-            (None, None, Some(n), None) => (Side::AtLeast, None, Some(n.as_str())),
-            (None, None, None, Some(n)) => (Side::AtMost, None, Some(n.as_str())),
-            _ => unreachable!("validated by Spec::load"),
-        };
-        Target {
-            side,
-            value,
-            variant,
-            factor: self.factor,
-            slack: self.slack,
-        }
+        target_of(self.limits(), self.factor, self.slack)
     }
 }
 
@@ -232,7 +223,7 @@ impl Spec {
             for c in &ex.checks {
                 let at = format!("{at}, check on {:?}", c.scene);
                 check_metric(&c.metric, &at)?;
-                if c.bound.count() != 1 {
+                if given(&c.bound.limits()) != 1 {
                     bail!("{at}: give exactly one of at_most, at_least, at_most_variant, at_least_variant");
                 }
                 if c.scene != "default" && !scenes_dir.join(&c.scene).is_file() {
@@ -245,16 +236,7 @@ impl Spec {
             for h in &ex.hints {
                 let at = format!("{at}, hint {:?}", h.say);
                 check_metric(&h.metric, &at)?;
-                let n = [
-                    h.above.is_some(),
-                    h.below.is_some(),
-                    h.above_variant.is_some(),
-                    h.below_variant.is_some(),
-                ]
-                .iter()
-                .filter(|b| **b)
-                .count();
-                if n != 1 {
+                if given(&h.limits()) != 1 {
                     bail!("{at}: give exactly one of above, below, above_variant, below_variant");
                 }
             }

@@ -65,13 +65,7 @@ pub fn stable_up(dir: DVec3) -> DVec3 {
 /// direction; the ortho box is the bounds' eight corners seen from there, so
 /// every caster and receiver lands inside the depth map.
 pub fn directional_light_view_proj(scene: &Scene, direction: DVec3) -> Mat4 {
-    let o = scene.origin();
-    let (lo, hi) = scene.bounds();
-    let (lo, hi) = (lo - o, hi - o);
-    let centre = (lo + hi) * 0.5;
-    let radius = ((hi - lo).length() * 0.5).max(1e-6);
-    let eye = centre - direction.normalize() * radius * 2.0;
-    let view = look_at_mat4(eye, centre, stable_up(direction));
+    let (view, lo, hi) = directional_light_view(scene, direction);
     let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
     for i in 0..8 {
         let corner = DVec3::new(
@@ -88,6 +82,19 @@ pub fn directional_light_view_proj(scene: &Scene, direction: DVec3) -> Mat4 {
     (proj * view).as_mat4()
 }
 // ANCHOR_END: light_view_proj
+
+/// A directional light's view (origin-relative): from outside the scene's
+/// bounding sphere, looking along `direction` at its centre. Also the
+/// origin-relative bounds `(lo, hi)` it was fitted to.
+pub fn directional_light_view(scene: &Scene, direction: DVec3) -> (DMat4, DVec3, DVec3) {
+    let o = scene.origin();
+    let (lo, hi) = scene.bounds();
+    let (lo, hi) = (lo - o, hi - o);
+    let centre = (lo + hi) * 0.5;
+    let radius = ((hi - lo).length() * 0.5).max(1e-6);
+    let eye = centre - direction.normalize() * radius * 2.0;
+    (look_at_mat4(eye, centre, stable_up(direction)), lo, hi)
+}
 
 /// Spot light: a perspective frustum along the spot direction with the cone's
 /// full angle and the light's range as the far plane.

@@ -6,9 +6,8 @@
 //!
 //! [`fit_light_box`]: super::exercises::fit_light_box
 
-use common::camera::{light_view_proj, stable_up};
+use common::camera::{directional_light_view, light_view_proj};
 use common::glam::dcamera::rh::proj::directx as webgpu;
-use common::glam::dcamera::rh::view::look_at_mat4;
 use common::glam::{DVec3, Mat4};
 use common::gpu::Gpu;
 use common::render::SceneGpu;
@@ -26,12 +25,7 @@ pub fn tight_light_view_proj(scene: &Scene, light: usize) -> Option<Mat4> {
         return light_view_proj(scene, light);
     };
     let o = scene.origin();
-    let (lo, hi) = scene.bounds();
-    let (lo, hi) = (lo - o, hi - o);
-    let centre = (lo + hi) * 0.5;
-    let radius = ((hi - lo).length() * 0.5).max(1e-6);
-    let eye = centre - direction.normalize() * radius * 2.0;
-    let view = look_at_mat4(eye, centre, stable_up(direction));
+    let (view, _, _) = directional_light_view(scene, direction);
     let points: Vec<DVec3> = scene
         .objects
         .iter()
