@@ -223,7 +223,7 @@ fn snapshot_part(ex: &Exercise, label: &str, report: &Value, out: &Path) -> Resu
     let f = |m: &str| metric(report, &ex.variant, m).unwrap_or(f64::NAN);
     let mut text = format!(
         "scene {label}: light 0 ('#' shadow, '.' lit, ' ' background)\n{mask}\n\
-         misclassified {:.1} %  false shadow {:.1} %  false lit {:.1} %  mean |dV| {:.2} %\n",
+         misclassified {:.2} %  false shadow {:.2} %  false lit {:.2} %  mean |dV| {:.2} %\n",
         f("misclassified_pct"),
         f("false_shadow_pct"),
         f("false_lit_pct"),

@@ -14,8 +14,12 @@ use crate::lesson_08::range_sphere::Scissor;
 /// camera's projection: a view point (x, y, z) lands at NDC
 /// (proj.x_axis.x · x / −z, proj.y_axis.y · y / −z), pixels
 /// ((ndc_x + 1)/2 · w, (1 − ndc_y)/2 · h). Return `None` when the sphere
-/// lies wholly behind the near plane (z > −near) or off screen; the full
-/// screen when the camera is inside it. Round outwards, stay on screen.
+/// lies wholly on the camera's side of the near plane (every z > −near)
+/// or off screen; the full screen when the camera is inside it. Round
+/// outwards, stay on screen. Widen `r` by `r · range_sphere::SPHERE_MARGIN`
+/// first, as the lesson does, so rounding never cuts off a sliver.
+/// `Scissor { x, y, width, height }` is in pixels: `x, y` the top-left
+/// corner, y down (wgpu's `set_scissor_rect`).
 ///
 /// Starter: the full screen for every light (correct, and saves nothing).
 pub fn scissor_rect(
