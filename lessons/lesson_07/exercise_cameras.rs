@@ -35,9 +35,11 @@ pub fn adaptive_near_scene(gpu: &Gpu, scene: &SceneGpu) -> Result<SceneGpu> {
     })
 }
 
-/// How many scene vertices lie in front of a near plane at view depth
-/// `near` (they and their triangles would be clipped): 0 for a near plane
-/// that clips nothing of the scene.
+/// How many scene vertices a near plane at view depth `near` clips that
+/// the scene file's own near plane keeps (view depth in `[file near,
+/// near)`): 0 for a near plane that loses nothing. Vertices the file's
+/// near plane clips already (behind the camera, say) are not the
+/// exercise's doing and are not counted.
 pub fn vertices_before_near(scene: &SceneGpu, near: f64) -> u64 {
     let s = &scene.scene;
     let c = &s.camera;
@@ -51,6 +53,6 @@ pub fn vertices_before_near(scene: &SceneGpu, near: f64) -> u64 {
                 .iter()
                 .map(|p| o.model.transform_point3(p.as_dvec3()))
         })
-        .filter(|&p| depth(p) < near)
+        .filter(|&p| (c.near..near).contains(&depth(p)))
         .count() as u64
 }
