@@ -30,6 +30,26 @@ pub trait Lesson: Sized {
         Ok(())
     }
 
+    /// Whether the lesson re-reads the camera on every [`Lesson::render`], so
+    /// that a scene's `[camera_path]` (shimmer, chapter 09) is measured right.
+    /// A lesson that caches camera-dependent state keeps `false`, and the
+    /// runner refuses such a scene with one line.
+    const CAMERA_PATH: bool = false;
+
+    /// Classes the pixels fall into, for an error breakdown in the report
+    /// (lesson 09: the cascade each pixel samples). `view_depth[p]` is the
+    /// distance along the camera's forward axis to the surface pixel `p`
+    /// sees (the exact reference's hit), NaN where it sees nothing.
+    /// Returns the class names and one class index per pixel, or `None`.
+    fn pixel_classes(
+        &self,
+        _scene: &SceneGpu,
+        _variant: Self::Variant,
+        _view_depth: &[f32],
+    ) -> Option<(Vec<String>, Vec<u8>)> {
+        None
+    }
+
     /// Creates the lesson's pipelines and resources.
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self>;
 
