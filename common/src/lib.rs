@@ -22,6 +22,7 @@
 //! - [`scene_file`]: the scene TOML as written, before validation.
 //! - [`limits`]: the magnitudes a scene may have, and numbers in messages.
 //! - [`mesh`]: the mesh type, built-in unit meshes, welding, smooth normals.
+//! - [`mesh_dense`]: the dense built-ins (`holed_sphere`, `dense_knot`).
 //! - [`obj`]: OBJ files, read through tobj and written for `gen_assets`.
 //! - [`camera`]: camera and light matrices.
 //!
@@ -48,6 +49,7 @@ pub mod lesson;
 pub mod limits;
 pub mod lit;
 pub mod mesh;
+pub mod mesh_dense;
 pub mod metrics;
 pub mod obj;
 pub mod readback;

@@ -9,6 +9,8 @@ use std::f64::consts::{PI, TAU};
 use anyhow::{bail, Result};
 use glam::{DVec3, Vec3};
 
+use crate::mesh_dense::{dense_builtin, DENSE_BUILTIN_NAMES};
+
 /// An indexed triangle mesh in object space. Front faces wind counter-clockwise.
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
@@ -59,6 +61,10 @@ pub const BUILTIN_NAMES: [&str; 5] = ["plane", "cube", "sphere", "torus", "knot"
 /// Every mesh except `plane` is closed. Seams share their vertices, so the
 /// meshes are closed by index as well as by position.
 ///
+/// Two dense ones, for timing and for two-sided casters, are documented in
+/// [`crate::mesh_dense`]: `holed_sphere` (about 50 000 triangles, five
+/// holes: open) and `dense_knot` (about 100 000 triangles, closed).
+///
 /// Positions and normals are computed in `f64` and rounded once to `f32`.
 /// That gives the same bits on every platform, so `assets/*.obj`
 /// (written by `gen_assets`) can be checked against this code exactly.
@@ -69,10 +75,14 @@ pub fn builtin(name: &str) -> Result<Mesh> {
         "sphere" => sphere(0.5, 48, 24),
         "torus" => torus(0.35, 0.15, 64, 32),
         "knot" => knot(0.28, 0.14, 0.07, 192, 16),
-        _ => bail!(
-            "unknown built-in mesh {name:?} (known: {}; or give a path ending in .obj)",
-            BUILTIN_NAMES.join(", ")
-        ),
+        _ => match dense_builtin(name) {
+            Some(mesh) => mesh,
+            None => bail!(
+                "unknown built-in mesh {name:?} (known: {}, {}; or give a path ending in .obj)",
+                BUILTIN_NAMES.join(", "),
+                DENSE_BUILTIN_NAMES.join(", ")
+            ),
+        },
     };
     mesh.name = name.to_string();
     Ok(mesh)
@@ -152,7 +162,7 @@ fn cube() -> Mesh {
 
 /// UV sphere: `stacks` bands from pole to pole, `segments` around Y.
 /// The poles are single vertices, so their bands are triangle fans.
-fn sphere(radius: f64, segments: u32, stacks: u32) -> Mesh {
+pub(crate) fn sphere(radius: f64, segments: u32, stacks: u32) -> Mesh {
     let mut b = Builder::default();
     let top = b.vertex(DVec3::new(0.0, radius, 0.0), DVec3::Y);
     for k in 1..stacks {
@@ -197,7 +207,7 @@ fn torus(big_r: f64, r: f64, segments: u32, sides: u32) -> Mesh {
 
 /// A (2,3) torus knot: a tube of radius `tube` around the curve
 /// `((R + a cos 3t) cos 2t, a sin 3t, (R + a cos 3t) sin 2t)`.
-fn knot(big_r: f64, a: f64, tube: f64, segments: u32, sides: u32) -> Mesh {
+pub(crate) fn knot(big_r: f64, a: f64, tube: f64, segments: u32, sides: u32) -> Mesh {
     let mut b = Builder::default();
     b.wrapped_grid(segments, sides, |i, j| {
         let t = TAU * i as f64 / segments as f64;
@@ -391,7 +401,7 @@ mod tests {
     #[test]
     fn unknown_builtin_lists_the_known_names() {
         let e = builtin("teapot").unwrap_err().to_string();
-        for name in BUILTIN_NAMES {
+        for name in BUILTIN_NAMES.iter().chain(&DENSE_BUILTIN_NAMES) {
             assert!(e.contains(name), "{e}");
         }
     }
