@@ -258,14 +258,14 @@ fn lesson_02_grazing_light() {
 }
 
 /// A cube resting on the floor: the gap between its foot and its shadow,
-/// in texels. The best variant keeps it under one texel; the seeds'
+/// in texels. The best variant keeps it under one texel; the lwjgl book's
 /// constant (0.05 of the light's depth range, about 38 texels here) opens
 /// a gap of more than 10; along the sweep the gap grows with the bias.
 #[test]
 fn lesson_02_contact_gap() {
     let scene = "lesson_02_contact.toml";
     let variants = [
-        "constant_seed",
+        "constant_lwjgl",
         "bias_1tx",
         "bias_4tx",
         "bias_16tx",
@@ -291,9 +291,9 @@ fn lesson_02_contact_gap() {
         "{BEST} loses the cube's shadow"
     );
     assert!(
-        gap("constant_seed") > 10.0,
-        "the seeds' constant must detach the shadow, gap {:.1}",
-        gap("constant_seed")
+        gap("constant_lwjgl") > 10.0,
+        "the lwjgl book's constant must detach the shadow, gap {:.1}",
+        gap("constant_lwjgl")
     );
     let sweep: Vec<f64> = ["bias_1tx", "bias_4tx", "bias_16tx", "bias_64tx"]
         .iter()
@@ -312,11 +312,11 @@ fn lesson_02_contact_gap() {
 /// Thin things: a single-sided sheet 2 cm above the floor and a board 1 cm
 /// thick, 1 cm above it. The best variant keeps both shadows (at most 1% of
 /// their inner pixels lost); culling front faces loses the sheet, which has
-/// no back faces, and the seeds' constant lets light under both.
+/// no back faces, and the lwjgl book's constant lets light under both.
 #[test]
 fn lesson_02_thin_plate() {
     let scene = "lesson_02_thin_plate.toml";
-    let variants = ["constant_seed", "front_cull", BEST];
+    let variants = ["constant_lwjgl", "front_cull", BEST];
     let Some(run) = run("lesson_02_thin_plate", Some(scene), SIZE, &variants) else {
         return;
     };
@@ -342,8 +342,8 @@ fn lesson_02_thin_plate() {
         "front-face culling must lose the single-sided sheet"
     );
     assert!(
-        lost("constant_seed", sheet) > 90.0 && lost("constant_seed", board) > 90.0,
-        "the seeds' bias must leak under both"
+        lost("constant_lwjgl", sheet) > 90.0 && lost("constant_lwjgl", board) > 90.0,
+        "the lwjgl book's bias must leak under both"
     );
 }
 
@@ -421,7 +421,7 @@ fn lesson_02_relative_coordinates_keep_the_millimetres() {
 /// A light frustum much larger than the scene: a spot light 25 m away with
 /// a 70° cone, so its map spans about 35 m where the 8 m scene is. Biases
 /// counted in texels follow the texel size; the best variant stays within
-/// 1%. The seeds' constant, 0.05 of a perspective depth range, is metres
+/// 1%. The lwjgl book's constant, 0.05 of a perspective depth range, is metres
 /// at that distance: every shadow on the floor is gone.
 #[test]
 fn lesson_02_light_frustum_much_larger_than_the_scene() {
@@ -430,17 +430,17 @@ fn lesson_02_light_frustum_much_larger_than_the_scene() {
         "lesson_02_spot_wide",
         Some(scene),
         SIZE,
-        &["none", "constant_seed", BEST],
+        &["none", "constant_lwjgl", BEST],
     ) else {
         return;
     };
     let best = support::error(&run.report, BEST, "misclassified_pct");
     assert!(best <= 1.0, "{BEST}: misclassified {best:.3}%");
     assert!(support::error(&run.report, "none", "false_shadow_pct") > 40.0);
-    let seed = support::error(&run.report, "constant_seed", "false_lit_pct");
+    let lwjgl = support::error(&run.report, "constant_lwjgl", "false_lit_pct");
     assert!(
-        seed > 1.0,
-        "the seeds' constant must wipe out the shadows, false lit {seed:.3}%"
+        lwjgl > 1.0,
+        "the lwjgl book's constant must wipe out the shadows, false lit {lwjgl:.3}%"
     );
 }
 

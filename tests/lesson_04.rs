@@ -67,7 +67,7 @@ fn lesson_04_snapshot() {
         return;
     };
     let variants = run.report["variants"].as_array().expect("variants");
-    assert_eq!(variants.len(), 11);
+    assert_eq!(variants.len(), 14);
     let mut text =
         String::from("reference visibility, light 0 ('#' shadow, '.' lit, ' ' background):\n");
     text += &support::ascii_of(&run.out.join("reference_visibility_l0.png"), 64, 18);

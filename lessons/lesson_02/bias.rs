@@ -18,7 +18,8 @@ use crate::lesson_01::shadow_map::ShadowPassState;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ShadowBias {
-    /// Subtracted from the receiver's depth, in depth units (the seeds' constant).
+    /// Subtracted from the receiver's depth, in depth units (the lwjgl
+    /// book's constant); with `depth_slope`, the least that is subtracted.
     pub depth: f32,
     /// The receiver moves this many texels towards the light.
     pub toward_light: f32,
@@ -27,7 +28,15 @@ pub struct ShadowBias {
     pub slope_max: f32,
     /// The receiver moves `normal · (1 − N·L)` texels along its normal.
     pub normal: f32,
-    pub _pad: [f32; 3],
+    /// LearnOpenGL's: `max(depth_slope · (1 − N·L), depth)` depth units are
+    /// subtracted instead of `depth`.
+    pub depth_slope: f32,
+    /// Bevy's depth bias: the receiver moves this far towards the light, in
+    /// world units (metres, whatever the map).
+    pub toward_light_world: f32,
+    /// Bevy's normal bias: the receiver moves this many texels along its
+    /// normal (a texel: the map texel's larger side, Bevy's `texel_size`).
+    pub normal_flat: f32,
 }
 
 impl ShadowBias {
@@ -38,8 +47,39 @@ impl ShadowBias {
         slope: 0.0,
         slope_max: 0.0,
         normal: 0.0,
-        _pad: [0.0; 3],
+        depth_slope: 0.0,
+        toward_light_world: 0.0,
+        normal_flat: 0.0,
     };
+
+    // ANCHOR: peer_biases
+    /// LearnOpenGL's "Shadow Mapping" (JoeyDeVries/LearnOpenGL, commit
+    /// 85530ab, src/5.advanced_lighting/3.1.3.shadow_mapping/
+    /// 3.1.3.shadow_mapping.fs line 30): `max(0.05 * (1.0 - dot(normal,
+    /// lightDir)), 0.005)`, subtracted from the receiver's depth. Its units
+    /// are the depth of ITS light frustum, an orthographic near 1, far 7.5
+    /// (shadow_mapping.cpp): 0.005 there is 3.25 cm, 0.05 is 32.5 cm. Applied
+    /// verbatim to our depth, whose range is the light's fit to the scene,
+    /// the same numbers are (our range / 6.5) times as long.
+    pub const LEARNOPENGL: ShadowBias = ShadowBias {
+        depth: 0.005,
+        depth_slope: 0.05,
+        ..ShadowBias::NONE
+    };
+
+    /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
+    /// src/directional_light.rs: `DEFAULT_SHADOW_DEPTH_BIAS = 0.02`,
+    /// `DEFAULT_SHADOW_NORMAL_BIAS = 1.8`), applied as
+    /// crates/bevy_pbr/src/render/shadows.wgsl `sample_directional_cascade`
+    /// does: the receiver moves 0.02 world units towards the light, and
+    /// `1.8 · √2` texels (the √2 from bevy_pbr/src/render/light.rs,
+    /// `extract_lights`: "worst-case diagonal offset") along its normal.
+    pub const BEVY: ShadowBias = ShadowBias {
+        toward_light_world: 0.02,
+        normal_flat: 1.8 * std::f32::consts::SQRT_2,
+        ..ShadowBias::NONE
+    };
+    // ANCHOR_END: peer_biases
 }
 
 /// Whether the adapter can clamp the hardware depth bias
@@ -75,6 +115,17 @@ impl SlopeScaledBias {
         clamp_texels: 16.0,
     };
 
+    /// The wgpu shadow example's (gfx-rs/wgpu, examples/features/src/shadow/
+    /// mod.rs, the `shadow_pass` pipeline's `depth_stencil`, the same at
+    /// commits 02201f4 and 4230fe5): `DepthBiasState { constant: 2, //
+    /// corresponds to bilinear filtering`, `slope_scale: 2.0, clamp: 0.0 }`.
+    /// A clamp of 0 is no clamp.
+    pub const WGPU_EXAMPLE: SlopeScaledBias = SlopeScaledBias {
+        constant: 2,
+        slope_scale: 2.0,
+        clamp_texels: 0.0,
+    };
+
     /// The shadow pass's state for `light` and a `map_size` map: the clamp
     /// converted to depth units at the scene's centre, and left out where
     /// the adapter cannot clamp (GL), so there the bias is unclamped.
@@ -85,7 +136,7 @@ impl SlopeScaledBias {
         light: usize,
         map_size: u32,
     ) -> ShadowPassState {
-        let clamp = if can_clamp_depth_bias(gpu) {
+        let clamp = if can_clamp_depth_bias(gpu) && self.clamp_texels > 0.0 {
             (self.clamp_texels as f64 * depth_per_texel(scene, light, map_size)) as f32
         } else {
             0.0

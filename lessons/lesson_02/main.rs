@@ -3,10 +3,11 @@
 //! Lesson 01's shadow map, with the comparison moved off the surface so that
 //! a surface stops shadowing itself (acne), and the price of that measured:
 //! shadows that come loose from their casters (Peter Panning, false lit).
-//! The variants are the usual fixes: a constant bias (the seeds' magic
-//! number, and a sweep of sizes), the rasteriser's slope-scaled depth bias,
-//! a slope-scaled and a normal-offset bias in the shader, and drawing only
-//! back faces into the map.
+//! The variants are the usual fixes: a constant bias (the lwjgl book's
+//! magic number, and a sweep of sizes), the rasteriser's slope-scaled depth
+//! bias, a slope-scaled and a normal-offset bias in the shader, and drawing
+//! only back faces into the map; then the defaults of renderers people use
+//! (LearnOpenGL, the wgpu example, Bevy), on the same map.
 //!
 //! Run: `cargo run --release --bin lesson_02 -- --headless`
 //! Book: chapter "02 Bias" (`book/src/lesson_02.md`).
@@ -40,8 +41,9 @@ enum Fix {
     Receiver(ShadowBias),
     /// In the shadow pass: the rasteriser adds `slope_scale · m + constant · r`
     /// to each stored depth (m: the triangle's depth slope per texel, r: one
-    /// unit of the depth format), at most `clamp_texels` texels of depth.
-    Hardware(SlopeScaledBias),
+    /// unit of the depth format), at most `clamp_texels` texels of depth;
+    /// and the faces the pass culls (the wgpu example culls back faces).
+    Hardware(SlopeScaledBias, Option<wgpu::Face>),
     /// In the shadow pass: store the back faces, not the lit front faces.
     CullFrontFaces,
     /// The chapter's exercise: the student's WGSL in the lit pass
@@ -55,8 +57,9 @@ enum Fix {
 enum Variant {
     #[value(name = "none")]
     None,
-    #[value(name = "constant_seed")]
-    ConstantSeed,
+    /// The lwjgl book's `bias = 0.05`, in depth units.
+    #[value(name = "constant_lwjgl")]
+    ConstantLwjgl,
     #[value(name = "bias_0.25tx")]
     Bias0_25,
     #[value(name = "bias_0.5tx")]
@@ -79,6 +82,32 @@ enum Variant {
     NormalOffset,
     #[value(name = "front_cull")]
     FrontCull,
+    /// LearnOpenGL "Shadow Mapping" (JoeyDeVries/LearnOpenGL, commit 85530ab,
+    /// src/5.advanced_lighting/3.1.3.shadow_mapping/3.1.3.shadow_mapping.fs
+    /// line 30; its one-tap test, line 32): `max(0.05 * (1.0 - dot(normal,
+    /// lightDir)), 0.005)` of depth, verbatim in our depth units. Its depth
+    /// spans an orthographic near 1 to far 7.5 (6.5 m); ours spans the
+    /// light's fit to the scene, so the same numbers are (our range / 6.5 m)
+    /// times as long here. Beyond the far plane it is lit, like ours.
+    #[value(name = "learnopengl")]
+    LearnOpenGl,
+    /// The wgpu shadow example (gfx-rs/wgpu, examples/features/src/shadow/
+    /// mod.rs, commits 02201f4 and 4230fe5): the shadow pipeline's
+    /// `DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 }` and
+    /// `cull_mode: Some(Face::Back)`; one nearest tap here (its linear
+    /// comparison sampler, a 2×2 filter, is lesson 03's `wgpu_example_hw2x2`).
+    /// Its map is 512² Depth32Float; ours stays 1024².
+    #[value(name = "wgpu_example")]
+    WgpuExample,
+    /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
+    /// src/directional_light.rs: `DEFAULT_SHADOW_DEPTH_BIAS = 0.02`,
+    /// `DEFAULT_SHADOW_NORMAL_BIAS = 1.8`), applied as crates/bevy_pbr/src/
+    /// render/shadows.wgsl `sample_directional_cascade` does: 0.02 world
+    /// units towards the light, 1.8 · √2 texels along the normal (the √2:
+    /// bevy_pbr/src/render/light.rs `extract_lights`), our one map as its
+    /// cascade. One tap here; with Bevy's default filter: lesson 03's `bevy`.
+    #[value(name = "bevy_bias")]
+    BevyBias,
     #[value(name = "exercise_slope_bias")]
     ExerciseSlopeBias,
     #[value(name = "exercise_grazing_bias")]
@@ -98,8 +127,8 @@ impl Variant {
     fn fix(self) -> Fix {
         match self {
             Variant::None => Fix::Receiver(ShadowBias::NONE),
-            // lwjglgamedev's `projCoords.z - bias` with `bias = 0.05`: depth units.
-            Variant::ConstantSeed => Fix::Receiver(ShadowBias {
+            // The lwjgl book's `projCoords.z - bias` with `bias = 0.05`: depth units.
+            Variant::ConstantLwjgl => Fix::Receiver(ShadowBias {
                 depth: 0.05,
                 ..ShadowBias::NONE
             }),
@@ -109,7 +138,7 @@ impl Variant {
             Variant::Bias4 => toward(4.0),
             Variant::Bias16 => toward(16.0),
             Variant::Bias64 => toward(64.0),
-            Variant::SlopeHw => Fix::Hardware(SlopeScaledBias::RECOMMENDED),
+            Variant::SlopeHw => Fix::Hardware(SlopeScaledBias::RECOMMENDED, None),
             Variant::SlopeShader => Fix::Receiver(ShadowBias {
                 toward_light: 0.1,
                 slope: 1.0,
@@ -128,6 +157,11 @@ impl Variant {
                 ..ShadowBias::NONE
             }),
             Variant::FrontCull => Fix::CullFrontFaces,
+            Variant::LearnOpenGl => Fix::Receiver(ShadowBias::LEARNOPENGL),
+            Variant::WgpuExample => {
+                Fix::Hardware(SlopeScaledBias::WGPU_EXAMPLE, Some(wgpu::Face::Back))
+            }
+            Variant::BevyBias => Fix::Receiver(ShadowBias::BEVY),
             Variant::ExerciseSlopeBias => Fix::Exercise(Exercise::SlopeBias),
             Variant::ExerciseGrazingBias => Fix::Exercise(Exercise::GrazingBias),
         }
@@ -148,14 +182,15 @@ struct Bias {
     exercise_lit: Vec<(Exercise, wgpu::RenderPipeline)>,
     plain_shadow: wgpu::RenderPipeline,
     cull_shadow: wgpu::RenderPipeline,
-    /// The hardware-bias shadow pipeline of each light (the clamp depends on it).
-    slope_shadow: Vec<wgpu::RenderPipeline>,
+    /// Per variant with a hardware bias, its shadow pipeline for each light
+    /// (the clamp depends on it), and their counting copies.
+    slope_shadow: Vec<Option<Vec<wgpu::RenderPipeline>>>,
+    tally_slope: Vec<Option<Vec<[wgpu::RenderPipeline; 2]>>>,
     casters_drawn: u64,
     /// Counting copies of the shadow pipelines ([`shadow_map::shadow_tally_pipelines`]):
-    /// plain, front-face culled, and hardware bias per light.
+    /// plain and front-face culled.
     tally_plain: [wgpu::RenderPipeline; 2],
     tally_cull: [wgpu::RenderPipeline; 2],
-    tally_slope: Vec<[wgpu::RenderPipeline; 2]>,
     /// Per variant: the shadow pass's depth writes and fragments, counted once.
     texels_written: Vec<Option<(u64, u64)>>,
     draws: u64,
@@ -201,13 +236,22 @@ impl Lesson for Bias {
         let cull_shadow = pass(cull);
         // One per light: the clamp is in texels, converted for each light.
         // (GL cannot clamp: there the slope-scaled bias is unclamped.)
-        let Fix::Hardware(slope) = Variant::SlopeHw.fix() else {
-            unreachable!("slope_hw is the rasteriser's bias")
-        };
-        let slope_states: Vec<_> = (0..scene.scene.lights.len())
-            .map(|k| slope.pass_state(gpu, &scene.scene, k, MAP_SIZE))
+        let slope_states: Vec<Option<Vec<ShadowPassState>>> = Variant::value_variants()
+            .iter()
+            .map(|v| match v.fix() {
+                Fix::Hardware(slope, cull) => Some(
+                    (0..scene.scene.lights.len())
+                        .map(|k| ShadowPassState {
+                            cull,
+                            ..slope.pass_state(gpu, &scene.scene, k, MAP_SIZE)
+                        })
+                        .collect(),
+                ),
+                _ => None,
+            })
             .collect();
-        let slope_shadow = slope_states.iter().map(|&s| pass(s)).collect();
+        let slope_shadow = per_light(&slope_states, pass);
+        let tally_slope = per_light(&slope_states, count);
 
         let bias_groups = Variant::value_variants()
             .iter()
@@ -233,7 +277,7 @@ impl Lesson for Bias {
             casters_drawn: 0,
             tally_plain: count(ShadowPassState::default()),
             tally_cull: count(cull),
-            tally_slope: slope_states.iter().map(|&s| count(s)).collect(),
+            tally_slope,
             texels_written: vec![None; Variant::value_variants().len()],
             draws: shadow_map::shadow_map_draws(scene),
         })
@@ -248,12 +292,18 @@ impl Lesson for Bias {
         variant: Variant,
     ) -> Result<()> {
         let (fix, bias_group) = (variant.fix(), &self.bias_groups[variant as usize]);
+        let (slope, tally_slope) = (
+            &self.slope_shadow[variant as usize],
+            &self.tally_slope[variant as usize],
+        );
         if self.texels_written[variant as usize].is_none() {
             // Once per variant, its own submit: untimed.
-            let n = shadow_map::count_shadow_texels(frame.gpu, scene, MAP_SIZE, |k| match fix {
-                Fix::Receiver(_) | Fix::Exercise(_) => &self.tally_plain,
-                Fix::Hardware(_) => &self.tally_slope[k],
-                Fix::CullFrontFaces => &self.tally_cull,
+            let n = shadow_map::count_shadow_texels(frame.gpu, scene, MAP_SIZE, |k| {
+                match (fix, tally_slope) {
+                    (Fix::CullFrontFaces, _) => &self.tally_cull,
+                    (_, Some(hw)) => &hw[k],
+                    _ => &self.tally_plain,
+                }
             })?;
             self.texels_written[variant as usize] = Some(n);
         }
@@ -276,10 +326,10 @@ impl Lesson for Bias {
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = 0;
         for light in 0..scene.scene.lights.len() {
-            let shadow = match fix {
-                Fix::Receiver(_) | Fix::Exercise(_) => &self.plain_shadow,
-                Fix::Hardware(_) => &self.slope_shadow[light],
-                Fix::CullFrontFaces => &self.cull_shadow,
+            let shadow = match (fix, slope) {
+                (Fix::CullFrontFaces, _) => &self.cull_shadow,
+                (_, Some(hw)) => &hw[light],
+                _ => &self.plain_shadow,
             };
             drawn += frame.pass("shadow", |enc, ts| {
                 shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render())
@@ -311,6 +361,15 @@ impl Lesson for Bias {
         }
         c
     }
+}
+
+/// `f` of each state of each variant that has some (one per light).
+fn per_light<T>(
+    states: &[Option<Vec<ShadowPassState>>],
+    f: impl Fn(ShadowPassState) -> T,
+) -> Vec<Option<Vec<T>>> {
+    let each = |s: &Vec<ShadowPassState>| s.iter().map(|&s| f(s)).collect();
+    states.iter().map(|s| s.as_ref().map(each)).collect()
 }
 
 fn main() -> std::process::ExitCode {

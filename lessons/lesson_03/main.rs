@@ -2,11 +2,13 @@
 //!
 //! Percentage-closer filtering: instead of one depth comparison per pixel,
 //! several around it, averaged into a fractional visibility. The variants
-//! are N×N grids (N = 1, 3, 5, 7; 3×3 is the seed's), the hardware's 2×2
+//! are N×N grids (N = 1, 3, 5, 7; 3×3 is LearnOpenGL's), the hardware's 2×2
 //! (a comparison sampler with linear filtering), a rotated 16-tap Poisson
 //! disk, a 7×7 grid without the receiver-plane depth bias that wide kernels
 //! need, and the wrong way: averaging depths, then comparing once. The
-//! shadow pass keeps lesson 02's slope-scaled bias.
+//! shadow pass keeps lesson 02's slope-scaled bias. Then the defaults of
+//! renderers people use, each with its own bias (LearnOpenGL, the wgpu
+//! example, Bevy), on the same map.
 //!
 //! The filters are in [`pcf`] and `shaders/lesson_03/pcf.wgsl`.
 //!
@@ -26,9 +28,10 @@ use common::scene::Scene;
 use common::targets::FrameTargets;
 use common::timing::Frame;
 use common::Result;
+use workbook::lesson_01::shadow_map::ShadowPassState;
 use workbook::lesson_01::shadow_map::{self, ShadowMap};
 use workbook::lesson_01::tally::TallyShader;
-use workbook::lesson_02::bias::SlopeScaledBias;
+use workbook::lesson_02::bias::{ShadowBias, SlopeScaledBias};
 use workbook::lesson_03::exercises;
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
@@ -40,7 +43,7 @@ const MAP_SIZE: u32 = 1024;
 enum Variant {
     #[value(name = "pcf_1x1")]
     Pcf1x1,
-    /// The seed's 3×3 average.
+    /// LearnOpenGL's 3×3 average (with our bias).
     #[value(name = "pcf_3x3")]
     Pcf3x3,
     #[value(name = "pcf_5x5")]
@@ -56,6 +59,32 @@ enum Variant {
     Poisson16,
     #[value(name = "depth_avg_3x3")]
     DepthAvg3x3,
+    /// LearnOpenGL "Shadow Mapping" (JoeyDeVries/LearnOpenGL, commit 85530ab,
+    /// src/5.advanced_lighting/3.1.3.shadow_mapping/3.1.3.shadow_mapping.fs
+    /// lines 30 and 34-44): no bias in the shadow pass, `max(0.05 * (1.0 -
+    /// dot(normal, lightDir)), 0.005)` of depth off the receiver, and a 3×3
+    /// average of nearest taps one `textureSize` texel apart, all compared
+    /// with the centre's depth. Its depth spans near 1 to far 7.5 (6.5 m),
+    /// ours the light's fit to the scene: the same numbers are (our range /
+    /// 6.5 m) times as long here.
+    #[value(name = "learnopengl_pcf")]
+    LearnOpenGlPcf,
+    /// The wgpu shadow example (gfx-rs/wgpu, examples/features/src/shadow/
+    /// mod.rs, commits 02201f4 and 4230fe5): the shadow pass's `DepthBiasState
+    /// { constant: 2, slope_scale: 2.0, clamp: 0.0 }` with back faces culled,
+    /// and its comparison sampler (`LessEqual`, `mag_filter`/`min_filter`
+    /// `Linear`): the hardware's 2×2. Its map is 512²; ours stays 1024².
+    #[value(name = "wgpu_example_hw2x2")]
+    WgpuExampleHw2x2,
+    /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
+    /// src/directional_light.rs: depth bias 0.02, normal bias 1.8; applied as
+    /// crates/bevy_pbr/src/render/shadows.wgsl `sample_directional_cascade`:
+    /// 0.02 world units towards the light, 1.8 · √2 texels along the normal)
+    /// and its default filter, `ShadowFilteringMethod::Gaussian` (Castaño's
+    /// 9-tap 5×5, shadow_sampling.wgsl); no bias in the shadow pass, our one
+    /// map as its one cascade.
+    #[value(name = "bevy")]
+    Bevy,
     /// The chapter's exercises (`exercises.wgsl`), run only when named.
     #[value(name = "exercise_pcf_kernel")]
     ExercisePcfKernel,
@@ -88,9 +117,42 @@ impl Variant {
             // Graded against pcf_5x5 and poisson_16 (exercises.toml).
             Variant::ExercisePcfKernel => Filter::ExerciseGrid { n: 5 },
             Variant::ExerciseRotatedPoisson => Filter::ExerciseDisk { radius: 2.5 },
+            Variant::LearnOpenGlPcf => Filter::Grid {
+                n: 3,
+                receiver_plane: false,
+            },
+            Variant::WgpuExampleHw2x2 => Filter::Hardware2x2,
+            Variant::Bevy => Filter::Castano13,
+        }
+    }
+
+    /// The shadow pass: lesson 02's recommended bias, none, or the wgpu
+    /// example's (index into [`PASSES`]).
+    fn pass(self) -> usize {
+        match self {
+            Variant::LearnOpenGlPcf | Variant::Bevy => 1,
+            Variant::WgpuExampleHw2x2 => 2,
+            _ => 0,
+        }
+    }
+
+    /// The receiver-side bias: none for ours (the shadow pass has it).
+    fn receiver_bias(self) -> ShadowBias {
+        match self {
+            Variant::LearnOpenGlPcf => ShadowBias::LEARNOPENGL,
+            Variant::Bevy => ShadowBias::BEVY,
+            _ => ShadowBias::NONE,
         }
     }
 }
+
+/// The shadow passes' hardware bias and culling: lesson 02's recommended
+/// bias (ours), none (LearnOpenGL, Bevy), the wgpu example's.
+const PASSES: [(Option<SlopeScaledBias>, Option<wgpu::Face>); 3] = [
+    (Some(SlopeScaledBias::RECOMMENDED), None),
+    (None, None),
+    (Some(SlopeScaledBias::WGPU_EXAMPLE), Some(wgpu::Face::Back)),
+];
 // ANCHOR_END: variants
 
 struct Pcf {
@@ -100,13 +162,12 @@ struct Pcf {
     nearest: wgpu::BindGroup,
     linear: wgpu::BindGroup,
     lit_pipeline: wgpu::RenderPipeline,
-    /// Lesson 02's slope-scaled bias, one pipeline per light.
-    shadow_pipelines: Vec<wgpu::RenderPipeline>,
+    /// Per shadow pass of [`PASSES`], one pipeline per light.
+    shadow_pipelines: Vec<Vec<wgpu::RenderPipeline>>,
     /// Their counting copies ([`shadow_map::shadow_tally_pipelines`]).
-    tally_pipelines: Vec<[wgpu::RenderPipeline; 2]>,
-    /// The shadow pass's depth writes and fragments (the same for every
-    /// variant: the filters differ, the map does not), counted once.
-    texels_written: Option<(u64, u64)>,
+    tally_pipelines: Vec<Vec<[wgpu::RenderPipeline; 2]>>,
+    /// Per shadow pass, its depth writes and fragments, counted once.
+    texels_written: [Option<(u64, u64)>; 3],
     draws: u64,
 }
 
@@ -140,23 +201,35 @@ impl Lesson for Pcf {
         let map = ShadowMap::new(gpu, MAP_SIZE);
         let nearest = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
         let linear = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
-        let bias = SlopeScaledBias::RECOMMENDED;
-        let states: Vec<_> = (0..scene.scene.lights.len())
-            .map(|k| bias.pass_state(gpu, &scene.scene, k, MAP_SIZE))
-            .collect();
-        let shadow_pipelines = states
+        let states: Vec<Vec<_>> = PASSES
             .iter()
-            .map(|&state| shadow_map::shadow_pipeline(gpu, scene, &module, state))
+            .map(|&(bias, cull)| {
+                (0..scene.scene.lights.len())
+                    .map(|k| ShadowPassState {
+                        cull,
+                        ..bias.map_or(ShadowPassState::default(), |b| {
+                            b.pass_state(gpu, &scene.scene, k, MAP_SIZE)
+                        })
+                    })
+                    .collect()
+            })
             .collect();
         let tally = TallyShader::new(gpu);
-        let tally_pipelines = states
+        let (shadow_pipelines, tally_pipelines) = states
             .iter()
-            .map(|&state| shadow_map::shadow_tally_pipelines(gpu, scene, &module, state, &tally))
-            .collect();
+            .map(|per_light| {
+                let pass = |&s| shadow_map::shadow_pipeline(gpu, scene, &module, s);
+                let count = |&s| shadow_map::shadow_tally_pipelines(gpu, scene, &module, s, &tally);
+                (
+                    per_light.iter().map(pass).collect(),
+                    per_light.iter().map(count).collect(),
+                )
+            })
+            .unzip();
         let filter_groups = Variant::value_variants()
             .iter()
             .map(|&v| {
-                let params = FilterUniform::from(v.filter());
+                let params = FilterUniform::new(v.filter(), v.receiver_bias());
                 params_group(
                     gpu,
                     &filter_layout,
@@ -173,7 +246,7 @@ impl Lesson for Pcf {
             lit_pipeline,
             shadow_pipelines,
             tally_pipelines,
-            texels_written: None,
+            texels_written: [None; 3],
             draws: shadow_map::shadow_map_draws(scene),
         })
     }
@@ -186,12 +259,13 @@ impl Lesson for Pcf {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        if self.texels_written.is_none() {
-            // Once, its own submit: untimed.
+        let pass = variant.pass();
+        if self.texels_written[pass].is_none() {
+            // Once per shadow pass, its own submit: untimed.
             let n = shadow_map::count_shadow_texels(frame.gpu, scene, MAP_SIZE, |k| {
-                &self.tally_pipelines[k]
+                &self.tally_pipelines[pass][k]
             })?;
-            self.texels_written = Some(n);
+            self.texels_written[pass] = Some(n);
         }
         let filter_group = &self.filter_groups[variant as usize];
         let map_group = match variant.filter().sampler() {
@@ -200,7 +274,7 @@ impl Lesson for Pcf {
         };
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
-            let shadow = &self.shadow_pipelines[light];
+            let shadow = &self.shadow_pipelines[pass][light];
             frame.pass("shadow", |enc, ts| {
                 shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render())
             });
@@ -226,7 +300,7 @@ impl Lesson for Pcf {
             ("shadow_map_size".into(), MAP_SIZE as u64),
             ("draws".into(), self.draws),
         ]);
-        if let Some((written, fragments)) = self.texels_written {
+        if let Some((written, fragments)) = self.texels_written[variant.pass()] {
             c.insert("shadow_texels_written".into(), written);
             c.insert("shadow_fragments".into(), fragments);
         }

@@ -7,6 +7,7 @@ use common::bindings::{self, float_texture_entry};
 use common::gpu::Gpu;
 
 use crate::lesson_01::shadow_map::{comparison_sampler, shadow_map_entries, ShadowMap};
+use crate::lesson_02::bias::ShadowBias;
 
 // ANCHOR: filter
 /// How a variant turns the shadow map into a visibility.
@@ -29,6 +30,10 @@ pub enum Filter {
     /// Exercise 2 (`exercise_rotated_poisson`): the student's 16 bilinear
     /// taps on a disk of `radius` texels, rotated per pixel.
     ExerciseDisk { radius: f32 },
+    /// Bevy's default (`ShadowFilteringMethod::Gaussian`): Castaño's 5×5
+    /// Gaussian from 9 bilinear comparisons (The Witness), ported from
+    /// bevy_pbr/src/render/shadow_sampling.wgsl `sample_shadow_map_castano_thirteen`.
+    Castano13,
 }
 
 impl Filter {
@@ -42,22 +47,26 @@ impl Filter {
             // What the exercise asks for (the starter takes one tap).
             Filter::ExerciseGrid { n } => ((n * n) as u64, (n * n) as u64),
             Filter::ExerciseDisk { .. } => (16, 64),
+            Filter::Castano13 => (9, 36),
         }
     }
 
     /// Linear filtering for the taps that blend 2×2 texels.
     pub fn sampler(self) -> wgpu::FilterMode {
         match self {
-            Filter::Hardware2x2 | Filter::Poisson { .. } | Filter::ExerciseDisk { .. } => {
-                wgpu::FilterMode::Linear
-            }
+            Filter::Hardware2x2
+            | Filter::Poisson { .. }
+            | Filter::ExerciseDisk { .. }
+            | Filter::Castano13 => wgpu::FilterMode::Linear,
             _ => wgpu::FilterMode::Nearest,
         }
     }
 }
 // ANCHOR_END: filter
 
-/// `Filter` in `pcf.wgsl`.
+/// `Filter` in `pcf.wgsl`: the filter, and the receiver-side bias of a
+/// renderer's defaults (lesson 02's [`ShadowBias`]: LearnOpenGL's depth,
+/// Bevy's offsets; zero for the lesson's own filters).
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FilterUniform {
@@ -66,7 +75,25 @@ pub struct FilterUniform {
     receiver_plane: u32,
     taps: u32,
     radius: f32,
+    depth: f32,
+    depth_slope: f32,
+    toward_light_world: f32,
+    normal_flat: f32,
     _pad: [f32; 3],
+}
+
+impl FilterUniform {
+    /// `filter` after the receiver-side bias `b` (its `depth`,
+    /// `depth_slope`, `toward_light_world` and `normal_flat`).
+    pub fn new(filter: Filter, b: ShadowBias) -> Self {
+        FilterUniform {
+            depth: b.depth,
+            depth_slope: b.depth_slope,
+            toward_light_world: b.toward_light_world,
+            normal_flat: b.normal_flat,
+            ..FilterUniform::from(filter)
+        }
+    }
 }
 
 impl From<Filter> for FilterUniform {
@@ -77,6 +104,10 @@ impl From<Filter> for FilterUniform {
             receiver_plane: 0,
             taps: 0,
             radius: 0.0,
+            depth: 0.0,
+            depth_slope: 0.0,
+            toward_light_world: 0.0,
+            normal_flat: 0.0,
             _pad: [0.0; 3],
         };
         match f {
@@ -107,6 +138,7 @@ impl From<Filter> for FilterUniform {
                 receiver_plane: 1,
                 ..u
             },
+            Filter::Castano13 => FilterUniform { mode: 6, ..u },
         }
     }
 }

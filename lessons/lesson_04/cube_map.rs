@@ -222,6 +222,14 @@ pub struct CubeParams {
     pub slope: f32,
     /// 3D PCF radius in texels; 0 is one hard tap.
     pub pcf: f32,
+    /// A renderer's lookup instead (`shaders/lesson_04/peers.wgsl`): 0 none,
+    /// 1 LearnOpenGL's 20-tap disk, 2 Bevy's offsets and 8-tap Gaussian
+    /// ([`super::peers::Peer`]).
+    pub peer: u32,
+    /// LearnOpenGL: the disk's radius per (1 + view distance / range), in
+    /// world units; Bevy: the normal bias per unit of major-axis distance.
+    pub peer_scale: f32,
+    pub _pad: [f32; 2],
 }
 
 /// How the cube stores depth.

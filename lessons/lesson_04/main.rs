@@ -5,7 +5,10 @@
 //! the cube up with the direction from the light. Two ways to store depth
 //! (linear distance, hardware depth compared along the major axis), a bias
 //! that grows with distance, 3D PCF, and culling of faces and casters the
-//! scene does not need, measured against the unculled frame.
+//! scene does not need, measured against the unculled frame. Then the
+//! defaults of renderers people use (LearnOpenGL, Bevy: [`peers`]).
+//!
+//! [`peers`]: workbook::lesson_04::peers
 //!
 //! Run: `cargo run --release --bin lesson_04 -- --headless`
 //! Book: chapter "04 Cube-map point shadows" (`book/src/lesson_04.md`).
@@ -32,6 +35,7 @@ use workbook::lesson_04::cube_map::{
 };
 use workbook::lesson_04::culling::{self, Sphere};
 use workbook::lesson_04::exercises;
+use workbook::lesson_04::peers::Peer;
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -58,6 +62,23 @@ enum Variant {
     Clipped1024,
     #[value(name = "no_range_clamp_1024")]
     NoRangeClamp1024,
+    /// LearnOpenGL "Point Shadows" (JoeyDeVries/LearnOpenGL, commit 279e6be,
+    /// src/5.advanced_lighting/3.2.1.point_shadows/3.2.1.point_shadows.fs
+    /// line 30): distance / far stored, one nearest tap, `bias = 0.05` world
+    /// units, whatever the distance or the map.
+    #[value(name = "learnopengl_1tap")]
+    LearnOpenGl1Tap,
+    /// LearnOpenGL's soft version (3.2.2.point_shadows_soft/
+    /// 3.2.2.point_shadows.fs, commit f844f7c, lines 61-65): `bias = 0.15`
+    /// and 20 taps on a disk of `(1 + viewDistance / far_plane) / 25` world
+    /// units ([`Peer::LearnOpenGlDisk`]); far_plane is our light's range.
+    #[value(name = "learnopengl_pcf20")]
+    LearnOpenGlPcf20,
+    /// Bevy's `PointLight` defaults (crates/bevy_light/src/point_light.rs:
+    /// depth bias 0.08, normal bias 0.6) and default Gaussian filter, on
+    /// hardware depth ([`Peer::BevyPoint`]: where each is applied).
+    #[value(name = "bevy_point")]
+    BevyPoint,
     /// The chapter's exercises (`exercises.rs`, `exercises.wgsl`), run only when named.
     #[value(name = "exercise_cull_faces")]
     ExerciseCullFaces,
@@ -83,6 +104,8 @@ struct Settings {
     unclipped: bool,
     /// Clamp receivers beyond the range to the far plane.
     clamp_range: bool,
+    /// A renderer's lookup in place of the lesson's.
+    peer: Peer,
 }
 
 /// `linear_1024`: the baseline the others change one thing of, not a
@@ -97,6 +120,14 @@ const BASE: Settings = Settings {
     cull: Some(culling::sphere_touches_face),
     unclipped: true,
     clamp_range: true,
+    peer: Peer::None,
+};
+
+/// The renderers' defaults: their own world-space bias, none of ours.
+const PEER: Settings = Settings {
+    bias_texels: 0.0,
+    slope: 0.0,
+    ..BASE
 };
 
 impl Variant {
@@ -117,6 +148,9 @@ impl Variant {
             Variant::Nocull1024 => Settings { cull: None, ..BASE },
             Variant::Clipped1024 => Settings { unclipped: false, ..BASE },
             Variant::NoRangeClamp1024 => Settings { clamp_range: false, ..BASE },
+            Variant::LearnOpenGl1Tap => Settings { bias_world: 0.05, ..PEER },
+            Variant::LearnOpenGlPcf20 => Settings { bias_world: 0.15, peer: Peer::LearnOpenGlDisk, ..PEER },
+            Variant::BevyPoint => Settings { storage: Storage::Depth, bias_world: 0.08, peer: Peer::BevyPoint, ..PEER },
             // Graded against linear_1024 and depth_1024 (exercises.toml).
             Variant::ExerciseCullFaces => Settings { cull: Some(exercise_face_test), ..BASE },
             Variant::ExerciseCubeDepth => Settings { storage: Storage::DepthExercise, ..BASE },
@@ -186,10 +220,11 @@ impl Lesson for CubeShadows {
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
-        // The lesson's shader, then the exercise's function.
+        // The lesson's shader, the renderers' lookups, the exercise's function.
         let source = format!(
-            "{}\n{}",
+            "{}\n{}\n{}",
             include_str!("../../shaders/lesson_04/cube_map.wgsl"),
+            include_str!("../../shaders/lesson_04/peers.wgsl"),
             exercises::EXERCISES_WGSL
         );
         let module = shader_module(gpu, "lesson_04", &source);
@@ -235,6 +270,7 @@ impl Lesson for CubeShadows {
                     keys.push((storage, unclipped));
                     keys.len() - 1
                 });
+            let (peer, peer_scale) = v.peer.params(v.size);
             let params = CubeParams {
                 near: near as f32,
                 texel_at_1m: 2.0 / v.size as f32,
@@ -244,8 +280,11 @@ impl Lesson for CubeShadows {
                 bias_texels: v.bias_texels,
                 slope: v.slope,
                 pcf: v.pcf,
+                peer,
+                peer_scale,
+                _pad: [0.0; 2],
             };
-            let filter = if v.pcf > 0.0 {
+            let filter = if v.pcf > 0.0 || v.peer.linear() {
                 wgpu::FilterMode::Linear
             } else {
                 wgpu::FilterMode::Nearest
@@ -330,11 +369,11 @@ impl Lesson for CubeShadows {
     /// fragments, the lit pass's taps per pixel, the frame's draw calls.
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let p = &self.prepared[variant as usize];
-        let taps = if variant.settings().pcf > 0.0 {
-            PCF3D_TAPS
-        } else {
-            1
-        };
+        let v = variant.settings();
+        let taps = v
+            .peer
+            .taps()
+            .unwrap_or(if v.pcf > 0.0 { PCF3D_TAPS } else { 1 });
         let mut c = BTreeMap::from([
             ("filter_taps_per_pixel".into(), taps),
             ("draws".into(), self.draws),

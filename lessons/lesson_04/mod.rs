@@ -5,6 +5,7 @@ pub mod costs;
 pub mod cross;
 pub mod cube_map;
 pub mod culling;
+pub mod peers;
 
 /// The chapter's exercises: the starter code a student fills in, or with
 /// `--features solutions`, the reference solutions (`solutions/lesson_04.rs`).

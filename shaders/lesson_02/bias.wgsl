@@ -7,7 +7,8 @@
 // (`shadow_texel_size`), so one setting fits any scene size, map resolution
 // and texel aspect: a receiver needs tan θ / 2 of them.
 struct ShadowBias {
-    // Subtracted from the receiver's depth, in depth units: the seeds' constant.
+    // Subtracted from the receiver's depth, in depth units: the lwjgl book's
+    // constant (with depth_slope: the least subtracted).
     depth: f32,
     // Move the receiver this many texels towards the light: a constant bias.
     toward_light: f32,
@@ -16,9 +17,12 @@ struct ShadowBias {
     slope_max: f32,
     // Move it along its normal by normal × (1 − N·L) texels: normal offset.
     normal: f32,
-    _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
+    // LearnOpenGL's: max(depth_slope × (1 − N·L), depth) depth units instead.
+    depth_slope: f32,
+    // Bevy's: this many world units towards the light, and normal_flat
+    // texels (the texel's larger side) along the normal.
+    toward_light_world: f32,
+    normal_flat: f32,
 };
 
 // The point whose depth is compared: the receiver moved off its surface.
@@ -31,8 +35,18 @@ fn biased_receiver(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> vec3<f32> {
     let texel = shadow_texel_size(world, n);
     let along_light = b.toward_light + min(b.slope * tan_t, b.slope_max);
     let along_normal = b.normal * (1.0 - cos_t);
+    // Bevy's offsets: world units along l, whole texels along n.
+    let e = shadow_texel_extent(world);
+    let bevy = b.toward_light_world * l + b.normal_flat * max(e.x, e.y) * n;
     // Along l a directional or spot light's ray stays the same: only depth changes.
-    return world + texel * (along_light * l + along_normal * n);
+    return world + texel * (along_light * l + along_normal * n) + bevy;
+}
+
+// The depth subtracted after the move: the lwjgl book's constant, or
+// LearnOpenGL's max(0.05 × (1 − N·L), 0.005) in depth units.
+fn depth_bias(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> f32 {
+    let cos_t = clamp(dot(n, to_light(world)), 0.0, 1.0);
+    return max(b.depth_slope * (1.0 - cos_t), b.depth);
 }
 // ANCHOR_END: shadow_bias
 
@@ -53,8 +67,9 @@ fn biased_visibility(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> f32 {
     if outside_shadow_map(p, s) {
         return 1.0;
     }
-    // The seeds' bias: a fixed amount of depth, whatever the scene.
-    return textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z - b.depth);
+    // A fixed amount of depth, whatever the scene (the lwjgl book's, LearnOpenGL's).
+    let z = s.z - depth_bias(world, n, b);
+    return textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, z);
 }
 // ANCHOR_END: biased_visibility
 

@@ -9,7 +9,8 @@
 // Rust: lessons/lesson_03.rs `FilterUniform`.
 struct Filter {
     // 0: N×N grid, 1: hardware 2×2, 2: rotated Poisson disk, 3: average depths;
-    // the exercises (exercises.wgsl): 4: exercise_pcf_kernel, 5: exercise_rotated_poisson.
+    // the exercises (exercises.wgsl): 4: exercise_pcf_kernel, 5: exercise_rotated_poisson;
+    // 6: Bevy's Castaño 5×5 Gaussian.
     mode: u32,
     // Grid and depth average: N.
     n: u32,
@@ -19,6 +20,13 @@ struct Filter {
     taps: u32,
     // Poisson disk: radius in texels.
     radius: f32,
+    // A renderer's receiver bias (lesson 02's ShadowBias fields; 0 for ours):
+    // LearnOpenGL's max(depth_slope × (1 − N·L), depth) of depth, Bevy's
+    // world units towards the light and texels along the normal.
+    depth: f32,
+    depth_slope: f32,
+    toward_light_world: f32,
+    normal_flat: f32,
     _pad0: f32,
     _pad1: f32,
     _pad2: f32,
@@ -125,17 +133,68 @@ fn depth_average(s: vec3<f32>, n: i32) -> f32 {
 }
 // ANCHOR_END: depth_average
 
+// ANCHOR: castano
+// Bevy's default filter (bevy_pbr shadow_sampling.wgsl,
+// sample_shadow_map_castano_thirteen): a 5×5 tent-like Gaussian from 9
+// bilinear comparisons, their weights and positions chosen so each bilinear
+// tap stands for a 2×2 block of the kernel (Castaño, The Witness, 2013).
+fn pcf_castano13(s: vec3<f32>) -> f32 {
+    let size = vec2<f32>(textureDimensions(shadow_map));
+    let inv = 1.0 / size;
+    let uv = s.xy * size;
+    var base = floor(uv + 0.5);
+    let st = uv + 0.5 - base;
+    base = (base - 0.5) * inv;
+    let w0 = 4.0 - 3.0 * st;
+    let w2 = 1.0 + 3.0 * st;
+    let p0 = (3.0 - 2.0 * st) / w0 - 2.0;
+    let p1 = (3.0 + st) / 7.0;
+    let p2 = st / w2 + 2.0;
+    let wu = array<f32, 3>(w0.x, 7.0, w2.x);
+    let wv = array<f32, 3>(w0.y, 7.0, w2.y);
+    let pu = array<f32, 3>(p0.x, p1.x, p2.x);
+    let pv = array<f32, 3>(p0.y, p1.y, p2.y);
+    var sum = 0.0;
+    for (var j = 0; j < 3; j++) {
+        for (var i = 0; i < 3; i++) {
+            let o = vec2<f32>(pu[i], pv[j]) * inv;
+            sum += wu[i] * wv[j] * textureSampleCompareLevel(shadow_map, shadow_compare, base + o, s.z);
+        }
+    }
+    return sum / 144.0;
+}
+// ANCHOR_END: castano
+
+// ANCHOR: peer_receiver
+// A renderer's receiver bias: Bevy moves the point (world units towards the
+// light, texels along the normal), LearnOpenGL subtracts depth after.
+// xyz: the point to look up; w: the depth to subtract.
+fn peer_receiver(world: vec3<f32>, normal: vec3<f32>) -> vec4<f32> {
+    let l = to_light(world);
+    var n = normalize(normal);
+    if dot(n, l) < 0.0 {
+        n = -n; // open meshes are two-sided: the side the light sees
+    }
+    let e = shadow_texel_extent(world);
+    let p = world + pcf.toward_light_world * l + pcf.normal_flat * max(e.x, e.y) * n;
+    let cos_t = clamp(dot(n, l), 0.0, 1.0);
+    return vec4<f32>(p, max(pcf.depth_slope * (1.0 - cos_t), pcf.depth));
+}
+// ANCHOR_END: peer_receiver
+
 // ANCHOR: fs_lit
 @fragment
 fn fs_lit(in: VertexOut) -> LitOut {
-    let s = shadow_coords(in.world);
+    let r = peer_receiver(in.world, in.normal);
+    var s = shadow_coords(r.xyz);
+    s.z -= r.w;
     // Derivatives before any branch: they need all four pixels of the quad.
     var gradient = receiver_plane_gradient(in.world);
     if pcf.receiver_plane == 0u {
         gradient = vec2<f32>(0.0);
     }
     var v = 1.0;
-    if !outside_shadow_map(in.world, s) {
+    if !outside_shadow_map(r.xyz, s) {
         switch pcf.mode {
             case 0u: { v = pcf_grid(s, i32(pcf.n), gradient); }
             // One tap; the sampler compares the 4 nearest texels and blends.
@@ -143,6 +202,7 @@ fn fs_lit(in: VertexOut) -> LitOut {
             case 2u: { v = pcf_poisson(s, in.clip.xy, gradient); }
             case 4u: { v = exercise_pcf_kernel(s, i32(pcf.n) / 2, gradient); }
             case 5u: { v = exercise_rotated_poisson(s, in.clip.xy, pcf.radius, gradient); }
+            case 6u: { v = pcf_castano13(s); }
             default: { v = depth_average(s, i32(pcf.n)); }
         }
     }

@@ -21,6 +21,13 @@ struct CubeParams {
     bias_texels: f32,
     slope: f32,
     pcf: f32,
+    // A renderer's lookup instead (peers.wgsl): 0 none, 1 LearnOpenGL, 2 Bevy;
+    // and its scale (LearnOpenGL: disk per (1 + view distance / range);
+    // Bevy: normal bias per metre of major-axis distance).
+    peer: u32,
+    peer_scale: f32,
+    _pad0: f32,
+    _pad1: f32,
 };
 @group(2) @binding(2) var<storage, read> params: CubeParams;
 const STORAGE_LINEAR: u32 = 0u;
@@ -140,6 +147,15 @@ fn fs_lit(in: VertexOut) -> LitOut {
     var n = normalize(cross(dpdx(in.world), dpdy(in.world)));
     if dot(n, camera.eye.xyz - in.world) < 0.0 {
         n = -n;
+    }
+    if params.peer == 1u {
+        return lit_output(in, learnopengl_disk(in.world));
+    }
+    if params.peer == 2u {
+        if dot(n, light.position_or_dir.xyz - in.world) <= 0.0 {
+            return lit_output(in, 0.0); // facing away, as in visibility
+        }
+        return lit_output(in, bevy_point(in.world, n));
     }
     return lit_output(in, visibility(in.world, n));
 }
