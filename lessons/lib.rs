@@ -16,3 +16,4 @@ pub mod lesson_05;
 pub mod lesson_06;
 pub mod lesson_07;
 pub mod lesson_08;
+pub mod lesson_09;

@@ -1,0 +1,341 @@
+//! # Lesson 09: cascaded shadow maps
+//!
+//! One shadow map over a large scene spends its texels evenly, while the
+//! camera needs many near and few far (perspective aliasing). Cascades cut
+//! the view frustum into K slices by depth and give each its own map, fitted
+//! to that slice, all in one depth texture array. The lit pass picks the
+//! cascade by the pixel's view depth. The variants keep the total texels
+//! equal to one 2048² map and compare the split schemes, the two fits
+//! (bounding sphere, tight box), texel snapping, the reach towards the
+//! light, and blending across the splits. The cascades are fitted again on
+//! every frame, from the camera as it is then (`[camera_path]`).
+//!
+//! The math is in [`cascades`], the GPU side in [`csm`] and
+//! `shaders/lesson_09/csm.wgsl`.
+//!
+//! Run: `cargo run --release --bin lesson_09 -- --headless`
+//! Book: chapter "09 cascaded shadow maps" (`book/src/lesson_09.md`).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use clap::ValueEnum;
+use common::app;
+use common::gpu::Gpu;
+use common::lesson::{variant_name, Lesson};
+use common::lit::LitPass;
+use common::render::SceneGpu;
+use common::scene::Scene;
+use common::targets::FrameTargets;
+use common::timing::Frame;
+use common::Result;
+use workbook::lesson_01::shadow_map::{self, ShadowPassState};
+use workbook::lesson_01::tally::{Tally, TallyShader};
+use workbook::lesson_09::cascades::{self, Cascade, Fit, FitOptions, SplitScheme};
+use workbook::lesson_09::csm::{self, CascadeLights, CascadeMaps};
+use workbook::lesson_09::{extras, setup};
+
+// ANCHOR: variants
+/// Every variant spends about 2048² texels: K maps of 2048 / √K.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Variant {
+    /// Lesson 01's one map, fitted to the scene bounds: the baseline.
+    #[value(name = "single_2048")]
+    Single2048,
+    /// Practical splits, sphere fit, snapped, reaching to the light.
+    #[value(name = "k1")]
+    K1,
+    #[value(name = "k2")]
+    K2,
+    #[value(name = "k3")]
+    K3,
+    #[value(name = "k4")]
+    K4,
+    /// The other split schemes.
+    #[value(name = "k4_uniform")]
+    K4Uniform,
+    #[value(name = "k4_log")]
+    K4Log,
+    /// The tight box, snapped (to its own, changing, texel size).
+    #[value(name = "k4_aabb")]
+    K4Aabb,
+    /// The sphere, not snapped.
+    #[value(name = "k4_nosnap")]
+    K4NoSnap,
+    /// The tight box, not snapped: the naive one.
+    #[value(name = "k4_aabb_nosnap")]
+    K4AabbNoSnap,
+    /// The box only as deep as the sphere: casters outside it are lost.
+    #[value(name = "k4_noextend")]
+    K4NoExtend,
+    /// k4, fading into the next cascade over the last 10 % of each.
+    #[value(name = "k4_blend")]
+    K4Blend,
+}
+
+impl Variant {
+    fn setup(self) -> setup::Setup {
+        use setup::Setup;
+        let practical = SplitScheme::Practical {
+            lambda: cascades::PRACTICAL_LAMBDA,
+        };
+        let best = FitOptions {
+            fit: Fit::Sphere,
+            snap: true,
+            extend: true,
+        };
+        let k4 = Setup::cascaded(4, practical, best);
+        match self {
+            Variant::Single2048 => Setup::single(2048),
+            Variant::K1 => Setup::cascaded(1, practical, best),
+            Variant::K2 => Setup::cascaded(2, practical, best),
+            Variant::K3 => Setup::cascaded(3, practical, best),
+            Variant::K4 => k4,
+            Variant::K4Uniform => Setup::cascaded(4, SplitScheme::Uniform, best),
+            Variant::K4Log => Setup::cascaded(4, SplitScheme::Logarithmic, best),
+            Variant::K4Aabb => k4.with_fit(Fit::Aabb, true, true),
+            Variant::K4NoSnap => k4.with_fit(Fit::Sphere, false, true),
+            Variant::K4AabbNoSnap => k4.with_fit(Fit::Aabb, false, true),
+            Variant::K4NoExtend => k4.with_fit(Fit::Sphere, true, false),
+            Variant::K4Blend => Setup { blend: 0.1, ..k4 },
+        }
+    }
+}
+// ANCHOR_END: variants
+
+/// The view depths the perspective-aliasing counters are taken at, metres.
+const ALIASING_AT: [u32; 4] = [2, 10, 50, 200];
+
+struct Csm {
+    shadow_pipeline: wgpu::RenderPipeline,
+    tally_pipeline: [wgpu::RenderPipeline; 2],
+    lit_pipeline: wgpu::RenderPipeline,
+    tint_pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    /// Per light: its cascades' matrices (shadow pass), its lit parameters.
+    lights: Vec<CascadeLights>,
+    params: Vec<wgpu::Buffer>,
+    /// The arrays, one per (size, count), with one group per light.
+    maps: Vec<(CascadeMaps, Vec<wgpu::BindGroup>)>,
+    /// Per variant: light 0's cascades of its last frame, and the shadow
+    /// pass's depth writes and fragments (counted once, first frame).
+    fitted: Vec<Option<Vec<Cascade>>>,
+    texels_written: Vec<Option<(u64, u64)>>,
+    /// The scene's objects and shadow casters (for `draws`).
+    objects: u64,
+    casters: u64,
+}
+
+impl Lesson for Csm {
+    const NAME: &'static str = "lesson_09";
+    const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_09.toml");
+    const CAMERA_PATH: bool = true;
+    type Variant = Variant;
+
+    fn check_scene(scene: &Scene) -> Result<()> {
+        shadow_map::refuse_point_lights(scene, Self::NAME)?;
+        setup::refuse_spot_lights(scene, Self::NAME)
+    }
+
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
+        let source = include_str!("../../shaders/lesson_09/csm.wgsl");
+        let module = common::render::shader_module(gpu, "lesson_09", source);
+        let state = ShadowPassState {
+            cull: None,
+            bias: setup::shadow_pass_bias(),
+        };
+        let layout = csm::csm_layout(gpu);
+        let lit_pipeline =
+            scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
+        let tally = TallyShader::new(gpu);
+        let n = scene.scene.lights.len();
+        Ok(Csm {
+            shadow_pipeline: shadow_map::shadow_pipeline(gpu, scene, &module, state),
+            tally_pipeline: shadow_map::shadow_tally_pipelines(gpu, scene, &module, state, &tally),
+            lit_pipeline,
+            tint_pipeline: extras::tint_pipeline(gpu, scene, &module, &layout),
+            lights: (0..n).map(|_| CascadeLights::new(gpu, scene)).collect(),
+            params: (0..n).map(|_| setup::params_buffer(gpu)).collect(),
+            layout,
+            maps: Vec::new(),
+            fitted: vec![None; Variant::value_variants().len()],
+            texels_written: vec![None; Variant::value_variants().len()],
+            objects: scene.scene.objects.len() as u64,
+            casters: (0..scene.meshes.len())
+                .filter(|&i| scene.casts_shadow(i))
+                .count() as u64,
+        })
+    }
+
+    // ANCHOR: render
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Result<()> {
+        let setup = variant.setup();
+        let m = self.maps_for(frame.gpu, setup.resolution, setup.count);
+        // Fitted again every frame: the camera may have moved.
+        for light in 0..scene.scene.lights.len() {
+            let fit = setup.fit(&scene.scene, scene.width, scene.height, light)?;
+            self.lights[light].write(frame.gpu, scene, light, &fit);
+            let p = setup.params(&scene.scene, scene.width, scene.height, &fit);
+            frame
+                .gpu
+                .queue
+                .write_buffer(&self.params[light], 0, bytemuck::bytes_of(&p));
+            if light == 0 {
+                self.fitted[variant as usize] = Some(fit);
+            }
+        }
+        if self.texels_written[variant as usize].is_none() {
+            let n = self.count_texels(frame.gpu, scene, setup.resolution, setup.count)?;
+            self.texels_written[variant as usize] = Some(n);
+        }
+        let (maps, groups) = &self.maps[m];
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        for (light, (lights, group)) in self.lights.iter().zip(groups).enumerate() {
+            // K shadow passes, one per layer; then one lit pass picks a layer per pixel.
+            for i in 0..setup.count {
+                frame.pass("shadow", |enc, ts| {
+                    let p = &self.shadow_pipeline;
+                    csm::cascade_pass(enc, scene, p, maps, lights, i, ts.render())
+                });
+            }
+            frame.pass("lighting", |enc, ts| {
+                let group = [group];
+                let lit = LitPass::new(light, &self.lit_pipeline, &group);
+                scene.lit_pass(enc, targets, lit, ts.render())
+            });
+        }
+        Ok(())
+    }
+    // ANCHOR_END: render
+
+    fn pixel_classes(
+        &self,
+        scene: &SceneGpu,
+        variant: Variant,
+        view_depth: &[f32],
+    ) -> Option<(Vec<String>, Vec<u8>)> {
+        let setup = variant.setup();
+        let fit = setup.fit(&scene.scene, scene.width, scene.height, 0).ok()?;
+        let names = (0..fit.len()).map(|i| format!("cascade {i}")).collect();
+        let classes = view_depth
+            .iter()
+            .map(|&d| setup::cascade_of(&fit, d as f64) as u8)
+            .collect();
+        Some((names, classes))
+    }
+
+    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        let setup = variant.setup();
+        let draws = self.draws(variant);
+        let mut c = BTreeMap::from([
+            ("cascades".into(), setup.count as u64),
+            ("shadow_map_size".into(), setup.resolution as u64),
+            // A pixel in a blend band takes two lookups.
+            (
+                "filter_taps_per_pixel".into(),
+                if setup.blend > 0.0 { 2 } else { 1 },
+            ),
+            ("draws".into(), draws),
+        ]);
+        if let Some((written, fragments)) = self.texels_written[variant as usize] {
+            c.insert("shadow_texels_written".into(), written);
+            c.insert("shadow_fragments".into(), fragments);
+        }
+        if let Some(fit) = &self.fitted[variant as usize] {
+            for d in ALIASING_AT {
+                let cascade = &fit[setup::cascade_of(fit, d as f64)];
+                let per_m = setup.resolution as f64 / cascade.width;
+                c.insert(format!("texels_per_m_at_{d}m"), per_m.round() as u64);
+            }
+        }
+        c
+    }
+
+    fn write_extras(
+        &self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        variant: Variant,
+        out: &Path,
+    ) -> Result<()> {
+        let setup = variant.setup();
+        let Some(m) = self.find_maps(setup.resolution, setup.count) else {
+            return Ok(());
+        };
+        let (maps, groups) = &self.maps[m];
+        let name = variant_name(variant);
+        let path = out.join(format!("{name}_cascades.png"));
+        extras::write_cascade_png(gpu, scene, &self.tint_pipeline, &groups[0], &path)?;
+        extras::write_layers(gpu, maps, out, &name)
+    }
+}
+
+impl Csm {
+    fn find_maps(&self, size: u32, count: usize) -> Option<usize> {
+        self.maps
+            .iter()
+            .position(|(m, _)| m.size == size && m.count == count)
+    }
+
+    /// The array for `count` cascades of `size`², made when first needed
+    /// and shared by the variants of the same shape.
+    fn maps_for(&mut self, gpu: &Gpu, size: u32, count: usize) -> usize {
+        if let Some(m) = self.find_maps(size, count) {
+            return m;
+        }
+        let maps = CascadeMaps::new(gpu, size, count);
+        let groups = self
+            .params
+            .iter()
+            .map(|p| csm::csm_group(gpu, &self.layout, &maps, p))
+            .collect();
+        self.maps.push((maps, groups));
+        self.maps.len() - 1
+    }
+
+    /// Draw calls of a frame: the base pass, then per light K shadow passes
+    /// (every caster) and the lit pass (every object).
+    fn draws(&self, variant: Variant) -> u64 {
+        let k = variant.setup().count as u64;
+        let lights = self.lights.len() as u64;
+        self.objects + lights * (k * self.casters + self.objects)
+    }
+
+    /// The shadow passes' depth writes and rasterised fragments over every
+    /// light and cascade, counted through lesson 01's tally. Untimed.
+    fn count_texels(&self, gpu: &Gpu, scene: &SceneGpu, size: u32, k: usize) -> Result<(u64, u64)> {
+        let scratch = CascadeMaps::new(gpu, size, 1);
+        let tally = Tally::new(gpu, size, size);
+        let mut total = [0u64; 2];
+        for (which, total) in total.iter_mut().enumerate() {
+            for lights in &self.lights {
+                for i in 0..k {
+                    let depth = wgpu::RenderPassDepthStencilAttachment {
+                        view: &scratch.layer_views[0],
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Discard,
+                        }),
+                        stencil_ops: None,
+                    };
+                    *total += tally.count(gpu, Some(depth), |pass| {
+                        pass.set_pipeline(&self.tally_pipeline[which]);
+                        lights.bind(pass, i);
+                        scene.draw_objects(pass, |o| scene.casts_shadow(o));
+                    })?;
+                }
+            }
+        }
+        Ok((total[0], total[1]))
+    }
+}
+
+fn main() -> std::process::ExitCode {
+    app::main::<Csm>()
+}

@@ -1,0 +1,180 @@
+//! What a lesson 09 variant is: how many cascades of what size, how the
+//! frustum is split and how each box is fitted; and turning the scene's
+//! camera into cascades, every frame.
+
+use anyhow::Result;
+use common::camera::directional_light_view_proj;
+use common::gpu::Gpu;
+use common::render::SCENE_BUFFER_USAGE;
+use common::scene::{Far, LightKind, Scene};
+
+use super::cascades::{self, Cascade, Fit, FitOptions, SplitScheme, ViewFrustum};
+use super::csm::CsmParams;
+use crate::lesson_02::bias::SlopeScaledBias;
+
+/// The texels every variant spends: one 2048² map's worth.
+pub const TOTAL_TEXELS: u64 = 2048 * 2048;
+
+/// The receiver's normal offset, in texels of its cascade (`cascade_lookup`).
+pub const NORMAL_OFFSET_TEXELS: f32 = 1.0;
+
+/// A variant's cascades.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Setup {
+    pub count: usize,
+    /// Each cascade's map is `resolution`² texels.
+    pub resolution: u32,
+    pub scheme: SplitScheme,
+    /// `None`: lesson 01's single map over the scene bounds.
+    pub options: Option<FitOptions>,
+    /// The blend band, a fraction of each cascade (0: a hard switch).
+    pub blend: f32,
+}
+
+impl Setup {
+    /// Lesson 01's one map of `resolution`², fitted to the scene bounds.
+    pub fn single(resolution: u32) -> Setup {
+        Setup {
+            count: 1,
+            resolution,
+            scheme: SplitScheme::Uniform,
+            options: None,
+            blend: 0.0,
+        }
+    }
+
+    /// `count` cascades sharing [`TOTAL_TEXELS`].
+    pub fn cascaded(count: usize, scheme: SplitScheme, options: FitOptions) -> Setup {
+        Setup {
+            count,
+            resolution: per_cascade_resolution(count),
+            scheme,
+            options: Some(options),
+            blend: 0.0,
+        }
+    }
+
+    pub fn with_fit(self, fit: Fit, snap: bool, extend: bool) -> Setup {
+        let options = Some(FitOptions { fit, snap, extend });
+        Setup { options, ..self }
+    }
+
+    /// Light `light`'s cascades for the scene's camera as it is now, for a
+    /// `width × height` image.
+    pub fn fit(
+        &self,
+        scene: &Scene,
+        width: u32,
+        height: u32,
+        light: usize,
+    ) -> Result<Vec<Cascade>> {
+        let LightKind::Directional { direction } = scene.lights[light].kind else {
+            anyhow::bail!("lights[{light}]: lesson_09 cascades directional lights only");
+        };
+        let view = view_frustum(scene, width, height);
+        let o = scene.origin();
+        let (lo, hi) = scene.bounds();
+        let corners = cascades::box_corners(lo - o, hi - o);
+        let far = match scene.camera.far {
+            Far::Finite(f) => Some(f),
+            Far::Infinite => None,
+        };
+        let near = scene.camera.near;
+        let reach = cascades::shadow_distance(&view, near, far, &corners);
+        let Some(options) = self.options else {
+            let m = directional_light_view_proj(scene, direction).as_dmat4();
+            // An orthographic map: 2 NDC units are 2 / |row| metres.
+            let side = |r: usize| 2.0 / m.row(r).truncate().length();
+            return Ok(vec![Cascade {
+                near,
+                far: reach,
+                width: side(0).max(side(1)),
+                view_proj: m,
+            }]);
+        };
+        let splits = cascades::split_depths(self.scheme, near, reach, self.count);
+        let fit = cascades::fit_cascades(
+            &view,
+            direction,
+            &splits,
+            options,
+            self.resolution,
+            &corners,
+        );
+        Ok(fit)
+    }
+
+    /// The lit pass's parameters for `fit`.
+    pub fn params(&self, scene: &Scene, width: u32, height: u32, fit: &[Cascade]) -> CsmParams {
+        let forward = view_frustum(scene, width, height).forward;
+        CsmParams::new(
+            fit,
+            self.resolution,
+            forward,
+            self.blend,
+            NORMAL_OFFSET_TEXELS,
+        )
+    }
+}
+
+/// The side of each of `count` square maps that together hold about
+/// [`TOTAL_TEXELS`]: 2048, 1448, 1182, 1024.
+pub fn per_cascade_resolution(count: usize) -> u32 {
+    (TOTAL_TEXELS as f64 / count.max(1) as f64).sqrt().floor() as u32
+}
+
+/// The scene camera's frustum, origin-relative.
+pub fn view_frustum(scene: &Scene, width: u32, height: u32) -> ViewFrustum {
+    let c = &scene.camera;
+    let o = scene.origin();
+    let aspect = width as f64 / height as f64;
+    ViewFrustum::new(c.eye - o, c.target - o, c.up, c.fov_y_deg, aspect)
+}
+
+/// The cascade a pixel at view depth `d` samples, as `select_cascade` in
+/// `csm.wgsl` picks it: the first whose far split lies beyond `d`; past
+/// the last split, or where nothing is seen (NaN), the last.
+pub fn cascade_of(fit: &[Cascade], d: f64) -> usize {
+    let last = fit.len().saturating_sub(1);
+    if d.is_nan() {
+        return last;
+    }
+    fit.iter().position(|c| d < c.far).unwrap_or(last).min(last)
+}
+
+/// Refuses spot lights: a cascade is an orthographic box, for a light
+/// whose rays are parallel.
+pub fn refuse_spot_lights(scene: &Scene, lesson: &str) -> Result<()> {
+    match scene
+        .lights
+        .iter()
+        .position(|l| matches!(l.kind, LightKind::Spot { .. }))
+    {
+        Some(k) => anyhow::bail!(
+            "lights[{k}]: {lesson} cascades directional lights; spot lights are lesson_01 to lesson_03"
+        ),
+        None => Ok(()),
+    }
+}
+
+/// The shadow pass's bias: lesson 02's slope-scaled bias, unclamped (its
+/// clamp is in texels of one map over the scene; a cascade's texels differ,
+/// and the slope term already scales with each cascade's own texels).
+pub fn shadow_pass_bias() -> wgpu::DepthBiasState {
+    let b = SlopeScaledBias::RECOMMENDED;
+    wgpu::DepthBiasState {
+        constant: b.constant,
+        slope_scale: b.slope_scale,
+        clamp: 0.0,
+    }
+}
+
+/// The buffer of one light's [`CsmParams`].
+pub fn params_buffer(gpu: &Gpu) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("cascade parameters"),
+        size: std::mem::size_of::<CsmParams>() as u64,
+        usage: SCENE_BUFFER_USAGE,
+        mapped_at_creation: false,
+    })
+}
