@@ -43,6 +43,10 @@ pub enum Extrusion {
     Cpu,
     /// Degenerate quads built in advance, extruded in the vertex shader.
     Quads,
+    /// Silhouettes and caps written by a compute shader every frame, the
+    /// CPU route's triangles, drawn indirectly with its pipelines
+    /// ([`compute`](super::compute)).
+    Compute,
 }
 
 /// CPU-path vertex: object-space position and w (1 stays, 0 to infinity).

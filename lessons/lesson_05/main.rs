@@ -7,9 +7,11 @@
 //! Exact while the eye is outside every volume; the report measures what
 //! happens when it is not (`--scene scenes/volume_eye_in_umbra.toml`).
 //!
-//! Two ways to build the volumes, timed against each other: silhouettes on
-//! the CPU every frame (`zpass_cpu`), and degenerate quads built once and
-//! extruded in the vertex shader (`zpass_quads`).
+//! Three ways to build the volumes, timed against each other: silhouettes
+//! on the CPU every frame (`zpass_cpu`), degenerate quads built once and
+//! extruded in the vertex shader (`zpass_quads`), and the CPU route's
+//! triangles written by a compute shader and drawn indirectly
+//! (`zpass_compute`).
 //!
 //! Run: `cargo run --release --bin lesson_05 -- --headless`
 //! Book: chapter "05 z-pass stencil shadow volumes" (`book/src/lesson_05.md`).
@@ -34,7 +36,7 @@ use workbook::lesson_05::volumes::{
 
 // ANCHOR: variants
 /// The variants differ in how the volume geometry is built, not in what
-/// it is: both count with z-pass.
+/// it is: all count with z-pass.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Variant {
     /// Silhouettes found on the CPU every frame.
@@ -43,6 +45,9 @@ enum Variant {
     /// Degenerate quads built once, extruded in the vertex shader.
     #[value(name = "zpass_quads")]
     ZpassQuads,
+    /// Silhouettes and sides written by a compute shader, drawn indirectly.
+    #[value(name = "zpass_compute")]
+    ZpassCompute,
     /// Exercise 1: `zpass_cpu` with your `silhouette_edges`.
     #[value(name = "exercise_silhouette_edges")]
     ExerciseSilhouetteEdges,
@@ -56,6 +61,7 @@ impl Variant {
     fn extrusion(self) -> Extrusion {
         match self {
             Variant::ZpassQuads => Extrusion::Quads,
+            Variant::ZpassCompute => Extrusion::Compute,
             _ => Extrusion::Cpu,
         }
     }
@@ -74,7 +80,7 @@ impl Variant {
 // ANCHOR_END: variants
 
 /// How many variants (exercises included): the per-variant arrays.
-const VARIANTS: usize = 4;
+const VARIANTS: usize = 5;
 
 struct ZPass {
     volumes: ShadowVolumes,
@@ -135,6 +141,10 @@ impl Lesson for ZPass {
         if ext == Extrusion::Cpu {
             // Doom 3's way: find every silhouette on the CPU, every frame.
             (self.volumes).prepare_cpu_with(frame, scene, all, variant.cpu_parts());
+        }
+        if ext == Extrusion::Compute {
+            // The same silhouettes, found by a compute shader on the GPU.
+            self.volumes.prepare_compute(frame, scene, all)?;
         }
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = 0;

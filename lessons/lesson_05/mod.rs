@@ -2,6 +2,7 @@
 //! to infinity, and counting the volumes in the stencil.
 
 pub mod adjacency;
+pub mod compute;
 pub mod cull;
 pub mod extrusion;
 pub mod silhouette;

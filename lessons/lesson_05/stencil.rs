@@ -271,7 +271,8 @@ impl VolumePipelines {
         }
         let module = volume_shader_module(gpu, "shadow volume", "");
         let (vs_entry, buffers) = match extrusion {
-            Extrusion::Cpu => ("vs_volume_cpu", vec![Some(CPU_VERTEX_LAYOUT)]),
+            // The compute route writes the CPU route's vertices.
+            Extrusion::Cpu | Extrusion::Compute => ("vs_volume_cpu", vec![Some(CPU_VERTEX_LAYOUT)]),
             Extrusion::Quads if counting.finite_reach => (
                 "vs_volume_quads_reach",
                 vec![Some(QUAD_VERTEX_LAYOUT), Some(REACH_VERTEX_LAYOUT)],

@@ -43,6 +43,7 @@ use common::targets::FrameTargets;
 use common::timing::Frame;
 
 use super::adjacency::Adjacency;
+use super::compute::ComputeVolumes;
 use super::extrusion::{
     cpu_volume_parts, degenerate_quads, world_light, CpuParts, CpuVertex, Extrusion, QuadVertex,
     VolumeRanges, REACH_SLOT,
@@ -158,6 +159,8 @@ pub struct ShadowVolumes {
     /// `None` unless the counting has `finite_reach`.
     reach_buffer: Option<wgpu::Buffer>,
     cpu: CpuGeometry,
+    /// The compute route's buffers, made when it first runs.
+    compute: Option<ComputeVolumes>,
     cpu_pipelines: VolumePipelines,
     quad_pipelines: VolumePipelines,
     counter: Option<FragmentCounter>,
@@ -247,6 +250,7 @@ impl ShadowVolumes {
             reach,
             reach_buffer,
             cpu: CpuGeometry::default(),
+            compute: None,
             cpu_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Cpu, counting)?,
             quad_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Quads, counting)?,
             counter: FragmentCounter::new(gpu, scene.width, scene.height),
@@ -349,6 +353,29 @@ impl ShadowVolumes {
     }
     // ANCHOR_END: prepare_cpu
 
+    // ANCHOR: prepare_compute
+    /// The compute route's per-frame work ([`ComputeVolumes::extrude`]),
+    /// for every light and the casters in `draws[light]`: timed as the
+    /// pass `extrude`. Its buffers are made on the first call; an adapter
+    /// without compute shaders is a one-line error.
+    pub fn prepare_compute(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        draws: &[Vec<CasterDraw>],
+    ) -> Result<()> {
+        if self.compute.is_none() {
+            let lights = scene.scene.lights.len();
+            self.compute = Some(ComputeVolumes::new(frame.gpu, &self.casters, lights)?);
+        }
+        if let Some(c) = &self.compute {
+            let at = (&self.models[..], &self.reach[..]);
+            c.extrude(frame, scene, &self.casters, at, draws);
+        }
+        Ok(())
+    }
+    // ANCHOR_END: prepare_compute
+
     /// Draws one light's volumes into an open pass, with the volume
     /// pipelines of their extrusion (or the counting copy). Returns the
     /// number of casters drawn.
@@ -360,7 +387,7 @@ impl ShadowVolumes {
         role: DrawRole,
     ) -> u32 {
         let pipes = match v.extrusion {
-            Extrusion::Cpu => &self.cpu_pipelines,
+            Extrusion::Cpu | Extrusion::Compute => &self.cpu_pipelines,
             Extrusion::Quads => &self.quad_pipelines,
         };
         scene.bind_frame(pass, v.light);
@@ -400,6 +427,15 @@ impl ShadowVolumes {
                     for (range, cap) in d.ranges(&c.quad_ranges) {
                         pass.set_pipeline(pipeline(cap));
                         pass.draw_indexed(range, 0, 0..1);
+                    }
+                }
+                Extrusion::Compute => {
+                    let Some(cv) = &self.compute else { continue };
+                    pass.set_vertex_buffer(0, cv.vertices.slice(..));
+                    // As many vertices as the compute shader counted.
+                    for (at, cap) in cv.draws(scene, v.light, ci, d) {
+                        pass.set_pipeline(pipeline(cap));
+                        pass.draw_indirect(&cv.args, at);
                     }
                 }
             }

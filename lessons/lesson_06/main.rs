@@ -7,8 +7,9 @@
 //! volumes: a front cap (the light-facing triangles) and a back cap (the
 //! same triangles at infinity, reversed).
 //!
-//! Variants: `zpass_quads` (lesson 05, for contrast), `zfail_cpu` and
-//! `zfail_quads` (the two ways to build the volumes), `zfail_no_front_cap`
+//! Variants: `zpass_quads` (lesson 05, for contrast), `zfail_cpu`,
+//! `zfail_quads` and `zfail_compute` (lesson 05's three ways to build the
+//! volumes), `zfail_no_front_cap`
 //! and `zfail_no_back_cap` (what a missing cap does), and `zfail_selective`
 //! (z-fail only for casters whose volume can reach the near plane, z-pass
 //! for the rest, nothing for casters whose volume cannot reach the view:
@@ -52,6 +53,9 @@ enum Variant {
     ZfailCpu,
     #[value(name = "zfail_quads")]
     ZfailQuads,
+    /// Sides and caps written by a compute shader, drawn indirectly.
+    #[value(name = "zfail_compute")]
+    ZfailCompute,
     /// What a missing cap does.
     #[value(name = "zfail_no_front_cap")]
     ZfailNoFrontCap,
@@ -73,6 +77,7 @@ impl Variant {
     fn extrusion(self) -> Extrusion {
         match self {
             Variant::ZfailCpu | Variant::ExerciseLightCap => Extrusion::Cpu,
+            Variant::ZfailCompute => Extrusion::Compute,
             _ => Extrusion::Quads,
         }
     }
@@ -114,7 +119,10 @@ impl Variant {
             }
             Variant::ZfailNoFrontCap => draws.iter_mut().for_each(|d| d.front_cap = false),
             Variant::ZfailNoBackCap => draws.iter_mut().for_each(|d| d.back_cap = false),
-            Variant::ZfailCpu | Variant::ZfailQuads | Variant::ExerciseLightCap => {}
+            Variant::ZfailCpu
+            | Variant::ZfailQuads
+            | Variant::ZfailCompute
+            | Variant::ExerciseLightCap => {}
         }
         let stats = PlanStats {
             zfail: n,
@@ -237,6 +245,9 @@ impl Lesson for ZFail {
         let ext = variant.extrusion();
         if ext == Extrusion::Cpu {
             (self.volumes).prepare_cpu_with(frame, scene, draws, variant.cpu_parts());
+        }
+        if ext == Extrusion::Compute {
+            self.volumes.prepare_compute(frame, scene, draws)?;
         }
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for (light, draws) in draws.iter().enumerate() {

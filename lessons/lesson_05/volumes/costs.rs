@@ -7,6 +7,7 @@ use common::gpu::Gpu;
 use common::render::SceneGpu;
 use common::targets::FrameTargets;
 
+use super::super::compute::ComputeVolumes;
 use super::super::extrusion::Extrusion;
 use super::super::stencil::Method;
 use super::{CasterDraw, DrawRole, LightVolumes, ShadowVolumes};
@@ -23,6 +24,12 @@ pub struct VolumeCosts {
     pub triangles: u64,
     /// Draw calls of the volume passes.
     pub draws: u64,
+    /// Edges whose faces were tested for a silhouette: every edge of every
+    /// caster drawn, once per light. Over a pass's time: edges per second.
+    pub edges_tested: u64,
+    /// Silhouette edges extruded into sides (the CPU and compute routes;
+    /// the quads route never knows which quads opened).
+    pub silhouette_edges: Option<u64>,
 }
 
 impl VolumeCosts {
@@ -34,6 +41,10 @@ impl VolumeCosts {
         c.insert("stencil_updates".into(), self.stencil_updates);
         c.insert("volume_triangles".into(), self.triangles);
         c.insert("draws".into(), other_draws + self.draws);
+        c.insert("edges_tested".into(), self.edges_tested);
+        if let Some(n) = self.silhouette_edges {
+            c.insert("silhouette_edges".into(), n);
+        }
     }
 }
 
@@ -83,10 +94,19 @@ impl ShadowVolumes {
         draws: &[Vec<CasterDraw>],
     ) -> Result<VolumeCosts> {
         let mut costs = VolumeCosts::default();
+        // The compute route's counts are on the GPU: read them back.
+        let counts = match (extrusion, &self.compute) {
+            (Extrusion::Compute, Some(c)) => Some(c.read_counts(gpu)?),
+            _ => None,
+        };
         for (light, d) in draws.iter().enumerate() {
-            let (calls, tris) = self.submitted(light, extrusion, d);
-            costs.draws += calls;
-            costs.triangles += tris;
+            let s = self.submitted(scene, light, extrusion, d, counts.as_deref());
+            costs.draws += s.calls;
+            costs.triangles += s.triangles;
+            costs.edges_tested += s.edges_tested;
+            if extrusion != Extrusion::Quads {
+                *costs.silhouette_edges.get_or_insert(0) += s.silhouette_edges;
+            }
         }
         // Tally `draws` filtered by `keep`, with or without the depth test.
         let tally = |keep: fn(&CasterDraw) -> bool, depth_test: bool| -> Result<u64> {
@@ -116,25 +136,57 @@ impl ShadowVolumes {
     }
     // ANCHOR_END: count_costs
 
-    /// Draw calls and triangles of one light's volume pass.
-    fn submitted(&self, light: usize, extrusion: Extrusion, draws: &[CasterDraw]) -> (u64, u64) {
-        let (mut calls, mut tris) = (0, 0);
+    /// What one light's volume pass submits. `counts`: the compute
+    /// route's vertex counts ([`ComputeVolumes::read_counts`]).
+    fn submitted(
+        &self,
+        scene: &SceneGpu,
+        light: usize,
+        extrusion: Extrusion,
+        draws: &[CasterDraw],
+        counts: Option<&[[u32; 3]]>,
+    ) -> Submitted {
+        let mut s = Submitted::default();
+        let per_side = ComputeVolumes::per_side(scene, light) as u64;
         for d in draws {
             let Some((ci, c)) = self.caster(d.object) else {
                 continue;
             };
+            s.edges_tested += c.adjacency.edges.len() as u64;
             let ranges = match extrusion {
                 Extrusion::Cpu => match self.cpu.ranges.get(light).and_then(|r| r.get(ci)) {
                     Some(r) => r,
                     None => continue,
                 },
                 Extrusion::Quads => &c.quad_ranges,
+                Extrusion::Compute => {
+                    let (Some(cv), Some(n)) = (&self.compute, counts) else {
+                        continue;
+                    };
+                    let n = n[light * self.casters.len() + ci];
+                    for (at, _) in cv.draws(scene, light, ci, d) {
+                        s.calls += 1;
+                        s.triangles += n[(at / 16 % 3) as usize] as u64 / 3;
+                    }
+                    s.silhouette_edges += n[0] as u64 / per_side;
+                    continue;
+                }
             };
+            s.silhouette_edges += ranges.sides.len() as u64 / per_side;
             for (r, _) in d.ranges(ranges) {
-                calls += 1;
-                tris += r.len() as u64 / 3;
+                s.calls += 1;
+                s.triangles += r.len() as u64 / 3;
             }
         }
-        (calls, tris)
+        s
     }
+}
+
+/// What one light's volume pass submits ([`ShadowVolumes::count_costs`]).
+#[derive(Default)]
+struct Submitted {
+    calls: u64,
+    triangles: u64,
+    edges_tested: u64,
+    silhouette_edges: u64,
 }

@@ -1,0 +1,476 @@
+//! Shadow volumes built by a compute shader (lesson 05, the third way,
+//! [`Extrusion::Compute`](super::extrusion::Extrusion::Compute)).
+//!
+//! The CPU route finds the silhouette on the CPU and uploads the volume
+//! every frame; the quads route uploads everything once and lets the
+//! vertex shader throw most of it away. Here each caster's adjacency is
+//! uploaded once ([`pack_adjacency`]), and every frame a compute shader
+//! (`shaders/lesson_05/extrude.wgsl`, one invocation per edge and per
+//! face) writes the CPU route's triangles, `(position, w)`, into a storage
+//! buffer and counts them into the indirect draw arguments with
+//! `atomicAdd`. The volume pass then draws them with the CPU route's own
+//! pipelines (`vs_volume_cpu`) and `draw_indirect`: the CPU never learns
+//! how many triangles there are.
+//!
+//! The triangles are the CPU route's, in another order; the wrapping
+//! stencil count does not depend on the order, so the pixels are the same.
+
+use anyhow::{bail, Result};
+use common::glam::Mat4;
+use common::gpu::Gpu;
+use common::readback::read_buffer;
+use common::render::SceneGpu;
+use common::timing::Frame;
+use wgpu::util::{DeviceExt, DrawIndirectArgs};
+
+use super::adjacency::Adjacency;
+use super::extrusion::{world_light, CpuVertex};
+use super::silhouette::LightDir;
+use super::volumes::{CasterDraw, VolumeCaster};
+
+/// The compute shader (`shaders/lesson_05/extrude.wgsl`).
+pub const EXTRUDE_WGSL: &str = include_str!("../../shaders/lesson_05/extrude.wgsl");
+
+const WORKGROUP: u32 = 64;
+/// Bytes of one draw's arguments; a (light, caster) has three.
+const ARGS: u64 = std::mem::size_of::<DrawIndirectArgs>() as u64;
+const VERTEX: u64 = std::mem::size_of::<CpuVertex>() as u64;
+
+/// `Params` of extrude.wgsl: one (light, caster).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+struct Params {
+    light: [f32; 4],
+    reach_w: f32,
+    edges: u32,
+    faces: u32,
+    slot: u32,
+    offsets: [u32; 5],
+    row: u32,
+    _pad: [u32; 2],
+}
+
+/// Why this adapter cannot build volumes with a compute shader, in one
+/// line that names the variant that works; `None` when it can.
+pub fn unavailable(gpu: &Gpu) -> Option<String> {
+    let flags = gpu.adapter.get_downlevel_capabilities().flags;
+    let missing: Vec<&str> = [
+        (wgpu::DownlevelFlags::COMPUTE_SHADERS, "compute shaders"),
+        (wgpu::DownlevelFlags::INDIRECT_EXECUTION, "indirect draws"),
+    ]
+    .iter()
+    .filter(|(f, _)| !flags.contains(*f))
+    .map(|(_, name)| *name)
+    .collect();
+    (!missing.is_empty()).then(|| {
+        format!(
+            "the compute-built volumes need {} (GL needs OpenGL 4.3 or GLES 3.1), \
+             which {} on {} does not have: the _cpu and _quads variants build \
+             the same volumes without",
+            missing.join(" and "),
+            gpu.adapter_name(),
+            gpu.backend_name()
+        )
+    })
+}
+
+/// One caster's adjacency as extrude.wgsl reads it: one `u32` array of
+/// five tables, and how many vertices its volume can need at most.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PackedMesh {
+    pub words: Vec<u32>,
+    /// Where positions, normals, triangles, edges and face uses start.
+    pub offsets: [u32; 5],
+    pub edges: u32,
+    pub faces: u32,
+    /// Side vertices when every edge is a silhouette as often as it can
+    /// be: max(faces running one way, faces running the other) per edge,
+    /// 6 vertices each (a point light's two triangles).
+    pub max_side_vertices: u32,
+}
+
+// ANCHOR: pack_adjacency
+/// Packs `adj` for extrude.wgsl (see the shader's `mesh` binding).
+pub fn pack_adjacency(adj: &Adjacency) -> PackedMesh {
+    let mut w: Vec<u32> = Vec::new();
+    let mut offsets = [0u32; 5];
+    offsets[0] = w.len() as u32;
+    w.extend(
+        adj.positions
+            .iter()
+            .flat_map(|p| p.to_array().map(f32::to_bits)),
+    );
+    offsets[1] = w.len() as u32;
+    w.extend(
+        adj.face_normals
+            .iter()
+            .flat_map(|n| n.to_array().map(f32::to_bits)),
+    );
+    offsets[2] = w.len() as u32;
+    w.extend(adj.triangles.iter().flatten());
+    offsets[3] = w.len() as u32;
+    let (mut uses, mut max_sides) = (Vec::new(), 0u32);
+    for e in &adj.edges {
+        let faces = adj.faces_of(e);
+        w.extend([e.v[0], e.v[1], uses.len() as u32, faces.len() as u32]);
+        uses.extend(faces.iter().map(|f| f.face << 1 | f.forward as u32));
+        let forward = faces.iter().filter(|f| f.forward).count() as u32;
+        max_sides += forward.max(faces.len() as u32 - forward);
+    }
+    offsets[4] = w.len() as u32;
+    w.extend(uses);
+    w.push(0); // never empty: wgpu rejects a zero-sized binding
+    PackedMesh {
+        words: w,
+        offsets,
+        edges: adj.edges.len() as u32,
+        faces: adj.triangles.len() as u32,
+        max_side_vertices: 6 * max_sides,
+    }
+}
+// ANCHOR_END: pack_adjacency
+
+/// The light as extrude.wgsl takes it: object space, w = 0 directional.
+fn light_params(light: LightDir) -> [f32; 4] {
+    match light {
+        LightDir::Point(p) => p.extend(1.0).to_array(),
+        LightDir::Directional(d) => d.extend(0.0).to_array(),
+    }
+}
+
+/// Every caster's packed adjacency, the compute pipeline, and one region
+/// of the vertex buffer and three indirect draws (sides, front cap, back
+/// cap) per (light, caster): slot `light * casters + caster`.
+pub struct ComputeVolumes {
+    pipeline: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    params_stride: u64,
+    /// Every slot's volume vertices ([`CpuVertex`]), STORAGE | VERTEX.
+    pub vertices: wgpu::Buffer,
+    /// Every slot's three `DrawIndirectArgs`, INDIRECT | STORAGE | COPY_DST.
+    pub args: wgpu::Buffer,
+    /// The arguments each frame starts from (count 0, one instance),
+    /// copied over `args` in the frame's own encoder: a queue write would
+    /// land before the counting submits of [`count_costs`](super::volumes::ShadowVolumes::count_costs)
+    /// and zero the counts they draw with.
+    reset: wgpu::Buffer,
+    slots: usize,
+    /// Per caster: its bind group, and its edges and faces.
+    casters: Vec<(wgpu::BindGroup, PackedMesh)>,
+    lights: usize,
+}
+
+impl ComputeVolumes {
+    /// Uploads every caster's adjacency and sizes the outputs for the
+    /// worst case. A one-line error if the adapter cannot, or if the
+    /// buffers would pass its limits.
+    pub fn new(gpu: &Gpu, casters: &[VolumeCaster], lights: usize) -> Result<ComputeVolumes> {
+        if let Some(why) = unavailable(gpu) {
+            bail!("{why}");
+        }
+        let limits = gpu.device.limits();
+        let packed: Vec<PackedMesh> = casters
+            .iter()
+            .map(|c| pack_adjacency(&c.adjacency))
+            .collect();
+        // Each slot's regions: sides, front cap, back cap.
+        let mut reset = Vec::new();
+        let mut first = 0u64;
+        for _ in 0..lights {
+            for p in &packed {
+                for n in [p.max_side_vertices, 3 * p.faces, 3 * p.faces] {
+                    reset.push(DrawIndirectArgs {
+                        vertex_count: 0,
+                        instance_count: 1,
+                        first_vertex: first as u32,
+                        first_instance: 0,
+                    });
+                    first += n as u64;
+                }
+            }
+        }
+        let bytes = first.max(1) * VERTEX;
+        let most = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
+        if bytes > most || first > u32::MAX as u64 {
+            bail!(
+                "the compute-built volumes need a {} MiB vertex buffer for the worst case, \
+                 more than {} allows ({} MiB): the _quads variants build these volumes",
+                bytes >> 20,
+                gpu.adapter_name(),
+                most >> 20
+            );
+        }
+        let buffer = |label, size, usage| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        use wgpu::BufferUsages as U;
+        let vertices = buffer("compute volumes", bytes, U::STORAGE | U::VERTEX);
+        let args_size = (reset.len() as u64).max(1) * ARGS;
+        reset.resize(reset.len().max(1), DrawIndirectArgs::default());
+        let reset_src = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("compute volume draws reset"),
+                contents: bytemuck::cast_slice(&reset),
+                usage: U::COPY_SRC,
+            });
+        let args = buffer(
+            "compute volume draws",
+            args_size,
+            U::INDIRECT | U::STORAGE | U::COPY_DST | U::COPY_SRC,
+        );
+        let params_stride = (std::mem::size_of::<Params>() as u64)
+            .next_multiple_of(limits.min_uniform_buffer_offset_alignment as u64);
+        let slots = (lights * casters.len()).max(1) as u64;
+        let params = buffer(
+            "extrude params",
+            params_stride * slots,
+            U::UNIFORM | U::COPY_DST,
+        );
+        let module = gpu
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("extrude"),
+                source: wgpu::ShaderSource::Wgsl(EXTRUDE_WGSL.into()),
+            });
+        let layout = bind_group_layout(gpu);
+        let pipeline = compute_pipeline(gpu, &module, &layout);
+        let packed_len = packed.len();
+        let casters: Vec<(wgpu::BindGroup, PackedMesh)> = packed
+            .into_iter()
+            .map(|p| {
+                let mesh = gpu
+                    .device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("caster adjacency"),
+                        contents: bytemuck::cast_slice(&p.words),
+                        usage: U::STORAGE,
+                    });
+                let params = wgpu::BufferBinding {
+                    buffer: &params,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(std::mem::size_of::<Params>() as u64),
+                };
+                let bg = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("extrude"),
+                    layout: &layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::Buffer(params),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: mesh.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: vertices.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: args.as_entire_binding(),
+                        },
+                    ],
+                });
+                (bg, p)
+            })
+            .collect();
+        Ok(ComputeVolumes {
+            pipeline,
+            params,
+            params_stride,
+            vertices,
+            args,
+            reset: reset_src,
+            slots: lights * packed_len,
+            casters,
+            lights,
+        })
+    }
+
+    fn slot(&self, light: usize, caster: usize) -> usize {
+        light * self.casters.len() + caster
+    }
+
+    // ANCHOR: extrude
+    /// The per-frame work: for every light and the casters in
+    /// `draws[light]`, the light in object space (`models`) and the reach
+    /// (`reach[light][caster]`, 0 infinity) go to the shader, the vertex
+    /// counts are reset, and one dispatch per (light, caster) writes the
+    /// volumes. Timed as the pass `extrude`.
+    pub fn extrude(
+        &self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        casters: &[VolumeCaster],
+        (models, reach): (&[Mat4], &[Vec<f32>]),
+        draws: &[Vec<CasterDraw>],
+    ) {
+        let gpu = frame.gpu;
+        let max_groups = gpu.device.limits().max_compute_workgroups_per_dimension;
+        let stride = self.params_stride as usize;
+        let mut params = vec![0u8; stride * (self.lights * self.casters.len()).max(1)];
+        let mut jobs = Vec::new();
+        for (k, draws_k) in draws.iter().enumerate().take(self.lights) {
+            let world = world_light(scene, k);
+            for (ci, c) in casters.iter().enumerate() {
+                let p = &self.casters[ci].1;
+                let n = p.edges + p.faces;
+                if n == 0 || !draws_k.iter().any(|d| d.object == c.object) {
+                    continue;
+                }
+                // Silhouettes in object space: the light moves, not the mesh.
+                let light = world.to_object_space(models[c.object]);
+                let groups = n.div_ceil(WORKGROUP);
+                let grid = (groups.min(max_groups), groups.div_ceil(max_groups));
+                let slot = self.slot(k, ci);
+                let value = Params {
+                    light: light_params(light),
+                    reach_w: reach.get(k).and_then(|r| r.get(ci)).copied().unwrap_or(0.0),
+                    edges: p.edges,
+                    faces: p.faces,
+                    slot: slot as u32,
+                    offsets: p.offsets,
+                    row: grid.0 * WORKGROUP,
+                    _pad: [0; 2],
+                };
+                params[slot * stride..][..std::mem::size_of::<Params>()]
+                    .copy_from_slice(bytemuck::bytes_of(&value));
+                jobs.push((ci, slot, grid));
+            }
+        }
+        gpu.queue.write_buffer(&self.params, 0, &params);
+        frame.pass("extrude", |enc, ts| {
+            // Every count back to 0 before the dispatches add to it.
+            enc.copy_buffer_to_buffer(&self.reset, 0, &self.args, 0, self.args.size());
+            let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("extrude"),
+                timestamp_writes: ts.compute(),
+            });
+            pass.set_pipeline(&self.pipeline);
+            for (ci, slot, (x, y)) in jobs {
+                let offset = (slot as u64 * self.params_stride) as u32;
+                pass.set_bind_group(0, &self.casters[ci].0, &[offset]);
+                pass.dispatch_workgroups(x, y, 1);
+            }
+        });
+    }
+    // ANCHOR_END: extrude
+
+    /// One caster's indirect draws for light `light`: (byte offset in
+    /// [`args`](Self::args), is it a cap?), the sides and the caps `d`
+    /// asks for. A directional light has no back cap (it is one point).
+    pub fn draws(
+        &self,
+        scene: &SceneGpu,
+        light: usize,
+        caster: usize,
+        d: &CasterDraw,
+    ) -> Vec<(u64, bool)> {
+        let directional = matches!(world_light(scene, light), LightDir::Directional(_));
+        let at = self.slot(light, caster) as u64 * 3 * ARGS;
+        [
+            Some((at, false)),
+            d.front_cap.then_some((at + ARGS, true)),
+            (d.back_cap && !directional).then_some((at + 2 * ARGS, true)),
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
+    }
+
+    /// Reads back every slot's vertex counts (sides, front cap, back cap),
+    /// `counts[light * casters + caster]`, as the last frame left them.
+    /// Untimed: its own submit.
+    pub fn read_counts(&self, gpu: &Gpu) -> Result<Vec<[u32; 3]>> {
+        let size = self.args.size();
+        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("compute volume counts"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        enc.copy_buffer_to_buffer(&self.args, 0, &staging, 0, size);
+        gpu.queue.submit([enc.finish()]);
+        let bytes = read_buffer(gpu, &staging, size, "compute volume counts")?;
+        let words: &[u32] = bytemuck::cast_slice(&bytes);
+        Ok((0..self.slots)
+            .map(|s| [0, 1, 2].map(|p| words[(3 * s + p) * 4]))
+            .collect())
+    }
+
+    /// The number of vertices on one side of a silhouette edge: 6 for a
+    /// point light, 3 for a directional one.
+    pub fn per_side(scene: &SceneGpu, light: usize) -> u32 {
+        match world_light(scene, light) {
+            LightDir::Directional(_) => 3,
+            LightDir::Point(_) => 6,
+        }
+    }
+}
+
+fn bind_group_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
+    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    let params = wgpu::BindGroupLayoutEntry {
+        binding: 0,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            // One Params per (light, caster), picked by a dynamic offset.
+            has_dynamic_offset: true,
+            min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<Params>() as u64),
+        },
+        count: None,
+    };
+    gpu.device
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("extrude"),
+            entries: &[
+                params,
+                storage(1, true),
+                storage(2, false),
+                storage(3, false),
+            ],
+        })
+}
+
+fn compute_pipeline(
+    gpu: &Gpu,
+    module: &wgpu::ShaderModule,
+    layout: &wgpu::BindGroupLayout,
+) -> wgpu::ComputePipeline {
+    let layout = gpu
+        .device
+        .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("extrude"),
+            bind_group_layouts: &[Some(layout)],
+            immediate_size: 0,
+        });
+    gpu.device
+        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("extrude"),
+            layout: Some(&layout),
+            module,
+            entry_point: Some("extrude"),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+}
