@@ -6,14 +6,17 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 
 use crate::baseline::Baseline;
+use crate::camera_path::{path_cameras, CameraPath, Shimmer};
 use crate::cli::Args;
 use crate::gpu::Gpu;
 use crate::lesson::{variant_name, Lesson};
-use crate::metrics;
+use crate::metrics::{self, pixel_states, PixelState, ReferenceStates};
 use crate::reference::try_render_reference;
 use crate::render::SceneGpu;
-use crate::report::{combine, AdapterReport, BaselineReport, Report, VariantReport};
+use crate::report::VariantReport;
+use crate::report::{combine, AdapterReport, BaselineReport, CameraPathReport, Report};
 use crate::scene::Scene;
+use crate::targets::{FrameImages, FrameTargets};
 use crate::timing::{median_times, samples, spread_times, FrameTimes, Timer};
 
 /// What a headless run wrote: the report, and the folder it wrote into.
@@ -38,15 +41,28 @@ pub fn run_headless<L: Lesson>(
         .unwrap_or_else(|| PathBuf::from("out").join(L::NAME));
     std::fs::create_dir_all(&out_dir)
         .with_context(|| format!("--out: cannot create {}", out_dir.display()))?;
+    if scene.camera_path.is_some() && !L::CAMERA_PATH {
+        anyhow::bail!(
+            "scene {}: [camera_path]: {} does not re-fit to a moving camera; lessons 01 and 09 do",
+            scene.name,
+            L::NAME
+        );
+    }
     let gpu = Gpu::new(args.backend.as_deref(), args.adapter.as_deref(), None)?;
     let scene_name = scene.name.clone();
-    let sg = SceneGpu::new(&gpu, scene, args.width, args.height)?;
+    let mut sg = SceneGpu::new(&gpu, scene, args.width, args.height)?;
     let targets = sg.frame_targets(&gpu);
     let mut lesson = L::new(&gpu, &sg)?;
     let mut timer = Timer::new(&gpu);
 
     let reference = try_render_reference(&sg.scene, sg.camera.view_proj, args.width, args.height)?;
     let (w, h) = (args.width, args.height);
+    let reference_states = ReferenceStates::new(&reference);
+    let c = &sg.scene.camera;
+    let forward = (c.target - c.eye).normalize().as_vec3();
+    let view_depth = metrics::view_depth(&reference, sg.camera.eye, forward);
+    // The path's references, one per frame, computed for the first variant.
+    let mut path_references = Vec::new();
     for k in 0..sg.scene.lights.len() {
         save(
             &metrics::reference_visibility_image(&reference, k),
@@ -83,6 +99,28 @@ pub fn run_headless<L: Lesson>(
             per_light.push(cmp.stats);
         }
         lesson.write_extras(&gpu, &sg, variant, &out_dir)?;
+        let states = light_states(&reference_states, &images);
+        let classes = match lesson.pixel_classes(&sg, variant, &view_depth) {
+            Some((names, class_of)) => Some(metrics::class_errors(&names, &class_of, &states)?),
+            None => None,
+        };
+        // Counters first: the path's frames may change what a frame counts.
+        let counters = lesson.counters(variant);
+        let camera_path = match sg.scene.camera_path {
+            Some(path) => {
+                let mut walk = PathWalk {
+                    gpu: &gpu,
+                    sg: &mut sg,
+                    targets: &targets,
+                    timer: &mut timer,
+                    references: &mut path_references,
+                };
+                let (report, image) = walk.measure(&mut lesson, variant, &path)?;
+                save(&image, &out_dir.join(format!("{v}_shimmer.png")))?;
+                Some(report)
+            }
+            None => None,
+        };
         rows.push(VariantReport {
             name: v,
             error: combine(&per_light),
@@ -91,7 +129,9 @@ pub fn run_headless<L: Lesson>(
             timing_spread_ms: spread_times(&times),
             timing_samples_ms: samples(&times),
             timing_source: timer.source(),
-            counters: lesson.counters(variant),
+            counters,
+            camera_path,
+            classes,
         });
     }
     if rows.is_empty() {
@@ -128,6 +168,72 @@ pub fn run_headless<L: Lesson>(
     Ok(HeadlessRun { report, out_dir })
 }
 // ANCHOR_END: run_headless
+
+/// Every light's [`PixelState`]s of a frame's images.
+fn light_states(reference: &ReferenceStates, images: &FrameImages) -> Vec<Vec<PixelState>> {
+    let lights = images.visibility.iter();
+    let states = lights
+        .enumerate()
+        .map(|(k, vis)| pixel_states(reference, k, &images.id, vis));
+    states.collect()
+}
+
+/// What rendering a variant along the scene's camera path needs.
+struct PathWalk<'a> {
+    gpu: &'a Gpu,
+    sg: &'a mut SceneGpu,
+    targets: &'a FrameTargets,
+    timer: &'a mut Timer,
+    /// The reference of each frame so far: the same for every variant.
+    references: &'a mut Vec<ReferenceStates>,
+}
+
+impl PathWalk<'_> {
+    /// Renders `variant` at each camera of `path` (untimed), counts its
+    /// flips against the reference's, and puts the scene's camera back.
+    fn measure<L: Lesson>(
+        &mut self,
+        lesson: &mut L,
+        variant: L::Variant,
+        path: &CameraPath,
+    ) -> Result<(CameraPathReport, image::GrayImage)> {
+        let base = self.sg.scene.camera.clone();
+        let mut shimmer = Shimmer::new(self.sg.width, self.sg.height);
+        let walked = path_cameras(&base, path)
+            .into_iter()
+            .enumerate()
+            .try_for_each(|(i, camera)| {
+                self.frame_at(camera, i, lesson, variant)
+                    .map(|states| shimmer.add_frame(states))
+            });
+        self.sg.scene.camera = base;
+        self.sg.set_camera(self.gpu);
+        walked?;
+        Ok((shimmer.report(), shimmer.image(self.sg.scene.lights.len())))
+    }
+
+    /// Path frame `i`, seen from `camera`: every light's pixel states.
+    fn frame_at<L: Lesson>(
+        &mut self,
+        camera: crate::scene::Camera,
+        i: usize,
+        lesson: &mut L,
+        variant: L::Variant,
+    ) -> Result<Vec<Vec<PixelState>>> {
+        let sg = &mut *self.sg;
+        sg.scene.camera = camera;
+        sg.set_camera(self.gpu);
+        if self.references.len() == i {
+            let r = try_render_reference(&sg.scene, sg.camera.view_proj, sg.width, sg.height)?;
+            self.references.push(ReferenceStates::new(&r));
+        }
+        let mut frame = self.timer.frame(self.gpu);
+        lesson.render(&mut frame, sg, self.targets, variant)?;
+        frame.finish()?;
+        let images = self.targets.read(self.gpu)?;
+        Ok(light_states(&self.references[i], &images))
+    }
+}
 
 // ANCHOR: timed_frames
 /// Renders [`WARM_UP_FRAMES`] untimed frames, then `frames` timed ones.

@@ -25,6 +25,7 @@
 //! - [`mesh_dense`]: the dense built-ins (`holed_sphere`, `dense_knot`).
 //! - [`obj`]: OBJ files, read through tobj and written for `gen_assets`.
 //! - [`camera`]: camera and light matrices.
+//! - [`camera_path`]: a scene's `[camera_path]` (pan, dolly) and its shimmer.
 //!
 //! Measurement:
 //! - [`reference`](mod@reference): the exact CPU ray-cast reference (multi-threaded).
@@ -40,6 +41,7 @@ pub mod baseline;
 pub mod bindings;
 pub mod bvh;
 pub mod camera;
+pub mod camera_path;
 pub mod cli;
 pub mod counters;
 pub mod fullscreen;

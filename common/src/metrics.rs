@@ -10,7 +10,9 @@
 use image::{GrayAlphaImage, LumaA, Rgba, RgbaImage};
 use serde::Serialize;
 
-use crate::reference::Reference;
+use glam::Vec3;
+
+use crate::reference::{PixelHit, Reference};
 
 /// Receivers face the light at least this much (geometric N·L).
 pub const RECEIVER_MIN_N_DOT_L: f32 = 0.05;
@@ -262,198 +264,132 @@ pub fn ascii_mask(
 }
 // ANCHOR_END: ascii_mask
 
-#[cfg(test)]
-mod tests {
-    use glam::Vec3;
+// ANCHOR: pixel_states
+/// The reference cut down to what classifying a pixel needs, one byte a
+/// pixel and light beside the object id (its hits take 40): a camera path
+/// keeps one per frame.
+#[derive(Clone, Debug)]
+pub struct ReferenceStates {
+    /// 0 where nothing was hit, else object + 1 ([`reference_object_ids`]).
+    pub object_id: Vec<u32>,
+    /// `lit[k][p]`: `None` where `p` cannot be a receiver of light `k`
+    /// (nothing hit, or N·L at most [`RECEIVER_MIN_N_DOT_L`]), else whether
+    /// the reference lights it.
+    pub lit: Vec<Vec<Option<bool>>>,
+}
 
-    use super::*;
-    use crate::reference::PixelHit;
-
-    /// A one-light reference from per-pixel (object hit, visibility, N·L).
-    fn reference(w: u32, h: u32, pixels: &[(Option<u32>, f32, f32)]) -> Reference {
-        let hit = |object| PixelHit {
-            object,
-            triangle: 0,
-            t: 1.0,
-            position: Vec3::ZERO,
-            normal: Vec3::Y,
-        };
-        Reference {
-            width: w,
-            height: h,
-            hits: pixels.iter().map(|&(o, _, _)| o.map(hit)).collect(),
-            visibility: vec![pixels.iter().map(|&(_, v, _)| v).collect()],
-            lit_by: vec![pixels.iter().map(|&(_, _, l)| l).collect()],
-            ms: 0.0,
-        }
-    }
-
-    #[test]
-    fn counts_false_shadow_and_false_lit_among_receivers() {
-        // 10 receivers on object 0: 6 lit, 4 shadowed in the reference.
-        let mut px = Vec::new();
-        let mut gpu = Vec::new();
-        for k in 0..10 {
-            let exact = if k < 6 { 1.0 } else { 0.0 };
-            px.push((Some(0), exact, 0.8));
-            // Pixels 0 and 1: false shadow (0.25 off, 0.4 off); pixel 6: false lit (0.7 off).
-            gpu.push(match k {
-                0 => 0.25,
-                1 => 0.4,
-                6 => 0.7,
-                _ => exact,
-            });
-        }
-        // Not receivers: grazing light, a miss, an object mismatch, outside the light (N·L 0).
-        px.extend([
-            (Some(0), 1.0, 0.05),
-            (None, 0.0, 0.0),
-            (Some(1), 1.0, 0.9),
-            (Some(0), 0.0, 0.0),
-        ]);
-        gpu.extend([0.0, 1.0, 0.0, 1.0]);
-        let ids = [vec![1; 10], vec![1, 0, 3, 1]].concat(); // 3: the GPU sees object 2 there
-        let r = reference(14, 1, &px);
-        let s = compare(&r, 0, &ids, &gpu).stats;
-        assert_eq!(s.receiver_pixels, 10);
-        // 13 covered pixels (all but the miss), 1 where the GPU sees another object.
-        assert!(
-            (s.coverage_mismatch_pct - 100.0 / 13.0).abs() < 1e-9,
-            "coverage mismatch {}",
-            s.coverage_mismatch_pct
-        );
-        assert_eq!(
-            (s.misclassified_pct, s.false_shadow_pct, s.false_lit_pct),
-            (30.0, 20.0, 10.0)
-        );
-        assert!(
-            (s.mean_abs - (0.75 + 0.6 + 0.7) / 10.0).abs() < 1e-7,
-            "mean_abs {}",
-            s.mean_abs
-        );
-    }
-
-    #[test]
-    fn interior_error_leaves_out_edge_pixels() {
-        // One row of 12 receivers: lit in the reference at 0..6, shadowed at
-        // 6..12. Interior (no other class within 2 px): 0..4 and 8..12.
-        let px: Vec<_> = (0..12)
-            .map(|k| (Some(0), if k < 6 { 1.0 } else { 0.0 }, 0.8))
+impl ReferenceStates {
+    pub fn new(reference: &Reference) -> ReferenceStates {
+        let lit = (reference.visibility.iter().zip(&reference.lit_by))
+            .map(|(vis, by)| {
+                let state = |(&v, &n_dot_l): (&f32, &f32)| {
+                    (n_dot_l > RECEIVER_MIN_N_DOT_L).then_some(v >= LIT_THRESHOLD)
+                };
+                vis.iter().zip(by).map(state).collect()
+            })
             .collect();
-        let r = reference(12, 1, &px);
-        let ids = vec![1; 12];
-        let gpu = |wrong: usize| -> Vec<f32> {
-            (0..12)
-                .map(|k| if (k < 6) != (k == wrong) { 1.0 } else { 0.0 })
-                .collect()
-        };
-        // Wrong at the edge pixel 6 only: 1 of 12 overall, none inside.
-        let edge = compare(&r, 0, &ids, &gpu(6)).stats;
-        assert_eq!(edge.interior_receiver_pixels, 8);
-        assert!((edge.misclassified_pct - 100.0 / 12.0).abs() < 1e-9);
-        assert_eq!(edge.interior_misclassified_pct, 0.0);
-        // Wrong at pixel 10, deep in the shadow: 1 of the 8 interior.
-        let inside = compare(&r, 0, &ids, &gpu(10)).stats;
-        assert!((inside.interior_misclassified_pct - 12.5).abs() < 1e-9);
-    }
-
-    #[test]
-    fn no_receivers_gives_zeros() {
-        let r = reference(
-            3,
-            1,
-            &[(None, 0.0, 0.0), (Some(0), 1.0, 0.01), (Some(2), 1.0, 1.0)],
-        );
-        let c = compare(&r, 0, &[0, 1, 1], &[1.0, 0.0, 0.0]);
-        assert_eq!(
-            c.stats,
-            ErrorStats {
-                receiver_pixels: 0,
-                misclassified_pct: 0.0,
-                false_shadow_pct: 0.0,
-                false_lit_pct: 0.0,
-                mean_abs: 0.0,
-                // Pixel 0 is covered by neither; pixels 1 (object 0 on both)
-                // and 2 (object 2 in the reference, object 0 on the GPU) are
-                // covered, and pixel 2 is a mismatch.
-                coverage_mismatch_pct: 50.0,
-                interior_receiver_pixels: 0,
-                interior_misclassified_pct: 0.0,
-            }
-        );
-    }
-
-    #[test]
-    fn diff_image_colours() {
-        // false shadow, false lit, agree lit, agree shadowed, not a receiver, uncovered,
-        // and covered on the GPU only.
-        let r = reference(
-            7,
-            1,
-            &[
-                (Some(0), 1.0, 1.0),
-                (Some(0), 0.0, 1.0),
-                (Some(0), 1.0, 1.0),
-                (Some(0), 0.0, 1.0),
-                (Some(0), 1.0, 0.0),
-                (None, 0.0, 0.0),
-                (None, 0.0, 0.0),
-            ],
-        );
-        let c = compare(
-            &r,
-            0,
-            &[1, 1, 1, 1, 1, 0, 1],
-            &[0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0],
-        );
-        let got: Vec<Rgba<u8>> = c.diff.pixels().copied().collect();
-        assert_eq!(
-            got,
-            vec![
-                FALSE_SHADOW,
-                FALSE_LIT,
-                Rgba([128, 128, 128, 255]),
-                Rgba([48, 48, 48, 255]),
-                NOT_RECEIVER,
-                UNCOVERED,
-                NOT_RECEIVER
-            ]
-        );
-        assert_eq!(
-            (
-                c.stats.receiver_pixels,
-                c.stats.false_shadow_pct,
-                c.stats.false_lit_pct
-            ),
-            (4, 25.0, 25.0)
-        );
-    }
-
-    #[test]
-    fn visibility_images_follow_the_interface() {
-        let img = visibility_image(&[0, 1, 2, 1], &[0.5, 1.0, 0.0, 0.2], 2, 2);
-        let got: Vec<[u8; 2]> = img.pixels().map(|p| p.0).collect();
-        assert_eq!(got, vec![[128, 0], [255, 255], [0, 255], [51, 255]]);
-        let r = reference(2, 1, &[(None, 0.0, 0.0), (Some(3), 1.0, 1.0)]);
-        let got: Vec<[u8; 2]> = reference_visibility_image(&r, 0)
-            .pixels()
-            .map(|p| p.0)
-            .collect();
-        assert_eq!(got, vec![[0, 0], [255, 255]]);
-    }
-
-    #[test]
-    fn ascii_mask_majority_per_cell() {
-        // 4x2 image in 2x1 cells of 2x2 pixels each... then a 1x2 grid.
-        let ids = [0, 0, 1, 1, 0, 1, 1, 1];
-        let vis = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0];
-        // Left cell: 3 uncovered of 4 -> ' '. Right cell: 2 shadowed, 2 lit -> tie -> '.'.
-        assert_eq!(ascii_mask(&ids, &vis, 4, 2, 2, 1), " .");
-        // One column, two rows: top row 2 uncovered vs 2 covered (1 shadowed, 1 lit) -> '.';
-        // bottom row 1 uncovered, 2 shadowed, 1 lit -> '#'.
-        assert_eq!(ascii_mask(&ids, &vis, 4, 2, 1, 2), ".\n#");
-        // More cells than pixels: empty cells are blank.
-        assert_eq!(ascii_mask(&[1], &[0.0], 1, 1, 2, 2), "  \n #");
-        assert_eq!(ascii_mask(&[1, 1], &[0.2, 0.9], 2, 1, 2, 1), "#.");
+        ReferenceStates {
+            object_id: reference_object_ids(reference),
+            lit,
+        }
     }
 }
+
+/// A receiver's `(reference lit, technique lit)`; `None` for other pixels.
+pub type PixelState = Option<(bool, bool)>;
+
+/// One light's [`PixelState`] per pixel: the receivers and the lit test of
+/// [`compare`] (the GPU sees the reference's surface, which faces the light).
+///
+/// Panics if the images are not the reference's size.
+pub fn pixel_states(
+    reference: &ReferenceStates,
+    light: usize,
+    gpu_object_id: &[u32],
+    gpu_visibility: &[f32],
+) -> Vec<PixelState> {
+    let n = reference.object_id.len();
+    assert!(
+        gpu_object_id.len() == n && gpu_visibility.len() == n,
+        "GPU images must have the reference's {n} pixels"
+    );
+    let ids = reference.object_id.iter().zip(gpu_object_id);
+    (ids.zip(&reference.lit[light]).zip(gpu_visibility))
+        .map(|(((&exact_id, &gpu_id), &exact_lit), &v)| {
+            let same_surface = exact_id != 0 && gpu_id == exact_id;
+            exact_lit
+                .filter(|_| same_surface)
+                .map(|e| (e, v >= LIT_THRESHOLD))
+        })
+        .collect()
+}
+// ANCHOR_END: pixel_states
+
+/// The error over the pixels of one class (lesson 09: one cascade), all
+/// lights pooled as in [`crate::report::combine`]. Percentages are of
+/// `pixels`, the receivers in the class.
+#[derive(Serialize, serde::Deserialize, Clone, Debug, PartialEq)]
+pub struct ClassError {
+    pub name: String,
+    pub pixels: u64,
+    pub misclassified_pct: f64,
+    pub false_shadow_pct: f64,
+    pub false_lit_pct: f64,
+}
+
+/// [`ClassError`] per class: `class_of[p]` indexes `names`, and
+/// `per_light[k]` is light `k`'s [`pixel_states`]. A class list that does
+/// not fit the image is the lesson's error, one line.
+pub fn class_errors(
+    names: &[String],
+    class_of: &[u8],
+    per_light: &[Vec<PixelState>],
+) -> anyhow::Result<Vec<ClassError>> {
+    // (receivers, false shadow, false lit) per class.
+    let mut counts = vec![(0u64, 0u64, 0u64); names.len()];
+    for states in per_light {
+        if states.len() != class_of.len() {
+            anyhow::bail!(
+                "pixel_classes: {} class indices for {} pixels",
+                class_of.len(),
+                states.len()
+            );
+        }
+        for (&c, s) in class_of.iter().zip(states) {
+            let Some((exact, gpu)) = *s else { continue };
+            let Some(n) = counts.get_mut(c as usize) else {
+                anyhow::bail!(
+                    "pixel_classes: class index {c}, but only {} class names",
+                    names.len()
+                );
+            };
+            n.0 += 1;
+            n.1 += u64::from(exact && !gpu);
+            n.2 += u64::from(!exact && gpu);
+        }
+    }
+    let errors = names.iter().zip(counts);
+    Ok(errors
+        .map(|(name, (pixels, shadow, lit))| {
+            let pct = |k: u64| 100.0 * k as f64 / pixels.max(1) as f64;
+            ClassError {
+                name: name.clone(),
+                pixels,
+                misclassified_pct: pct(shadow + lit),
+                false_shadow_pct: pct(shadow),
+                false_lit_pct: pct(lit),
+            }
+        })
+        .collect())
+}
+
+/// Per pixel, the distance along the camera's unit `forward` axis from the
+/// origin-relative `eye` to the reference's hit; NaN where nothing is hit.
+pub fn view_depth(reference: &Reference, eye: Vec3, forward: Vec3) -> Vec<f32> {
+    let depth = |h: &Option<PixelHit>| h.map_or(f32::NAN, |h| (h.position - eye).dot(forward));
+    reference.hits.iter().map(depth).collect()
+}
+
+#[cfg(test)]
+#[path = "unit_tests/metrics.rs"]
+mod tests;

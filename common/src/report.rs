@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use crate::metrics::{ErrorStats, COVERAGE_WARN_PCT};
+use crate::metrics::{ClassError, ErrorStats, COVERAGE_WARN_PCT};
 use crate::timing::TimingSource;
 
 #[derive(Serialize, Deserialize, Clone, Debug)]
@@ -31,6 +31,29 @@ pub struct VariantReport {
     pub timing_samples_ms: BTreeMap<String, Vec<f64>>,
     pub timing_source: TimingSource,
     pub counters: BTreeMap<String, u64>,
+    /// The scene's `[camera_path]` measured (absent without one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_path: Option<CameraPathReport>,
+    /// The error per pixel class, when the lesson has classes
+    /// ([`crate::lesson::Lesson::pixel_classes`]; absent otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub classes: Option<Vec<ClassError>>,
+}
+
+/// A variant along the scene's camera path ([`crate::camera_path::Shimmer`]).
+/// The flip percentages are of the pixels that are receivers in both
+/// frames of a pair, over every pair and light.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct CameraPathReport {
+    pub frames: u32,
+    /// The technique flips lit/shadowed and the reference does not.
+    pub shimmer_pct: f64,
+    /// The reference flips (the shadow really moves across the pixel).
+    pub reference_flip_pct: f64,
+    /// The technique flips, rightly or not.
+    pub technique_flip_pct: f64,
+    /// Each frame's misclassified % (all lights), in path order.
+    pub misclassified_pct_per_frame: Vec<f64>,
 }
 
 /// The same frame with the visibility test removed: the base pass and one
@@ -151,24 +174,37 @@ impl Report {
             .max()
             .unwrap_or(7)
             .max(7);
+        // A shimmer column only when some variant walked a camera path.
+        let shimmer = self.variants.iter().any(|v| v.camera_path.is_some());
+        let (head, rule) = match shimmer {
+            true => (" | shimmer %", "-|----------"),
+            false => ("", ""),
+        };
         s += &format!(
-            "{:<w$} | misclassified % | false shadow | false lit |       ms\n",
+            "{:<w$} | misclassified % | false shadow | false lit |       ms{head}\n",
             "variant"
         );
         s += &format!(
-            "{}-|-----------------|--------------|-----------|---------\n",
+            "{}-|-----------------|--------------|-----------|---------{rule}\n",
             "-".repeat(w)
         );
         for v in &self.variants {
             let ms = v.timing_ms.get("total").copied().unwrap_or(f64::NAN);
             s += &format!(
-                "{:<w$} | {:>15.3} | {:>12.3} | {:>9.3} | {:>8.3}\n",
+                "{:<w$} | {:>15.3} | {:>12.3} | {:>9.3} | {:>8.3}",
                 v.name,
                 v.error.misclassified_pct,
                 v.error.false_shadow_pct,
                 v.error.false_lit_pct,
                 ms
             );
+            if shimmer {
+                match &v.camera_path {
+                    Some(p) => s += &format!(" | {:>9.3}", p.shimmer_pct),
+                    None => s += &format!(" | {:>9}", "-"),
+                }
+            }
+            s += "\n";
         }
         s
     }

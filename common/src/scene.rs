@@ -10,6 +10,7 @@ use std::sync::Arc;
 use anyhow::{anyhow, bail, Context, Result};
 use glam::{DMat4, DQuat, DVec3, EulerRot, Vec3};
 
+use crate::camera_path::CameraPath;
 use crate::limits::{
     check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
     MAX_REACH_OVER_NEAR, MAX_SCALE, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
@@ -77,6 +78,8 @@ pub struct Scene {
     pub ambient: Vec3,
     pub lights: Vec<Light>,
     pub objects: Vec<Object>,
+    /// `[camera_path]`, for lessons that measure shimmer (chapter 09).
+    pub camera_path: Option<CameraPath>,
 }
 
 /// 1-based line of a byte offset, for error messages.
@@ -211,6 +214,15 @@ impl Scene {
         })()
         .map_err(|e| anyhow!("{}: {e}", at(cam_span)))?;
 
+        let camera_path = match file.camera_path {
+            Some(p) => {
+                let span = p.span();
+                let path = CameraPath::from_file(p.into_inner(), &camera);
+                Some(path.map_err(|e| anyhow!("{}: {e}", at(span)))?)
+            }
+            None => None,
+        };
+
         let ambient = match file.ambient {
             Some(a) => color3(a.color, "ambient.color").map_err(|e| anyhow!("{name}: {e}"))?,
             None => Vec3::splat(0.08),
@@ -245,6 +257,7 @@ impl Scene {
             ambient,
             lights,
             objects,
+            camera_path,
         };
         scene.check_extent().map_err(|e| anyhow!("{name}: {e}"))?;
         Ok(scene)

@@ -17,6 +17,8 @@ pub(crate) struct SceneFile {
     pub(crate) lights: Vec<Spanned<LightFile>>,
     #[serde(default)]
     pub(crate) objects: Vec<Spanned<ObjectFile>>,
+    #[serde(default)]
+    pub(crate) camera_path: Option<Spanned<CameraPathFile>>,
 }
 
 #[derive(Deserialize)]
@@ -76,6 +78,18 @@ pub(crate) struct ObjectFile {
     pub(crate) casts_shadow: bool,
 }
 
+/// `[camera_path]`: see [`crate::camera_path`].
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CameraPathFile {
+    #[serde(default = "default_path_frames", deserialize_with = "whole_number")]
+    pub(crate) frames: i64,
+    #[serde(default, deserialize_with = "pan_deg")]
+    pub(crate) pan_deg: f64,
+    #[serde(default, deserialize_with = "dolly")]
+    pub(crate) dolly: f64,
+}
+
 pub(crate) enum ScaleFile {
     Uniform(f64),
     PerAxis([f64; 3]),
@@ -128,6 +142,36 @@ pub(crate) fn far_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<FarFile
     }
 }
 
+/// A whole number (`camera_path.frames`); the range is checked later.
+pub(crate) fn whole_number<'de, D: serde::Deserializer<'de>>(d: D) -> Result<i64, D::Error> {
+    match toml::Value::deserialize(d)? {
+        toml::Value::Integer(i) => Ok(i),
+        v => Err(serde::de::Error::custom(format!(
+            "camera_path.frames: expected a whole number, got {}",
+            written(&v)
+        ))),
+    }
+}
+
+/// A number (integers too), or a message that names `camera_path.{field}`.
+fn path_number<E: serde::de::Error>(v: toml::Value, field: &str) -> Result<f64, E> {
+    number(&v).ok_or_else(|| {
+        E::custom(format!(
+            "camera_path.{field}: expected a number, got {}",
+            written(&v)
+        ))
+    })
+}
+pub(crate) fn pan_deg<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    path_number(toml::Value::deserialize(d)?, "pan_deg")
+}
+pub(crate) fn dolly<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    path_number(toml::Value::deserialize(d)?, "dolly")
+}
+
+pub(crate) fn default_path_frames() -> i64 {
+    16
+}
 pub(crate) fn default_up() -> [f64; 3] {
     [0.0, 1.0, 0.0]
 }

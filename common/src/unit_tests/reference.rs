@@ -73,6 +73,7 @@ fn scene(objects: Vec<Object>, lights: Vec<LightKind>, eye: DVec3, target: DVec3
         ambient: Vec3::ZERO,
         lights,
         objects,
+        camera_path: None,
     }
 }
 

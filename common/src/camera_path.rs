@@ -1,0 +1,213 @@
+//! A scene's `[camera_path]`: a slow pan, then a dolly, rendered frame by
+//! frame to measure *shimmer* (chapter 09): shadow pixels that flip between
+//! consecutive frames where the exact reference does not.
+//!
+//! The path is pure camera maths ([`path_cameras`]); the headless runner
+//! renders it ([`crate::headless`]) and [`Shimmer`] counts the flips.
+
+use anyhow::{bail, Result};
+use glam::DQuat;
+use image::{GrayImage, Luma};
+
+use crate::limits::{check_coord, short, MAX_EXTENT};
+use crate::metrics::PixelState;
+use crate::report::CameraPathReport;
+use crate::scene::Camera;
+use crate::scene_file::CameraPathFile;
+
+/// The most frames a path may have (each costs a reference ray cast).
+pub const MAX_PATH_FRAMES: i64 = 1000;
+
+/// The most a path may pan, either way (degrees).
+pub const MAX_PAN_DEG: f64 = 360.0;
+
+/// `[camera_path]`, validated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraPath {
+    /// At least 2.
+    pub frames: u32,
+    /// Frames 0 ..= n/2: the view direction yaws about `up` (right-handed:
+    /// positive turns left) from 0 to this.
+    pub pan_deg: f64,
+    /// Frames n/2 ..= n-1: eye and target move this far forward, along the
+    /// view direction at the pan's end (negative: backward).
+    pub dolly: f64,
+}
+
+impl CameraPath {
+    /// Validates `[camera_path]` as written, for the scene's `camera`.
+    pub(crate) fn from_file(f: CameraPathFile, camera: &Camera) -> Result<CameraPath> {
+        if !(2..=MAX_PATH_FRAMES).contains(&f.frames) {
+            bail!(
+                "camera_path.frames: must be in [2, {MAX_PATH_FRAMES}], got {}",
+                f.frames
+            );
+        }
+        if !(f.pan_deg.is_finite() && f.pan_deg.abs() <= MAX_PAN_DEG) {
+            bail!(
+                "camera_path.pan_deg: must be in [-{0}, {0}], got {1}",
+                short(MAX_PAN_DEG),
+                short(f.pan_deg)
+            );
+        }
+        if !(f.dolly.is_finite() && f.dolly.abs() <= MAX_EXTENT) {
+            bail!(
+                "camera_path.dolly: must be in [-{0}, {0}], got {1}",
+                short(MAX_EXTENT),
+                short(f.dolly)
+            );
+        }
+        if f.pan_deg == 0.0 && f.dolly == 0.0 {
+            bail!("camera_path: pan_deg and dolly are both 0, so the camera never moves; set one");
+        }
+        let path = CameraPath {
+            frames: f.frames as u32,
+            pan_deg: f.pan_deg,
+            dolly: f.dolly,
+        };
+        let last = path_cameras(camera, &path).pop().unwrap_or(camera.clone());
+        check_coord(last.eye.to_array(), "camera_path.dolly: the last eye")?;
+        check_coord(last.target.to_array(), "camera_path.dolly: the last target")?;
+        Ok(path)
+    }
+
+    /// How far along the pan and the dolly frame `i` is, each in [0, 1].
+    pub fn progress(&self, i: u32) -> (f64, f64) {
+        let (n, half) = (self.frames.max(2), self.frames.max(2) / 2);
+        let pan = i.min(half) as f64 / half as f64;
+        // With 2 frames the pan's end is the last frame: it dollies too.
+        let dolly = match n - 1 - half {
+            0 => f64::from(u8::from(i >= n - 1)),
+            steps => i.saturating_sub(half).min(steps) as f64 / steps as f64,
+        };
+        (pan, dolly)
+    }
+}
+
+// ANCHOR: path_cameras
+/// The cameras along `path`: frame 0 is `camera`, frames up to n/2 yaw the
+/// view direction about `up` (around the eye), the rest move eye and
+/// target forward together. The last frame has all of `pan_deg` and `dolly`.
+pub fn path_cameras(camera: &Camera, path: &CameraPath) -> Vec<Camera> {
+    let view = camera.target - camera.eye;
+    let yaw = |t: f64| DQuat::from_axis_angle(camera.up.normalize(), t * path.pan_deg.to_radians());
+    let forward = (yaw(1.0) * view).normalize();
+    (0..path.frames)
+        .map(|i| {
+            let (pan, dolly) = path.progress(i);
+            let step = forward * (dolly * path.dolly);
+            Camera {
+                eye: camera.eye + step,
+                target: camera.eye + yaw(pan) * view + step,
+                ..camera.clone()
+            }
+        })
+        .collect()
+}
+// ANCHOR_END: path_cameras
+
+// ANCHOR: shimmer
+/// Counts flips along a path, one frame at a time: for each pair of
+/// consecutive frames, light and pixel that is a receiver in both (the
+/// [`PixelState`]s of [`crate::metrics::pixel_states`]), whether the
+/// technique's lit/shadowed flips, whether the reference's does, and a
+/// *shimmer* pixel where the technique flips and the reference does not.
+pub struct Shimmer {
+    width: u32,
+    height: u32,
+    /// The previous frame's states, one list per light.
+    prev: Option<Vec<Vec<PixelState>>>,
+    /// Per pixel: shimmer flips, summed over pairs and lights.
+    count: Vec<u32>,
+    pairs: u64,
+    covered: u64,
+    shimmer: u64,
+    technique_flips: u64,
+    reference_flips: u64,
+    misclassified_pct_per_frame: Vec<f64>,
+}
+
+impl Shimmer {
+    pub fn new(width: u32, height: u32) -> Shimmer {
+        Shimmer {
+            width,
+            height,
+            prev: None,
+            count: vec![0; width as usize * height as usize],
+            pairs: 0,
+            covered: 0,
+            shimmer: 0,
+            technique_flips: 0,
+            reference_flips: 0,
+            misclassified_pct_per_frame: Vec::new(),
+        }
+    }
+
+    /// Adds the next frame: `states[k]` is light `k`'s per-pixel state.
+    ///
+    /// Panics if a light's list is not `width × height` long.
+    pub fn add_frame(&mut self, states: Vec<Vec<PixelState>>) {
+        let n = self.count.len();
+        assert!(
+            states.iter().all(|s| s.len() == n),
+            "states must be {n} pixels"
+        );
+        let receivers = states.iter().flatten().flatten();
+        let (all, wrong) = receivers.fold((0u64, 0u64), |(all, wrong), &(exact, gpu)| {
+            (all + 1, wrong + u64::from(exact != gpu))
+        });
+        let misclassified = 100.0 * wrong as f64 / all.max(1) as f64;
+        self.misclassified_pct_per_frame.push(misclassified);
+        if let Some(prev) = &self.prev {
+            self.pairs += 1;
+            for (before, after) in prev.iter().zip(&states) {
+                for (p, (b, a)) in before.iter().zip(after).enumerate() {
+                    let (Some(b), Some(a)) = (b, a) else { continue };
+                    let (reference, technique) = (b.0 != a.0, b.1 != a.1);
+                    self.covered += 1;
+                    self.reference_flips += u64::from(reference);
+                    self.technique_flips += u64::from(technique);
+                    if technique && !reference {
+                        self.shimmer += 1;
+                        self.count[p] += 1;
+                    }
+                }
+            }
+        }
+        self.prev = Some(states);
+    }
+
+    /// The figures so far: percentages of the receiver pixels of every
+    /// pair and light together (the mean over pairs, weighted by pixels).
+    pub fn report(&self) -> CameraPathReport {
+        let pct = |k: u64| 100.0 * k as f64 / self.covered.max(1) as f64;
+        CameraPathReport {
+            frames: self.misclassified_pct_per_frame.len() as u32,
+            shimmer_pct: pct(self.shimmer),
+            reference_flip_pct: pct(self.reference_flips),
+            technique_flip_pct: pct(self.technique_flips),
+            misclassified_pct_per_frame: self.misclassified_pct_per_frame.clone(),
+        }
+    }
+
+    /// Where it shimmers: black where no pixel flipped wrongly, else from
+    /// 80 (one flip) to 255 (a flip in every pair and light, `most`). The
+    /// scale is fixed, so that two variants' pictures compare.
+    pub fn image(&self, lights: usize) -> GrayImage {
+        let most = (self.pairs * lights as u64).max(2) as f64;
+        GrayImage::from_fn(self.width, self.height, |x, y| {
+            let c = self.count[(y * self.width + x) as usize];
+            let gray = if c == 0 {
+                0.0
+            } else {
+                80.0 + 175.0 * (c as f64 - 1.0).min(most - 1.0) / (most - 1.0)
+            };
+            Luma([gray.round() as u8])
+        })
+    }
+}
+// ANCHOR_END: shimmer
+
+#[cfg(test)]
+#[path = "unit_tests/camera_path.rs"]
+mod tests;

@@ -1,0 +1,166 @@
+//! A scene's `[camera_path]` (INTERFACES, chapter 09): the headless runner
+//! renders the path, counts shadow pixels that flip between frames where
+//! the exact reference does not (shimmer), and refuses the path for a
+//! lesson that does not re-read the camera each frame.
+//!
+//! The scenes are a lesson's default scene with a path appended, written
+//! to a temporary folder.
+
+mod support;
+
+use std::path::{Path, PathBuf};
+
+const LESSON_01: &str = env!("CARGO_BIN_EXE_lesson_01");
+const LESSON_05: &str = env!("CARGO_BIN_EXE_lesson_05");
+
+/// `scene` with `path` appended as `[camera_path]`, in the test's folder.
+fn scene_with_path(dir: &Path, scene: &str, path: &str) -> PathBuf {
+    let file = dir.join("scene.toml");
+    std::fs::write(&file, format!("{scene}\n[camera_path]\n{path}\n")).expect("write the scene");
+    file
+}
+
+fn f(v: &serde_json::Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing: {v}"))
+}
+
+/// Lesson 01 without bias: acne is a moiré of the map's texels and the
+/// pixels, so it moves whenever the camera does, while the error per frame
+/// stays put. A dolly also moves the true shadow edges across the pixels.
+#[test]
+fn lesson_01_shimmers_along_a_dolly_and_the_figures_add_up() {
+    let dir = support::out_dir("camera_path_lesson_01_scene");
+    let scene = scene_with_path(
+        &dir,
+        include_str!("../scenes/lesson_01.toml"),
+        "frames = 8\npan_deg = 2.0\ndolly = 1.0",
+    );
+    let args = [
+        "--scene",
+        scene.to_str().expect("utf-8 path"),
+        "--width",
+        "320",
+        "--height",
+        "180",
+        "--frames",
+        "1",
+        "--variant",
+        "res_256",
+        "--variant",
+        "res_4096",
+    ];
+    let Some(run) = support::run_lesson(LESSON_01, "camera_path_lesson_01", &args) else {
+        return;
+    };
+    assert!(run.stdout.contains("| shimmer %"), "{}", run.stdout);
+    for name in ["res_256", "res_4096"] {
+        let v = support::variant(&run.report, name);
+        let p = &v["camera_path"];
+        assert_eq!(p["frames"].as_u64(), Some(8), "{name}: {p}");
+        let per_frame = p["misclassified_pct_per_frame"]
+            .as_array()
+            .expect("per frame");
+        assert_eq!(per_frame.len(), 8, "{name}: {p}");
+        // Frame 0 is the scene's camera: the same figure as the variant's error.
+        let first = per_frame[0].as_f64().unwrap_or(f64::NAN);
+        let error = f(&v["error"], "misclassified_pct");
+        assert!((first - error).abs() < 1e-9, "{name}: {first} vs {error}");
+        let (shimmer, reference, technique) = (
+            f(p, "shimmer_pct"),
+            f(p, "reference_flip_pct"),
+            f(p, "technique_flip_pct"),
+        );
+        // The dolly moves the true shadow edges; the acne shimmers.
+        assert!(reference > 0.0, "{name}: {p}");
+        assert!(shimmer > 0.0, "{name}: {p}");
+        // Shimmer is the technique's flips that the reference does not
+        // make: no more than its flips, no fewer than its flips minus the
+        // reference's.
+        assert!(shimmer < technique, "{name}: {p}");
+        assert!(technique <= shimmer + reference + 1e-9, "{name}: {p}");
+        // Where it shimmered: somewhere, but never on the background
+        // (the top rows of this view see nothing).
+        let img = image::open(run.out.join(format!("{name}_shimmer.png")))
+            .expect("shimmer image")
+            .to_luma8();
+        assert_eq!(img.dimensions(), (320, 180));
+        assert!(img.pixels().any(|p| p.0[0] > 0), "{name}: all black");
+        assert!((0..320).all(|x| img.get_pixel(x, 0).0[0] == 0), "{name}");
+        assert!(v.get("classes").is_none(), "lesson 01 has no pixel classes");
+    }
+}
+
+/// Without `[camera_path]` the report and the table are as before.
+#[test]
+fn without_a_path_nothing_is_added() {
+    let args = ["--width", "64", "--height", "36", "--frames", "1"];
+    let args = [&args[..], &["--variant", "res_256"]].concat();
+    let Some(run) = support::run_lesson(LESSON_01, "camera_path_none", &args) else {
+        return;
+    };
+    assert!(!run.stdout.contains("shimmer"), "{}", run.stdout);
+    let v = support::variant(&run.report, "res_256");
+    assert!(v.get("camera_path").is_none(), "{v}");
+    assert!(!run.out.join("res_256_shimmer.png").exists());
+}
+
+/// Runs `bin` on `scene` (tiny, one frame) and returns its stderr, which
+/// must be one line, after a non-zero exit.
+fn refused(bin: &str, name: &str, scene: &Path) -> String {
+    let out = support::out_dir(name);
+    let scene = scene.to_str().expect("utf-8 path");
+    let o = support::tiny_headless(bin, &out, &["--scene", scene])
+        .output()
+        .expect("run the lesson");
+    let stderr = String::from_utf8_lossy(&o.stderr).to_string();
+    if stderr.contains("no GPU adapter found") {
+        support::gpu_required();
+    }
+    assert!(!o.status.success(), "{name}: accepted; stderr: {stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
+    assert!(!out.join("report.json").exists(), "{name}: wrote a report");
+    stderr
+}
+
+/// Lesson 05 does not re-read the camera for a path: a figure it gave
+/// would be silently wrong, so it refuses the scene in one line.
+#[test]
+fn a_lesson_that_does_not_refit_refuses_a_path() {
+    let dir = support::out_dir("camera_path_lesson_05_scene");
+    let scene = scene_with_path(
+        &dir,
+        include_str!("../scenes/lesson_05.toml"),
+        "dolly = 1.0",
+    );
+    let e = refused(LESSON_05, "camera_path_lesson_05", &scene);
+    assert!(
+        e.contains("[camera_path]: lesson_05 does not re-fit to a moving camera"),
+        "{e}"
+    );
+}
+
+/// A path that does not move, or has fewer than 2 frames, says which field.
+#[test]
+fn a_path_that_does_not_move_is_refused() {
+    let text = include_str!("../scenes/lesson_01.toml");
+    for (i, (path, want)) in [
+        (
+            "pan_deg = 0.0\ndolly = 0.0",
+            "camera_path: pan_deg and dolly are both 0",
+        ),
+        (
+            "frames = 1\ndolly = 1.0",
+            "camera_path.frames: must be in [2, 1000], got 1",
+        ),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let dir = support::out_dir(&format!("camera_path_still_{i}_scene"));
+        let scene = scene_with_path(&dir, text, path);
+        let e = refused(LESSON_01, &format!("camera_path_still_{i}"), &scene);
+        assert!(e.contains(want), "{path:?}: {e}");
+    }
+}
