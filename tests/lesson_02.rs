@@ -418,6 +418,31 @@ fn lesson_02_relative_coordinates_keep_the_millimetres() {
     );
 }
 
+/// The renderers' defaults on the same wide spot light. LearnOpenGL's bias,
+/// in depth units like the lwjgl book's, detaches the shadows; the wgpu
+/// example's is the rasteriser's, in units of the map, and stays within 1%;
+/// Bevy's, in world units and texels, lies between.
+#[test]
+fn lesson_02_renderer_defaults_on_a_wide_spot() {
+    let Some(run) = run(
+        "lesson_02_peers_spot_wide",
+        Some("lesson_02_spot_wide.toml"),
+        SIZE,
+        &["learnopengl", "wgpu_example", "bevy_bias"],
+    ) else {
+        return;
+    };
+    let logl = support::error(&run.report, "learnopengl", "false_lit_pct");
+    assert!(logl > 1.0, "learnopengl false lit {logl:.3}%");
+    let wgpu = support::error(&run.report, "wgpu_example", "misclassified_pct");
+    assert!(wgpu <= 1.0, "wgpu_example misclassified {wgpu:.3}%");
+    let bevy = support::error(&run.report, "bevy_bias", "misclassified_pct");
+    assert!(
+        wgpu < bevy && bevy < logl,
+        "misclassified: wgpu_example {wgpu:.3}%, bevy_bias {bevy:.3}%, learnopengl {logl:.3}%"
+    );
+}
+
 /// A light frustum much larger than the scene: a spot light 25 m away with
 /// a 70° cone, so its map spans about 35 m where the 8 m scene is. Biases
 /// counted in texels follow the texel size; the best variant stays within

@@ -231,3 +231,29 @@ fn lesson_03_extreme_scenes() {
         assert!(veil > 0.1, "{scene}: pcf_7x7_flat mean |dV| {veil:.3}");
     }
 }
+
+/// The renderers' defaults on the default scene. LearnOpenGL's bias, in
+/// depth units, lets light under the thin rods: its false lit is several
+/// times `pcf_3x3`'s, the same 3×3 filter after our bias. The wgpu
+/// example's hardware 2×2 stays within 1%, and Bevy's Gaussian blends
+/// (a penumbra of fractional pixels).
+#[test]
+fn lesson_03_renderer_defaults() {
+    let variants = ["pcf_3x3", "learnopengl_pcf", "wgpu_example_hw2x2", "bevy"];
+    let extra: Vec<&str> = variants.iter().flat_map(|v| ["--variant", v]).collect();
+    let Some(run) = run("lesson_03_peers", None, &extra) else {
+        return;
+    };
+    let (ours, logl) = (
+        support::error(&run.report, "pcf_3x3", "false_lit_pct"),
+        support::error(&run.report, "learnopengl_pcf", "false_lit_pct"),
+    );
+    assert!(
+        logl > 0.5 && logl > 5.0 * ours,
+        "false lit: learnopengl_pcf {logl:.3}%, pcf_3x3 {ours:.3}%"
+    );
+    let wgpu = support::error(&run.report, "wgpu_example_hw2x2", "misclassified_pct");
+    assert!(wgpu <= 1.0, "wgpu_example_hw2x2 misclassified {wgpu:.3}%");
+    let blended = fractional_pixels(&run, "bevy");
+    assert!(blended > 1000, "bevy: {blended} fractional pixels");
+}
