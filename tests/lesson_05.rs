@@ -91,3 +91,198 @@ fn lesson_05_zpass_fails_inside_a_volume() {
         );
     }
 }
+
+// ---- the compute route (Extrusion::Compute) ---------------------------
+
+/// Decoded pixels of a PNG (any format), to compare two outputs.
+fn pixels(path: &Path) -> Vec<u8> {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgba8()
+        .into_raw()
+}
+
+/// Every PNG `a*` has a twin `b*` with the same pixels, and the cost
+/// counters agree: the same triangles, in another order, count the same.
+pub fn same_as(run: &support::LessonRun, a: &str, b: &str) {
+    let mut compared = 0;
+    for entry in std::fs::read_dir(&run.out).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().to_string();
+        let Some(rest) = name.strip_prefix(a).filter(|r| r.ends_with(".png")) else {
+            continue;
+        };
+        let (pa, pb) = (run.out.join(&name), run.out.join(format!("{b}{rest}")));
+        let (x, y) = (pixels(&pa), pixels(&pb));
+        let differ = x.iter().zip(&y).filter(|(p, q)| p != q).count();
+        assert!(
+            x.len() == y.len() && differ == 0,
+            "{name}: {differ} bytes differ from {b}{rest}"
+        );
+        compared += 1;
+    }
+    assert!(compared >= 3, "{a}: only {compared} images compared");
+    for key in [
+        "volume_fragments",
+        "stencil_updates",
+        "volume_triangles",
+        "draws",
+        "silhouette_edges",
+        "edges_tested",
+    ] {
+        let (x, y) = (
+            support::counter(&run.report, a, key),
+            support::counter(&run.report, b, key),
+        );
+        assert_eq!(x, y, "{key}: {a} {x}, {b} {y}");
+    }
+    assert!(support::counter(&run.report, a, "silhouette_edges") > 0);
+    let t = &support::variant(&run.report, a)["timing_ms"];
+    assert!(
+        t["extrude"].as_f64().is_some(),
+        "{a}: the extrude pass is timed"
+    );
+}
+
+/// The compute route draws the CPU route's volumes: the same pixels and
+/// costs on the default scene, a non-manifold caster and an open caster.
+#[test]
+fn lesson_05_compute_matches_cpu() {
+    for scene in ["", "volume_nonmanifold.toml", "volume_open_quad.toml"] {
+        let path = support::scene_path(if scene.is_empty() {
+            "lesson_05.toml"
+        } else {
+            scene
+        });
+        let args = [
+            &SIZE[..],
+            &["--scene", path.to_str().unwrap()],
+            &["--variant", "zpass_cpu", "--variant", "zpass_compute"],
+        ]
+        .concat();
+        let name = format!("lesson_05_compute_{}", scene.replace(".toml", ""));
+        let Some(run) = support::run_lesson(BIN, &name, &args) else {
+            return;
+        };
+        same_as(&run, "zpass_compute", "zpass_cpu");
+    }
+}
+
+mod compute_triangles {
+    use common::glam::Vec3;
+    use common::gpu::Gpu;
+    use common::mesh::builtin;
+    use workbook::lesson_05::adjacency::Adjacency;
+    use workbook::lesson_05::compute::{extrude_once, unavailable};
+    use workbook::lesson_05::extrusion::{cpu_volume_reaching, CpuVertex};
+    use workbook::lesson_05::silhouette::{caster_adjacency, LightDir};
+
+    /// A triangle list as a sorted multiset of exact bit patterns (the
+    /// winding is kept: each triangle's vertices stay in their order).
+    fn multiset(v: &[CpuVertex]) -> Vec<[u32; 12]> {
+        let mut t: Vec<[u32; 12]> = v
+            .chunks_exact(3)
+            .map(|t| {
+                let words: Vec<u32> = t
+                    .iter()
+                    .flat_map(|v| [v.position[0], v.position[1], v.position[2], v.w])
+                    .map(f32::to_bits)
+                    .collect();
+                words.try_into().unwrap()
+            })
+            .collect();
+        assert_eq!(v.len() % 3, 0);
+        t.sort();
+        t
+    }
+
+    /// Three pages on one spine (two run it one way, one the other) and
+    /// two faces that run one edge the same way: non-manifold and
+    /// misoriented edges.
+    fn nonmanifold() -> Adjacency {
+        let p = [
+            Vec3::ZERO,
+            Vec3::Y,
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 1.0),
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(-1.0, 1.0, 0.0),
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(-1.0, 0.5, -1.0),
+        ];
+        #[rustfmt::skip]
+        let indices = [
+            0, 1, 2,  0, 2, 3,
+            1, 0, 5,  1, 5, 4,
+            0, 1, 6,  0, 6, 7,
+            0, 1, 8,
+        ];
+        Adjacency::from_triangles(&p, &indices)
+    }
+
+    fn lights() -> Vec<LightDir> {
+        let mut lights = vec![
+            LightDir::Point(Vec3::new(0.0, 3.0, 0.0)),
+            LightDir::Point(Vec3::new(2.0, 3.0, 1.0)),
+            LightDir::Point(Vec3::ZERO),
+            LightDir::Point(Vec3::new(0.5, 0.7, 0.5)),
+            LightDir::Directional(Vec3::new(-0.4, -1.0, -0.3)),
+            LightDir::Directional(Vec3::X),
+        ];
+        for k in 0..12 {
+            let a = k as f32 * 2.399_963;
+            let d = Vec3::new(a.cos(), (k as f32 / 6.0) - 1.0, a.sin());
+            lights.push(LightDir::Directional(d));
+            lights.push(LightDir::Point(d * 1.7));
+        }
+        lights
+    }
+
+    /// The compute shader's triangles are `cpu_volume`'s, as multisets:
+    /// sides, front cap and back cap, on the built-ins (open `plane` cast
+    /// two-sided, as the lesson does) and a non-manifold mesh, at infinity
+    /// and with a finite reach.
+    #[test]
+    fn compute_volume_equals_cpu_volume() {
+        let adapter = crate::support::test_adapter();
+        let gpu = match Gpu::new(None, Some(&adapter), None) {
+            Ok(gpu) => gpu,
+            Err(e) if !crate::support::gpu_required() => return eprintln!("SKIPPED: {e}"),
+            Err(e) => panic!("{e}"),
+        };
+        if let Some(why) = unavailable(&gpu) {
+            panic!("{why}");
+        }
+        let mut meshes: Vec<(String, Adjacency)> = ["cube", "sphere", "torus", "knot", "plane"]
+            .iter()
+            .map(|n| (n.to_string(), caster_adjacency(&builtin(n).unwrap())))
+            .collect();
+        meshes.push(("non-manifold".into(), nonmanifold()));
+        let mut sides = 0;
+        for (name, adj) in &meshes {
+            for light in lights() {
+                for reach in [0.0, 0.25] {
+                    let mut cpu = Vec::new();
+                    let r = cpu_volume_reaching(adj, light, reach, &mut cpu);
+                    let gpu_parts = extrude_once(&gpu, adj, light, reach).unwrap();
+                    for (part, (range, got)) in [r.sides, r.front, r.back]
+                        .iter()
+                        .zip(&gpu_parts)
+                        .enumerate()
+                    {
+                        let want = &cpu[range.start as usize..range.end as usize];
+                        assert!(
+                            multiset(want) == multiset(got),
+                            "{name}, {light:?}, reach {reach}, part {part}: \
+                             cpu {} vertices, compute {}",
+                            want.len(),
+                            got.len()
+                        );
+                    }
+                    sides += gpu_parts[0].len();
+                }
+            }
+        }
+        assert!(sides > 0);
+    }
+}

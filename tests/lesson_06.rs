@@ -290,3 +290,50 @@ fn lesson_06_counters_show_work_saved() {
         assert!(c(v, "draws") > 0 && c(v, "volume_triangles") > 0, "{v}");
     }
 }
+
+/// The compute route (sides and both caps written by a compute shader,
+/// drawn indirectly) leaves the CPU route's pixels and costs: on the
+/// default scene (the eye in the roof's umbra, z-fail with caps) and on an
+/// open mesh with a finite reach (far = 200).
+#[test]
+fn lesson_06_compute_matches_cpu() {
+    for scene in ["lesson_06.toml", "lesson_06_finite_far_open.toml"] {
+        let path = support::scene_path(scene);
+        let args = [
+            &SIZE[..],
+            &["--scene", path.to_str().unwrap()],
+            &["--variant", "zfail_cpu", "--variant", "zfail_compute"],
+        ]
+        .concat();
+        let name = format!("lesson_06_compute_{}", scene.replace(".toml", ""));
+        let Some(run) = support::run_lesson(BIN, &name, &args) else {
+            return;
+        };
+        for file in ["", "_visibility_l0", "_diff_l0"] {
+            let read = |v: &str| {
+                image::open(run.out.join(format!("{v}{file}.png")))
+                    .unwrap()
+                    .to_rgba8()
+                    .into_raw()
+            };
+            let (a, b) = (read("zfail_compute"), read("zfail_cpu"));
+            let differ = a.iter().zip(&b).filter(|(p, q)| p != q).count();
+            assert!(
+                a.len() == b.len() && differ == 0,
+                "{scene}{file}: {differ} bytes differ"
+            );
+        }
+        for key in [
+            "volume_fragments",
+            "stencil_updates",
+            "volume_triangles",
+            "draws",
+            "silhouette_edges",
+        ] {
+            let c = |v| support::counter(&run.report, v, key);
+            assert_eq!(c("zfail_compute"), c("zfail_cpu"), "{scene}: {key}");
+        }
+        let m = support::misclassified(&run, "zfail_compute");
+        assert!(m <= 0.5, "{scene}: {m:.3}% misclassified");
+    }
+}

@@ -154,6 +154,8 @@ pub struct ComputeVolumes {
     /// land before the counting submits of [`count_costs`](super::volumes::ShadowVolumes::count_costs)
     /// and zero the counts they draw with.
     reset: wgpu::Buffer,
+    /// Its contents: where each draw's vertices start.
+    firsts: Vec<u32>,
     slots: usize,
     /// Per caster: its bind group, and its edges and faces.
     casters: Vec<(wgpu::BindGroup, PackedMesh)>,
@@ -164,15 +166,12 @@ impl ComputeVolumes {
     /// Uploads every caster's adjacency and sizes the outputs for the
     /// worst case. A one-line error if the adapter cannot, or if the
     /// buffers would pass its limits.
-    pub fn new(gpu: &Gpu, casters: &[VolumeCaster], lights: usize) -> Result<ComputeVolumes> {
+    pub fn new(gpu: &Gpu, casters: &[&Adjacency], lights: usize) -> Result<ComputeVolumes> {
         if let Some(why) = unavailable(gpu) {
             bail!("{why}");
         }
         let limits = gpu.device.limits();
-        let packed: Vec<PackedMesh> = casters
-            .iter()
-            .map(|c| pack_adjacency(&c.adjacency))
-            .collect();
+        let packed: Vec<PackedMesh> = casters.iter().map(|a| pack_adjacency(a)).collect();
         // Each slot's regions: sides, front cap, back cap.
         let mut reset = Vec::new();
         let mut first = 0u64;
@@ -211,7 +210,7 @@ impl ComputeVolumes {
             })
         };
         use wgpu::BufferUsages as U;
-        let vertices = buffer("compute volumes", bytes, U::STORAGE | U::VERTEX);
+        let vertices = buffer("compute volumes", bytes, U::STORAGE | U::VERTEX | U::COPY_SRC);
         let args_size = (reset.len() as u64).max(1) * ARGS;
         reset.resize(reset.len().max(1), DrawIndirectArgs::default());
         let reset_src = gpu
@@ -290,6 +289,7 @@ impl ComputeVolumes {
             vertices,
             args,
             reset: reset_src,
+            firsts: reset.iter().map(|a| a.first_vertex).collect(),
             slots: lights * packed_len,
             casters,
             lights,
@@ -314,56 +314,83 @@ impl ComputeVolumes {
         (models, reach): (&[Mat4], &[Vec<f32>]),
         draws: &[Vec<CasterDraw>],
     ) {
-        let gpu = frame.gpu;
-        let max_groups = gpu.device.limits().max_compute_workgroups_per_dimension;
-        let stride = self.params_stride as usize;
-        let mut params = vec![0u8; stride * (self.lights * self.casters.len()).max(1)];
         let mut jobs = Vec::new();
         for (k, draws_k) in draws.iter().enumerate().take(self.lights) {
             let world = world_light(scene, k);
             for (ci, c) in casters.iter().enumerate() {
-                let p = &self.casters[ci].1;
-                let n = p.edges + p.faces;
-                if n == 0 || !draws_k.iter().any(|d| d.object == c.object) {
-                    continue;
+                if draws_k.iter().any(|d| d.object == c.object) {
+                    // Silhouettes in object space: the light moves, not the mesh.
+                    let light = world.to_object_space(models[c.object]);
+                    let w = reach.get(k).and_then(|r| r.get(ci)).copied();
+                    jobs.push((k, ci, light, w.unwrap_or(0.0)));
                 }
-                // Silhouettes in object space: the light moves, not the mesh.
-                let light = world.to_object_space(models[c.object]);
-                let groups = n.div_ceil(WORKGROUP);
-                let grid = (groups.min(max_groups), groups.div_ceil(max_groups));
-                let slot = self.slot(k, ci);
-                let value = Params {
-                    light: light_params(light),
-                    reach_w: reach.get(k).and_then(|r| r.get(ci)).copied().unwrap_or(0.0),
-                    edges: p.edges,
-                    faces: p.faces,
-                    slot: slot as u32,
-                    offsets: p.offsets,
-                    row: grid.0 * WORKGROUP,
-                    _pad: [0; 2],
-                };
-                params[slot * stride..][..std::mem::size_of::<Params>()]
-                    .copy_from_slice(bytemuck::bytes_of(&value));
-                jobs.push((ci, slot, grid));
             }
         }
-        gpu.queue.write_buffer(&self.params, 0, &params);
+        let dispatches = self.write_params(frame.gpu, &jobs);
         frame.pass("extrude", |enc, ts| {
-            // Every count back to 0 before the dispatches add to it.
-            enc.copy_buffer_to_buffer(&self.reset, 0, &self.args, 0, self.args.size());
-            let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("extrude"),
-                timestamp_writes: ts.compute(),
-            });
-            pass.set_pipeline(&self.pipeline);
-            for (ci, slot, (x, y)) in jobs {
-                let offset = (slot as u64 * self.params_stride) as u32;
-                pass.set_bind_group(0, &self.casters[ci].0, &[offset]);
-                pass.dispatch_workgroups(x, y, 1);
-            }
+            self.record(enc, ts.compute(), &dispatches)
         });
     }
     // ANCHOR_END: extrude
+
+    /// Writes the `Params` of each job (light k, caster, object-space
+    /// light, reach w); returns the dispatches: (caster, slot, grid).
+    fn write_params(
+        &self,
+        gpu: &Gpu,
+        jobs: &[(usize, usize, LightDir, f32)],
+    ) -> Vec<(usize, usize, (u32, u32))> {
+        let max_groups = gpu.device.limits().max_compute_workgroups_per_dimension;
+        let stride = self.params_stride as usize;
+        let mut params = vec![0u8; stride * self.slots.max(1)];
+        let mut dispatches = Vec::new();
+        for &(k, ci, light, reach_w) in jobs {
+            let p = &self.casters[ci].1;
+            let n = p.edges + p.faces;
+            if n == 0 {
+                continue;
+            }
+            let groups = n.div_ceil(WORKGROUP);
+            let grid = (groups.min(max_groups), groups.div_ceil(max_groups));
+            let slot = self.slot(k, ci);
+            let value = Params {
+                light: light_params(light),
+                reach_w,
+                edges: p.edges,
+                faces: p.faces,
+                slot: slot as u32,
+                offsets: p.offsets,
+                row: grid.0 * WORKGROUP,
+                _pad: [0; 2],
+            };
+            params[slot * stride..][..std::mem::size_of::<Params>()]
+                .copy_from_slice(bytemuck::bytes_of(&value));
+            dispatches.push((ci, slot, grid));
+        }
+        gpu.queue.write_buffer(&self.params, 0, &params);
+        dispatches
+    }
+
+    /// Resets the counts and records the dispatches.
+    fn record(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        dispatches: &[(usize, usize, (u32, u32))],
+    ) {
+        // Every count back to 0 before the dispatches add to it.
+        enc.copy_buffer_to_buffer(&self.reset, 0, &self.args, 0, self.args.size());
+        let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("extrude"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.pipeline);
+        for &(ci, slot, (x, y)) in dispatches {
+            let offset = (slot as u64 * self.params_stride) as u32;
+            pass.set_bind_group(0, &self.casters[ci].0, &[offset]);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+    }
 
     /// One caster's indirect draws for light `light`: (byte offset in
     /// [`args`](Self::args), is it a cap?), the sides and the caps `d`
@@ -473,4 +500,39 @@ fn compute_pipeline(
             compilation_options: Default::default(),
             cache: None,
         })
+}
+
+/// One caster's volume for one light, built by the compute shader and
+/// read back: (sides, front cap, back cap), each a triangle list in the
+/// order the invocations appended it. [`cpu_volume_reaching`](super::extrusion::cpu_volume_reaching)'s
+/// triangles, in another order (the tests compare the two).
+pub fn extrude_once(
+    gpu: &Gpu,
+    adj: &Adjacency,
+    light: LightDir,
+    reach_w: f32,
+) -> Result<[Vec<CpuVertex>; 3]> {
+    let volumes = ComputeVolumes::new(gpu, &[adj], 1)?;
+    let dispatches = volumes.write_params(gpu, &[(0, 0, light, reach_w)]);
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    volumes.record(&mut enc, None, &dispatches);
+    gpu.queue.submit([enc.finish()]);
+    let counts = volumes.read_counts(gpu)?[0];
+    let firsts = &volumes.firsts;
+    let size = volumes.vertices.size();
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("compute volume readback"),
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    enc.copy_buffer_to_buffer(&volumes.vertices, 0, &staging, 0, size);
+    gpu.queue.submit([enc.finish()]);
+    let bytes = read_buffer(gpu, &staging, size, "compute volume")?;
+    let all: &[CpuVertex] = bytemuck::cast_slice(&bytes);
+    Ok([0, 1, 2].map(|p| {
+        let first = firsts[p] as usize;
+        all[first..first + counts[p] as usize].to_vec()
+    }))
 }

@@ -365,8 +365,9 @@ impl ShadowVolumes {
         draws: &[Vec<CasterDraw>],
     ) -> Result<()> {
         if self.compute.is_none() {
+            let adjacency: Vec<_> = self.casters.iter().map(|c| &c.adjacency).collect();
             let lights = scene.scene.lights.len();
-            self.compute = Some(ComputeVolumes::new(frame.gpu, &self.casters, lights)?);
+            self.compute = Some(ComputeVolumes::new(frame.gpu, &adjacency, lights)?);
         }
         if let Some(c) = &self.compute {
             let at = (&self.models[..], &self.reach[..]);
