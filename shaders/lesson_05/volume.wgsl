@@ -6,8 +6,8 @@
 //   (position, w): w = 1 stays where it is, w = 0 goes to infinity, and
 //   0 < w < 1 goes 1/w times as far from the light (lesson 06, finite far).
 // - vs_volume_quads: every edge was turned into a degenerate quad in
-//   advance; the vertex shader decides, per vertex, from the normal of the
-//   face it belongs to, whether it stays or goes to infinity.
+//   advance; the vertex shader adds up, from the normals of the edge's
+//   faces, the edge's silhouette count, and opens the quad or collapses it.
 
 struct VolumeOut {
     // invariant: the front cap must land on exactly the base pass's depths.
@@ -79,62 +79,79 @@ fn vs_volume_cpu(@location(0) position: vec3<f32>, @location(1) w: f32) -> Volum
 // ANCHOR_END: vs_volume_cpu
 
 // ANCHOR: faces_light
-// Does the face (unnormalised object-space normal n, a point p0 on it) face
-// the light? In world space through the normal matrix, which keeps the
-// normal pointing out even when the model mirrors (det < 0). Exactly 0 is
-// "not facing", so a degenerate face (n = 0) never faces the light.
-fn faces_light(n: vec3<f32>, p0: vec3<f32>) -> bool {
+// Which side of a face (unnormalised object-space normal n, a point p0 on
+// it) the light is on: > 0 in front. In world space through the normal
+// matrix, which keeps the normal pointing out even when the model mirrors
+// (det < 0). Exactly 0 is "not facing", so a degenerate face (n = 0)
+// never faces the light, and neither does its twin.
+fn light_side(n: vec3<f32>, p0: vec3<f32>) -> f32 {
     let nw = (object.normal_matrix * vec4<f32>(n, 0.0)).xyz;
     if light.position_or_dir.w == 0.0 {
-        return dot(nw, -light.position_or_dir.xyz) > 0.0;
+        return dot(nw, -light.position_or_dir.xyz);
     }
     let pw = (object.model * vec4<f32>(p0, 1.0)).xyz;
-    return dot(nw, light.position_or_dir.xyz - pw) > 0.0;
+    return dot(nw, light.position_or_dir.xyz - pw);
+}
+
+// One face's share of its edge's count: `runs` (+1 along the edge, −1
+// against it, 0 no face) if the face faces the light; −runs if it is
+// two-sided and its reversed twin faces the light (the twin's normal is
+// exactly −n, so that is side < 0); else 0.
+fn face_count(runs: i32, two_sided: u32, n: vec3<f32>, p0: vec3<f32>) -> i32 {
+    let side = light_side(n, p0);
+    if side > 0.0 {
+        return runs;
+    }
+    if two_sided == 1u && side < 0.0 {
+        return -runs;
+    }
+    return 0;
 }
 // ANCHOR_END: faces_light
 
 // ANCHOR: vs_volume_quads
-// kind 0: an edge-quad vertex: stays if its face faces the light, else goes
-//         to infinity (a quad between a lit and an unlit face opens up;
-//         otherwise its two ends stay together and it has no area).
-// kind 1: a front-cap vertex: stays if its face faces the light.
-// kind 2: a back-cap vertex: goes to infinity if its face faces the light.
-// A cap vertex whose face does not face the light collapses to one point,
-// with its two partners: a triangle of zero area draws nothing.
-@vertex
-fn vs_volume_quads(
+// Every vertex of an edge's quad carries the edge's faces (two at most), so
+// all four add up the same count, as the CPU's silhouette_edges does.
+// Copy k of the quad is drawn where |count| > k: its near corners stay,
+// its far corners go to infinity, and a negative count swaps the quad's
+// two ends (position <-> reversed), which reverses its winding. Elsewhere
+// all four corners collapse to one point: zero area, nothing drawn. A cap
+// triangle is the same with one face (runs = +1): the front cap stays, the
+// back cap goes to infinity, and a two-sided face's cap is drawn by the
+// side that faces the light.
+struct QuadIn {
     @location(0) position: vec3<f32>,
-    @location(1) kind: u32,
-    @location(2) face_normal: vec3<f32>,
-    @location(3) face_point: vec3<f32>,
-) -> VolumeOut {
-    return volume_quad_vertex(position, kind, face_normal, face_point, 0.0);
+    @location(1) far: u32,
+    @location(2) reversed: vec3<f32>,
+    @location(3) copy: u32,
+    @location(4) runs: vec2<i32>,
+    @location(5) two_sided: vec2<u32>,
+    @location(6) normal_0: vec3<f32>,
+    @location(7) normal_1: vec3<f32>,
+    @location(8) point_0: vec3<f32>,
+    @location(9) point_1: vec3<f32>,
+};
+
+@vertex
+fn vs_volume_quads(v: QuadIn) -> VolumeOut {
+    return volume_quad_vertex(v, 0.0);
 }
 
-fn volume_quad_vertex(
-    position: vec3<f32>,
-    kind: u32,
-    face_normal: vec3<f32>,
-    face_point: vec3<f32>,
-    reach_w: f32,
-) -> VolumeOut {
+fn volume_quad_vertex(v: QuadIn, reach_w: f32) -> VolumeOut {
     var out: VolumeOut;
-    let facing = faces_light(face_normal, face_point);
-    let world = object.model * vec4<f32>(position, 1.0);
-    var stay = facing;
-    var go = !facing;
-    if kind == 1u {
-        go = false;
-    } else if kind == 2u {
-        stay = false;
-        go = facing;
+    let count = face_count(v.runs.x, v.two_sided.x, v.normal_0, v.point_0)
+        + face_count(v.runs.y, v.two_sided.y, v.normal_1, v.point_1);
+    if abs(count) <= i32(v.copy) {
+        out.clip = vec4<f32>(0.0, 0.0, 0.0, 1.0); // collapsed
+        return out;
     }
-    if stay {
+    let p = select(v.position, v.reversed, count < 0);
+    let world = object.model * vec4<f32>(p, 1.0);
+    if v.far == 0u {
+        // The same expression as vs_scene: the front cap lands on its depths.
         out.clip = camera.view_proj * world;
-    } else if go {
-        out.clip = project_extruded(world.xyz, reach_w);
     } else {
-        out.clip = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+        out.clip = project_extruded(world.xyz, reach_w);
     }
     return out;
 }
@@ -144,14 +161,8 @@ fn volume_quad_vertex(
 // The same, extruded by the factor 1/reach_w (see project_extruded):
 // reach_w is one value per caster and light, from a per-instance buffer.
 @vertex
-fn vs_volume_quads_reach(
-    @location(0) position: vec3<f32>,
-    @location(1) kind: u32,
-    @location(2) face_normal: vec3<f32>,
-    @location(3) face_point: vec3<f32>,
-    @location(4) reach_w: f32,
-) -> VolumeOut {
-    return volume_quad_vertex(position, kind, face_normal, face_point, reach_w);
+fn vs_volume_quads_reach(v: QuadIn, @location(10) reach_w: f32) -> VolumeOut {
+    return volume_quad_vertex(v, reach_w);
 }
 // ANCHOR_END: vs_volume_quads_reach
 
