@@ -233,6 +233,8 @@ pub struct Cascade {
     pub far: f64,
     /// The box's width across the light, in metres (texel = width / resolution).
     pub width: f64,
+    /// The box's min x/y in light space (`None` for lesson 01's single map).
+    pub origin: Option<DVec2>,
     pub view_proj: DMat4,
 }
 
@@ -246,6 +248,19 @@ pub fn fit_cascades(
     options: FitOptions,
     resolution: u32,
     scene: &[DVec3],
+) -> Vec<Cascade> {
+    fit_cascades_with(view, direction, splits, options, resolution, scene, snap)
+}
+
+/// [`fit_cascades`] with another snap (the chapter's exercise 2).
+pub fn fit_cascades_with(
+    view: &ViewFrustum,
+    direction: DVec3,
+    splits: &[f64],
+    options: FitOptions,
+    resolution: u32,
+    scene: &[DVec3],
+    snap: impl Fn(LightBox, u32) -> LightBox,
 ) -> Vec<Cascade> {
     let light = light_view(direction);
     splits
@@ -268,10 +283,18 @@ pub fn fit_cascades(
                 near: d[0],
                 far: d[1],
                 width: b.width(),
+                origin: Some(DVec2::new(b.min.x, b.min.y)),
                 view_proj: b.view_proj(light),
             }
         })
         .collect()
+}
+
+/// How far `origin` lies off the texel grid of a `width`-wide box of
+/// `resolution` texels, in texels (0 when snapped, up to 0.5).
+pub fn off_grid(origin: DVec2, width: f64, resolution: u32) -> f64 {
+    let t = origin / (width / resolution as f64);
+    (t - t.round()).abs().max_element()
 }
 
 /// The 8 corners of the box `(lo, hi)`.

@@ -71,11 +71,17 @@ enum Variant {
     /// k4, fading into the next cascade over the last 10 % of each.
     #[value(name = "k4_blend")]
     K4Blend,
+    /// Exercise 1: k4 with the student's `practical_splits`.
+    #[value(name = "exercise_practical_splits")]
+    ExercisePracticalSplits,
+    /// Exercise 2: k4 with the student's `snap_to_texel`.
+    #[value(name = "exercise_snap_to_texel")]
+    ExerciseSnapToTexel,
 }
 
 impl Variant {
     fn setup(self) -> setup::Setup {
-        use setup::Setup;
+        use setup::{Exercise, Setup};
         let practical = SplitScheme::Practical {
             lambda: cascades::PRACTICAL_LAMBDA,
         };
@@ -98,6 +104,14 @@ impl Variant {
             Variant::K4AabbNoSnap => k4.with_fit(Fit::Aabb, false, true),
             Variant::K4NoExtend => k4.with_fit(Fit::Sphere, true, false),
             Variant::K4Blend => Setup { blend: 0.1, ..k4 },
+            Variant::ExercisePracticalSplits => Setup {
+                exercise: Some(Exercise::PracticalSplits),
+                ..k4
+            },
+            Variant::ExerciseSnapToTexel => Setup {
+                exercise: Some(Exercise::SnapToTexel),
+                ..k4
+            },
         }
     }
 }
@@ -248,6 +262,16 @@ impl Lesson for Csm {
             c.insert("shadow_fragments".into(), fragments);
         }
         if let Some(fit) = &self.fitted[variant as usize] {
+            // How far the boxes' origins lie off their texel grids: 0 when
+            // snapped (exercise 2's check).
+            let off = fit
+                .iter()
+                .filter_map(|c| Some(cascades::off_grid(c.origin?, c.width, setup.resolution)))
+                .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
+            if let Some(off) = off {
+                let milli = (off * 1000.0).round() as u64;
+                c.insert("origin_off_grid_millitexels".into(), milli);
+            }
             for d in ALIASING_AT {
                 let cascade = &fit[setup::cascade_of(fit, d as f64)];
                 let per_m = setup.resolution as f64 / cascade.width;

@@ -8,3 +8,11 @@ pub mod csm;
 pub mod extras;
 
 pub mod setup;
+
+/// The chapter's exercises: the starter code a student fills in, or with
+/// `--features solutions`, the reference solutions (`solutions/lesson_09.rs`).
+#[cfg(not(feature = "solutions"))]
+pub mod exercises;
+#[cfg(feature = "solutions")]
+#[path = "../../solutions/lesson_09.rs"]
+pub mod exercises;

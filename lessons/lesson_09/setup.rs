@@ -4,12 +4,14 @@
 
 use anyhow::Result;
 use common::camera::directional_light_view_proj;
+use common::glam::DVec2;
 use common::gpu::Gpu;
 use common::render::SCENE_BUFFER_USAGE;
 use common::scene::{Far, LightKind, Scene};
 
-use super::cascades::{self, Cascade, Fit, FitOptions, SplitScheme, ViewFrustum};
+use super::cascades::{self, Cascade, Fit, FitOptions, LightBox, SplitScheme, ViewFrustum};
 use super::csm::CsmParams;
+use super::exercises;
 use crate::lesson_02::bias::SlopeScaledBias;
 
 /// The texels every variant spends: one 2048² map's worth.
@@ -29,6 +31,17 @@ pub struct Setup {
     pub options: Option<FitOptions>,
     /// The blend band, a fraction of each cascade (0: a hard switch).
     pub blend: f32,
+    /// The chapter's exercise this variant runs, if any.
+    pub exercise: Option<Exercise>,
+}
+
+/// The chapter's exercises (`exercises.rs`): k4 with the student's code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exercise {
+    /// `practical_splits` instead of [`cascades::split_depths`].
+    PracticalSplits,
+    /// `snap_to_texel` instead of [`cascades::snap`].
+    SnapToTexel,
 }
 
 impl Setup {
@@ -40,6 +53,7 @@ impl Setup {
             scheme: SplitScheme::Uniform,
             options: None,
             blend: 0.0,
+            exercise: None,
         }
     }
 
@@ -51,6 +65,7 @@ impl Setup {
             scheme,
             options: Some(options),
             blend: 0.0,
+            exercise: None,
         }
     }
 
@@ -89,19 +104,26 @@ impl Setup {
                 near,
                 far: reach,
                 width: side(0).max(side(1)),
+                origin: None,
                 view_proj: m,
             }]);
         };
-        let splits = cascades::split_depths(self.scheme, near, reach, self.count);
-        let fit = cascades::fit_cascades(
-            &view,
-            direction,
-            &splits,
-            options,
-            self.resolution,
-            &corners,
-        );
-        Ok(fit)
+        let splits = match self.exercise {
+            Some(Exercise::PracticalSplits) => {
+                let lambda = cascades::PRACTICAL_LAMBDA;
+                let d = exercises::practical_splits(near, reach, self.count, lambda);
+                check_splits(&d, self.count)?;
+                d
+            }
+            _ => cascades::split_depths(self.scheme, near, reach, self.count),
+        };
+        let (res, v, d) = (self.resolution, &view, direction);
+        Ok(match self.exercise {
+            Some(Exercise::SnapToTexel) => {
+                cascades::fit_cascades_with(v, d, &splits, options, res, &corners, student_snap)
+            }
+            _ => cascades::fit_cascades(v, d, &splits, options, res, &corners),
+        })
     }
 
     /// The lit pass's parameters for `fit`.
@@ -115,6 +137,31 @@ impl Setup {
             NORMAL_OFFSET_TEXELS,
         )
     }
+}
+
+/// The student's `snap_to_texel`, applied to a box as [`cascades::snap`] is.
+fn student_snap(b: LightBox, resolution: u32) -> LightBox {
+    let w = b.width();
+    let min = exercises::snap_to_texel(DVec2::new(b.min.x, b.min.y), w, resolution);
+    LightBox {
+        min: min.extend(b.min.z),
+        max: (min + DVec2::splat(w)).extend(b.max.z),
+    }
+}
+
+/// The student's splits must be `k + 1` finite depths that increase.
+fn check_splits(d: &[f64], k: usize) -> Result<()> {
+    if d.len() != k + 1 {
+        anyhow::bail!(
+            "exercise_practical_splits: practical_splits returned {} depths for {k} cascades (expected {})",
+            d.len(),
+            k + 1
+        );
+    }
+    if !d.iter().all(|x| x.is_finite()) || d.windows(2).any(|w| w[1] <= w[0]) {
+        anyhow::bail!("exercise_practical_splits: the depths must be finite and increase: {d:?}");
+    }
+    Ok(())
 }
 
 /// The side of each of `count` square maps that together hold about
