@@ -68,10 +68,10 @@ impl ShadowBias {
     };
 
     /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
-    /// src/directional_light.rs: `DEFAULT_SHADOW_DEPTH_BIAS = 0.02`,
-    /// `DEFAULT_SHADOW_NORMAL_BIAS = 1.8`), applied as
-    /// crates/bevy_pbr/src/render/shadows.wgsl `sample_directional_cascade`
-    /// does: the receiver moves 0.02 world units towards the light, and
+    /// src/directional_light.rs at commit a0d0176: `DEFAULT_SHADOW_DEPTH_BIAS
+    /// = 0.02`, `DEFAULT_SHADOW_NORMAL_BIAS = 1.8`), applied as
+    /// crates/bevy_pbr/src/render/shadows.wgsl (commit e85a706)
+    /// `sample_directional_cascade` does: the receiver moves 0.02 world units towards the light, and
     /// `1.8 · √2` texels (the √2 from bevy_pbr/src/render/light.rs,
     /// `extract_lights`: "worst-case diagonal offset") along its normal.
     pub const BEVY: ShadowBias = ShadowBias {

@@ -100,7 +100,7 @@ enum Variant {
     #[value(name = "wgpu_example")]
     WgpuExample,
     /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
-    /// src/directional_light.rs: `DEFAULT_SHADOW_DEPTH_BIAS = 0.02`,
+    /// src/directional_light.rs, commit a0d0176: `DEFAULT_SHADOW_DEPTH_BIAS = 0.02`,
     /// `DEFAULT_SHADOW_NORMAL_BIAS = 1.8`), applied as crates/bevy_pbr/src/
     /// render/shadows.wgsl `sample_directional_cascade` does: 0.02 world
     /// units towards the light, 1.8 · √2 texels along the normal (the √2:

@@ -77,11 +77,13 @@ enum Variant {
     #[value(name = "wgpu_example_hw2x2")]
     WgpuExampleHw2x2,
     /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
-    /// src/directional_light.rs: depth bias 0.02, normal bias 1.8; applied as
+    /// src/directional_light.rs, commit a0d0176: depth bias 0.02, normal bias
+    /// 1.8; applied as
     /// crates/bevy_pbr/src/render/shadows.wgsl `sample_directional_cascade`:
     /// 0.02 world units towards the light, 1.8 · √2 texels along the normal)
     /// and its default filter, `ShadowFilteringMethod::Gaussian` (Castaño's
-    /// 9-tap 5×5, shadow_sampling.wgsl); no bias in the shadow pass, our one
+    /// 9-tap 5×5, shadow_sampling.wgsl at commit 3971912); no bias in the
+    /// shadow pass, our one
     /// map as its one cascade.
     #[value(name = "bevy")]
     Bevy,

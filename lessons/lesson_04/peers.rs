@@ -18,12 +18,12 @@ pub enum Peer {
     /// Bevy's point light (bevyengine/bevy, crates/bevy_light/src/
     /// point_light.rs: `DEFAULT_SHADOW_DEPTH_BIAS = 0.08`,
     /// `DEFAULT_SHADOW_NORMAL_BIAS = 0.6`), applied as crates/bevy_pbr/src/
-    /// render/shadows.wgsl `fetch_point_shadow` does: the receiver moves
+    /// render/shadows.wgsl (commit e85a706) `fetch_point_shadow` does: the receiver moves
     /// 0.6 · (2 / N) · √2 × its major-axis distance along its normal
     /// (render/light.rs `extract_lights`) and 0.08 world units towards the
     /// light (the variant's `bias_world`), is compared in hardware depth
     /// along the major axis, and filtered by its default
-    /// (`ShadowFilteringMethod::Gaussian`: shadow_sampling.wgsl
+    /// (`ShadowFilteringMethod::Gaussian`: shadow_sampling.wgsl, commit 3971912,
     /// `sample_shadow_cubemap_gaussian`, 8 bilinear taps of the D3D 8×MSAA
     /// pattern, Gaussian weights, `POINT_SHADOW_SCALE = 0.003` × distance).
     BevyPoint,
