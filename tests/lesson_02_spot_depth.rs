@@ -1,4 +1,4 @@
-//! lesson_02 on the CPU: what the seeds' constant 0.05 of depth means under
+//! lesson_02 on the CPU: what the lwjgl book's constant 0.05 of depth means under
 //! a spot light (`scenes/lesson_02_spot_wide.toml`). Perspective depth is
 //! not linear in distance, so the bias is inverted exactly, through the
 //! light's own matrix, and compared with the linearisation that the chapter
@@ -11,7 +11,7 @@ use common::glam::DVec3;
 use common::scene::{LightKind, Scene};
 
 #[test]
-fn lesson_02_seed_constant_under_a_spot_light() {
+fn lesson_02_lwjgl_constant_under_a_spot_light() {
     let scene = Scene::load(&support::scene_path("lesson_02_spot_wide.toml")).expect("scene loads");
     let LightKind::Spot {
         position,
@@ -30,7 +30,7 @@ fn lesson_02_seed_constant_under_a_spot_light() {
     let centre = DVec3::ZERO;
     let d = (centre - light).dot(axis);
     let ndc = m.project_point3(centre);
-    // The depth after the seeds' bias, back to a point: exact inversion.
+    // The depth after the lwjgl book's bias, back to a point: exact inversion.
     let biased = m
         .inverse()
         .project_point3(DVec3::new(ndc.x, ndc.y, ndc.z - 0.05));
