@@ -16,6 +16,12 @@
 //! The message names the file, the variant and the cell, and says how to
 //! regenerate.
 
+#[path = "../book/generate/choosing.rs"]
+#[allow(dead_code)]
+mod choosing;
+#[path = "../book/generate/lesson09.rs"]
+#[allow(dead_code)]
+mod lesson09;
 #[path = "../book/generate/manifest.rs"]
 #[allow(dead_code)]
 mod manifest;
@@ -122,7 +128,7 @@ fn committed_scaling_tables_are_the_tables_their_records_make() {
 fn the_readme_block_is_the_one_the_records_make() {
     let records: Vec<Record> = manifest::RUNS
         .iter()
-        .filter(|r| r.timed)
+        .filter(|r| r.name == "results")
         .map(record)
         .collect();
     let refs: Vec<&Record> = records.iter().collect();
@@ -135,6 +141,39 @@ fn the_readme_block_is_the_one_the_records_make() {
         "README.md's results block is not what the records make ({}); {REGENERATE}",
         first_difference(&readme, &spliced)
     );
+}
+
+/// The closing chapter's tables and chapter 09's own are what the records make.
+#[test]
+fn derived_tables_are_the_tables_their_records_make() {
+    let records: Vec<Record> = manifest::RUNS.iter().map(record).collect();
+    let mut expected = vec![
+        (
+            "choosing/families.md".to_string(),
+            choosing::families(&records),
+        ),
+        ("choosing/peers.md".to_string(), choosing::peers(&records)),
+        (
+            "choosing/volumes_build.md".to_string(),
+            choosing::volumes_build(&records),
+        ),
+    ];
+    if let Some(r) = records
+        .iter()
+        .find(|r| r.lesson == "lesson_09" && r.run == "results")
+    {
+        expected.push(("lesson_09/shimmer.md".into(), lesson09::shimmer_table(r)));
+        expected.push(("lesson_09/cascades.md".into(), lesson09::cascades_table(r)));
+        expected.push(("lesson_09/aliasing.md".into(), lesson09::aliasing_table(r)));
+    }
+    for (file, want) in expected {
+        let got = read(&generated().join(&file));
+        assert!(
+            got == want,
+            "book/src/generated/{file} is not what the records make ({}); {REGENERATE}",
+            first_difference(&got, &want)
+        );
+    }
 }
 
 /// The checker itself: an edited cell must be found.
@@ -219,6 +258,8 @@ fn reproduce(lesson: &str) {
                         coverage_mismatch_pct: now.error.coverage_mismatch_pct,
                         counters: now.counters.clone(),
                         timing: None,
+                        camera_path: record::CameraPathRecord::of(now),
+                        classes: record::ClassRecord::of(now),
                     }
                 })
                 .collect(),
@@ -242,6 +283,26 @@ fn reproduce(lesson: &str) {
                 run.lesson,
                 run.name,
                 old.name
+            );
+        }
+        // Shimmer and the per-cascade error, as chapter 09's tables print them.
+        for (what, a, b) in [
+            (
+                "shimmer",
+                lesson09::shimmer_table(&rec),
+                lesson09::shimmer_table(&fresh),
+            ),
+            (
+                "cascades",
+                lesson09::cascades_table(&rec),
+                lesson09::cascades_table(&fresh),
+            ),
+        ] {
+            assert!(
+                a == b,
+                "{}: the {what} table differs from a re-run's ({}); {REGENERATE}",
+                run.id(),
+                first_difference(&a, &b)
             );
         }
         for t in manifest::TEXTS.iter().filter(|t| t.run == run.id()) {
@@ -276,4 +337,5 @@ drift_tests! {
     lesson_06_tables_reproduce: "lesson_06",
     lesson_07_tables_reproduce: "lesson_07",
     lesson_08_tables_reproduce: "lesson_08",
+    lesson_09_tables_reproduce: "lesson_09",
 }

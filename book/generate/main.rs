@@ -11,7 +11,9 @@
 //! checks), `book/src/figures/` (figures, plots, diagrams) and the README's
 //! table between its marker comments.
 
+mod choosing;
 mod diagrams;
+mod lesson09;
 mod manifest;
 mod plots;
 mod record;
@@ -67,7 +69,7 @@ fn run(cli: Cli) -> Result<()> {
     let Command::Book { only, backend } = cli.command;
     if let Some(l) = &only {
         if !RUNS.iter().any(|r| r.lesson == l) {
-            bail!("--only: no lesson {l:?} in the manifest (lesson_01 to lesson_08)");
+            bail!("--only: no lesson {l:?} in the manifest (lesson_01 to lesson_09)");
         }
     }
     let start = std::time::Instant::now();
@@ -116,7 +118,9 @@ fn run(cli: Cli) -> Result<()> {
     copy_outputs(&work, &figures, &generated, only.as_deref())?;
     let records = load_records(&generated)?;
     write_scenes_tables(&generated, &records)?;
-    let defaults: Vec<&Record> = records.iter().filter(|r| r.frames > 0).collect();
+    choosing::write_all(&generated, &records)?;
+    lesson09::write_all(&generated, &figures, &records)?;
+    let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
     write_plots(&figures, &defaults)?;
     let readme = root.join("README.md");
     let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
@@ -203,12 +207,14 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
                 .iter()
                 .filter_map(|r| r.variants.iter().find(|w| w.name == v.name))
                 .collect();
-            if same
-                .iter()
-                .any(|w| w.error != v.error || w.counters != v.counters)
-            {
+            if same.iter().any(|w| {
+                w.error != v.error
+                    || w.counters != v.counters
+                    || w.camera_path != v.camera_path
+                    || w.classes != v.classes
+            }) {
                 bail!(
-                    "{}: variant {} gave different errors or counters in repeated runs",
+                    "{}: variant {} gave different errors, counters or shimmer in repeated runs",
                     run.id(),
                     v.name
                 );
@@ -225,6 +231,8 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
                 coverage_mismatch_pct: v.error.coverage_mismatch_pct,
                 counters: v.counters.clone(),
                 timing: if run.timed { pool(&maps) } else { None },
+                camera_path: record::CameraPathRecord::of(v),
+                classes: record::ClassRecord::of(v),
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -322,7 +330,7 @@ fn write_scenes_tables(generated: &Path, records: &[Record]) -> Result<()> {
     for l in lessons {
         let cases: Vec<&Record> = records
             .iter()
-            .filter(|r| r.lesson == l && r.frames == 0)
+            .filter(|r| r.lesson == l && r.run != "results")
             .collect();
         if !cases.is_empty() {
             write(

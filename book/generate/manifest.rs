@@ -74,6 +74,27 @@ const fn case(
     }
 }
 
+/// A timed run of some variants on another scene (its table has times).
+const fn timed_case(
+    lesson: &'static str,
+    name: &'static str,
+    scene: &'static str,
+    title: &'static str,
+    variants: &'static [&'static str],
+) -> Run {
+    Run {
+        lesson,
+        name,
+        scene: Some(scene),
+        title,
+        timed: true,
+        variants,
+    }
+}
+
+/// The three ways to build shadow volumes (lesson 05), timed on the big meshes.
+const BUILD_VARIANTS: &[&str] = &["zpass_cpu", "zpass_quads", "zpass_compute"];
+
 /// Every run, in chapter order.
 #[rustfmt::skip]
 pub const RUNS: &[Run] = &[
@@ -100,6 +121,8 @@ pub const RUNS: &[Run] = &[
     case("lesson_04", "axes_pos", "scenes/lesson_04_axes_pos.toml", "one caster on each + axis"),
     case("lesson_04", "axes_neg", "scenes/lesson_04_axes_neg.toml", "one caster on each − axis"),
     default("lesson_05"),
+    timed_case("lesson_05", "holed", "scenes/lesson_05_holed.toml", "a closed mesh of 50k+ triangles with holes punched in it (casts two-sided)", BUILD_VARIANTS),
+    timed_case("lesson_05", "dense", "scenes/lesson_05_dense.toml", "a closed mesh of about 100k triangles", BUILD_VARIANTS),
     case("lesson_05", "eye_in_umbra", "scenes/volume_eye_in_umbra.toml", "the eye inside a shadow"),
     case("lesson_05", "near_slice", "scenes/volume_near_slice.toml", "the near plane slicing a volume"),
     case("lesson_05", "open_quad", "scenes/volume_open_quad.toml", "an open caster (one quad)"),
@@ -130,6 +153,12 @@ pub const RUNS: &[Run] = &[
     case("lesson_08", "near_crossing", "scenes/lesson_08_near_crossing.toml", "a range sphere crossing the near plane"),
     case("lesson_08", "camera_inside", "scenes/lesson_08_camera_inside.toml", "the camera inside a range sphere"),
     case("lesson_08", "nested_128", "scenes/lesson_08_nested_128.toml", "128 nested volumes"),
+    default("lesson_09"),
+    case("lesson_09", "look_down", "scenes/lesson_09_look_down.toml", "the camera looking straight down"),
+    case("lesson_09", "grazing", "scenes/lesson_09_grazing.toml", "the light almost parallel to the ground"),
+    case("lesson_09", "far_10km", "scenes/lesson_09_far_10km.toml", "far plane at 10 km"),
+    case("lesson_09", "offscreen_caster", "scenes/lesson_09_offscreen_caster.toml", "a caster outside the view shadows what is inside it"),
+    case("lesson_09", "contact_boundary", "scenes/lesson_09_contact_boundary.toml", "a cascade boundary across a contact shadow"),
 ];
 
 /// A figure the book shows: `file` of run `run` (its id), copied to
@@ -212,3 +241,65 @@ pub const TEXTS: &[Figure] = &[fig(
     "depth_precision.md",
     "lesson_07/depth_precision.md",
 )];
+
+/// The closing chapter's families: which lessons each one is.
+pub const FAMILIES: &[(&str, &[&str])] = &[
+    (
+        "shadow maps",
+        &["lesson_01", "lesson_02", "lesson_03", "lesson_04"],
+    ),
+    (
+        "shadow volumes",
+        &["lesson_05", "lesson_06", "lesson_07", "lesson_08"],
+    ),
+    ("cascaded shadow maps", &["lesson_09"]),
+];
+
+/// A renderer's documented default, measured as a variant of our lesson,
+/// and the variant of ours it is compared with. The variant's doc comment
+/// cites the source.
+#[derive(Clone, Copy, Debug)]
+pub struct Peer {
+    pub lesson: &'static str,
+    pub variant: &'static str,
+    pub ours: &'static str,
+    pub who: &'static str,
+}
+
+const fn peer(
+    lesson: &'static str,
+    variant: &'static str,
+    ours: &'static str,
+    who: &'static str,
+) -> Peer {
+    Peer {
+        lesson,
+        variant,
+        ours,
+        who,
+    }
+}
+
+/// The peers' defaults beside ours (chapter "Choosing a technique").
+#[rustfmt::skip]
+pub const PEERS: &[Peer] = &[
+    peer("lesson_02", "constant_lwjgl", "slope_hw", "the lwjgl book's constant bias"),
+    peer("lesson_02", "learnopengl", "slope_hw", "LearnOpenGL's slope bias"),
+    peer("lesson_02", "wgpu_example", "slope_hw", "the wgpu shadow example's hardware bias"),
+    peer("lesson_02", "bevy_bias", "slope_hw", "Bevy's directional depth + normal bias"),
+    peer("lesson_03", "learnopengl_pcf", "poisson_16", "LearnOpenGL's bias + 3×3 PCF"),
+    peer("lesson_03", "wgpu_example_hw2x2", "poisson_16", "the wgpu shadow example's bias + hardware 2×2"),
+    peer("lesson_03", "bevy", "poisson_16", "Bevy's directional defaults"),
+    peer("lesson_04", "learnopengl_1tap", "pcf3d_1024", "LearnOpenGL's point shadow, one tap"),
+    peer("lesson_04", "learnopengl_pcf20", "pcf3d_1024", "LearnOpenGL's 20-tap point kernel"),
+    peer("lesson_04", "bevy_point", "pcf3d_1024", "Bevy's point-light biases"),
+];
+
+/// The runs and variants of the volume-building table: (run id, [(variant,
+/// the pass that tests the edges)]).
+#[rustfmt::skip]
+pub const VOLUME_BUILDS: &[(&str, &[(&str, &str)])] = &[
+    ("lesson_05/results", &[("zpass_cpu", "cpu_silhouette"), ("zpass_quads", "volume"), ("zpass_compute", "extrude")]),
+    ("lesson_05/dense", &[("zpass_cpu", "cpu_silhouette"), ("zpass_quads", "volume"), ("zpass_compute", "extrude")]),
+    ("lesson_05/holed", &[("zpass_cpu", "cpu_silhouette"), ("zpass_quads", "volume"), ("zpass_compute", "extrude")]),
+];

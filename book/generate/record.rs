@@ -50,6 +50,65 @@ pub struct VariantRecord {
     pub coverage_mismatch_pct: f64,
     pub counters: BTreeMap<String, u64>,
     pub timing: Option<Timing>,
+    /// Shimmer over the scene's `[camera_path]` (lesson 09), when it has one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_path: Option<CameraPathRecord>,
+    /// The error per class of pixels (lesson 09: per cascade), when the
+    /// lesson gives classes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub classes: Vec<ClassRecord>,
+}
+
+/// Shimmer over a camera path: pixels whose shadow flips between
+/// consecutive frames where the exact reference does not.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct CameraPathRecord {
+    pub frames: u32,
+    pub shimmer_pct: f64,
+    pub reference_flip_pct: f64,
+    pub technique_flip_pct: f64,
+    pub misclassified_pct_per_frame: Vec<f64>,
+}
+
+impl CameraPathRecord {
+    /// What the book keeps of a report's camera path.
+    pub fn of(v: &common::report::VariantReport) -> Option<CameraPathRecord> {
+        let p = v.camera_path.as_ref()?;
+        Some(CameraPathRecord {
+            frames: p.frames,
+            shimmer_pct: p.shimmer_pct,
+            reference_flip_pct: p.reference_flip_pct,
+            technique_flip_pct: p.technique_flip_pct,
+            misclassified_pct_per_frame: p.misclassified_pct_per_frame.clone(),
+        })
+    }
+}
+
+impl ClassRecord {
+    /// What the book keeps of a report's per-class errors.
+    pub fn of(v: &common::report::VariantReport) -> Vec<ClassRecord> {
+        v.classes
+            .iter()
+            .flatten()
+            .map(|c| ClassRecord {
+                name: c.name.clone(),
+                pixels: c.pixels,
+                misclassified_pct: c.misclassified_pct,
+                false_shadow_pct: c.false_shadow_pct,
+                false_lit_pct: c.false_lit_pct,
+            })
+            .collect()
+    }
+}
+
+/// The error over one class of pixels (one cascade).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct ClassRecord {
+    pub name: String,
+    pub pixels: u64,
+    pub misclassified_pct: f64,
+    pub false_shadow_pct: f64,
+    pub false_lit_pct: f64,
 }
 
 /// One run of one lesson (timed runs pool several processes).
@@ -132,6 +191,11 @@ pub fn stat(s: &Stat) -> String {
 }
 
 impl Record {
+    /// `lesson_05/results`: the manifest's run id.
+    pub fn id(&self) -> String {
+        format!("{}/{}", self.lesson, self.run)
+    }
+
     /// The line above every table: adapter, resolution, scene, protocol.
     pub fn header(&self) -> String {
         let scene = if self.scene == "default" {

@@ -1,0 +1,229 @@
+//! Chapter 09's own tables and plots, from the record of its default run:
+//! shimmer over the camera path, the error per cascade, and texels per
+//! metre on the ground against view distance (perspective aliasing).
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+
+use crate::plots::{self, Curve};
+use crate::record::{count, pct, row, Record};
+
+/// The counters `texels_per_m_at_<D>m`, by distance D.
+const ALIASING_PREFIX: &str = "texels_per_m_at_";
+
+/// Writes `generated/lesson_09/{shimmer,cascades,aliasing}.md` and
+/// `figures/lesson_09/{shimmer,aliasing}.svg` from lesson 09's default run.
+pub fn write_all(generated: &Path, figures: &Path, records: &[Record]) -> Result<()> {
+    let Some(r) = records
+        .iter()
+        .find(|r| r.lesson == "lesson_09" && r.run == "results")
+    else {
+        return Ok(());
+    };
+    let dir = generated.join("lesson_09");
+    std::fs::create_dir_all(&dir)?;
+    for (name, text) in [
+        ("shimmer.md", shimmer_table(r)),
+        ("cascades.md", cascades_table(r)),
+        ("aliasing.md", aliasing_table(r)),
+    ] {
+        let path = dir.join(name);
+        std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    let fig = figures.join("lesson_09");
+    std::fs::create_dir_all(&fig)?;
+    shimmer_plot(&fig.join("shimmer.svg"), r)?;
+    aliasing_plot(&fig.join("aliasing.svg"), r)
+}
+
+fn caption(r: &Record, what: &str) -> String {
+    format!(
+        "*{}, {} · {}×{} · the default scene (`scenes/{}.toml`) · {what}*\n\n",
+        r.adapter, r.backend, r.width, r.height, r.lesson
+    )
+}
+
+/// One row a variant with a camera path: shimmer, the flips, and the
+/// spread of the per-frame error.
+pub fn shimmer_table(r: &Record) -> String {
+    let frames = r
+        .variants
+        .iter()
+        .find_map(|v| v.camera_path.as_ref().map(|p| p.frames))
+        .unwrap_or(0);
+    let mut s = caption(
+        r,
+        &format!(
+            "camera path of {frames} frames (a pan, then a dolly); % of covered pixels per pair of consecutive frames, averaged over the pairs"
+        ),
+    );
+    s += &row(&[
+        "variant".into(),
+        "shimmer %".into(),
+        "technique flips %".into(),
+        "reference flips %".into(),
+        "misclassified % per frame (min–max)".into(),
+    ]);
+    s += &row(&vec!["---".to_string(); 5]);
+    for v in &r.variants {
+        let Some(p) = &v.camera_path else {
+            continue;
+        };
+        let min = p
+            .misclassified_pct_per_frame
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        let max = p
+            .misclassified_pct_per_frame
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+        s += &row(&[
+            format!("`{}`", v.name),
+            pct(p.shimmer_pct),
+            pct(p.technique_flip_pct),
+            pct(p.reference_flip_pct),
+            if min.is_finite() {
+                format!("{}–{}", pct(min), pct(max))
+            } else {
+                "—".into()
+            },
+        ]);
+    }
+    s
+}
+
+/// One row a variant with classes; per cascade: its share of the receiver
+/// pixels and its misclassified %.
+pub fn cascades_table(r: &Record) -> String {
+    let k = r
+        .variants
+        .iter()
+        .map(|v| v.classes.len())
+        .max()
+        .unwrap_or(0);
+    let mut s = caption(
+        r,
+        "per cascade: misclassified % of that cascade's pixels (its pixels)",
+    );
+    let mut head = vec!["variant".to_string(), "overall %".into()];
+    head.extend((0..k).map(|i| format!("cascade {i}")));
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
+    for v in r.variants.iter().filter(|v| !v.classes.is_empty()) {
+        let mut cells = vec![format!("`{}`", v.name), pct(v.misclassified_pct)];
+        for i in 0..k {
+            cells.push(v.classes.get(i).map_or("—".into(), |c| {
+                format!("{} ({})", pct(c.misclassified_pct), count(c.pixels))
+            }));
+        }
+        s += &row(&cells);
+    }
+    s
+}
+
+/// The distances (m) of the `texels_per_m_at_<D>m` counters, ascending.
+fn distances(r: &Record) -> Vec<(u64, String)> {
+    let mut d: Vec<(u64, String)> = r
+        .variants
+        .iter()
+        .flat_map(|v| v.counters.keys())
+        .filter_map(|k| {
+            let m = k.strip_prefix(ALIASING_PREFIX)?.strip_suffix('m')?;
+            Some((m.parse().ok()?, k.clone()))
+        })
+        .collect();
+    d.sort();
+    d.dedup();
+    d
+}
+
+/// Texels per metre on the ground at each distance, per variant.
+pub fn aliasing_table(r: &Record) -> String {
+    let d = distances(r);
+    let mut s = caption(
+        r,
+        "shadow-map texels per metre on the ground, at view distances along the view direction",
+    );
+    let mut head = vec!["variant".to_string()];
+    head.extend(d.iter().map(|(m, _)| format!("{m} m")));
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
+    for v in &r.variants {
+        if !d.iter().any(|(_, k)| v.counters.contains_key(k)) {
+            continue;
+        }
+        let mut cells = vec![format!("`{}`", v.name)];
+        cells.extend(
+            d.iter()
+                .map(|(_, k)| v.counters.get(k).map_or("—".into(), |&n| count(n))),
+        );
+        s += &row(&cells);
+    }
+    s
+}
+
+fn shimmer_plot(path: &Path, r: &Record) -> Result<()> {
+    let bars: Vec<(String, f64, f64)> = r
+        .variants
+        .iter()
+        .filter_map(|v| {
+            let p = v.camera_path.as_ref()?;
+            Some((v.name.clone(), p.shimmer_pct, p.reference_flip_pct))
+        })
+        .collect();
+    if bars.is_empty() {
+        return Ok(());
+    }
+    let title = format!(
+        "Lesson 09: shimmer over the camera path ({}, {}×{})",
+        r.adapter, r.width, r.height
+    );
+    plots::bars(
+        path,
+        &title,
+        "% of covered pixels, per pair of consecutive frames",
+        (
+            "shimmer: flips the reference does not make",
+            "the reference's own flips",
+        ),
+        &bars,
+    )
+}
+
+fn aliasing_plot(path: &Path, r: &Record) -> Result<()> {
+    let d = distances(r);
+    let curves: Vec<Curve> = r
+        .variants
+        .iter()
+        .filter(|v| d.iter().any(|(_, k)| v.counters.contains_key(k)))
+        .map(|v| {
+            let (xs, ys) = d
+                .iter()
+                .filter_map(|(m, k)| Some((*m as f64, *v.counters.get(k)? as f64)))
+                .unzip();
+            Curve {
+                name: v.name.clone(),
+                xs,
+                ys,
+                expected: String::new(),
+            }
+        })
+        .collect();
+    if curves.is_empty() {
+        return Ok(());
+    }
+    let title = format!(
+        "Lesson 09: texels per metre on the ground against view distance ({}, {}×{})",
+        r.adapter, r.width, r.height
+    );
+    plots::scaling_plot(
+        path,
+        &title,
+        "view distance, m (log)",
+        "shadow-map texels per metre (log)",
+        &curves,
+    )
+}
