@@ -231,6 +231,11 @@ pub const FIGURES: &[Figure] = &[
     fig("lesson_08/results", "bounds_scissor.png", "lesson_08/bounds_scissor.png"),
     fig("lesson_08/results", "bounds_scissor_visibility_l3.png", "lesson_08/bounds_scissor_visibility_l3.png"),
     fig("lesson_08/results", "reference_visibility_l3.png", "lesson_08/reference_visibility_l3.png"),
+    fig("lesson_09/results", "k4_cascades.png", "lesson_09/k4_cascades.png"),
+    fig("lesson_09/results", "single_2048_diff_l0.png", "lesson_09/single_2048_diff.png"),
+    fig("lesson_09/results", "k4_diff_l0.png", "lesson_09/k4_diff.png"),
+    fig("lesson_09/results", "k4_shimmer.png", "lesson_09/k4_shimmer.png"),
+    fig("lesson_09/results", "k4_aabb_nosnap_shimmer.png", "lesson_09/k4_aabb_nosnap_shimmer.png"),
 ];
 
 /// Text files a run writes that the book includes as they are (measured
