@@ -119,13 +119,15 @@ exercises! {
     l07_adaptive_near: lesson_07 exercise_adaptive_near,
     l08_scissor_rect: lesson_08 exercise_scissor_rect,
     l08_depth_bounds: lesson_08 exercise_depth_bounds,
+    l09_practical_splits: lesson_09 exercise_practical_splits,
+    l09_snap_to_texel: lesson_09 exercise_snap_to_texel,
 }
 
 /// Every exercise of every chapter's spec has its test above, and every
 /// chapter has at least two.
 #[test]
 fn every_exercise_is_graded() {
-    for n in 1..=8 {
+    for n in 1..=9 {
         let lesson = format!("lesson_{n:02}");
         let spec = spec(&lesson);
         assert!(
@@ -205,7 +207,7 @@ fn slug_matches_mdbook() {
 fn hidden_scenes_are_graded() {
     let dir = root().join("tests/hidden_scenes");
     let mut failures = String::new();
-    for n in 1..=8 {
+    for n in 1..=9 {
         let lesson = format!("lesson_{n:02}");
         let results = grading::grade_lesson(&runner(), &options(Some(dir.clone())), &lesson, None)
             .unwrap_or_else(|e| panic!("{lesson}: {e:#}"));
