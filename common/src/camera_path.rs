@@ -5,72 +5,17 @@
 //! The path is pure camera maths ([`path_cameras`]); the headless runner
 //! renders it ([`crate::headless`]) and [`Shimmer`] counts the flips.
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use glam::DQuat;
 use image::{GrayImage, Luma};
 
-use crate::limits::{check_coord, short, MAX_EXTENT};
+use crate::limits::check_coord;
 use crate::metrics::PixelState;
 use crate::report::CameraPathReport;
-use crate::scene::Camera;
-use crate::scene_file::CameraPathFile;
-
-/// The most frames a path may have (each costs a reference ray cast).
-pub const MAX_PATH_FRAMES: i64 = 1000;
-
-/// The most a path may pan, either way (degrees).
-pub const MAX_PAN_DEG: f64 = 360.0;
-
-/// `[camera_path]`, validated.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CameraPath {
-    /// At least 2.
-    pub frames: u32,
-    /// Frames 0 ..= n/2: the view direction yaws about `up` (right-handed:
-    /// positive turns left) from 0 to this.
-    pub pan_deg: f64,
-    /// Frames n/2 ..= n-1: eye and target move this far forward, along the
-    /// view direction at the pan's end (negative: backward).
-    pub dolly: f64,
-}
+use crate::scene::{Camera, Scene};
+pub use crate::scene_file::{CameraPath, MAX_PAN_DEG, MAX_PATH_FRAMES};
 
 impl CameraPath {
-    /// Validates `[camera_path]` as written, for the scene's `camera`.
-    pub(crate) fn from_file(f: CameraPathFile, camera: &Camera) -> Result<CameraPath> {
-        if !(2..=MAX_PATH_FRAMES).contains(&f.frames) {
-            bail!(
-                "camera_path.frames: must be in [2, {MAX_PATH_FRAMES}], got {}",
-                f.frames
-            );
-        }
-        if !(f.pan_deg.is_finite() && f.pan_deg.abs() <= MAX_PAN_DEG) {
-            bail!(
-                "camera_path.pan_deg: must be in [-{0}, {0}], got {1}",
-                short(MAX_PAN_DEG),
-                short(f.pan_deg)
-            );
-        }
-        if !(f.dolly.is_finite() && f.dolly.abs() <= MAX_EXTENT) {
-            bail!(
-                "camera_path.dolly: must be in [-{0}, {0}], got {1}",
-                short(MAX_EXTENT),
-                short(f.dolly)
-            );
-        }
-        if f.pan_deg == 0.0 && f.dolly == 0.0 {
-            bail!("camera_path: pan_deg and dolly are both 0, so the camera never moves; set one");
-        }
-        let path = CameraPath {
-            frames: f.frames as u32,
-            pan_deg: f.pan_deg,
-            dolly: f.dolly,
-        };
-        let last = path_cameras(camera, &path).pop().unwrap_or(camera.clone());
-        check_coord(last.eye.to_array(), "camera_path.dolly: the last eye")?;
-        check_coord(last.target.to_array(), "camera_path.dolly: the last target")?;
-        Ok(path)
-    }
-
     /// How far along the pan and the dolly frame `i` is, each in [0, 1].
     pub fn progress(&self, i: u32) -> (f64, f64) {
         let (n, half) = (self.frames.max(2), self.frames.max(2) / 2);
@@ -82,6 +27,19 @@ impl CameraPath {
         };
         (pan, dolly)
     }
+}
+
+/// The path's last eye and target are within the world's bounds (what
+/// [`crate::scene`] checks of the scene's own camera). `Ok` without a path.
+pub fn check_path(scene: &Scene) -> Result<()> {
+    let Some(path) = &scene.camera_path else {
+        return Ok(());
+    };
+    if let Some(last) = path_cameras(&scene.camera, path).last() {
+        check_coord(last.eye.to_array(), "camera_path.dolly: the last eye")?;
+        check_coord(last.target.to_array(), "camera_path.dolly: the last target")?;
+    }
+    Ok(())
 }
 
 // ANCHOR: path_cameras

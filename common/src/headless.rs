@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 
 use crate::baseline::Baseline;
-use crate::camera_path::{path_cameras, CameraPath, Shimmer};
+use crate::camera_path::{check_path, path_cameras, CameraPath, Shimmer};
 use crate::cli::Args;
 use crate::gpu::Gpu;
 use crate::lesson::{variant_name, Lesson};
@@ -48,6 +48,7 @@ pub fn run_headless<L: Lesson>(
             L::NAME
         );
     }
+    check_path(&scene).map_err(|e| anyhow::anyhow!("scene {}: {e}", scene.name))?;
     let gpu = Gpu::new(args.backend.as_deref(), args.adapter.as_deref(), None)?;
     let scene_name = scene.name.clone();
     let mut sg = SceneGpu::new(&gpu, scene, args.width, args.height)?;

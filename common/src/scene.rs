@@ -10,13 +10,12 @@ use std::sync::Arc;
 use anyhow::{anyhow, bail, Context, Result};
 use glam::{DMat4, DQuat, DVec3, EulerRot, Vec3};
 
-use crate::camera_path::CameraPath;
 use crate::limits::{
     check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
     MAX_REACH_OVER_NEAR, MAX_SCALE, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
 };
 use crate::mesh::{self, Mesh};
-use crate::scene_file::{FarFile, LightFile, ObjectFile, ScaleFile, SceneFile};
+use crate::scene_file::{CameraPath, FarFile, LightFile, ObjectFile, ScaleFile, SceneFile};
 
 /// The camera's far plane: a distance, or `"infinite"`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -217,7 +216,7 @@ impl Scene {
         let camera_path = match file.camera_path {
             Some(p) => {
                 let span = p.span();
-                let path = CameraPath::from_file(p.into_inner(), &camera);
+                let path = p.into_inner().validate();
                 Some(path.map_err(|e| anyhow!("{}: {e}", at(span)))?)
             }
             None => None,

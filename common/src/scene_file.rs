@@ -4,8 +4,11 @@
 //! not as serde `untagged` enums, whose message names a Rust type ("did not
 //! match any variant of untagged enum ScaleFile") instead of the field.
 
+use anyhow::{bail, Result};
 use serde::Deserialize;
 use toml::Spanned;
+
+use crate::limits::{short, MAX_EXTENT};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -88,6 +91,60 @@ pub(crate) struct CameraPathFile {
     pub(crate) pan_deg: f64,
     #[serde(default, deserialize_with = "dolly")]
     pub(crate) dolly: f64,
+}
+
+/// The most frames a camera path may have (each costs a reference ray cast).
+pub const MAX_PATH_FRAMES: i64 = 1000;
+
+/// The most a camera path may pan, either way (degrees).
+pub const MAX_PAN_DEG: f64 = 360.0;
+
+/// `[camera_path]`, validated; the path's maths is in [`crate::camera_path`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraPath {
+    /// At least 2.
+    pub frames: u32,
+    /// Frames 0 ..= n/2: the view direction yaws about `up` (right-handed:
+    /// positive turns left) from 0 to this.
+    pub pan_deg: f64,
+    /// Frames n/2 ..= n-1: eye and target move this far forward, along the
+    /// view direction at the pan's end (negative: backward).
+    pub dolly: f64,
+}
+
+impl CameraPathFile {
+    /// The path, if every field is in range (one line naming the field).
+    pub(crate) fn validate(self) -> Result<CameraPath> {
+        if !(2..=MAX_PATH_FRAMES).contains(&self.frames) {
+            bail!(
+                "camera_path.frames: must be in [2, {MAX_PATH_FRAMES}], got {}",
+                self.frames
+            );
+        }
+        let (pan, dolly) = (self.pan_deg, self.dolly);
+        if !(pan.is_finite() && pan.abs() <= MAX_PAN_DEG) {
+            bail!(
+                "camera_path.pan_deg: must be in [-{0}, {0}], got {1}",
+                short(MAX_PAN_DEG),
+                short(pan)
+            );
+        }
+        if !(dolly.is_finite() && dolly.abs() <= MAX_EXTENT) {
+            bail!(
+                "camera_path.dolly: must be in [-{0}, {0}], got {1}",
+                short(MAX_EXTENT),
+                short(dolly)
+            );
+        }
+        if pan == 0.0 && dolly == 0.0 {
+            bail!("camera_path: pan_deg and dolly are both 0, so the camera never moves; set one");
+        }
+        Ok(CameraPath {
+            frames: self.frames as u32,
+            pan_deg: pan,
+            dolly,
+        })
+    }
 }
 
 pub(crate) enum ScaleFile {

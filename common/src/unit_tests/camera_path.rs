@@ -187,3 +187,19 @@ fn a_steady_technique_on_a_moving_shadow_does_not_shimmer() {
     assert_eq!((r.reference_flip_pct, r.technique_flip_pct), (50.0, 50.0));
     assert!(s.image(1).pixels().all(|p| p.0[0] == 0));
 }
+
+#[test]
+fn a_dolly_out_of_the_world_is_refused_by_name() {
+    let text = "[camera]\neye = [999980.0, 1.0, 0.0]\ntarget = [999990.0, 1.0, 0.0]\n\
+        [[lights]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\n\
+        [[objects]]\nmesh = \"cube\"\ntranslate = [999985.0, 0.0, 0.0]\n";
+    let parse = |path: &str| {
+        let text = format!("{text}[camera_path]\n{path}\n");
+        Scene::parse(&text, "s.toml", std::path::Path::new(".")).unwrap()
+    };
+    check_path(&parse("dolly = 5.0")).unwrap();
+    let e = check_path(&parse("dolly = 100000.0"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("camera_path.dolly: the last eye"), "{e}");
+}
