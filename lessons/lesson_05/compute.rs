@@ -26,7 +26,9 @@ use wgpu::util::{DeviceExt, DrawIndirectArgs};
 use super::adjacency::Adjacency;
 use super::extrusion::{world_light, CpuVertex};
 use super::silhouette::LightDir;
-use super::volumes::{CasterDraw, VolumeCaster};
+
+mod pipeline;
+use pipeline::{bind_group_layout, compute_pipeline};
 
 /// The compute shader (`shaders/lesson_05/extrude.wgsl`).
 pub const EXTRUDE_WGSL: &str = include_str!("../../shaders/lesson_05/extrude.wgsl");
@@ -210,7 +212,11 @@ impl ComputeVolumes {
             })
         };
         use wgpu::BufferUsages as U;
-        let vertices = buffer("compute volumes", bytes, U::STORAGE | U::VERTEX | U::COPY_SRC);
+        let vertices = buffer(
+            "compute volumes",
+            bytes,
+            U::STORAGE | U::VERTEX | U::COPY_SRC,
+        );
         let args_size = (reset.len() as u64).max(1) * ARGS;
         reset.resize(reset.len().max(1), DrawIndirectArgs::default());
         let reset_src = gpu
@@ -301,8 +307,8 @@ impl ComputeVolumes {
     }
 
     // ANCHOR: extrude
-    /// The per-frame work: for every light and the casters in
-    /// `draws[light]`, the light in object space (`models`) and the reach
+    /// The per-frame work: for every light k and caster whose object
+    /// `drawn(k, object)` says, the light in object space (`models`) and the reach
     /// (`reach[light][caster]`, 0 infinity) go to the shader, the vertex
     /// counts are reset, and one dispatch per (light, caster) writes the
     /// volumes. Timed as the pass `extrude`.
@@ -310,17 +316,17 @@ impl ComputeVolumes {
         &self,
         frame: &mut Frame,
         scene: &SceneGpu,
-        casters: &[VolumeCaster],
+        objects: &[usize],
         (models, reach): (&[Mat4], &[Vec<f32>]),
-        draws: &[Vec<CasterDraw>],
+        drawn: impl Fn(usize, usize) -> bool,
     ) {
         let mut jobs = Vec::new();
-        for (k, draws_k) in draws.iter().enumerate().take(self.lights) {
+        for k in 0..self.lights {
             let world = world_light(scene, k);
-            for (ci, c) in casters.iter().enumerate() {
-                if draws_k.iter().any(|d| d.object == c.object) {
+            for (ci, &object) in objects.iter().enumerate() {
+                if drawn(k, object) {
                     // Silhouettes in object space: the light moves, not the mesh.
-                    let light = world.to_object_space(models[c.object]);
+                    let light = world.to_object_space(models[object]);
                     let w = reach.get(k).and_then(|r| r.get(ci)).copied();
                     jobs.push((k, ci, light, w.unwrap_or(0.0)));
                 }
@@ -393,21 +399,21 @@ impl ComputeVolumes {
     }
 
     /// One caster's indirect draws for light `light`: (byte offset in
-    /// [`args`](Self::args), is it a cap?), the sides and the caps `d`
-    /// asks for. A directional light has no back cap (it is one point).
+    /// [`args`](Self::args), is it a cap?), the sides and the caps asked
+    /// for, `(front, back)`. A directional light has no back cap (it is one point).
     pub fn draws(
         &self,
         scene: &SceneGpu,
         light: usize,
         caster: usize,
-        d: &CasterDraw,
+        (front, back): (bool, bool),
     ) -> Vec<(u64, bool)> {
         let directional = matches!(world_light(scene, light), LightDir::Directional(_));
         let at = self.slot(light, caster) as u64 * 3 * ARGS;
         [
             Some((at, false)),
-            d.front_cap.then_some((at + ARGS, true)),
-            (d.back_cap && !directional).then_some((at + 2 * ARGS, true)),
+            front.then_some((at + ARGS, true)),
+            (back && !directional).then_some((at + 2 * ARGS, true)),
         ]
         .into_iter()
         .flatten()
@@ -443,63 +449,6 @@ impl ComputeVolumes {
             LightDir::Point(_) => 6,
         }
     }
-}
-
-fn bind_group_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
-    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
-    let params = wgpu::BindGroupLayoutEntry {
-        binding: 0,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            // One Params per (light, caster), picked by a dynamic offset.
-            has_dynamic_offset: true,
-            min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<Params>() as u64),
-        },
-        count: None,
-    };
-    gpu.device
-        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("extrude"),
-            entries: &[
-                params,
-                storage(1, true),
-                storage(2, false),
-                storage(3, false),
-            ],
-        })
-}
-
-fn compute_pipeline(
-    gpu: &Gpu,
-    module: &wgpu::ShaderModule,
-    layout: &wgpu::BindGroupLayout,
-) -> wgpu::ComputePipeline {
-    let layout = gpu
-        .device
-        .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("extrude"),
-            bind_group_layouts: &[Some(layout)],
-            immediate_size: 0,
-        });
-    gpu.device
-        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("extrude"),
-            layout: Some(&layout),
-            module,
-            entry_point: Some("extrude"),
-            compilation_options: Default::default(),
-            cache: None,
-        })
 }
 
 /// One caster's volume for one light, built by the compute shader and

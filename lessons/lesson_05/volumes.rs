@@ -370,8 +370,13 @@ impl ShadowVolumes {
             self.compute = Some(ComputeVolumes::new(frame.gpu, &adjacency, lights)?);
         }
         if let Some(c) = &self.compute {
-            let at = (&self.models[..], &self.reach[..]);
-            c.extrude(frame, scene, &self.casters, at, draws);
+            let objects: Vec<usize> = self.casters.iter().map(|c| c.object).collect();
+            let drawn = |k: usize, o| {
+                draws
+                    .get(k)
+                    .is_some_and(|d| d.iter().any(|d| d.object == o))
+            };
+            c.extrude(frame, scene, &objects, (&self.models, &self.reach), drawn);
         }
         Ok(())
     }
@@ -434,7 +439,7 @@ impl ShadowVolumes {
                     let Some(cv) = &self.compute else { continue };
                     pass.set_vertex_buffer(0, cv.vertices.slice(..));
                     // As many vertices as the compute shader counted.
-                    for (at, cap) in cv.draws(scene, v.light, ci, d) {
+                    for (at, cap) in cv.draws(scene, v.light, ci, (d.front_cap, d.back_cap)) {
                         pass.set_pipeline(pipeline(cap));
                         pass.draw_indirect(&cv.args, at);
                     }

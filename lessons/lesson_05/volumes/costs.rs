@@ -164,7 +164,7 @@ impl ShadowVolumes {
                         continue;
                     };
                     let n = n[light * self.casters.len() + ci];
-                    for (at, _) in cv.draws(scene, light, ci, d) {
+                    for (at, _) in cv.draws(scene, light, ci, (d.front_cap, d.back_cap)) {
                         s.calls += 1;
                         s.triangles += n[(at / 16 % 3) as usize] as u64 / 3;
                     }
