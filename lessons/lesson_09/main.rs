@@ -293,9 +293,12 @@ impl Lesson for Csm {
             return Ok(());
         };
         let (maps, groups) = &self.maps[m];
+        let Some(group) = groups.first() else {
+            return Ok(()); // no light: nothing to picture
+        };
         let name = variant_name(variant);
         let path = out.join(format!("{name}_cascades.png"));
-        extras::write_cascade_png(gpu, scene, &self.tint_pipeline, &groups[0], &path)?;
+        extras::write_cascade_png(gpu, scene, &self.tint_pipeline, group, &path)?;
         extras::write_layers(gpu, maps, out, &name)
     }
 }

@@ -83,7 +83,8 @@ impl Setup {
         height: u32,
         light: usize,
     ) -> Result<Vec<Cascade>> {
-        let LightKind::Directional { direction } = scene.lights[light].kind else {
+        let Some(LightKind::Directional { direction }) = scene.lights.get(light).map(|l| l.kind)
+        else {
             anyhow::bail!("lights[{light}]: lesson_09 cascades directional lights only");
         };
         let view = view_frustum(scene, width, height);
