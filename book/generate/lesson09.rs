@@ -55,17 +55,18 @@ pub fn shimmer_table(r: &Record) -> String {
     let mut s = caption(
         r,
         &format!(
-            "camera path of {frames} frames (a pan, then a dolly); % of covered pixels per pair of consecutive frames, averaged over the pairs"
+            "camera path of {frames} frames (a pan, then a dolly); % of the receivers per pair of consecutive frames, pooled over the pairs. Shimmer: frame i's view with frame i + 1's fit against frame i's own (world-locked). Screen-space: consecutive frames, flips the reference does not make"
         ),
     );
     s += &row(&[
         "variant".into(),
-        "shimmer %".into(),
+        "shimmer % (world-locked)".into(),
+        "screen-space mismatch %".into(),
         "technique flips %".into(),
         "reference flips %".into(),
         "misclassified % per frame (min–max)".into(),
     ]);
-    s += &row(&vec!["---".to_string(); 5]);
+    s += &row(&vec!["---".to_string(); 6]);
     for v in &r.variants {
         let Some(p) = &v.camera_path else {
             continue;
@@ -83,6 +84,7 @@ pub fn shimmer_table(r: &Record) -> String {
         s += &row(&[
             format!("`{}`", v.name),
             pct(p.shimmer_pct),
+            pct(p.screen_mismatch_pct),
             pct(p.technique_flip_pct),
             pct(p.reference_flip_pct),
             if min.is_finite() {
@@ -171,7 +173,7 @@ fn shimmer_plot(path: &Path, r: &Record) -> Result<()> {
         .iter()
         .filter_map(|v| {
             let p = v.camera_path.as_ref()?;
-            Some((v.name.clone(), p.shimmer_pct, p.reference_flip_pct))
+            Some((v.name.clone(), p.shimmer_pct, p.screen_mismatch_pct))
         })
         .collect();
     if bars.is_empty() {
@@ -184,10 +186,10 @@ fn shimmer_plot(path: &Path, r: &Record) -> Result<()> {
     plots::bars(
         path,
         &title,
-        "% of covered pixels, per pair of consecutive frames",
+        "% of the receivers, per pair of consecutive frames",
         (
-            "shimmer: flips the reference does not make",
-            "the reference's own flips",
+            "shimmer (world-locked): the fit moves, the view stays",
+            "screen-space: flips the reference does not make",
         ),
         &bars,
     )

@@ -64,7 +64,10 @@ pub struct VariantRecord {
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 pub struct CameraPathRecord {
     pub frames: u32,
+    /// World-locked (see `common::camera_path`).
     pub shimmer_pct: f64,
+    /// Screen-space: flips the reference does not make between frames.
+    pub screen_mismatch_pct: f64,
     pub reference_flip_pct: f64,
     pub technique_flip_pct: f64,
     pub misclassified_pct_per_frame: Vec<f64>,
@@ -77,6 +80,7 @@ impl CameraPathRecord {
         Some(CameraPathRecord {
             frames: p.frames,
             shimmer_pct: p.shimmer_pct,
+            screen_mismatch_pct: p.screen_mismatch_pct,
             reference_flip_pct: p.reference_flip_pct,
             technique_flip_pct: p.technique_flip_pct,
             misclassified_pct_per_frame: p.misclassified_pct_per_frame.clone(),

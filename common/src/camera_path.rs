@@ -2,6 +2,17 @@
 //! frame to measure *shimmer* (chapter 09): shadow pixels that flip between
 //! consecutive frames where the exact reference does not.
 //!
+//! Between frames i and i + 1 two things change: the view (every shadow
+//! edge sweeps across the screen, and the reference's edges with it) and
+//! the shadow maps' fit. Shimmer is the second alone, so it is measured
+//! *world-locked*: frame i's view, rendered once with frame i's fit and
+//! once with frame i + 1's (a *probe*). The pixels see the same surfaces
+//! both times, so the reference cannot flip, and every pixel whose shadow
+//! flips is shimmer. The screen-space flips of consecutive frames are
+//! reported beside it: there, a technique whose shadow edge sits a pixel
+//! from the exact one flips a frame early or late as the edge sweeps
+//! past, and that counts as a mismatch even when its maps hold still.
+//!
 //! The path is pure camera maths ([`path_cameras`]); the headless runner
 //! renders it ([`crate::headless`]) and [`Shimmer`] counts the flips.
 
@@ -79,6 +90,10 @@ pub struct Shimmer {
     count: Vec<u32>,
     pairs: u64,
     covered: u64,
+    /// Screen-space: technique flips where the reference does not.
+    screen_mismatch: u64,
+    /// World-locked: receivers of both renders of a probe, and flips.
+    locked_covered: u64,
     shimmer: u64,
     technique_flips: u64,
     reference_flips: u64,
@@ -94,6 +109,8 @@ impl Shimmer {
             count: vec![0; width as usize * height as usize],
             pairs: 0,
             covered: 0,
+            screen_mismatch: 0,
+            locked_covered: 0,
             shimmer: 0,
             technique_flips: 0,
             reference_flips: 0,
@@ -125,14 +142,45 @@ impl Shimmer {
                     self.covered += 1;
                     self.reference_flips += u64::from(reference);
                     self.technique_flips += u64::from(technique);
-                    if technique && !reference {
-                        self.shimmer += 1;
-                        self.count[p] += 1;
-                    }
+                    let _ = p;
+                    self.screen_mismatch += u64::from(technique && !reference);
                 }
             }
         }
         self.prev = Some(states);
+    }
+
+    /// Adds a world-locked probe: `fitted` is a frame's own render (view i,
+    /// fit i), `probe` the same view with the next frame's fit (i + 1).
+    /// `seen_next[p]`: pixel p's surface is inside frame i + 1's view too
+    /// (elsewhere the moving viewer never sees both). Every flip of a
+    /// receiver in both renders is shimmer: the reference is the same.
+    ///
+    /// Panics if a list is not `width × height` long.
+    pub fn add_probe(
+        &mut self,
+        fitted: &[Vec<PixelState>],
+        probe: &[Vec<PixelState>],
+        seen_next: &[bool],
+    ) {
+        let n = self.count.len();
+        assert!(
+            seen_next.len() == n && fitted.iter().chain(probe).all(|s| s.len() == n),
+            "states must be {n} pixels"
+        );
+        for (a, b) in fitted.iter().zip(probe) {
+            for (p, (a, b)) in a.iter().zip(b).enumerate() {
+                let (Some(a), Some(b)) = (a, b) else { continue };
+                if !seen_next[p] {
+                    continue;
+                }
+                self.locked_covered += 1;
+                if a.1 != b.1 {
+                    self.shimmer += 1;
+                    self.count[p] += 1;
+                }
+            }
+        }
     }
 
     /// The figures so far: percentages of the receiver pixels of every
@@ -141,7 +189,8 @@ impl Shimmer {
         let pct = |k: u64| 100.0 * k as f64 / self.covered.max(1) as f64;
         CameraPathReport {
             frames: self.misclassified_pct_per_frame.len() as u32,
-            shimmer_pct: pct(self.shimmer),
+            shimmer_pct: 100.0 * self.shimmer as f64 / self.locked_covered.max(1) as f64,
+            screen_mismatch_pct: pct(self.screen_mismatch),
             reference_flip_pct: pct(self.reference_flips),
             technique_flip_pct: pct(self.technique_flips),
             misclassified_pct_per_frame: self.misclassified_pct_per_frame.clone(),

@@ -185,8 +185,9 @@ struct PathWalk<'a> {
     sg: &'a mut SceneGpu,
     targets: &'a FrameTargets,
     timer: &'a mut Timer,
-    /// The reference of each frame so far: the same for every variant.
-    references: &'a mut Vec<ReferenceStates>,
+    /// The reference of each frame so far, and which of its pixels' surfaces
+    /// the next frame's view holds: the same for every variant.
+    references: &'a mut Vec<(ReferenceStates, Vec<bool>)>,
 }
 
 impl PathWalk<'_> {
@@ -200,13 +201,18 @@ impl PathWalk<'_> {
     ) -> Result<(CameraPathReport, image::GrayImage)> {
         let base = self.sg.scene.camera.clone();
         let mut shimmer = Shimmer::new(self.sg.width, self.sg.height);
-        let walked = path_cameras(&base, path)
-            .into_iter()
-            .enumerate()
-            .try_for_each(|(i, camera)| {
-                self.frame_at(camera, i, lesson, variant)
-                    .map(|states| shimmer.add_frame(states))
-            });
+        let cameras = path_cameras(&base, path);
+        let walked = (0..cameras.len()).try_for_each(|i| {
+            let next = cameras.get(i + 1);
+            let states = self.frame_at(&cameras[i], next, i, lesson, variant)?;
+            if let Some(next) = next {
+                // The probe: this view, the next frame's fit.
+                let probe = self.probe(next, i, lesson, variant)?;
+                shimmer.add_probe(&states, &probe, &self.references[i].1);
+            }
+            shimmer.add_frame(states);
+            Ok::<(), anyhow::Error>(())
+        });
         self.sg.scene.camera = base;
         self.sg.set_camera(self.gpu);
         walked?;
@@ -214,26 +220,77 @@ impl PathWalk<'_> {
     }
 
     /// Path frame `i`, seen from `camera`: every light's pixel states.
+    /// The first variant also makes the frame's reference, and marks the
+    /// pixels whose surface `next`'s view holds too.
     fn frame_at<L: Lesson>(
         &mut self,
-        camera: crate::scene::Camera,
+        camera: &crate::scene::Camera,
+        next: Option<&crate::scene::Camera>,
         i: usize,
         lesson: &mut L,
         variant: L::Variant,
     ) -> Result<Vec<Vec<PixelState>>> {
         let sg = &mut *self.sg;
-        sg.scene.camera = camera;
+        sg.scene.camera = camera.clone();
         sg.set_camera(self.gpu);
         if self.references.len() == i {
             let r = try_render_reference(&sg.scene, sg.camera.view_proj, sg.width, sg.height)?;
-            self.references.push(ReferenceStates::new(&r));
+            let seen = match next {
+                Some(next) => {
+                    sg.scene.camera = next.clone();
+                    let m = crate::camera::camera_matrices(&sg.scene, sg.width, sg.height);
+                    sg.scene.camera = camera.clone();
+                    in_view(&r, m.view_proj)
+                }
+                None => Vec::new(),
+            };
+            self.references.push((ReferenceStates::new(&r), seen));
         }
+        self.render_states(i, lesson, variant)
+    }
+
+    /// The probe after frame `i`: frame `i`'s view (its matrices stay in
+    /// the scene's uniforms), the lesson fitting to `next` (the scene's
+    /// camera, which the lessons with `CAMERA_PATH` re-read every frame).
+    fn probe<L: Lesson>(
+        &mut self,
+        next: &crate::scene::Camera,
+        i: usize,
+        lesson: &mut L,
+        variant: L::Variant,
+    ) -> Result<Vec<Vec<PixelState>>> {
+        self.sg.scene.camera = next.clone();
+        self.render_states(i, lesson, variant)
+    }
+
+    /// Renders one untimed frame and reads every light's pixel states
+    /// against path frame `i`'s reference.
+    fn render_states<L: Lesson>(
+        &mut self,
+        i: usize,
+        lesson: &mut L,
+        variant: L::Variant,
+    ) -> Result<Vec<Vec<PixelState>>> {
         let mut frame = self.timer.frame(self.gpu);
-        lesson.render(&mut frame, sg, self.targets, variant)?;
+        lesson.render(&mut frame, self.sg, self.targets, variant)?;
         frame.finish()?;
         let images = self.targets.read(self.gpu)?;
-        Ok(light_states(&self.references[i], &images))
+        Ok(light_states(&self.references[i].0, &images))
     }
+}
+
+/// Per pixel of `r`: its surface projects inside the view of `view_proj`
+/// (origin-relative), in front of the eye.
+fn in_view(r: &crate::reference::Reference, view_proj: glam::Mat4) -> Vec<bool> {
+    r.hits
+        .iter()
+        .map(|h| {
+            h.as_ref().is_some_and(|h| {
+                let c = view_proj * h.position.extend(1.0);
+                c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w
+            })
+        })
+        .collect()
 }
 
 // ANCHOR: timed_frames

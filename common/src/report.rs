@@ -46,8 +46,13 @@ pub struct VariantReport {
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 pub struct CameraPathReport {
     pub frames: u32,
-    /// The technique flips lit/shadowed and the reference does not.
+    /// World-locked: the receivers whose shadow flips when only the fit
+    /// moves to the next frame's camera and the view stays
+    /// ([`crate::camera_path`]). The reference cannot flip there.
     pub shimmer_pct: f64,
+    /// Screen-space: between consecutive frames, the technique flips
+    /// lit/shadowed and the reference does not (edges sweeping past count).
+    pub screen_mismatch_pct: f64,
     /// The reference flips (the shadow really moves across the pixel).
     pub reference_flip_pct: f64,
     /// The technique flips, rightly or not.

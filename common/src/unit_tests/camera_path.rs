@@ -141,12 +141,12 @@ fn frame(states: &[PixelState]) -> Vec<Vec<PixelState>> {
 }
 
 #[test]
-fn shimmer_counts_technique_flips_the_reference_does_not_make() {
+fn screen_mismatch_counts_technique_flips_the_reference_does_not_make() {
     let (lit, shadow) = (Some((true, true)), Some((false, false)));
     let mut s = Shimmer::new(4, 1);
     // Pixel 0: both flip (a moving shadow edge). Pixel 1: the technique
-    // flips alone (shimmer). Pixel 2: steady but wrong. Pixel 3: a receiver
-    // in one frame only: not counted.
+    // flips alone. Pixel 2: steady but wrong. Pixel 3: a receiver in one
+    // frame only: not counted.
     s.add_frame(frame(&[lit, lit, Some((true, false)), None]));
     s.add_frame(frame(&[
         shadow,
@@ -154,21 +154,47 @@ fn shimmer_counts_technique_flips_the_reference_does_not_make() {
         Some((true, false)),
         lit,
     ]));
-    // Pixel 1 flips back: shimmer again; pixel 0 steady.
+    // Pixel 1 flips back: a mismatch again; pixel 0 steady.
     s.add_frame(frame(&[shadow, lit, Some((true, false)), None]));
     let r = s.report();
     assert_eq!(r.frames, 3);
-    // 2 pairs x 3 pixels counted; shimmer 2, reference flips 1, technique 3.
-    assert!((r.shimmer_pct - 100.0 * 2.0 / 6.0).abs() < 1e-9, "{r:?}");
+    // 2 pairs x 3 pixels counted; mismatch 2, reference flips 1, technique 3.
+    assert!(
+        (r.screen_mismatch_pct - 100.0 * 2.0 / 6.0).abs() < 1e-9,
+        "{r:?}"
+    );
     assert!((r.reference_flip_pct - 100.0 / 6.0).abs() < 1e-9, "{r:?}");
     assert!(
         (r.technique_flip_pct - 100.0 * 3.0 / 6.0).abs() < 1e-9,
         "{r:?}"
     );
+    // No probe was added: no world-locked shimmer, and a black picture.
+    assert_eq!(r.shimmer_pct, 0.0);
+    assert!(s.image(1).pixels().all(|p| p.0[0] == 0));
     let per_frame = [100.0 / 3.0, 50.0, 100.0 / 3.0];
     for (got, want) in r.misclassified_pct_per_frame.iter().zip(per_frame) {
         assert!((got - want).abs() < 1e-9, "{r:?}");
     }
+}
+
+#[test]
+fn shimmer_counts_flips_of_a_probe_where_both_frames_see_the_surface() {
+    let (lit, shadow) = (Some((true, true)), Some((true, false)));
+    let mut s = Shimmer::new(4, 1);
+    let seen = [true, true, true, false];
+    // Pair 1: pixel 1 flips under the next fit (shimmer); pixel 3 flips
+    // too, but the next view does not see its surface: not counted.
+    let fitted = frame(&[lit, lit, shadow, lit]);
+    s.add_probe(&fitted, &frame(&[lit, shadow, shadow, shadow]), &seen);
+    s.add_frame(fitted);
+    // Pair 2: pixel 1 flips again; pixel 2 is no receiver in the probe.
+    let fitted = frame(&[lit, lit, shadow, lit]);
+    s.add_probe(&fitted, &frame(&[lit, shadow, None, lit]), &seen);
+    s.add_frame(fitted);
+    s.add_frame(frame(&[lit, lit, shadow, lit]));
+    let r = s.report();
+    // Counted: 3 + 2 receivers seen in both; flips: 2.
+    assert!((r.shimmer_pct - 100.0 * 2.0 / 5.0).abs() < 1e-9, "{r:?}");
     // Pixel 1 shimmered in both pairs (the most, 255); the rest never.
     let img: Vec<u8> = s.image(1).pixels().map(|p| p.0[0]).collect();
     assert_eq!(img, vec![0, 255, 0, 0]);
@@ -176,14 +202,19 @@ fn shimmer_counts_technique_flips_the_reference_does_not_make() {
 
 #[test]
 fn a_steady_technique_on_a_moving_shadow_does_not_shimmer() {
-    // The technique follows the reference exactly: flips, but no shimmer.
+    // The technique follows the reference exactly: flips, but no mismatch,
+    // and its probes (the same fit) never flip.
     let mut s = Shimmer::new(2, 1);
     for i in 0..4 {
         let on = i % 2 == 0;
-        s.add_frame(frame(&[Some((on, on)), Some((true, true))]));
+        let f = frame(&[Some((on, on)), Some((true, true))]);
+        if i < 3 {
+            s.add_probe(&f, &f, &[true, true]);
+        }
+        s.add_frame(f);
     }
     let r = s.report();
-    assert_eq!(r.shimmer_pct, 0.0);
+    assert_eq!((r.shimmer_pct, r.screen_mismatch_pct), (0.0, 0.0));
     assert_eq!((r.reference_flip_pct, r.technique_flip_pct), (50.0, 50.0));
     assert!(s.image(1).pixels().all(|p| p.0[0] == 0));
 }
