@@ -9,8 +9,6 @@ use std::f64::consts::{PI, TAU};
 use anyhow::{bail, Result};
 use glam::{DVec3, Vec3};
 
-use crate::mesh_dense::{dense_builtin, DENSE_BUILTIN_NAMES};
-
 /// An indexed triangle mesh in object space. Front faces wind counter-clockwise.
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
@@ -61,9 +59,10 @@ pub const BUILTIN_NAMES: [&str; 5] = ["plane", "cube", "sphere", "torus", "knot"
 /// Every mesh except `plane` is closed. Seams share their vertices, so the
 /// meshes are closed by index as well as by position.
 ///
-/// Two dense ones, for timing and for two-sided casters, are documented in
+/// Two dense ones, for timing and for two-sided casters, are in
 /// [`crate::mesh_dense`]: `holed_sphere` (about 50 000 triangles, five
-/// holes: open) and `dense_knot` (about 100 000 triangles, closed).
+/// holes: open) and `dense_knot` (about 100 000 triangles, closed); a
+/// scene names either kind ([`crate::mesh_dense::any_builtin`]).
 ///
 /// Positions and normals are computed in `f64` and rounded once to `f32`.
 /// That gives the same bits on every platform, so `assets/*.obj`
@@ -75,14 +74,10 @@ pub fn builtin(name: &str) -> Result<Mesh> {
         "sphere" => sphere(0.5, 48, 24),
         "torus" => torus(0.35, 0.15, 64, 32),
         "knot" => knot(0.28, 0.14, 0.07, 192, 16),
-        _ => match dense_builtin(name) {
-            Some(mesh) => mesh,
-            None => bail!(
-                "unknown built-in mesh {name:?} (known: {}, {}; or give a path ending in .obj)",
-                BUILTIN_NAMES.join(", "),
-                DENSE_BUILTIN_NAMES.join(", ")
-            ),
-        },
+        _ => bail!(
+            "unknown built-in mesh {name:?} (known: {}; or give a path ending in .obj)",
+            BUILTIN_NAMES.join(", ")
+        ),
     };
     mesh.name = name.to_string();
     Ok(mesh)
@@ -401,7 +396,7 @@ mod tests {
     #[test]
     fn unknown_builtin_lists_the_known_names() {
         let e = builtin("teapot").unwrap_err().to_string();
-        for name in BUILTIN_NAMES.iter().chain(&DENSE_BUILTIN_NAMES) {
+        for name in BUILTIN_NAMES {
             assert!(e.contains(name), "{e}");
         }
     }

@@ -26,6 +26,25 @@ pub const HOLE_DIRECTIONS: [[f64; 3]; 5] = [
     [0.6, -0.9, -0.2],
 ];
 
+/// Any built-in mesh by name, small ([`crate::mesh::builtin`]) or dense:
+/// what a scene's `mesh = "..."` names. An unknown name is one line that
+/// lists every known one.
+pub fn any_builtin(name: &str) -> anyhow::Result<Mesh> {
+    match dense_builtin(name) {
+        Some(mut mesh) => {
+            mesh.name = name.to_string();
+            Ok(mesh)
+        }
+        None => crate::mesh::builtin(name).map_err(|_| {
+            anyhow::anyhow!(
+                "unknown built-in mesh {name:?} (known: {}, {}; or give a path ending in .obj)",
+                crate::mesh::BUILTIN_NAMES.join(", "),
+                DENSE_BUILTIN_NAMES.join(", ")
+            )
+        }),
+    }
+}
+
 /// A dense built-in by name, or `None` if `name` is not one.
 pub fn dense_builtin(name: &str) -> Option<Mesh> {
     match name {
@@ -71,8 +90,8 @@ fn holed_sphere() -> Mesh {
 
 #[cfg(test)]
 mod tests {
+    use super::any_builtin as builtin;
     use super::*;
-    use crate::mesh::builtin;
     use glam::Vec3;
     use std::collections::HashMap;
 
@@ -148,6 +167,20 @@ mod tests {
                 ((a + b + cc) / 3.0).distance(c) <= 0.03
             });
             assert!(!near, "hole at {d:?} not punched");
+        }
+    }
+}
+
+#[cfg(test)]
+mod names {
+    #[test]
+    fn unknown_builtin_lists_every_known_name() {
+        let e = super::any_builtin("teapot").unwrap_err().to_string();
+        let all = crate::mesh::BUILTIN_NAMES
+            .iter()
+            .chain(&super::DENSE_BUILTIN_NAMES);
+        for name in all {
+            assert!(e.contains(name), "{e}");
         }
     }
 }

@@ -14,7 +14,7 @@ use crate::limits::{
     check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
     MAX_REACH_OVER_NEAR, MAX_SCALE, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
 };
-use crate::mesh::{self, Mesh};
+use crate::mesh::Mesh;
 use crate::scene_file::{CameraPath, FarFile, LightFile, ObjectFile, ScaleFile, SceneFile};
 
 /// The camera's far plane: a distance, or `"infinite"`.
@@ -459,7 +459,7 @@ fn load_mesh(name: &str, dir: &Path) -> Result<Mesh> {
         let path: PathBuf = dir.join(name);
         crate::obj::load_obj(&path)
     } else {
-        mesh::builtin(name)
+        crate::mesh_dense::any_builtin(name)
     }
 }
 

@@ -24,9 +24,9 @@ use std::ops::Range;
 use super::adjacency::Adjacency;
 use common::glam::Vec3;
 use common::gpu::Gpu;
-use common::render::{shader_module, SceneGpu};
-use common::scene::LightKind;
+use common::render::shader_module;
 
+pub use super::silhouette::world_light;
 use super::silhouette::{
     face_facing, light_facing_triangles_for, silhouette_edges_for, LightDir, SilhouetteEdge,
 };
@@ -351,18 +351,6 @@ impl QuadVertex {
     }
 }
 
-/// Light `k` as the volumes see it: origin-relative world space. Spot
-/// lights cast like point lights (the cone is applied in the lit pass).
-pub fn world_light(scene: &SceneGpu, k: usize) -> LightDir {
-    let o = scene.scene.origin();
-    match scene.scene.lights[k].kind {
-        LightKind::Directional { direction } => LightDir::Directional(direction.as_vec3()),
-        LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
-            LightDir::Point((position - o).as_vec3())
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -445,7 +433,7 @@ mod tests {
         let meshes = [
             builtin("knot").unwrap(),
             builtin("plane").unwrap(),
-            builtin("holed_sphere").unwrap(),
+            common::mesh_dense::any_builtin("holed_sphere").unwrap(),
             book,
         ];
         let lights = [

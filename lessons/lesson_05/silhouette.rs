@@ -162,6 +162,21 @@ pub fn casts_two_sided(mesh: &Mesh) -> bool {
 }
 // ANCHOR_END: caster_adjacency
 
+/// Light `k` as the volumes see it: origin-relative world space. Spot
+/// lights cast like point lights (the cone is applied in the lit pass).
+pub fn world_light(scene: &common::render::SceneGpu, k: usize) -> LightDir {
+    let o = scene.scene.origin();
+    match scene.scene.lights[k].kind {
+        common::scene::LightKind::Directional { direction } => {
+            LightDir::Directional(direction.as_vec3())
+        }
+        common::scene::LightKind::Point { position, .. }
+        | common::scene::LightKind::Spot { position, .. } => {
+            LightDir::Point((position - o).as_vec3())
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
