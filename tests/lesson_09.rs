@@ -79,7 +79,7 @@ fn lesson_09_snapshot() {
         let sh = v["camera_path"]["shimmer_pct"].as_f64().unwrap_or(f64::NAN);
         text += &format!("{name:<18} shimmer {sh:.2}%\n");
     }
-    text += "\nperspective aliasing: shadow texels per metre at view depth 2, 10, 50, 200 m\n";
+    text += "\nperspective aliasing: shadow texels per 100 m at view depth 2, 10, 50, 200 m\n";
     for v in run.report["variants"].as_array().expect("variants") {
         let name = v["name"].as_str().unwrap_or("?");
         let at: Vec<String> = [2, 10, 50, 200]
@@ -87,7 +87,7 @@ fn lesson_09_snapshot() {
             .map(|d| {
                 format!(
                     "{:>4}",
-                    support::counter(&run.report, name, &format!("texels_per_m_at_{d}m"))
+                    support::counter(&run.report, name, &format!("texels_per_100m_at_{d}m"))
                 )
             })
             .collect();
@@ -119,7 +119,7 @@ fn lesson_09_cascades_beat_one_map() {
     // More cascades, same texels: better (k1 is one fitted map).
     assert!(m("k1") > m("k2") && m("k2") > m("k4"), "k1, k2, k4");
     // Near the camera, k4 spends many times the single map's texels per metre.
-    let near = |v: &str| support::counter(&run.report, v, "texels_per_m_at_2m");
+    let near = |v: &str| support::counter(&run.report, v, "texels_per_100m_at_2m");
     assert!(
         near("k4") >= 10 * near("single_2048"),
         "texels per metre at 2 m"
@@ -132,12 +132,13 @@ fn shimmer(run: &support::LessonRun, v: &str) -> f64 {
         .unwrap_or_else(|| panic!("{v}: camera_path.shimmer_pct missing"))
 }
 
-/// Along the default scene's `[camera_path]`, edges that flip between
-/// frames where the reference's do not. Measured at 640×360, on Vulkan and
-/// GL alike: k4 0.089 %, k4_nosnap 0.096 %, k4_aabb 0.068 %,
-/// k4_aabb_nosnap 0.071 %, single_2048 0.63 %. Snapping takes off a
-/// little (the error at the edges, which finer texels cut, is most of it);
-/// cascades take off most. Also the per-cascade breakdown (pixel classes).
+/// Along the default scene's `[camera_path]`, world-locked (each frame's
+/// view rendered again with the next frame's fit; the reference cannot
+/// flip): the criterion, snapping with the sphere fit at most 10 %
+/// of the shimmer without them. Measured at 640×360 on Vulkan: k4 0.000 %,
+/// k4_nosnap 0.123 %, k4_aabb 0.042 %, k4_aabb_nosnap 0.089 %, and the
+/// scene-fitted single_2048 0.000 % (its map does not follow the camera).
+/// Also the per-cascade breakdown (pixel classes).
 #[test]
 fn lesson_09_shimmer_and_classes() {
     let vs = [
@@ -151,15 +152,23 @@ fn lesson_09_shimmer_and_classes() {
     let Some(run) = run("lesson_09_shimmer", None, &vs) else {
         return;
     };
-    assert!(shimmer(&run, "k4") < shimmer(&run, "k4_nosnap"), "snapping");
+    let naive = shimmer(&run, "k4_aabb_nosnap");
+    assert!(naive >= 0.02, "the naive fit must shimmer measurably: {naive}");
     assert!(
-        shimmer(&run, "k4_aabb") <= shimmer(&run, "k4_aabb_nosnap"),
-        "snapping the box"
+        shimmer(&run, "k4") <= 0.1 * naive,
+        "snapping and the sphere fit: k4 {} against k4_aabb_nosnap {naive}",
+        shimmer(&run, "k4")
     );
     assert!(
-        shimmer(&run, "single_2048") > 4.0 * shimmer(&run, "k4"),
-        "cascades"
+        shimmer(&run, "k4") <= 0.1 * shimmer(&run, "k4_nosnap"),
+        "snapping alone"
     );
+    // A snapped box whose size follows the camera still moves its texels.
+    assert!(
+        shimmer(&run, "k4_aabb") > shimmer(&run, "k4"),
+        "the sphere's stable size"
+    );
+    assert_eq!(shimmer(&run, "single_2048"), 0.0, "a scene-fitted map");
     // One class per cascade, every receiver in one of them.
     let classes = |v: &str| {
         support::variant(&run.report, v)["classes"]
@@ -388,7 +397,7 @@ fn lesson_09_far_10km() {
     };
     let k4 = support::misclassified(&run, "k4");
     assert!(k4 <= 0.5, "k4: misclassified {k4:.3} %");
-    assert!(support::counter(&run.report, "k4", "texels_per_m_at_2m") >= 20);
+    assert!(support::counter(&run.report, "k4", "texels_per_100m_at_2m") >= 2000);
 }
 
 /// A roof behind and above the camera shades the ground in view. Measured:

@@ -9,8 +9,8 @@ use anyhow::{Context, Result};
 use crate::plots::{self, Curve};
 use crate::record::{count, pct, row, Record};
 
-/// The counters `texels_per_m_at_<D>m`, by distance D.
-const ALIASING_PREFIX: &str = "texels_per_m_at_";
+/// The counters `texels_per_100m_at_<D>m`, by distance D.
+const ALIASING_PREFIX: &str = "texels_per_100m_at_";
 
 /// Writes `generated/lesson_09/{shimmer,cascades,aliasing}.md` and
 /// `figures/lesson_09/{shimmer,aliasing}.svg` from lesson 09's default run.
@@ -126,7 +126,7 @@ pub fn cascades_table(r: &Record) -> String {
     s
 }
 
-/// The distances (m) of the `texels_per_m_at_<D>m` counters, ascending.
+/// The distances (m) of the `texels_per_100m_at_<D>m` counters, ascending.
 fn distances(r: &Record) -> Vec<(u64, String)> {
     let mut d: Vec<(u64, String)> = r
         .variants
@@ -147,7 +147,7 @@ pub fn aliasing_table(r: &Record) -> String {
     let d = distances(r);
     let mut s = caption(
         r,
-        "shadow-map texels per metre on the ground, at view distances along the view direction",
+        "shadow-map texels per 100 m on the ground, at view distances along the view direction",
     );
     let mut head = vec!["variant".to_string()];
     head.extend(d.iter().map(|(m, _)| format!("{m} m")));
@@ -218,14 +218,14 @@ fn aliasing_plot(path: &Path, r: &Record) -> Result<()> {
         return Ok(());
     }
     let title = format!(
-        "Lesson 09: texels per metre on the ground against view distance ({}, {}×{})",
+        "Lesson 09: texels per 100 m on the ground against view distance ({}, {}×{})",
         r.adapter, r.width, r.height
     );
     plots::scaling_plot(
         path,
         &title,
         "view distance, m (log)",
-        "shadow-map texels per metre (log)",
+        "shadow-map texels per 100 m (log)",
         &curves,
     )
 }

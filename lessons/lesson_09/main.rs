@@ -274,8 +274,9 @@ impl Lesson for Csm {
             }
             for d in ALIASING_AT {
                 let cascade = &fit[setup::cascade_of(fit, d as f64)];
-                let per_m = setup.resolution as f64 / cascade.width;
-                c.insert(format!("texels_per_m_at_{d}m"), per_m.round() as u64);
+                // Per 100 m: whole numbers that still resolve the far cascades.
+                let per_100m = 100.0 * setup.resolution as f64 / cascade.width;
+                c.insert(format!("texels_per_100m_at_{d}m"), per_100m.round() as u64);
             }
         }
         c
