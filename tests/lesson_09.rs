@@ -153,7 +153,10 @@ fn lesson_09_shimmer_and_classes() {
         return;
     };
     let naive = shimmer(&run, "k4_aabb_nosnap");
-    assert!(naive >= 0.02, "the naive fit must shimmer measurably: {naive}");
+    assert!(
+        naive >= 0.02,
+        "the naive fit must shimmer measurably: {naive}"
+    );
     assert!(
         shimmer(&run, "k4") <= 0.1 * naive,
         "snapping and the sphere fit: k4 {} against k4_aabb_nosnap {naive}",
