@@ -363,7 +363,7 @@ pub fn bars(
             } else {
                 plot.x1 - w - 4.0
             };
-            draw_text(&root, &text, (x, py), BLACK.into())?;
+            draw_text(&root, &text, (x, py), BLACK)?;
         }
         draw_legend_column(&root, (plot.x1 + LEGEND_GAP, plot.y0), &legend)?;
         root.present()?;
