@@ -217,3 +217,18 @@ pub fn depth_texture(
         view_formats: &[],
     })
 }
+
+/// One 2D view per array layer of `texture` (a cube map's faces, a
+/// cascade's layers): what a pass renders into, one layer at a time.
+pub fn layer_views(texture: &wgpu::Texture, layers: u32) -> Vec<wgpu::TextureView> {
+    (0..layers)
+        .map(|i| {
+            texture.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: i,
+                array_layer_count: Some(1),
+                ..Default::default()
+            })
+        })
+        .collect()
+}

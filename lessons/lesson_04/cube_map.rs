@@ -78,16 +78,7 @@ impl CubeShadowMap {
             6,
             CUBE_FORMAT,
         );
-        let face_views = (0..6)
-            .map(|i| {
-                texture.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2),
-                    base_array_layer: i,
-                    array_layer_count: Some(1),
-                    ..Default::default()
-                })
-            })
-            .collect();
+        let face_views = common::targets::layer_views(&texture, 6);
         let cube_view = texture.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::Cube),
             ..Default::default()

@@ -36,16 +36,7 @@ impl CascadeMaps {
         let layers = count.max(2) as u32;
         let label = format!("cascades {count}x{size}");
         let texture = depth_texture(gpu, &label, size, layers, SHADOW_FORMAT);
-        let layer_views = (0..layers)
-            .map(|i| {
-                texture.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2),
-                    base_array_layer: i,
-                    array_layer_count: Some(1),
-                    ..Default::default()
-                })
-            })
-            .collect();
+        let layer_views = common::targets::layer_views(&texture, layers);
         let array_view = texture.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
