@@ -147,8 +147,7 @@ impl Lesson for Csm {
     type Variant = Variant;
 
     fn check_scene(scene: &Scene) -> Result<()> {
-        shadow_map::refuse_point_lights(scene, Self::NAME)?;
-        setup::refuse_spot_lights(scene, Self::NAME)
+        setup::refuse_non_directional(scene, Self::NAME)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {

@@ -190,19 +190,19 @@ pub fn cascade_of(fit: &[Cascade], d: f64) -> usize {
     fit.iter().position(|c| d < c.far).unwrap_or(last).min(last)
 }
 
-/// Refuses spot lights: a cascade is an orthographic box, for a light
-/// whose rays are parallel.
-pub fn refuse_spot_lights(scene: &Scene, lesson: &str) -> Result<()> {
-    match scene
-        .lights
-        .iter()
-        .position(|l| matches!(l.kind, LightKind::Spot { .. }))
-    {
-        Some(k) => anyhow::bail!(
-            "lights[{k}]: {lesson} cascades directional lights; spot lights are lesson_01 to lesson_03"
-        ),
-        None => Ok(()),
+/// Refuses every light but a directional one: a cascade is an
+/// orthographic box, for a light whose rays are parallel. One line names
+/// the light and the lesson that shadows it.
+pub fn refuse_non_directional(scene: &Scene, lesson: &str) -> Result<()> {
+    for (k, l) in scene.lights.iter().enumerate() {
+        let other = match l.kind {
+            LightKind::Directional { .. } => continue,
+            LightKind::Point { .. } => "point lights are lesson_04",
+            LightKind::Spot { .. } => "spot lights are lesson_01 to lesson_03",
+        };
+        anyhow::bail!("lights[{k}]: {lesson} cascades directional lights only; {other}");
     }
+    Ok(())
 }
 
 /// The shadow pass's bias: lesson 02's slope-scaled bias, unclamped (its
