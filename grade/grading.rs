@@ -20,7 +20,7 @@ pub struct Options {
     pub root: PathBuf,
     /// Where the runs go: `<out>/<lesson>/<exercise>/<scene>/`.
     pub out: PathBuf,
-    /// `--adapter`: `software` unless the student asks for another.
+    /// `--adapter`: `any` (the student's GPU) unless asked for another.
     pub adapter: String,
     pub backend: Option<String>,
     /// An instructor's hidden scenes (`--scenes DIR`): `DIR/*.toml` for

@@ -30,9 +30,9 @@ fn lesson_01_snapshot() {
     text += &support::ascii_levels(&run.out.join("reference_visibility_l0.png"), 64, 20);
     text += "\nres_4096 (no bias: acne everywhere the light reaches):\n";
     text += &support::ascii_levels(&run.out.join("res_4096_visibility_l0.png"), 64, 20);
-    text += "\n\nerror against the reference (0.1 percentage points):\n";
+    text += "\n\nerror against the reference (0.01 percentage points):\n";
     for v in variants {
-        text += &support::error_line(v, 1);
+        text += &support::error_line(v, 2);
         text += "\n";
     }
     // The lesson's trend: acne stays, the shadow edges (false lit) sharpen
@@ -53,7 +53,7 @@ fn lesson_01_snapshot() {
             "texel_um_v",
         ],
     );
-    insta::assert_snapshot!("lesson_01", text);
+    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_01", text));
 }
 
 /// What lesson 01 teaches, as numbers: without bias, acne makes a large share

@@ -3,7 +3,10 @@
 //! keeps it. Snapshot of the masks and errors, the showcase, the extreme
 //! depth range, and the depth-clip-control feature check.
 
+mod depth_formats;
 mod support;
+
+use depth_formats::DEPTH_FORMATS;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_07");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
@@ -50,13 +53,11 @@ fn lesson_07_snapshot() {
     text += &support::ascii_of(&run.out.join("neither_visibility_l1.png"), 64, 18);
     text += "\n\ninfinite (far plane at infinity, ε), light 1:\n";
     text += &support::ascii_of(&run.out.join("infinite_visibility_l1.png"), 64, 18);
-    text += "\n\nerror against the reference (percent, 0.1 points):\n";
+    text += "\n\nerror against the reference (percent, 0.01 points):\n";
     for v in run.report["variants"].as_array().unwrap() {
-        text += &support::error_line(v, 1);
+        text += &support::error_line(v, 2);
         text += "\n";
     }
-    // The clipped volumes of `neither` rasterise a few fragments
-    // differently on GL: one snapshot per backend.
     text += &support::counter_lines(
         &run.report,
         &[
@@ -66,36 +67,47 @@ fn lesson_07_snapshot() {
             "volume_fragments",
             "stencil_updates",
         ],
-    )
-    .replace(" (the same on Vulkan and GL)", "");
-    insta::assert_snapshot!(format!("lesson_07_{}", backend(&run.report)), text);
+    );
+    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_07", text));
 }
 
 /// The showcase: volumes cross the finite far plane. Neither clamp nor an
 /// infinite far plane → wrong; either one → right (≤ 0.5 %, and nothing
-/// wrong more than 2 pixels away from a shadow edge).
+/// wrong more than 2 pixels away from a shadow edge). In the adapter's
+/// default depth format and in Depth24PlusStencil8.
 #[test]
 fn lesson_07_volume_crossing_finite_far_plane() {
-    let Some(run) = support::run_lesson(
-        BIN,
-        "lesson_07_far_plane",
-        &[
+    for format in DEPTH_FORMATS {
+        let args = [
             &SIZE[..],
             &["--variant", "neither", "--variant", "infinite"],
+            &depth_formats::flag(format),
         ]
-        .concat(),
-    ) else {
-        return;
-    };
-    let neither = support::error(&run.report, "neither", "misclassified_pct");
-    assert!(
-        neither > 5.0,
-        "a clipped back cap must show: neither = {neither}%"
-    );
-    let inf = support::error(&run.report, "infinite", "misclassified_pct");
-    assert!(inf <= 0.5, "infinite far plane: {inf}% misclassified");
-    let off = worst_off_edge(&run, "infinite");
-    assert!(off <= 0.01, "infinite: {off}% wrong away from shadow edges");
+        .concat();
+        let name = format!("lesson_07_far_plane_{format}");
+        let Some(run) = support::run_lesson(BIN, &name, &args) else {
+            return;
+        };
+        let (depth, storage) = depth_formats::used(&run.report, format);
+        let neither = support::error(&run.report, "neither", "misclassified_pct");
+        let inf = support::error(&run.report, "infinite", "misclassified_pct");
+        let off = worst_off_edge(&run, "infinite");
+        eprintln!(
+            "{depth} ({storage}): neither {neither:.3}%, infinite {inf:.3}% (off-edge {off:.3}%)"
+        );
+        assert!(
+            neither > 5.0,
+            "{depth}: a clipped back cap must show: neither = {neither}%"
+        );
+        assert!(
+            inf <= 0.5,
+            "{depth}: infinite far plane: {inf}% misclassified"
+        );
+        assert!(
+            off <= 0.01,
+            "{depth}: infinite: {off}% wrong away from shadow edges"
+        );
+    }
 }
 
 /// `clamp` needs DEPTH_CLIP_CONTROL: it either renders right, or fails with
@@ -133,25 +145,44 @@ fn lesson_07_clamp_renders_right_or_names_the_missing_feature() {
 
 /// near = 1e-3, far = 1e5 (far/near = 1e8): the volumes still count right,
 /// and the depth-precision study shows why reversed float depth is the cure
-/// for the depth buffer itself (GPU-measured, `depth_precision.csv`).
+/// for the depth buffer itself (GPU-measured, `depth_precision.csv`). In the
+/// adapter's default depth format and in Depth24PlusStencil8.
 #[test]
 fn lesson_07_extreme_near_1e_3_far_1e5() {
+    for format in DEPTH_FORMATS {
+        extreme_range(format);
+    }
+}
+
+fn extreme_range(format: &str) {
     let file = scene("lesson_07_near_1e-3_far_1e5.toml");
-    let args = [&SIZE[..], &["--scene", &file, "--variant", "infinite"]].concat();
-    let Some(run) = support::run_lesson(BIN, "lesson_07_extreme_range", &args) else {
+    let args = [
+        &SIZE[..],
+        &["--scene", &file, "--variant", "infinite"],
+        &depth_formats::flag(format),
+    ]
+    .concat();
+    let name = format!("lesson_07_extreme_range_{format}");
+    let Some(run) = support::run_lesson(BIN, &name, &args) else {
         return;
     };
+    let (depth, storage) = depth_formats::used(&run.report, format);
     let inf = support::error(&run.report, "infinite", "misclassified_pct");
-    assert!(inf <= 0.5, "infinite at far/near 1e8: {inf}% misclassified");
     let off = worst_off_edge(&run, "infinite");
+    eprintln!("far/near 1e8, {depth} ({storage}): infinite {inf:.3}% (off-edge {off:.3}%)");
+    assert!(
+        inf <= 0.5,
+        "{depth}: infinite at far/near 1e8: {inf}% misclassified"
+    );
     assert!(
         off <= 0.05,
-        "infinite at far/near 1e8: {off}% wrong away from shadow edges"
+        "{depth}: infinite at far/near 1e8: {off}% wrong away from shadow edges"
     );
     // At d = far/2 = 5e4: standard depth resolves no gap below Δd = d; reversed
     // Depth32Float resolves Δd/d ≤ 1e-6 (where the adapter has the format).
     let csv = std::fs::read_to_string(run.out.join("depth_precision.csv")).unwrap();
-    // Columns: 5 = GPU-measured, 6 = CPU model. "none": no gap up to Δd = d.
+    // Columns: 5 = GPU-measured, 6 = CPU model, 7 = analytic, 8 = the storage
+    // the model assumes. "none": no gap up to Δd = d.
     let at_half_far = |format: &str, mapping: &str, col: usize| {
         let line = csv
             .lines()
@@ -169,6 +200,20 @@ fn lesson_07_extreme_near_1e_3_far_1e5() {
         model <= 1e-6,
         "CPU model: reversed Depth32Float at far/2 resolves Δd/d = {model}"
     );
+    // The study models each format as what the adapter stores: with the
+    // scene in Depth24PlusStencil8, the report's probe is that format's.
+    let d24_storage: Vec<&str> = csv
+        .lines()
+        .filter(|l| l.starts_with("Depth24PlusStencil8,"))
+        .map(|l| l.split(',').nth(8).unwrap())
+        .collect();
+    assert!(!d24_storage.is_empty());
+    if depth == "Depth24PlusStencil8" {
+        assert!(
+            d24_storage.iter().all(|s| *s == storage),
+            "the study's Depth24PlusStencil8 rows model {d24_storage:?}, the probe found {storage}"
+        );
+    }
     // Every GPU cell (95 % of 32 jittered samples) lies within [½, 10]× the
     // analytic curve, one storage step: no cell resolved by rounding luck.
     let gl = run.report["adapter"]["backend"] == "Gl";
@@ -235,62 +280,115 @@ fn run_or_refused(name: &str, args: &[&str]) -> Option<support::LessonRun> {
     })
 }
 
+/// The deep-range scene's casters: the nearest caster vertex's distance
+/// from the eye, and the smallest height of a caster above the floor (the
+/// receivers that cast no shadow), both from the scene file itself.
+fn casters_distance_and_gap(file: &str) -> (f64, f64) {
+    let s = common::scene::Scene::load(std::path::Path::new(file)).unwrap();
+    let vertices = |casts: bool| {
+        let objects = s.objects.iter().filter(move |o| o.casts_shadow == casts);
+        objects.flat_map(|o| {
+            let p = o.mesh.positions.iter();
+            p.map(|&p| o.model.transform_point3(p.as_dvec3()))
+        })
+    };
+    let eye = s.camera.eye;
+    let nearest = vertices(true)
+        .map(|p| p.distance(eye))
+        .fold(f64::MAX, f64::min);
+    let floor = vertices(false).map(|p| p.y).fold(f64::MIN, f64::max);
+    let lowest = vertices(true).map(|p| p.y).fold(f64::MAX, f64::min);
+    (nearest, lowest - floor)
+}
+
+/// Standard depth's coverage mismatch on the deep range must exceed this
+/// (%). Measured at 320×180: lavapipe clamp 2.18, infinite 2.75; llvmpipe
+/// (GL) 4.28, 3.50, the same in Depth32FloatStencil8 and (true 24-bit)
+/// Depth24PlusStencil8; NVIDIA H100 (Vulkan) 0.354 (clamp). Reversed-Z
+/// stays ≤ 0.05 (0.000 on lavapipe), so 0.1 parts the two.
+const DEEP_ZFIGHT_COVERAGE_PCT: f64 = 0.1;
+
 /// Issue 8, item 5: near = 1e-3, far = 1e5, the casters ~400 units away and
 /// 1 cm above the floor. Reversed-Z in Depth32Float (far plane at infinity)
 /// is exact away from shadow edges (≤ 0.05 %); `clamp` and `infinite`
-/// (standard depth, whose steps near 1 are 2⁻²⁴ in either format) are not.
+/// (standard depth, whose steps near 1 are 2⁻²⁴ in either format) are not,
+/// in the adapter's default depth format and in Depth24PlusStencil8. On GL,
+/// which refuses reversed-Z, standard depth's failure is checked alone.
 #[test]
 fn lesson_07_reversed_z_exact_on_deep_range() {
     let file = scene("lesson_07_deep_range.toml");
-    let rz = [&SIZE[..], &["--scene", &file, "--variant", "reversed_z"]].concat();
-    let Some(run) = run_or_refused("lesson_07_deep_reversed", &rz) else {
-        return;
-    };
-    let rz_all = support::error(&run.report, "reversed_z", "misclassified_pct");
-    let rz_off = worst_off_edge(&run, "reversed_z");
-    let std_args = [
-        &SIZE[..],
-        &[
-            "--scene",
-            &file,
-            "--variant",
-            "clamp",
-            "--variant",
-            "infinite",
-        ],
-    ]
-    .concat();
-    let Some(std_run) = support::run_lesson(BIN, "lesson_07_deep_standard", &std_args) else {
-        return;
-    };
-    let clamp_off = worst_off_edge(&std_run, "clamp");
-    let inf_off = worst_off_edge(&std_run, "infinite");
-    eprintln!("deep range, % wrong > 2 px from an edge: reversed_z {rz_off:.3} (all {rz_all:.3}), clamp {clamp_off:.3}, infinite {inf_off:.3}");
-    assert!(rz_all <= 0.5, "reversed_z: {rz_all}% misclassified");
-    // Standard depth cannot even keep the casters in front of the floor
-    // there (the base pass z-fights); reversed-Z sees what the reference sees.
-    let cov = |r: &serde_json::Value, v| support::error(r, v, "coverage_mismatch_pct");
-    let rz_cov = cov(&run.report, "reversed_z");
-    assert!(
-        rz_cov <= 0.05,
-        "reversed_z: {rz_cov}% of pixels see another surface"
-    );
-    for v in ["clamp", "infinite"] {
-        let c = cov(&std_run.report, v);
-        assert!(
-            c > 0.5,
-            "{v}: standard depth should z-fight here, {c}% coverage mismatch"
+    let (nearest, gap) = casters_distance_and_gap(&file);
+    for format in DEPTH_FORMATS {
+        let flag = depth_formats::flag(format);
+        let rz = [
+            &SIZE[..],
+            &["--scene", &file, "--variant", "reversed_z"],
+            &flag,
+        ]
+        .concat();
+        let rz_run = run_or_refused(&format!("lesson_07_deep_reversed_{format}"), &rz);
+        let std_args = [
+            &SIZE[..],
+            &[
+                "--scene",
+                &file,
+                "--variant",
+                "clamp",
+                "--variant",
+                "infinite",
+            ],
+            &flag,
+        ]
+        .concat();
+        let name = format!("lesson_07_deep_standard_{format}");
+        let Some(std_run) = support::run_lesson(BIN, &name, &std_args) else {
+            return;
+        };
+        let (depth, storage) = depth_formats::used(&std_run.report, format);
+        // The precondition, from what the buffer stores: standard depth puts
+        // the casters at z = 1 − n/d, where one step spans Δd = step·d²/n.
+        let near = 1e-3;
+        let resolvable = depth_formats::step_near_one(&storage) * nearest * nearest / near;
+        eprintln!(
+            "{} {depth} ({storage}): casters from {nearest:.1} units, {:.3} above the floor; standard depth resolves Δd ≥ {resolvable:.2} there",
+            backend(&std_run.report),
+            gap
         );
-    }
-    assert!(
-        rz_off <= 0.05,
-        "reversed_z: {rz_off}% wrong away from edges"
-    );
-    for (v, off) in [("clamp", clamp_off), ("infinite", inf_off)] {
         assert!(
-            off > 0.05 && off > 5.0 * rz_off,
-            "{v} should fail on the deep range (standard depth): {off}% off-edge vs reversed_z {rz_off}%"
+            gap > 0.0 && resolvable > 100.0 * gap,
+            "{depth} ({storage}): standard depth should not resolve the {gap}-unit gap (Δd = {resolvable})"
         );
+        let cov = |r: &serde_json::Value, v| support::error(r, v, "coverage_mismatch_pct");
+        // Reversed-Z sees what the reference sees (where it runs).
+        let (rz_cov, rz_off) = match &rz_run {
+            Some(run) => {
+                let rz_all = support::error(&run.report, "reversed_z", "misclassified_pct");
+                let (c, off) = (
+                    cov(&run.report, "reversed_z"),
+                    worst_off_edge(run, "reversed_z"),
+                );
+                eprintln!("  reversed_z: coverage mismatch {c:.3}%, off-edge {off:.3}% (all {rz_all:.3}%)");
+                assert!(rz_all <= 0.5, "reversed_z: {rz_all}% misclassified");
+                assert!(c <= 0.05, "reversed_z: {c}% of pixels see another surface");
+                assert!(off <= 0.05, "reversed_z: {off}% wrong away from edges");
+                (c, off)
+            }
+            None => (0.0, 0.0),
+        };
+        // Standard depth cannot keep the casters in front of the floor (the
+        // base pass z-fights) nor count their volumes right near it.
+        for v in ["clamp", "infinite"] {
+            let (c, off) = (cov(&std_run.report, v), worst_off_edge(&std_run, v));
+            eprintln!("  {v}: coverage mismatch {c:.3}%, off-edge {off:.3}%");
+            assert!(
+                c > DEEP_ZFIGHT_COVERAGE_PCT && c > 5.0 * rz_cov,
+                "{v} in {depth}: standard depth should z-fight here, {c}% coverage mismatch (reversed_z {rz_cov}%)"
+            );
+            assert!(
+                off > 0.05 && off > 5.0 * rz_off,
+                "{v} in {depth} should fail on the deep range (standard depth): {off}% off-edge vs reversed_z {rz_off}%"
+            );
+        }
     }
 }
 

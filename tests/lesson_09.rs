@@ -40,12 +40,6 @@ fn run(name: &str, scene: Option<&str>, variants: &[&str]) -> Option<support::Le
     support::run_lesson(BIN, name, &args)
 }
 
-/// "vulkan" or "gl": the backend the run's adapter used.
-fn backend(report: &serde_json::Value) -> String {
-    let b = report["adapter"]["backend"].as_str().unwrap_or("unknown");
-    b.to_lowercase()
-}
-
 #[test]
 fn lesson_09_snapshot() {
     let Some(run) = run("lesson_09_snapshot", None, &[]) else {
@@ -59,9 +53,9 @@ fn lesson_09_snapshot() {
         text += &format!("\n{v}:\n");
         text += &support::ascii_levels(&run.out.join(format!("{v}_visibility_l0.png")), 64, 20);
     }
-    text += "\nerror against the reference (0.1 percentage points):\n";
+    text += "\nerror against the reference (0.01 percentage points):\n";
     for v in run.report["variants"].as_array().expect("variants") {
-        text += &support::error_line(v, 1);
+        text += &support::error_line(v, 2);
         text += "\n";
     }
     text += &support::counter_lines(
@@ -93,8 +87,7 @@ fn lesson_09_snapshot() {
             .collect();
         text += &format!("{name:<18} {}\n", at.join(" "));
     }
-    // Edge pixels round differently on Vulkan and GL: one snapshot each.
-    insta::assert_snapshot!(format!("lesson_09_{}", backend(&run.report)), text);
+    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_09", text));
 }
 
 /// The chapter's claims on the default scene, with the same texels

@@ -1,0 +1,323 @@
+//! The snapshots' tolerances (`tests/support/tolerance.rs`), checked on
+//! measured differences between adapters, and on broken techniques.
+//!
+//! `tests/snapshot_replay/` holds snapshot texts recorded on three
+//! adapters before the snapshots were compared with tolerances:
+//!
+//! - `h100/`: every snapshot that differed when the tests ran on an NVIDIA
+//!   H100 (Vulkan, `WORKBOOK_ADAPTER=any`, commit `631f993`;
+//!   `../shared/measurements/h100-2026-11-24/tests-adapter-any/`), as
+//!   `NAME.h100.txt`, beside the text committed then, recorded on
+//!   lavapipe (`NAME.lavapipe.txt`);
+//! - `gl/`: every snapshot that was kept once per backend because
+//!   llvmpipe (GL) and lavapipe (Vulkan) differ, as `NAME.llvmpipe.txt`
+//!   and `NAME.lavapipe.txt`.
+//!
+//! Every pair must match within the tolerances (the adapters are all
+//! right), and every pair must differ somewhere (else it proves nothing).
+//! Then each lesson's kind of breakage, applied to a committed text, must
+//! fail: a tolerance wide enough to pass a broken technique is a defect.
+
+mod support;
+
+use std::path::{Path, PathBuf};
+
+use support::tolerance::{self, compare, matches};
+
+fn replay_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshot_replay")
+}
+
+/// The (name, committed, other) pairs of one folder.
+fn pairs(folder: &str, other: &str) -> Vec<(String, String, String)> {
+    let dir = replay_dir().join(folder);
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
+        let name = e.unwrap().file_name().to_string_lossy().to_string();
+        let Some(stem) = name.strip_suffix(".lavapipe.txt") else {
+            continue;
+        };
+        let read = |f: String| {
+            std::fs::read_to_string(dir.join(&f)).unwrap_or_else(|e| panic!("{folder}/{f}: {e}"))
+        };
+        out.push((
+            stem.to_string(),
+            read(name.clone()),
+            read(format!("{stem}.{other}.txt")),
+        ));
+    }
+    out.sort();
+    out
+}
+
+fn replay(folder: &str, other: &str, expect: usize) {
+    let pairs = pairs(folder, other);
+    assert_eq!(pairs.len(), expect, "{folder}: pairs replayed");
+    let mut failures = String::new();
+    for (name, committed, new) in &pairs {
+        let diffs = compare(committed, new);
+        assert!(
+            !diffs.is_empty(),
+            "{folder}/{name}: the pair does not differ"
+        );
+        for d in &diffs {
+            eprintln!(
+                "{folder}/{name} line {}: {} [{}]",
+                d.line,
+                d.what,
+                if d.within { "within" } else { "BEYOND" }
+            );
+            if !d.within {
+                failures += &format!("{folder}/{name} line {}: {}\n", d.line, d.what);
+            }
+        }
+    }
+    assert!(failures.is_empty(), "beyond tolerance:\n{failures}");
+}
+
+/// Every snapshot difference the H100 showed is within tolerance.
+#[test]
+fn h100_differences_are_within_tolerance() {
+    replay("h100", "h100", 15);
+}
+
+/// Every difference between llvmpipe and lavapipe is within tolerance.
+#[test]
+fn llvmpipe_differences_are_within_tolerance() {
+    replay("gl", "llvmpipe", 7);
+}
+
+// ---- the tolerances fail what they must ---------------------------------
+
+/// Replaces the first `from` on the first line that contains `on` (and
+/// `from`) with `to`.
+fn edit(text: &str, on: &str, from: &str, to: &str) -> String {
+    let mut done = false;
+    let out: Vec<String> = text
+        .lines()
+        .map(|l| {
+            if !done && l.contains(on) && l.contains(from) {
+                done = true;
+                l.replacen(from, to, 1)
+            } else {
+                l.to_string()
+            }
+        })
+        .collect();
+    assert!(done, "no line with {on:?} and {from:?}");
+    out.join("\n") + "\n"
+}
+
+/// A committed snapshot of `tests/snapshots/`, without insta's header.
+fn snapshot(name: &str) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/snapshots")
+        .join(format!("{name}.snap"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let body = text.splitn(3, "---\n").nth(2).expect("insta header");
+    body.to_string()
+}
+
+/// `text` as if variant `good` had measured what `bad` measured: every
+/// line of `good` gets the numbers of the same line of `bad`.
+fn measured_as(text: &str, good: &str, bad: &str) -> String {
+    // Figure and counter lines, not a mask's heading ("k4 visibility:").
+    let first =
+        |l: &str, name: &str| l.split_whitespace().next() == Some(name) && !l.ends_with(':');
+    let mut bad_lines = text.lines().filter(|l| first(l, bad));
+    let mut swapped = 0;
+    let out: Vec<String> = text
+        .lines()
+        .map(|l| {
+            if first(l, good) {
+                if let Some(b) = bad_lines.next() {
+                    swapped += 1;
+                    return format!("{good}{}", &b[bad.len()..]);
+                }
+            }
+            l.to_string()
+        })
+        .collect();
+    assert!(swapped > 0, "no line of {good} and {bad}");
+    out.join("\n") + "\n"
+}
+
+/// Each lesson's kind of breakage, taken from a variant of the same run
+/// that has it (the lesson's own negative control), fails the snapshot of
+/// the variant that does not; a variant that renders the same passes.
+#[test]
+fn broken_techniques_fail() {
+    // (snapshot, the right variant, a broken one, what breaks)
+    let broken = [
+        ("lesson_02__lesson_02", "slope_hw", "none", "no bias"),
+        (
+            "lesson_02__lesson_02",
+            "bias_4tx",
+            "bias_1tx",
+            "a bias 4x too small",
+        ),
+        (
+            "lesson_02__lesson_02",
+            "bias_4tx",
+            "bias_16tx",
+            "a bias 4x too large",
+        ),
+        (
+            "lesson_03__lesson_03",
+            "pcf_3x3",
+            "pcf_7x7_flat",
+            "no receiver-plane bias",
+        ),
+        (
+            "lesson_04__lesson_04",
+            "linear_1024",
+            "linear_256",
+            "a map 4x too small",
+        ),
+        (
+            "lesson_04__lesson_04",
+            "linear_1024",
+            "depth_euclid_1024",
+            "distance against depth",
+        ),
+        (
+            "lesson_06__lesson_06",
+            "zfail_cpu",
+            "zfail_no_back_cap",
+            "a missing back cap",
+        ),
+        (
+            "lesson_06__lesson_06",
+            "zfail_cpu",
+            "zfail_no_front_cap",
+            "a missing front cap",
+        ),
+        (
+            "lesson_06__lesson_06",
+            "zfail_cpu",
+            "zpass_quads",
+            "z-pass with the eye in shadow",
+        ),
+        (
+            "lesson_07__lesson_07",
+            "infinite",
+            "neither",
+            "the back cap clipped",
+        ),
+        (
+            "lesson_08__lesson_08",
+            "depth_bounds",
+            "unbounded",
+            "no depth bounds",
+        ),
+        (
+            "lesson_08__lesson_08",
+            "bounds_scissor",
+            "depth_bounds",
+            "no scissor",
+        ),
+        ("lesson_09__lesson_09", "k4", "k4_uniform", "uniform splits"),
+        ("lesson_09__lesson_09", "k4", "k2", "two cascades dropped"),
+    ];
+    for (name, good, bad, what) in broken {
+        let text = snapshot(name);
+        let mutated = measured_as(&text, good, bad);
+        let diffs = compare(&text, &mutated);
+        assert!(
+            diffs.iter().any(|d| !d.within),
+            "{name}: {good} measured as {bad} ({what}) passed: {diffs:?}"
+        );
+    }
+    // The same pixels and costs pass.
+    for (name, good, same) in [
+        ("lesson_05__lesson_05", "zpass_cpu", "zpass_compute"),
+        ("lesson_06__lesson_06", "zfail_cpu", "zfail_compute"),
+        ("lesson_04__lesson_04", "linear_1024", "depth_1024"),
+    ] {
+        let text = snapshot(name);
+        assert!(matches(&text, &measured_as(&text, good, same)), "{name}");
+    }
+    // Counters the tolerances keep exact: one volume triangle lost.
+    let l05 = snapshot("lesson_05__lesson_05");
+    assert!(!matches(&l05, &edit(&l05, "zpass_cpu ", "2199", "2197")));
+    // Stencil updates 4 % off: beyond what rasterisers differ by (1.4 %).
+    let l08 = snapshot("lesson_08__lesson_08");
+    assert!(!matches(
+        &l08,
+        &edit(&l08, "unbounded ", "163735", "170300")
+    ));
+    assert!(matches(&l08, &edit(&l08, "unbounded ", "163735", "166003")));
+}
+
+/// Moves the shadow ('#') of the mask under `heading` right by `cells`,
+/// on the surfaces it covers ('.' and '#' stay covered).
+fn shadow_moved(text: &str, heading: &str, cells: usize) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    let at = lines.iter().position(|l| *l == heading).expect("heading");
+    let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    for row in out.iter_mut().skip(at + 1) {
+        if row.is_empty() {
+            break;
+        }
+        let old: Vec<char> = row.chars().collect();
+        *row = (0..old.len())
+            .map(|i| match old[i] {
+                ' ' => ' ',
+                _ if i >= cells && old[i - cells] == '#' => '#',
+                _ => '.',
+            })
+            .collect();
+    }
+    out.join("\n") + "\n"
+}
+
+/// A mask: a shadow displaced by two cells (1/32 of the width) fails;
+/// two cells flipped at an edge (what rasterisers differ by) pass.
+#[test]
+fn masks_fail_when_a_shadow_moves() {
+    let l05 = snapshot("lesson_05__lesson_05");
+    let moved = shadow_moved(&l05, "zpass_quads visibility, light 1:", 2);
+    let diffs = compare(&l05, &moved);
+    assert!(
+        diffs.iter().any(|d| !d.within),
+        "a moved shadow passed: {diffs:?}"
+    );
+    let flipped = edit(&l05, "..........##.............", "##", "#.");
+    let diffs = compare(&l05, &flipped);
+    assert!(diffs.len() == 1 && diffs[0].within, "{diffs:?}");
+}
+
+/// The parser: numbers inside names stay words, keys are found, and a
+/// changed word fails.
+#[test]
+fn numbers_keys_and_words() {
+    let a = "res_256        misclassified   48.7%  false shadow   48.7%  false lit    0.0%";
+    let b = "res_256        misclassified   48.6%  false shadow   48.6%  false lit    0.0%";
+    assert!(matches(a, b));
+    // `res_256` is a name: changing it is a change of words.
+    let c = b.replace("res_256", "res_512");
+    assert!(!matches(a, &c));
+    // Exact keys: draws must not move by one.
+    assert!(!matches(
+        "zpass_cpu   draws 25  volume_triangles 2199",
+        "zpass_cpu   draws 26  volume_triangles 2199"
+    ));
+    // Padding follows the width of a number.
+    assert!(matches(
+        "k4   misclassified    9.9%",
+        "k4   misclassified   10.0%"
+    ));
+    assert_eq!(
+        tolerance::class_of("%  mean |dV|"),
+        (tolerance::Class::Figure, "mean |dV|")
+    );
+    assert_eq!(tolerance::class_of("k4   ").0, tolerance::Class::Exact);
+    // An override applies to its variant only.
+    let lo = "learnopengl_pcf20 misclassified   0.28%  false shadow   0.02%  false lit   0.26%";
+    let hi = "learnopengl_pcf20 misclassified   0.34%  false shadow   0.30%  false lit   0.04%";
+    assert!(matches(lo, hi));
+    assert!(!matches(
+        &lo.replace("learnopengl_pcf20", "bevy_point"),
+        &hi.replace("learnopengl_pcf20", "bevy_point")
+    ));
+}
