@@ -178,8 +178,14 @@ fn run(cli: Cli) -> Result<bool> {
     let text = serde_json::to_string_pretty(&all)? + "\n";
     std::fs::write(&json, text).with_context(|| format!("cannot write {}", json.display()))?;
     let passed = all.iter().filter(|r| r.passed).count();
+    let on = all
+        .iter()
+        .find(|r| !r.adapter.is_empty())
+        .map_or("no adapter".into(), |r| {
+            format!("{} ({})", r.adapter, r.backend)
+        });
     println!(
-        "graded {} exercises: {passed} passed, {} failed ({}; results in {})",
+        "graded {} exercises: {passed} passed, {} failed ({}; on {on}; results in {})",
         all.len(),
         all.len() - passed,
         if cfg!(feature = "solutions") {

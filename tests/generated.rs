@@ -16,6 +16,9 @@
 //! The message names the file, the variant and the cell, and says how to
 //! regenerate.
 
+#[path = "../book/generate/adapters.rs"]
+#[allow(dead_code)]
+mod adapters;
 #[path = "../book/generate/choosing.rs"]
 #[allow(dead_code)]
 mod choosing;
@@ -158,6 +161,11 @@ fn derived_tables_are_the_tables_their_records_make() {
             choosing::volumes_build(&records),
         ),
     ];
+    let h100 = adapters::load_reports(&root()).expect("the H100's reports");
+    expected.push((
+        "adapters/h100.md".to_string(),
+        adapters::h100_table(&records, &h100),
+    ));
     if let Some(r) = records
         .iter()
         .find(|r| r.lesson == "lesson_09" && r.run == "results")

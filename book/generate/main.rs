@@ -11,6 +11,7 @@
 //! checks), `book/src/figures/` (figures, plots, diagrams) and the README's
 //! table between its marker comments.
 
+mod adapters;
 mod choosing;
 mod diagrams;
 mod lesson09;
@@ -52,6 +53,9 @@ enum Command {
         #[arg(long, default_value = manifest::BACKEND)]
         backend: String,
     },
+    /// Rewrite the tables, plots and README block that are made from the
+    /// committed records, without running a lesson.
+    Tables,
 }
 
 fn root() -> PathBuf {
@@ -66,7 +70,19 @@ fn main() {
 }
 
 fn run(cli: Cli) -> Result<()> {
-    let Command::Book { only, backend } = cli.command;
+    let (only, backend) = match cli.command {
+        Command::Book { only, backend } => (only, backend),
+        Command::Tables => {
+            let root = root();
+            derive(
+                &root,
+                &root.join("book/src/generated"),
+                &root.join("book/src/figures"),
+            )?;
+            println!("tables, plots and the README block rewritten from the records");
+            return Ok(());
+        }
+    };
     if let Some(l) = &only {
         if !RUNS.iter().any(|r| r.lesson == l) {
             bail!("--only: no lesson {l:?} in the manifest (lesson_01 to lesson_09)");
@@ -116,22 +132,30 @@ fn run(cli: Cli) -> Result<()> {
     }
     bar.finish_with_message("runs done");
     copy_outputs(&work, &figures, &generated, only.as_deref())?;
-    let records = load_records(&generated)?;
-    write_scenes_tables(&generated, &records)?;
-    choosing::write_all(&generated, &records)?;
-    lesson09::write_all(&generated, &figures, &records)?;
-    let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
-    write_plots(&figures, &defaults)?;
-    let readme = root.join("README.md");
-    let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
-    let text = summary::splice(&text, &summary::readme_block(&defaults))
-        .with_context(|| format!("README.md has no line {}", summary::BEGIN))?;
-    write(&readme, &text)?;
+    derive(&root, &generated, &figures)?;
     let dir = figures.join("diagrams");
     std::fs::create_dir_all(&dir)?;
     diagrams::write_all(&root, &dir)?;
     println!("regenerated in {:.0} s", start.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// Everything made from the committed records: the scenes' tables, the
+/// closing chapter's, chapter 09's, the adapters' comparison, the plots
+/// and the README's results block.
+fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
+    let records = load_records(generated)?;
+    write_scenes_tables(generated, &records)?;
+    choosing::write_all(generated, &records)?;
+    lesson09::write_all(generated, figures, &records)?;
+    adapters::write_all(root, generated, &records)?;
+    let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
+    write_plots(figures, &defaults)?;
+    let readme = root.join("README.md");
+    let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
+    let text = summary::splice(&text, &summary::readme_block(&defaults))
+        .with_context(|| format!("README.md has no line {}", summary::BEGIN))?;
+    write(&readme, &text)
 }
 
 /// The runner, building the lesson binaries first when one is missing.

@@ -1,0 +1,128 @@
+//! How far another adapter's error figures are from the records': an
+//! NVIDIA H100's reports of every lesson's default scene
+//! (`tests/snapshot_replay/h100_reports/`, from
+//! `lesson_NN --headless --adapter any --backend vulkan --width 640
+//! --height 360 --frames 5` at commit `631f993`) against the records the
+//! book's tables are made from (lavapipe). The coursework page shows it
+//! beside the snapshots' tolerances.
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use common::report::Report;
+
+use crate::record::{pct, Record};
+
+/// The H100's reports, beside the tests that replay them.
+pub const REPORTS: &str = "tests/snapshot_replay/h100_reports";
+
+/// The H100's report of each lesson that has one, in lesson order.
+pub fn load_reports(root: &Path) -> Result<Vec<Report>> {
+    let mut out = Vec::new();
+    for n in 1..=9 {
+        let path = root.join(REPORTS).join(format!("lesson_{n:02}.json"));
+        let text = std::fs::read_to_string(&path)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        let report: Report = serde_json::from_str(&text)
+            .with_context(|| format!("{}: not a report", path.display()))?;
+        out.push(report);
+    }
+    Ok(out)
+}
+
+/// The largest difference of one figure over a lesson's variants:
+/// (|Δ|, variant, record's value, report's value).
+type Largest = (f64, String, f64, f64);
+
+fn largest(
+    rec: &Record,
+    report: &Report,
+    f: fn(&common::metrics::ErrorStats) -> f64,
+    g: fn(&crate::record::VariantRecord) -> f64,
+) -> Option<Largest> {
+    rec.variants
+        .iter()
+        .filter_map(|v| {
+            let r = report.variants.iter().find(|w| w.name == v.name)?;
+            let (a, b) = (g(v), f(&r.error));
+            Some(((a - b).abs(), v.name.clone(), a, b))
+        })
+        .max_by(|x, y| x.0.total_cmp(&y.0))
+}
+
+fn cell(l: &Option<Largest>) -> String {
+    match l {
+        Some((d, name, a, b)) => format!("{} (`{name}`: {} → {})", pct(*d), pct(*a), pct(*b)),
+        None => "—".into(),
+    }
+}
+
+/// The table: per lesson, the largest difference of each error figure
+/// and the variant it is on; then every lesson together.
+pub fn h100_table(records: &[Record], reports: &[Report]) -> String {
+    let figures: [(
+        &str,
+        fn(&common::metrics::ErrorStats) -> f64,
+        fn(&crate::record::VariantRecord) -> f64,
+    ); 3] = [
+        (
+            "misclassified",
+            |e| e.misclassified_pct,
+            |v| v.misclassified_pct,
+        ),
+        (
+            "false shadow",
+            |e| e.false_shadow_pct,
+            |v| v.false_shadow_pct,
+        ),
+        ("false lit", |e| e.false_lit_pct, |v| v.false_lit_pct),
+    ];
+    let mut rows = Vec::new();
+    let mut all: Vec<Option<Largest>> = vec![None; figures.len()];
+    let (mut adapter, mut theirs, mut size) = (String::new(), String::new(), String::new());
+    for report in reports {
+        let Some(rec) = records
+            .iter()
+            .find(|r| r.lesson == report.lesson && r.run == "results")
+        else {
+            continue;
+        };
+        adapter = format!("{}, {}", rec.adapter, rec.backend);
+        theirs = format!("{}, {}", report.adapter.name, report.adapter.backend);
+        size = format!("{}×{}", report.width, report.height);
+        let mut cells = vec![
+            format!("{}", &report.lesson["lesson_".len()..]),
+            report.variants.len().to_string(),
+        ];
+        for (k, (_, f, g)) in figures.iter().enumerate() {
+            let l = largest(rec, report, *f, *g);
+            if l.as_ref().map(|x| x.0) > all[k].as_ref().map(|x| x.0) {
+                all[k] = l.clone();
+            }
+            cells.push(cell(&l));
+        }
+        rows.push(format!("| {} |", cells.join(" | ")));
+    }
+    let n: usize = reports.iter().map(|r| r.variants.len()).sum();
+    let mut last = vec!["every lesson".to_string(), n.to_string()];
+    last.extend(all.iter().map(cell));
+    rows.push(format!("| {} |", last.join(" | ")));
+    let head: Vec<String> = figures
+        .iter()
+        .map(|(name, _, _)| format!("{name}: largest difference, points (variant: ours → H100)"))
+        .collect();
+    format!(
+        "*{theirs} against the records ({adapter}) · {size} · each lesson's default scene, every variant · error figures in percentage points of receiver pixels*\n\n| lesson | variants | {} |\n| --- | --- | --- | --- | --- |\n{}\n",
+        head.join(" | "),
+        rows.join("\n")
+    )
+}
+
+/// Writes `generated/adapters/h100.md`.
+pub fn write_all(root: &Path, generated: &Path, records: &[Record]) -> Result<()> {
+    let dir = generated.join("adapters");
+    std::fs::create_dir_all(&dir)?;
+    let path = dir.join("h100.md");
+    let text = h100_table(records, &load_reports(root)?);
+    std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))
+}
