@@ -131,13 +131,19 @@ fn run(cli: Cli) -> Result<bool> {
         }
     }
     let adapter = match &cli.adapter {
-        Some(a) => a.clone(),
-        None => std::env::var("WORKBOOK_ADAPTER")
-            .ok()
-            .filter(|v| !v.trim().is_empty())
-            .unwrap_or_else(|| "any".into()),
+        Some(a) => {
+            common::gpu::AdapterChoice::parse(a)?;
+            a.clone()
+        }
+        None => {
+            let a = std::env::var("WORKBOOK_ADAPTER")
+                .ok()
+                .filter(|v| !v.trim().is_empty())
+                .unwrap_or_else(|| "any".into());
+            common::gpu::AdapterChoice::parse(&a).context("WORKBOOK_ADAPTER")?;
+            a
+        }
     };
-    common::gpu::AdapterChoice::parse(&adapter).context("--adapter")?;
     rebuild_lessons()?;
     let exe = std::env::current_exe().context("cannot find the grade binary's own path")?;
     let runner = runner::Runner::beside(&exe)?;

@@ -209,7 +209,9 @@ fn no_adapter_says_what_to_install() {
     }
     let e = fails(&["--backend", "metal"]);
     assert!(
-        e.contains("no GPU adapter found") && e.contains("mesa-vulkan-drivers"),
+        e.contains("no GPU adapter found")
+            && e.contains("mesa-vulkan-drivers")
+            && e.contains("macOS"),
         "{e}"
     );
 }
@@ -250,6 +252,17 @@ fn unknown_adapter_is_one_line() {
     let e = fails(&["--adapter", "no-such-gpu-9000"]);
     assert!(
         e.contains("--adapter") && e.contains("no-such-gpu-9000"),
+        "{e}"
+    );
+}
+
+/// `--depth-format` with a format the workbook does not offer: one line
+/// naming the flag and the value.
+#[test]
+fn unknown_depth_format_is_one_line() {
+    let e = fails(&["--depth-format", "depth16unorm"]);
+    assert!(
+        e.contains("--depth-format") && e.contains("depth16unorm"),
         "{e}"
     );
 }

@@ -208,7 +208,7 @@ fn extreme_range(format: &str) {
         .map(|l| l.split(',').nth(8).unwrap())
         .collect();
     assert!(!d24_storage.is_empty());
-    if depth == "Depth24PlusStencil8" {
+    if depth == "Depth24PlusStencil8" && storage != "unknown" {
         assert!(
             d24_storage.iter().all(|s| *s == storage),
             "the study's Depth24PlusStencil8 rows model {d24_storage:?}, the probe found {storage}"
@@ -280,10 +280,10 @@ fn run_or_refused(name: &str, args: &[&str]) -> Option<support::LessonRun> {
     })
 }
 
-/// The deep-range scene's casters: the nearest caster vertex's distance
-/// from the eye, and the smallest height of a caster above the floor (the
-/// receivers that cast no shadow), both from the scene file itself.
-fn casters_distance_and_gap(file: &str) -> (f64, f64) {
+/// The deep-range scene, read from its file: the near plane, the nearest
+/// caster vertex's distance from the eye, and the smallest height of a
+/// caster above the floor (the receivers that cast no shadow).
+fn near_casters_distance_and_gap(file: &str) -> (f64, f64, f64) {
     let s = common::scene::Scene::load(std::path::Path::new(file)).unwrap();
     let vertices = |casts: bool| {
         let objects = s.objects.iter().filter(move |o| o.casts_shadow == casts);
@@ -298,26 +298,29 @@ fn casters_distance_and_gap(file: &str) -> (f64, f64) {
         .fold(f64::MAX, f64::min);
     let floor = vertices(false).map(|p| p.y).fold(f64::MIN, f64::max);
     let lowest = vertices(true).map(|p| p.y).fold(f64::MAX, f64::min);
-    (nearest, lowest - floor)
+    (s.camera.near, nearest, lowest - floor)
 }
 
 /// Standard depth's coverage mismatch on the deep range must exceed this
 /// (%). Measured at 320×180: lavapipe clamp 2.18, infinite 2.75; llvmpipe
 /// (GL) 4.28, 3.50, the same in Depth32FloatStencil8 and (true 24-bit)
 /// Depth24PlusStencil8; NVIDIA H100 (Vulkan) 0.354 (clamp). Reversed-Z
-/// stays ≤ 0.05 (0.000 on lavapipe), so 0.1 parts the two.
+/// stays ≤ 0.05 (0.000 on lavapipe), so 0.1 parts the two; the test also
+/// asks for 3× reversed-Z's own figure.
 const DEEP_ZFIGHT_COVERAGE_PCT: f64 = 0.1;
 
 /// Issue 8, item 5: near = 1e-3, far = 1e5, the casters ~400 units away and
 /// 1 cm above the floor. Reversed-Z in Depth32Float (far plane at infinity)
 /// is exact away from shadow edges (≤ 0.05 %); `clamp` and `infinite`
 /// (standard depth, whose steps near 1 are 2⁻²⁴ in either format) are not,
-/// in the adapter's default depth format and in Depth24PlusStencil8. On GL,
-/// which refuses reversed-Z, standard depth's failure is checked alone.
+/// in the adapter's default depth format and in Depth24PlusStencil8
+/// (`--depth-format` sets the scene's depth; reversed-Z keeps its own
+/// Depth32FloatStencil8). On GL, which refuses reversed-Z, standard
+/// depth's failure is checked alone.
 #[test]
 fn lesson_07_reversed_z_exact_on_deep_range() {
     let file = scene("lesson_07_deep_range.toml");
-    let (nearest, gap) = casters_distance_and_gap(&file);
+    let (near, nearest, gap) = near_casters_distance_and_gap(&file);
     for format in DEPTH_FORMATS {
         let flag = depth_formats::flag(format);
         let rz = [
@@ -347,7 +350,6 @@ fn lesson_07_reversed_z_exact_on_deep_range() {
         let (depth, storage) = depth_formats::used(&std_run.report, format);
         // The precondition, from what the buffer stores: standard depth puts
         // the casters at z = 1 − n/d, where one step spans Δd = step·d²/n.
-        let near = 1e-3;
         let resolvable = depth_formats::step_near_one(&storage) * nearest * nearest / near;
         eprintln!(
             "{} {depth} ({storage}): casters from {nearest:.1} units, {:.3} above the floor; standard depth resolves Δd ≥ {resolvable:.2} there",
@@ -381,7 +383,7 @@ fn lesson_07_reversed_z_exact_on_deep_range() {
             let (c, off) = (cov(&std_run.report, v), worst_off_edge(&std_run, v));
             eprintln!("  {v}: coverage mismatch {c:.3}%, off-edge {off:.3}%");
             assert!(
-                c > DEEP_ZFIGHT_COVERAGE_PCT && c > 5.0 * rz_cov,
+                c > DEEP_ZFIGHT_COVERAGE_PCT && c > 3.0 * rz_cov,
                 "{v} in {depth}: standard depth should z-fight here, {c}% coverage mismatch (reversed_z {rz_cov}%)"
             );
             assert!(

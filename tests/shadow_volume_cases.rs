@@ -9,6 +9,7 @@
 //! Not here: a volume crossing a finite far plane. That is lesson 07's
 //! subject (its tests own it); lessons 05-06 use `far = "infinite"`.
 
+mod depth_formats;
 mod support;
 
 use std::path::{Path, PathBuf};
@@ -30,6 +31,26 @@ fn run(test: &str, scene_path: &Path, variants: &[&str]) -> Option<support::Less
         args.extend(["--variant", v]);
     }
     support::run_lesson(BIN, test, &args)
+}
+
+/// [`run`] with the scene's depth in `format` (`--depth-format`); the
+/// report's format and storage are checked and returned.
+fn run_in(
+    format: &str,
+    test: &str,
+    scene_path: &Path,
+    variants: &[&str],
+) -> Option<(support::LessonRun, String)> {
+    let s = scene_path.to_str().expect("utf-8 path");
+    let mut args: Vec<&str> = SIZE.to_vec();
+    args.extend(["--scene", s]);
+    for v in variants {
+        args.extend(["--variant", v]);
+    }
+    args.extend(depth_formats::flag(format));
+    let run = support::run_lesson(BIN, &format!("{test}_{format}"), &args)?;
+    let (depth, storage) = depth_formats::used(&run.report, format);
+    Some((run, format!("{depth} ({storage})")))
 }
 
 fn counter(run: &support::LessonRun, variant: &str, key: &str) -> Option<u64> {
@@ -78,44 +99,56 @@ fn assert_exact(run: &support::LessonRun, variant: &str) {
     );
 }
 
+/// Z-pass fails with the eye in shadow, z-fail is exact: in the adapter's
+/// default depth format and in Depth24PlusStencil8.
 #[test]
 fn eye_inside_the_umbra() {
-    let Some(r) = run(
-        "case_eye_in_umbra",
-        &scene("volume_eye_in_umbra.toml"),
-        &["zpass_quads", "zfail_quads", "zfail_cpu"],
-    ) else {
-        return;
-    };
-    let zpass = support::misclassified(&r, "zpass_quads");
-    assert!(
-        zpass > 10.0,
-        "z-pass must fail with the eye in shadow, got {zpass:.2}%"
-    );
-    assert_exact(&r, "zfail_quads");
-    assert_exact(&r, "zfail_cpu");
+    for format in depth_formats::DEPTH_FORMATS {
+        let Some((r, depth)) = run_in(
+            format,
+            "case_eye_in_umbra",
+            &scene("volume_eye_in_umbra.toml"),
+            &["zpass_quads", "zfail_quads", "zfail_cpu"],
+        ) else {
+            return;
+        };
+        let zpass = support::misclassified(&r, "zpass_quads");
+        eprintln!("eye in umbra, {depth}: zpass_quads {zpass:.3}%");
+        assert!(
+            zpass > 10.0,
+            "{depth}: z-pass must fail with the eye in shadow, got {zpass:.2}%"
+        );
+        assert_exact(&r, "zfail_quads");
+        assert_exact(&r, "zfail_cpu");
+    }
 }
 
+/// Z-pass fails where the near plane cuts a volume; z-fail (everywhere or
+/// selectively) is exact: in both depth formats.
 #[test]
 fn near_plane_slices_a_volume() {
-    let Some(r) = run(
-        "case_near_slice",
-        &scene("volume_near_slice.toml"),
-        &["zpass_quads", "zfail_quads", "zfail_selective"],
-    ) else {
-        return;
-    };
-    let zpass = support::misclassified(&r, "zpass_quads");
-    assert!(
-        zpass > 5.0,
-        "z-pass must fail where the near plane is in shadow, got {zpass:.2}%"
-    );
-    assert_exact(&r, "zfail_quads");
-    assert_exact(&r, "zfail_selective");
-    assert!(
-        counter(&r, "zfail_selective", "casters_zfail") >= Some(1),
-        "the slab needs z-fail"
-    );
+    for format in depth_formats::DEPTH_FORMATS {
+        let Some((r, depth)) = run_in(
+            format,
+            "case_near_slice",
+            &scene("volume_near_slice.toml"),
+            &["zpass_quads", "zfail_quads", "zfail_selective"],
+        ) else {
+            return;
+        };
+        let zpass = support::misclassified(&r, "zpass_quads");
+        eprintln!("near plane in a volume, {depth}: zpass_quads {zpass:.3}%");
+        assert!(
+            zpass > 5.0,
+            "{depth}: z-pass must fail where the near plane is in shadow, got {zpass:.2}%"
+        );
+        assert_exact(&r, "zfail_quads");
+        assert_exact(&r, "zfail_selective");
+        assert!(
+            counter(&r, "zfail_selective", "casters_zfail") >= Some(1),
+            "the slab needs z-fail"
+        );
+    }
 }
 
 #[test]
@@ -291,30 +324,35 @@ fn uv_seams_weld_closed() {
     assert_exact(&r, "zfail_cpu");
 }
 
+/// 256 nested volumes wrap the 8-bit count to 0, 255 do not: in the
+/// adapter's default depth format and in Depth24PlusStencil8.
 #[test]
 fn nested_256_volumes_wrap_the_stencil() {
     let path = scene("volume_nested_256.toml");
     check_generated(&path, &nested_scene(256));
-    let Some(r) = run("case_nested_256", &path, &["zfail_quads"]) else {
-        return;
-    };
-    assert_eq!(
-        counter(&r, "zfail_quads", "max_volume_overlap"),
-        Some(256),
-        "the CPU count finds 256 layers"
-    );
-    let m = support::misclassified(&r, "zfail_quads");
-    assert!(
-        m > 1.0,
-        "256 ≡ 0 (mod 256): the floor under the stack reads as lit, measured {m:.2}%"
-    );
-    // One fewer does not wrap.
     let dir = support::out_dir("case_nested_255_scene");
     let p255 = dir.join("volume_nested_255.toml");
     std::fs::write(&p255, nested_scene(255)).expect("write scene");
-    let Some(r) = run("case_nested_255", &p255, &["zfail_quads"]) else {
-        return;
-    };
-    assert_eq!(counter(&r, "zfail_quads", "max_volume_overlap"), Some(255));
-    assert_exact(&r, "zfail_quads");
+    for format in depth_formats::DEPTH_FORMATS {
+        let Some((r, depth)) = run_in(format, "case_nested_256", &path, &["zfail_quads"]) else {
+            return;
+        };
+        assert_eq!(
+            counter(&r, "zfail_quads", "max_volume_overlap"),
+            Some(256),
+            "the CPU count finds 256 layers"
+        );
+        let m = support::misclassified(&r, "zfail_quads");
+        eprintln!("256 nested volumes, {depth}: zfail_quads {m:.3}%");
+        assert!(
+            m > 1.0,
+            "{depth}: 256 ≡ 0 (mod 256): the floor under the stack reads as lit, measured {m:.2}%"
+        );
+        // One fewer does not wrap.
+        let Some((r, _)) = run_in(format, "case_nested_255", &p255, &["zfail_quads"]) else {
+            return;
+        };
+        assert_eq!(counter(&r, "zfail_quads", "max_volume_overlap"), Some(255));
+        assert_exact(&r, "zfail_quads");
+    }
 }

@@ -9,9 +9,10 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
+use common::metrics::ErrorStats;
 use common::report::Report;
 
-use crate::record::{pct, Record};
+use crate::record::{pct, Record, VariantRecord};
 
 /// The H100's reports, beside the tests that replay them.
 pub const REPORTS: &str = "tests/snapshot_replay/h100_reports";
@@ -30,21 +31,41 @@ pub fn load_reports(root: &Path) -> Result<Vec<Report>> {
     Ok(out)
 }
 
+/// One error figure: its name, in a report and in a record.
+struct Figure {
+    name: &'static str,
+    of_report: fn(&ErrorStats) -> f64,
+    of_record: fn(&VariantRecord) -> f64,
+}
+
+const FIGURES: [Figure; 3] = [
+    Figure {
+        name: "misclassified",
+        of_report: |e| e.misclassified_pct,
+        of_record: |v| v.misclassified_pct,
+    },
+    Figure {
+        name: "false shadow",
+        of_report: |e| e.false_shadow_pct,
+        of_record: |v| v.false_shadow_pct,
+    },
+    Figure {
+        name: "false lit",
+        of_report: |e| e.false_lit_pct,
+        of_record: |v| v.false_lit_pct,
+    },
+];
+
 /// The largest difference of one figure over a lesson's variants:
 /// (|Δ|, variant, record's value, report's value).
 type Largest = (f64, String, f64, f64);
 
-fn largest(
-    rec: &Record,
-    report: &Report,
-    f: fn(&common::metrics::ErrorStats) -> f64,
-    g: fn(&crate::record::VariantRecord) -> f64,
-) -> Option<Largest> {
+fn largest(rec: &Record, report: &Report, f: &Figure) -> Option<Largest> {
     rec.variants
         .iter()
         .filter_map(|v| {
             let r = report.variants.iter().find(|w| w.name == v.name)?;
-            let (a, b) = (g(v), f(&r.error));
+            let (a, b) = ((f.of_record)(v), (f.of_report)(&r.error));
             Some(((a - b).abs(), v.name.clone(), a, b))
         })
         .max_by(|x, y| x.0.total_cmp(&y.0))
@@ -60,25 +81,8 @@ fn cell(l: &Option<Largest>) -> String {
 /// The table: per lesson, the largest difference of each error figure
 /// and the variant it is on; then every lesson together.
 pub fn h100_table(records: &[Record], reports: &[Report]) -> String {
-    let figures: [(
-        &str,
-        fn(&common::metrics::ErrorStats) -> f64,
-        fn(&crate::record::VariantRecord) -> f64,
-    ); 3] = [
-        (
-            "misclassified",
-            |e| e.misclassified_pct,
-            |v| v.misclassified_pct,
-        ),
-        (
-            "false shadow",
-            |e| e.false_shadow_pct,
-            |v| v.false_shadow_pct,
-        ),
-        ("false lit", |e| e.false_lit_pct, |v| v.false_lit_pct),
-    ];
     let mut rows = Vec::new();
-    let mut all: Vec<Option<Largest>> = vec![None; figures.len()];
+    let mut all: Vec<Option<Largest>> = vec![None; FIGURES.len()];
     let (mut adapter, mut theirs, mut size) = (String::new(), String::new(), String::new());
     for report in reports {
         let Some(rec) = records
@@ -91,11 +95,11 @@ pub fn h100_table(records: &[Record], reports: &[Report]) -> String {
         theirs = format!("{}, {}", report.adapter.name, report.adapter.backend);
         size = format!("{}×{}", report.width, report.height);
         let mut cells = vec![
-            format!("{}", &report.lesson["lesson_".len()..]),
+            report.lesson["lesson_".len()..].to_string(),
             report.variants.len().to_string(),
         ];
-        for (k, (_, f, g)) in figures.iter().enumerate() {
-            let l = largest(rec, report, *f, *g);
+        for (k, f) in FIGURES.iter().enumerate() {
+            let l = largest(rec, report, f);
             if l.as_ref().map(|x| x.0) > all[k].as_ref().map(|x| x.0) {
                 all[k] = l.clone();
             }
@@ -107,9 +111,14 @@ pub fn h100_table(records: &[Record], reports: &[Report]) -> String {
     let mut last = vec!["every lesson".to_string(), n.to_string()];
     last.extend(all.iter().map(cell));
     rows.push(format!("| {} |", last.join(" | ")));
-    let head: Vec<String> = figures
+    let head: Vec<String> = FIGURES
         .iter()
-        .map(|(name, _, _)| format!("{name}: largest difference, points (variant: ours → H100)"))
+        .map(|f| {
+            format!(
+                "{}: largest difference, points (variant: ours → H100)",
+                f.name
+            )
+        })
         .collect();
     format!(
         "*{theirs} against the records ({adapter}) · {size} · each lesson's default scene, every variant · error figures in percentage points of receiver pixels*\n\n| lesson | variants | {} |\n| --- | --- | --- | --- | --- |\n{}\n",

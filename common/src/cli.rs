@@ -41,4 +41,9 @@ pub struct Args {
     /// name. WORKBOOK_ADAPTER is honoured too.
     #[arg(long, value_name = "any|software|NAME")]
     pub adapter: Option<String>,
+    /// The scene's depth-stencil format: auto (the default: Depth32FloatStencil8
+    /// where the adapter has it, else Depth24PlusStencil8) | depth24plus-stencil8
+    /// | depth32float-stencil8. WORKBOOK_DEPTH_FORMAT is honoured too.
+    #[arg(long, value_name = "auto|depth24plus-stencil8|depth32float-stencil8")]
+    pub depth_format: Option<String>,
 }

@@ -14,9 +14,9 @@ pub const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::DEPTH_CLIP_CONTROL
     .union(wgpu::Features::PIPELINE_STATISTICS_QUERY);
 
 /// What a learner installs when no adapter is found (one line, printed on exit).
-pub const NO_ADAPTER_HINT: &str = "no GPU adapter found: on Debian/Ubuntu install Mesa's software \
-drivers with `apt-get install -y mesa-vulkan-drivers libgl1-mesa-dri libegl1` (lavapipe/llvmpipe), \
-or pass --backend gl";
+pub const NO_ADAPTER_HINT: &str = "no GPU adapter found: on Linux without a GPU driver, install Mesa's \
+software rasterisers (lavapipe/llvmpipe) with `apt-get install -y mesa-vulkan-drivers libgl1-mesa-dri libegl1`, \
+or pass --backend gl; Windows (DX12, Vulkan) and macOS (Metal) use their GPU, with nothing to install";
 
 /// The device and what it can do.
 pub struct Gpu {
@@ -26,6 +26,8 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
     pub features: wgpu::Features,
+    /// The scene's depth-stencil format ([`Gpu::depth_stencil_format`]).
+    depth_format: wgpu::TextureFormat,
 }
 
 /// Which adapter to open (`--adapter`, else `WORKBOOK_ADAPTER`).
@@ -34,9 +36,8 @@ pub enum AdapterChoice {
     /// The system's preferred (high-performance) adapter: a real GPU if
     /// there is one. The default.
     Any,
-    /// A software rasteriser (lavapipe, llvmpipe): the adapter the
-    /// snapshots and the grader's targets were recorded on, so a result
-    /// does not depend on the reader's GPU.
+    /// A software rasteriser (lavapipe, llvmpipe): what CI pins, so that
+    /// its runs repeat to the fragment.
     Software,
     /// The first adapter whose name contains this text (any case).
     Named(String),
@@ -75,8 +76,84 @@ impl AdapterChoice {
     }
 }
 
+/// Which depth-stencil format the scene uses (`--depth-format`, else
+/// `WORKBOOK_DEPTH_FORMAT`). wgpu's `Depth24PlusStencil8` is 24-bit unorm
+/// where the driver has it and 32-bit float where it does not, so
+/// [`crate::depth_probe`] asks the adapter what it stores.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepthFormatChoice {
+    /// `Depth32FloatStencil8` where the adapter has it, else
+    /// `Depth24PlusStencil8`. The default.
+    Auto,
+    Depth24PlusStencil8,
+    Depth32FloatStencil8,
+}
+
+impl DepthFormatChoice {
+    /// Parses `auto`, `depth24plus-stencil8` or `depth32float-stencil8`
+    /// (any case; wgpu's names, `Depth24PlusStencil8`, are accepted too).
+    pub fn parse(text: &str) -> Result<DepthFormatChoice> {
+        let key: String = text
+            .trim()
+            .to_ascii_lowercase()
+            .chars()
+            .filter(|c| !matches!(c, '-' | '_'))
+            .collect();
+        match key.as_str() {
+            "auto" => Ok(DepthFormatChoice::Auto),
+            "depth24plusstencil8" => Ok(DepthFormatChoice::Depth24PlusStencil8),
+            "depth32floatstencil8" => Ok(DepthFormatChoice::Depth32FloatStencil8),
+            _ => bail!(
+                "unknown depth format {:?} (expected auto, depth24plus-stencil8 or depth32float-stencil8)",
+                text.trim()
+            ),
+        }
+    }
+
+    /// `--depth-format` if given, else `WORKBOOK_DEPTH_FORMAT`, else
+    /// [`DepthFormatChoice::Auto`]. Also returns where the choice came
+    /// from, for error messages.
+    pub fn from_flag_or_env(flag: Option<&str>) -> Result<(DepthFormatChoice, &'static str)> {
+        match flag {
+            Some(f) => DepthFormatChoice::parse(f)
+                .map(|c| (c, "--depth-format"))
+                .map_err(|e| anyhow!("--depth-format: {e}")),
+            None => match std::env::var("WORKBOOK_DEPTH_FORMAT") {
+                Ok(v) if !v.trim().is_empty() => DepthFormatChoice::parse(&v)
+                    .map(|c| (c, "WORKBOOK_DEPTH_FORMAT"))
+                    .map_err(|e| anyhow!("WORKBOOK_DEPTH_FORMAT: {e}")),
+                _ => Ok((DepthFormatChoice::Auto, "--depth-format")),
+            },
+        }
+    }
+
+    /// The format on `adapter`, which has `features`; asking for
+    /// `Depth32FloatStencil8` where it is missing is an error naming
+    /// `source` (the flag or the variable) and the feature.
+    pub fn resolve(
+        self,
+        features: wgpu::Features,
+        source: &str,
+        adapter: &str,
+    ) -> Result<wgpu::TextureFormat> {
+        let has_d32 = features.contains(wgpu::Features::DEPTH32FLOAT_STENCIL8);
+        Ok(match self {
+            DepthFormatChoice::Auto if has_d32 => wgpu::TextureFormat::Depth32FloatStencil8,
+            DepthFormatChoice::Auto | DepthFormatChoice::Depth24PlusStencil8 => {
+                wgpu::TextureFormat::Depth24PlusStencil8
+            }
+            DepthFormatChoice::Depth32FloatStencil8 if has_d32 => {
+                wgpu::TextureFormat::Depth32FloatStencil8
+            }
+            DepthFormatChoice::Depth32FloatStencil8 => bail!(
+                "{source} depth32float-stencil8: the adapter {adapter} lacks the DEPTH32FLOAT_STENCIL8 feature; use depth24plus-stencil8 or auto"
+            ),
+        })
+    }
+}
+
 /// The line printed when `--adapter software` finds none.
-pub const NO_SOFTWARE_ADAPTER_HINT: &str = "no GPU adapter found that is a software rasteriser (--adapter software, which the tests and the grader use): install Mesa's lavapipe/llvmpipe with `apt-get install -y mesa-vulkan-drivers libgl1-mesa-dri libegl1`, or pass --adapter any (WORKBOOK_ADAPTER=any) to use your GPU, whose figures may differ from the recorded ones";
+pub const NO_SOFTWARE_ADAPTER_HINT: &str = "no GPU adapter found that is a software rasteriser (--adapter software, which CI pins): on Linux install Mesa's lavapipe/llvmpipe with `apt-get install -y mesa-vulkan-drivers libgl1-mesa-dri libegl1`; on Windows and macOS, or to use your GPU, pass --adapter any (WORKBOOK_ADAPTER=any), the default";
 
 /// Parses a `--backend` value (also used for `WGPU_BACKEND`).
 pub fn parse_backend(name: &str) -> Result<wgpu::Backends> {
@@ -93,12 +170,25 @@ impl Gpu {
     /// Opens a device. `backend` (from `--backend`) wins over `WGPU_BACKEND`,
     /// `adapter` (from `--adapter`) over `WORKBOOK_ADAPTER`.
     /// `display` is the window system connection in windowed mode (GL needs it).
+    /// The scene's depth format follows `WORKBOOK_DEPTH_FORMAT` ([`Gpu::open`]).
     pub fn new(
         backend: Option<&str>,
         adapter: Option<&str>,
         display: Option<Box<dyn wgpu::wgt::WgpuHasDisplayHandle>>,
     ) -> Result<Gpu> {
+        Gpu::open(backend, adapter, None, display)
+    }
+
+    /// [`Gpu::new`], and `depth_format` (from `--depth-format`) wins over
+    /// `WORKBOOK_DEPTH_FORMAT` for the scene's depth-stencil format.
+    pub fn open(
+        backend: Option<&str>,
+        adapter: Option<&str>,
+        depth_format: Option<&str>,
+        display: Option<Box<dyn wgpu::wgt::WgpuHasDisplayHandle>>,
+    ) -> Result<Gpu> {
         let choice = AdapterChoice::from_flag_or_env(adapter)?;
+        let (depth_choice, depth_source) = DepthFormatChoice::from_flag_or_env(depth_format)?;
         let backends = match backend {
             Some(b) => parse_backend(b)?,
             None => match std::env::var("WGPU_BACKEND") {
@@ -161,6 +251,7 @@ impl Gpu {
         })?;
         let info = adapter.get_info();
         let features = adapter.features() & OPTIONAL_FEATURES;
+        let depth_format = depth_choice.resolve(features, depth_source, &info.name)?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("workbook device"),
             required_features: features,
@@ -186,6 +277,7 @@ impl Gpu {
             queue,
             info,
             features,
+            depth_format,
         })
     }
 
@@ -203,14 +295,11 @@ impl Gpu {
         format!("{:?}", self.info.backend)
     }
 
-    /// The depth-stencil format for stencil lessons: 32-bit float depth when
-    /// the adapter has it, else the always-available 24-bit.
+    /// The scene's depth-stencil format (the base pass, the stencil
+    /// lessons): as `--depth-format` chose, by default 32-bit float depth
+    /// when the adapter has it, else the always-available `Depth24PlusStencil8`.
     pub fn depth_stencil_format(&self) -> wgpu::TextureFormat {
-        if self.has(wgpu::Features::DEPTH32FLOAT_STENCIL8) {
-            wgpu::TextureFormat::Depth32FloatStencil8
-        } else {
-            wgpu::TextureFormat::Depth24PlusStencil8
-        }
+        self.depth_format
     }
 
     /// Blocks until the GPU has finished everything submitted so far.
@@ -219,5 +308,56 @@ impl Gpu {
             .poll(wgpu::PollType::wait_indefinitely())
             .map_err(|e| anyhow!("GPU wait failed: {e}"))?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn depth_format_choice_parses_flag_values_and_wgpu_names() {
+        use DepthFormatChoice::*;
+        assert_eq!(DepthFormatChoice::parse("auto").unwrap(), Auto);
+        let d24 = [
+            "depth24plus-stencil8",
+            "Depth24PlusStencil8",
+            " DEPTH24PLUS_STENCIL8 ",
+        ];
+        for text in d24 {
+            assert_eq!(DepthFormatChoice::parse(text).unwrap(), Depth24PlusStencil8);
+        }
+        let d32 = DepthFormatChoice::parse("depth32float-stencil8").unwrap();
+        assert_eq!(d32, Depth32FloatStencil8);
+        let e = DepthFormatChoice::from_flag_or_env(Some("depth16"));
+        let e = e.unwrap_err().to_string();
+        assert!(e.contains("--depth-format") && e.contains("depth16"), "{e}");
+    }
+
+    #[test]
+    fn depth32float_without_the_feature_is_one_line_naming_both() {
+        use wgpu::TextureFormat as T;
+        let (none, d32) = (
+            wgpu::Features::empty(),
+            wgpu::Features::DEPTH32FLOAT_STENCIL8,
+        );
+        let resolve = |c: DepthFormatChoice, f| c.resolve(f, "--depth-format", "gpu");
+        assert_eq!(
+            resolve(DepthFormatChoice::Auto, d32).unwrap(),
+            T::Depth32FloatStencil8
+        );
+        assert_eq!(
+            resolve(DepthFormatChoice::Auto, none).unwrap(),
+            T::Depth24PlusStencil8
+        );
+        let d24 = DepthFormatChoice::Depth24PlusStencil8;
+        assert_eq!(resolve(d24, d32).unwrap(), T::Depth24PlusStencil8);
+        let e = resolve(DepthFormatChoice::Depth32FloatStencil8, none).unwrap_err();
+        let e = e.to_string();
+        assert!(!e.contains('\n'), "{e}");
+        assert!(
+            e.contains("--depth-format") && e.contains("DEPTH32FLOAT_STENCIL8"),
+            "{e}"
+        );
     }
 }

@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 use crate::baseline::Baseline;
 use crate::camera_path::{check_path, path_cameras, CameraPath, Shimmer};
 use crate::cli::Args;
+use crate::depth_probe::DepthStorage;
 use crate::gpu::Gpu;
 use crate::lesson::{variant_name, Lesson};
 use crate::metrics::{self, pixel_states, PixelState, ReferenceStates};
@@ -49,8 +50,22 @@ pub fn run_headless<L: Lesson>(
         );
     }
     check_path(&scene).map_err(|e| anyhow::anyhow!("scene {}: {e}", scene.name))?;
-    let gpu = Gpu::new(args.backend.as_deref(), args.adapter.as_deref(), None)?;
+    let gpu = Gpu::open(
+        args.backend.as_deref(),
+        args.adapter.as_deref(),
+        args.depth_format.as_deref(),
+        None,
+    )?;
     let scene_name = scene.name.clone();
+    let depth = gpu.depth_stencil_format();
+    let depth_probe = crate::depth_probe::probe(&gpu, depth)?;
+    if depth_probe.storage == DepthStorage::Unknown {
+        eprintln!(
+            "warning: {}: cannot tell what {depth:?} stores on {} (depth probe: {depth_probe:?}); report.json says \"unknown\"",
+            L::NAME,
+            gpu.adapter_name()
+        );
+    }
     let mut sg = SceneGpu::new(&gpu, scene, args.width, args.height)?;
     let targets = sg.frame_targets(&gpu);
     let mut lesson = L::new(&gpu, &sg)?;
@@ -150,6 +165,8 @@ pub fn run_headless<L: Lesson>(
         adapter: AdapterReport {
             name: gpu.adapter_name(),
             backend: gpu.backend_name(),
+            depth_format: format!("{depth:?}"),
+            depth_storage: depth_probe.storage.name().to_string(),
         },
         width: w,
         height: h,

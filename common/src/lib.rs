@@ -33,6 +33,7 @@
 //! - [`metrics`]: error of a GPU visibility image against the reference.
 //! - [`timing`]: GPU timestamp queries per pass, with a labelled CPU fallback.
 //! - [`counters`]: deterministic cost counters (fragments rasterised).
+//! - [`depth_probe`]: what a depth format really stores (24-bit unorm or float).
 //! - [`baseline`]: the no-shadow baseline frame every lesson is timed against.
 //! - [`report`]: `report.json` and the terminal table.
 
@@ -44,6 +45,7 @@ pub mod camera;
 pub mod camera_path;
 pub mod cli;
 pub mod counters;
+pub mod depth_probe;
 pub mod fullscreen;
 pub mod gpu;
 pub mod headless;

@@ -11,6 +11,14 @@ use crate::timing::TimingSource;
 pub struct AdapterReport {
     pub name: String,
     pub backend: String,
+    /// The scene's depth-stencil format, as wgpu names it
+    /// (`"Depth32FloatStencil8"`; empty in reports older than the field).
+    #[serde(default)]
+    pub depth_format: String,
+    /// What that format stores on this adapter, as measured
+    /// ([`crate::depth_probe`]): `"unorm24"`, `"float32"` (or `"unknown"`).
+    #[serde(default)]
+    pub depth_storage: String,
 }
 
 #[derive(Serialize, Deserialize, Clone, Debug)]
@@ -157,7 +165,7 @@ impl Report {
     pub fn table(&self) -> String {
         let mut s = String::new();
         s += &format!(
-            "{} on {} ({}), {}x{}, scene {}\n",
+            "{} on {} ({}), {}x{}, scene {}",
             self.lesson,
             self.adapter.name,
             self.adapter.backend,
@@ -165,6 +173,11 @@ impl Report {
             self.height,
             self.scene
         );
+        if !self.adapter.depth_format.is_empty() {
+            let a = &self.adapter;
+            s += &format!(", depth {} ({})", a.depth_format, a.depth_storage);
+        }
+        s += "\n";
         s += &format!("reference (CPU ray cast): {:.1} ms\n", self.reference_ms);
         let src = self.variants.first().map(|v| v.timing_source);
         if src == Some(TimingSource::CpuWall) {

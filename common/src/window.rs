@@ -97,9 +97,10 @@ impl<L: Lesson> App<L> {
             el.create_window(attrs)
                 .map_err(|e| anyhow!("cannot create a window: {e}"))?,
         );
-        let gpu = Gpu::new(
+        let gpu = Gpu::open(
             self.args.backend.as_deref(),
             self.args.adapter.as_deref(),
+            self.args.depth_format.as_deref(),
             None,
         )?;
         let surface = gpu

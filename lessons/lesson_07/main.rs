@@ -168,6 +168,8 @@ impl Lesson for DepthClamp {
         } else {
             DepthFormat::D24
         };
+        // The model follows what the format stores here (24-bit or float).
+        let format = (format, study::storage_of(gpu, format)?);
         let mut counters = Vec::new();
         for &v in Variant::value_variants() {
             if is_exercise(v) {

@@ -10,7 +10,9 @@
 //!   the GPU's depth pipeline (f32 clip maths, rasteriser, format
 //!   quantisation) kept the two depths apart and in the right order.
 //! - **CPU model**: [`resolves_cpu`] repeats the f32 clip maths and quantises
-//!   like the format does (24-bit unorm rounding, or the f32 itself).
+//!   like the format does (24-bit unorm rounding, or the f32 itself). Which
+//!   of the two a format does is asked of the adapter ([`storage_of`]):
+//!   `Depth24PlusStencil8` is 32-bit float on some.
 //!
 //! One sample per cell would let rounding luck decide: whether two depths
 //! land in different storage steps depends on where in a step the first
@@ -23,6 +25,7 @@
 
 use anyhow::{Context, Result};
 use common::bindings::{self, uniform_entry};
+use common::depth_probe::{self, DepthStorage};
 use common::gpu::Gpu;
 use common::readback::read_texture;
 use common::targets::render_texture;
@@ -53,20 +56,36 @@ impl DepthFormat {
             DepthFormat::D32F => wgpu::TextureFormat::Depth32FloatStencil8,
         }
     }
-
-    // ANCHOR: quantise
-    /// The value the buffer stores for window depth `z`, as an ordered integer.
-    pub fn quantise(self, z: f32) -> u32 {
-        let z = z.clamp(0.0, 1.0);
-        match self {
-            // 24-bit unorm: round(z · (2²⁴ − 1)); one step is 6e-8 everywhere.
-            DepthFormat::D24 => (z as f64 * 16_777_215.0).round() as u32,
-            // f32: the bits order like the values (z ≥ 0); steps shrink near 0.
-            DepthFormat::D32F => z.to_bits(),
-        }
-    }
-    // ANCHOR_END: quantise
 }
+
+/// What `f` stores on this adapter, measured ([`depth_probe`]). Where the
+/// adapter lacks the format, or the probe cannot tell, what the name says.
+pub fn storage_of(gpu: &Gpu, f: DepthFormat) -> Result<DepthStorage> {
+    let has = f == DepthFormat::D24 || gpu.has(wgpu::Features::DEPTH32FLOAT_STENCIL8);
+    let probed = match has {
+        true => depth_probe::probe(gpu, f.wgpu())?.storage,
+        false => DepthStorage::Unknown,
+    };
+    Ok(match (probed, f) {
+        (DepthStorage::Unknown, DepthFormat::D24) => DepthStorage::Unorm24,
+        (DepthStorage::Unknown, DepthFormat::D32F) => DepthStorage::Float32,
+        (s, _) => s,
+    })
+}
+
+// ANCHOR: quantise
+/// The value a buffer of storage `s` keeps for window depth `z`, as an
+/// ordered integer.
+pub fn quantise(s: DepthStorage, z: f32) -> u32 {
+    let z = z.clamp(0.0, 1.0);
+    match s {
+        // 24-bit unorm: round(z · (2²⁴ − 1)); one step is 6e-8 everywhere.
+        DepthStorage::Unorm24 => (z as f64 * 16_777_215.0).round() as u32,
+        // f32: the bits order like the values (z ≥ 0); steps shrink near 0.
+        DepthStorage::Float32 | DepthStorage::Unknown => z.to_bits(),
+    }
+}
+// ANCHOR_END: quantise
 
 // ANCHOR: window_depth
 /// Window depth of view distance `d` (> 0), in f32 like the GPU: the vertex
@@ -90,15 +109,15 @@ pub fn jittered(d: f64, j: usize) -> f64 {
 // ANCHOR: analytic_gap
 /// The analytic curve: the smallest Δd/d that one storage step can hold
 /// at distance d, step(z) / (|dz/dd| · d). The step is 1/(2²⁴ − 1) for
-/// D24 and the f32 spacing at z for Depth32Float. It leaves out the f32
+/// 24-bit unorm and the f32 spacing at z for float. It leaves out the f32
 /// rounding of the clip maths, which the measurement includes.
-pub fn analytic_gap(m: DepthMapping, f: DepthFormat, near: f64, far: f64, d: f64) -> f64 {
+pub fn analytic_gap(m: DepthMapping, s: DepthStorage, near: f64, far: f64, d: f64) -> f64 {
     let [zz, tz, _, _] = m.rows(near, far);
     // z(d) = (zz·(−d) + tz)/d = −zz + tz/d, so |dz/dd| = |tz|/d².
     let z = -zz + tz / d;
-    let step = match f {
-        DepthFormat::D24 => 1.0 / 16_777_215.0,
-        DepthFormat::D32F => 2f64.powi((z.max(1e-38) as f32).log2().floor() as i32 - 23),
+    let step = match s {
+        DepthStorage::Unorm24 => 1.0 / 16_777_215.0,
+        _ => 2f64.powi((z.max(1e-38) as f32).log2().floor() as i32 - 23),
     };
     step / (tz.abs() / (d * d) * d)
 }
@@ -109,7 +128,7 @@ pub fn analytic_gap(m: DepthMapping, f: DepthFormat, near: f64, far: f64, d: f64
 /// is clipped, so the near one shows.
 pub fn resolves_cpu(
     m: DepthMapping,
-    f: DepthFormat,
+    s: DepthStorage,
     near: f64,
     far: f64,
     d: f64,
@@ -129,7 +148,7 @@ pub fn resolves_cpu(
     if !inside(zb) {
         return true;
     }
-    let (qa, qb) = (f.quantise(za), f.quantise(zb));
+    let (qa, qb) = (quantise(s, za), quantise(s, zb));
     if m.reversed() {
         qa > qb
     } else {
@@ -328,7 +347,7 @@ pub fn measure_gpu(
 // ANCHOR_END: measure_gpu
 
 /// The CPU model over the same grid and samples as [`measure_gpu`].
-pub fn model_cpu(f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Vec<Vec<f64>> {
+pub fn model_cpu(s: DepthStorage, m: DepthMapping, near: f64, far: f64) -> Vec<Vec<f64>> {
     let g = gaps();
     distances(near, far)
         .iter()
@@ -336,7 +355,7 @@ pub fn model_cpu(f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Vec<Ve
             g.iter()
                 .map(|&gap| {
                     let ok = (0..SAMPLES)
-                        .filter(|&j| resolves_cpu(m, f, near, far, jittered(d, j), gap))
+                        .filter(|&j| resolves_cpu(m, s, near, far, jittered(d, j), gap))
                         .count();
                     ok as f64 / SAMPLES as f64
                 })
@@ -352,6 +371,8 @@ pub fn model_cpu(f: DepthFormat, m: DepthMapping, near: f64, far: f64) -> Vec<Ve
 #[derive(Clone, Debug)]
 pub struct PrecisionRow {
     pub format: DepthFormat,
+    /// What the format stores here ([`storage_of`]): the model's and the curve's.
+    pub storage: DepthStorage,
     pub mapping: DepthMapping,
     pub near: f64,
     pub far: f64,
@@ -373,10 +394,11 @@ impl PrecisionRow {
     }
 }
 
-/// Measures one configuration (GPU when the adapter has the format).
+/// Measures one configuration (GPU when the adapter has the format),
+/// modelled as storage `s`.
 pub fn study_one(
     gpu: &Gpu,
-    f: DepthFormat,
+    (f, s): (DepthFormat, DepthStorage),
     m: DepthMapping,
     near: f64,
     far: f64,
@@ -391,18 +413,19 @@ pub fn study_one(
     let gpu_gaps = grid
         .as_ref()
         .map(|gr| gr.iter().map(|r| min_resolvable_gap(r, &g)).collect());
-    let cpu = model_cpu(f, m, near, far)
+    let cpu = model_cpu(s, m, near, far)
         .iter()
         .map(|r| min_resolvable_gap(r, &g))
         .collect();
     Ok(PrecisionRow {
         format: f,
+        storage: s,
         mapping: m,
         near,
         far,
         analytic: distances(near, far)
             .iter()
-            .map(|&d| analytic_gap(m, f, near, far, d))
+            .map(|&d| analytic_gap(m, s, near, far, d))
             .collect(),
         distances: distances(near, far),
         gpu: gpu_gaps,
@@ -414,10 +437,12 @@ pub fn study_one(
 /// The whole study: both formats, four mappings, far/near = 1e2 … 1e8.
 pub fn study(gpu: &Gpu, near: f64, ratios: &[f64]) -> Result<Vec<PrecisionRow>> {
     let mut rows = Vec::new();
+    let formats = FORMATS.iter().map(|&f| Ok((f, storage_of(gpu, f)?)));
+    let formats = formats.collect::<Result<Vec<_>>>()?;
     for &ratio in ratios {
-        for f in FORMATS {
+        for &fs in &formats {
             for m in MAPPINGS {
-                rows.push(study_one(gpu, f, m, near, near * ratio)?);
+                rows.push(study_one(gpu, fs, m, near, near * ratio)?);
             }
         }
     }
@@ -425,62 +450,5 @@ pub fn study(gpu: &Gpu, near: f64, ratios: &[f64]) -> Result<Vec<PrecisionRow>> 
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    #[test]
-    fn d24_quantises_in_even_steps_and_f32_keeps_more_near_zero() {
-        assert_eq!(DepthFormat::D24.quantise(1.0), 16_777_215);
-        assert_eq!(DepthFormat::D24.quantise(0.5), 8_388_608);
-        assert_eq!(DepthFormat::D24.quantise(1e-9), 0);
-        assert!(DepthFormat::D32F.quantise(1e-9) > DepthFormat::D32F.quantise(0.0));
-    }
-
-    #[test]
-    fn reversed_float_beats_standard_far_away() {
-        let (n, f) = (1e-3, 1e5);
-        let g = gaps();
-        let at = |fmt, m| {
-            let grid = model_cpu(fmt, m, n, f);
-            min_resolvable_gap(grid.last().unwrap(), &g)
-        };
-        // far/2 = 5e4: standard depth is within a few ulps of 1; nothing resolves.
-        assert_eq!(at(DepthFormat::D24, DepthMapping::Standard), None);
-        let rev = at(DepthFormat::D32F, DepthMapping::Reversed).expect("reversed f32 resolves");
-        assert!(rev <= 1e-6, "reversed f32 at far/2 resolves {rev}");
-        let inf_rev = at(DepthFormat::D32F, DepthMapping::InfiniteReversed).expect("resolves");
-        assert!(inf_rev <= 1e-6, "{inf_rev}");
-    }
-
-    /// Many samples per cell: no cell resolves a gap well below one storage
-    /// step (the analytic curve), and none needs ten times more.
-    #[test]
-    fn the_model_follows_the_analytic_curve() {
-        let g = gaps();
-        for ratio in [1e2, 1e4, 1e6, 1e8] {
-            let (n, f) = (1e-3, 1e-3 * ratio);
-            for fmt in FORMATS {
-                for m in MAPPINGS {
-                    let grid = model_cpu(fmt, m, n, f);
-                    for (i, d) in distances(n, f).into_iter().enumerate() {
-                        let a = analytic_gap(m, fmt, n, f, d);
-                        let got = min_resolvable_gap(&grid[i], &g);
-                        let ctx = format!("{fmt:?} {} far/near {ratio:e} d {d:e}", m.name());
-                        if a > 0.1 {
-                            continue;
-                        }
-                        let got = got.unwrap_or_else(|| panic!("{ctx}: none, analytic {a:e}"));
-                        assert!(got >= a / 2.0 && got <= a * 10.0, "{ctx}: {got:e} vs {a:e}");
-                    }
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn min_gap_needs_every_larger_gap_to_resolve() {
-        let g = [1.0, 2.0, 3.0, 4.0];
-        assert_eq!(min_resolvable_gap(&[0.0, 1.0, 0.96, 1.0], &g), Some(2.0));
-        assert_eq!(min_resolvable_gap(&[1.0, 0.9, 1.0, 1.0], &g), Some(3.0));
-        assert_eq!(min_resolvable_gap(&[1.0, 1.0, 1.0, 0.5], &g), None);
-    }
-}
+#[path = "unit_tests/precision_study.rs"]
+mod tests;

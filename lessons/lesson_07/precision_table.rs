@@ -17,15 +17,18 @@ fn gpu_cell(r: &PrecisionRow, i: usize) -> String {
         .map_or_else(|| "n/a".into(), |g| fmt_gap(g[i]))
 }
 
-/// `format,mapping,near,far,distance,gpu_min_gap,cpu_min_gap,analytic_gap`.
+/// `format,mapping,near,far,distance,gpu_min_gap,cpu_min_gap,analytic_gap,storage`
+/// (`storage`: what the format stores on this adapter, which the CPU model
+/// and the analytic curve assume).
 pub fn csv(rows: &[PrecisionRow]) -> String {
-    let mut s =
-        String::from("format,mapping,near,far,distance,gpu_min_gap,cpu_min_gap,analytic_gap\n");
+    let mut s = String::from(
+        "format,mapping,near,far,distance,gpu_min_gap,cpu_min_gap,analytic_gap,storage\n",
+    );
     for r in rows {
         for (i, d) in r.distances.iter().enumerate() {
             let _ = writeln!(
                 s,
-                "{},{},{:e},{:e},{:e},{},{},{:.1e}",
+                "{},{},{:e},{:e},{:e},{},{},{:.1e},{}",
                 r.format.name(),
                 r.mapping.name(),
                 r.near,
@@ -33,7 +36,8 @@ pub fn csv(rows: &[PrecisionRow]) -> String {
                 d,
                 gpu_cell(r, i),
                 fmt_gap(r.cpu[i]),
-                r.analytic[i]
+                r.analytic[i],
+                r.storage.name()
             );
         }
     }
@@ -92,7 +96,7 @@ pub fn grid_image(rows: &[PrecisionRow], scale: u32) -> image::GrayImage {
         let grid = match &r.grid {
             Some(g) => g,
             None => {
-                cpu_grid = model_cpu(r.format, r.mapping, r.near, r.far);
+                cpu_grid = model_cpu(r.storage, r.mapping, r.near, r.far);
                 &cpu_grid
             }
         };

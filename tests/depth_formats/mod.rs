@@ -15,19 +15,22 @@ pub fn flag(format: &str) -> [&str; 2] {
     ["--depth-format", format]
 }
 
-/// The run's scene depth format and storage, checked against what was
-/// asked: a forced format is the one used, and the storage is one the
-/// probe recognised (`"unorm24"` or `"float32"`).
+/// The run's scene depth format and storage (`"unorm24"`, `"float32"`, or
+/// `"unknown"` where the probe could not tell), checked against what was
+/// asked: a forced format is the one used. A criterion that depends on the
+/// storage asks for a known one ([`step_near_one`]).
 pub fn used(report: &serde_json::Value, asked: &str) -> (String, String) {
     let a = &report["adapter"];
     let format = a["depth_format"].as_str().unwrap_or("").to_string();
     let storage = a["depth_storage"].as_str().unwrap_or("").to_string();
-    if asked == "depth24plus-stencil8" {
-        assert_eq!(format, "Depth24PlusStencil8", "--depth-format {asked}");
+    match asked {
+        "depth24plus-stencil8" => assert_eq!(format, "Depth24PlusStencil8"),
+        "depth32float-stencil8" => assert_eq!(format, "Depth32FloatStencil8"),
+        _ => assert!(format.starts_with("Depth"), "depth_format {format:?}"),
     }
     assert!(
-        ["unorm24", "float32"].contains(&storage.as_str()),
-        "{format}: the depth probe could not tell its storage ({storage:?})"
+        !storage.is_empty(),
+        "{format}: report.json has no depth_storage"
     );
     (format, storage)
 }
@@ -40,6 +43,8 @@ pub fn step_near_one(storage: &str) -> f64 {
     match storage {
         "unorm24" => 1.0 / 16_777_215.0,
         "float32" => 2f64.powi(-24),
-        other => panic!("no depth step for storage {other:?}"),
+        other => panic!(
+            "the depth probe could not tell what the buffer stores ({other:?}): no criterion"
+        ),
     }
 }
