@@ -99,31 +99,48 @@ pub fn classify(won: &[bool]) -> DepthProbe {
 }
 
 // ANCHOR: probe
-/// Asks the adapter what `format` (a depth or depth-stencil format)
-/// stores: renders the probe into a `(PAIRS + 3)`×1 target and reads
-/// back which surface each pixel kept.
-pub fn probe(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<DepthProbe> {
+/// One draw of a depth-test probe ([`draw_probe`]).
+pub struct ProbeDraw<'a> {
+    pub label: &'a str,
+    /// WGSL with `vs_probe` (instance `[f32; 4]` at location 0, four
+    /// strip vertices a quad) and `fs_probe` (R8 colour).
+    pub module: &'a wgpu::ShaderModule,
+    /// The depth (or depth-stencil) format under test.
+    pub format: wgpu::TextureFormat,
+    pub compare: wgpu::CompareFunction,
+    /// The depth the buffer is cleared to.
+    pub clear: f32,
+    /// The R8 target's size.
+    pub size: (u32, u32),
+    /// The quads, drawn in this order (one draw: the API keeps the
+    /// instances' order at every pixel).
+    pub instances: &'a [[f32; 4]],
+    /// Bind group 0 and its layout, if the shader has one.
+    pub group: Option<(&'a wgpu::BindGroupLayout, &'a wgpu::BindGroup)>,
+}
+
+/// Draws `d`'s quads with the real depth test and reads back the R8
+/// target: at each pixel, the value of the last quad that passed. Shared
+/// by [`probe`] and lesson 07's precision study.
+pub fn draw_probe(gpu: &Gpu, d: &ProbeDraw) -> Result<Vec<u8>> {
     let device = &gpu.device;
-    let draws = instances();
-    let w = PAIRS + 3;
-    let inst: Vec<[f32; 4]> = draws
-        .iter()
-        .map(|&(c, z, v)| [c as f32, z, v, w as f32])
-        .collect();
     let ibuf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("depth storage probe"),
-        contents: bytemuck::cast_slice(&inst),
+        label: Some(d.label),
+        contents: bytemuck::cast_slice(d.instances),
         usage: wgpu::BufferUsages::VERTEX,
     });
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("depth storage probe"),
-        source: wgpu::ShaderSource::Wgsl(PROBE_WGSL.into()),
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
+        d.group.iter().map(|(l, _)| Some(*l)).collect();
+    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(d.label),
+        bind_group_layouts: &layouts,
+        immediate_size: 0,
     });
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("depth storage probe"),
-        layout: None,
+        label: Some(d.label),
+        layout: Some(&pl),
         vertex: wgpu::VertexState {
-            module: &module,
+            module: d.module,
             entry_point: Some("vs_probe"),
             compilation_options: Default::default(),
             buffers: &[Some(wgpu::VertexBufferLayout {
@@ -137,15 +154,15 @@ pub fn probe(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<DepthProbe> {
             ..Default::default()
         },
         depth_stencil: Some(wgpu::DepthStencilState {
-            format,
+            format: d.format,
             depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
+            depth_compare: Some(d.compare),
             stencil: Default::default(),
             bias: Default::default(),
         }),
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
-            module: &module,
+            module: d.module,
             entry_point: Some("fs_probe"),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::TextureFormat::R8Unorm.into())],
@@ -153,28 +170,23 @@ pub fn probe(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<DepthProbe> {
         multiview_mask: None,
         cache: None,
     });
+    let (w, h) = d.size;
     let none = wgpu::TextureUsages::empty();
-    let color = render_texture(
-        gpu,
-        "probe colour",
-        w,
-        1,
-        wgpu::TextureFormat::R8Unorm,
-        none,
-    );
-    let depth = render_texture(gpu, "probe depth", w, 1, format, none);
+    let r8 = wgpu::TextureFormat::R8Unorm;
+    let color = render_texture(gpu, "probe colour", w, h, r8, none);
+    let depth = render_texture(gpu, "probe depth", w, h, d.format, none);
     let (cv, dv) = (
         color.create_view(&Default::default()),
         depth.create_view(&Default::default()),
     );
-    let stencil_ops = format.has_stencil_aspect().then_some(wgpu::Operations {
+    let stencil_ops = d.format.has_stencil_aspect().then_some(wgpu::Operations {
         load: wgpu::LoadOp::Clear(0),
         store: wgpu::StoreOp::Store,
     });
     let mut enc = device.create_command_encoder(&Default::default());
     {
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("depth storage probe"),
+            label: Some(d.label),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                 view: &cv,
                 depth_slice: None,
@@ -187,7 +199,7 @@ pub fn probe(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<DepthProbe> {
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &dv,
                 depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
+                    load: wgpu::LoadOp::Clear(d.clear),
                     store: wgpu::StoreOp::Store,
                 }),
                 stencil_ops,
@@ -197,12 +209,44 @@ pub fn probe(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<DepthProbe> {
             multiview_mask: None,
         });
         pass.set_pipeline(&pipeline);
+        if let Some((_, g)) = d.group {
+            pass.set_bind_group(0, g, &[]);
+        }
         pass.set_vertex_buffer(0, ibuf.slice(..));
-        // One draw: the API keeps the instances' order at every pixel.
-        pass.draw(0..4, 0..inst.len() as u32);
+        pass.draw(0..4, 0..d.instances.len() as u32);
     }
     gpu.queue.submit([enc.finish()]);
-    let px = read_texture(gpu, &color, 1).context("depth storage probe readback")?;
+    read_texture(gpu, &color, 1).with_context(|| format!("{} readback", d.label))
+}
+
+/// Asks the adapter what `format` (a depth or depth-stencil format)
+/// stores: renders the probe into a `(PAIRS + 3)`×1 target and reads
+/// back which surface each pixel kept.
+pub fn probe(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<DepthProbe> {
+    let w = PAIRS + 3;
+    let inst: Vec<[f32; 4]> = instances()
+        .iter()
+        .map(|&(c, z, v)| [c as f32, z, v, w as f32])
+        .collect();
+    let module = gpu
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("depth storage probe"),
+            source: wgpu::ShaderSource::Wgsl(PROBE_WGSL.into()),
+        });
+    let px = draw_probe(
+        gpu,
+        &ProbeDraw {
+            label: "depth storage probe",
+            module: &module,
+            format,
+            compare: wgpu::CompareFunction::Less,
+            clear: 1.0,
+            size: (w, 1),
+            instances: &inst,
+            group: None,
+        },
+    )?;
     let won: Vec<bool> = px.iter().map(|&v| v > 127).collect();
     Ok(classify(&won))
 }

@@ -23,12 +23,10 @@
 //! resolves. [`analytic_gap`] gives the curve it should follow: one storage
 //! step divided by the slope of the mapping.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use common::bindings::{self, uniform_entry};
 use common::depth_probe::{self, DepthStorage};
 use common::gpu::Gpu;
-use common::readback::read_texture;
-use common::targets::render_texture;
 use wgpu::util::DeviceExt;
 
 use super::infinite_far::{DepthMapping, MAPPINGS};
@@ -233,102 +231,23 @@ pub fn measure_gpu(
             }
         }
     }
-    let ibuf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probe quads"),
-        contents: bytemuck::cast_slice(&inst),
-        usage: wgpu::BufferUsages::VERTEX,
-    });
     let entry = uniform_entry(0, wgpu::ShaderStages::VERTEX, false, None);
     let layout = bindings::layout(gpu, "probe", &[entry]);
     let group = bindings::group(gpu, "probe", &layout, &[ubuf.as_entire_binding()]);
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("probe"),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("depth precision probe"),
-        layout: Some(&pl),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_probe"),
-            compilation_options: Default::default(),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: 16,
-                step_mode: wgpu::VertexStepMode::Instance,
-                attributes: &wgpu::vertex_attr_array![0 => Float32x4],
-            })],
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleStrip,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(m.compare()),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_probe"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::TextureFormat::R8Unorm.into())],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
-    let none = wgpu::TextureUsages::empty();
-    let color = render_texture(
+    // The far quads first, then the near ones, with the mapping's test.
+    let px = depth_probe::draw_probe(
         gpu,
-        "probe colour",
-        w,
-        h,
-        wgpu::TextureFormat::R8Unorm,
-        none,
-    );
-    let depth = render_texture(gpu, "probe depth", w, h, format, none);
-    let (cv, dv) = (
-        color.create_view(&Default::default()),
-        depth.create_view(&Default::default()),
-    );
-    let mut enc = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("depth precision probe"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &cv,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &dv,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(m.clear_depth()),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0),
-                    store: wgpu::StoreOp::Store,
-                }),
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.set_vertex_buffer(0, ibuf.slice(..));
-        pass.draw(0..4, 0..inst.len() as u32);
-    }
-    gpu.queue.submit([enc.finish()]);
-    let px = read_texture(gpu, &color, 1).context("depth precision probe readback")?;
+        &depth_probe::ProbeDraw {
+            label: "depth precision probe",
+            module: &module,
+            format,
+            compare: m.compare(),
+            clear: m.clear_depth(),
+            size: (w, h),
+            instances: &inst,
+            group: Some((&layout, &group)),
+        },
+    )?;
     // Share of each distance's SAMPLES rows where the near quad (255) won.
     Ok(px
         .chunks(w as usize * SAMPLES)
