@@ -320,4 +320,17 @@ fn numbers_keys_and_words() {
         &lo.replace("learnopengl_pcf20", "bevy_point"),
         &hi.replace("learnopengl_pcf20", "bevy_point")
     ));
+    // A bare name applies on every scene of the drift test (`run/name`);
+    // `run/name` on that scene only.
+    assert!(matches(
+        &lo.replace("learnopengl_pcf20", "results/learnopengl_pcf20"),
+        &hi.replace("learnopengl_pcf20", "results/learnopengl_pcf20")
+    ));
+    let deep = "deep_range/clamp misclassified 1.8887 false shadow 1.2328";
+    let gl = "deep_range/clamp misclassified 1.0730 false shadow 0.1683";
+    assert!(matches(deep, gl));
+    assert!(!matches(
+        &deep.replace("deep_range", "results"),
+        &gl.replace("deep_range", "results")
+    ));
 }

@@ -57,7 +57,7 @@ impl Tolerance {
 /// of the figure on larger ones (acne: 48.628 against 48.738); in the
 /// 320×180 snapshots, one printed digit (0.02 → 0.03, 0.89 → 0.88,
 /// 25.7 → 25.8) and 0.1 % of the figure (48.65 → 48.70).
-/// [`OVERRIDES`] names the one variant that moves more.
+/// [`OVERRIDES`] names the variants that move more.
 pub const FIGURE: Tolerance = Tolerance {
     abs: 0.03,
     rel: 0.005,
@@ -125,20 +125,23 @@ pub const KEYS: &[(&str, Class)] = &[
     ("depth_gap_ppb_at_sqrt_near_far", Class::AdapterDefined),
 ];
 
-/// A variant measured to differ more than its class allows, with why.
+/// Variants measured to differ more than their class allows, with why.
 pub struct Override {
-    pub variant: &'static str,
-    pub key: &'static str,
+    /// The first word of the line: the variant.
+    pub variants: &'static [&'static str],
+    /// The keys it applies to.
+    pub keys: &'static [&'static str],
     pub tolerance: Tolerance,
     pub measured: &'static str,
 }
 
-/// The exceptions, each with its measurement. The variant is the first
-/// word of the line.
+/// The exceptions, each with its measurement. A variant is the first word
+/// of a line: the snapshots write its name, the drift test of the book's
+/// tables (`tests/generated.rs`) `run/name` (`deep_range/clamp`).
 pub const OVERRIDES: &[Override] = &[
     Override {
-        variant: "learnopengl_pcf20",
-        key: "misclassified",
+        variants: &["learnopengl_pcf20"],
+        keys: &["misclassified"],
         tolerance: Tolerance {
             abs: 0.08,
             rel: 0.0,
@@ -148,24 +151,39 @@ pub const OVERRIDES: &[Override] = &[
                    0.342 at 640x360",
     },
     Override {
-        variant: "learnopengl_pcf20",
-        key: "false shadow",
+        variants: &["learnopengl_pcf20"],
+        keys: &["false shadow", "false lit"],
         tolerance: Tolerance {
             abs: 0.35,
             rel: 0.0,
         },
-        measured: "lesson 04's LearnOpenGL 20-tap kernel, 320x180: false shadow 0.02 % \
-                   (lavapipe, llvmpipe) against 0.30 % (H100); 640x360: 0.028 against 0.311",
+        measured: "the same kernel trades false lit for false shadow: 320x180, false \
+                   shadow 0.02 % and false lit 0.26 % (lavapipe, llvmpipe) against 0.30 % \
+                   and 0.04 % (H100); 640x360: 0.028 and 0.271 against 0.311 and 0.031",
     },
     Override {
-        variant: "learnopengl_pcf20",
-        key: "false lit",
-        tolerance: Tolerance {
-            abs: 0.35,
-            rel: 0.0,
-        },
-        measured: "the same run: false lit 0.26 % (lavapipe, llvmpipe) against 0.04 % \
-                   (H100); 640x360: 0.271 against 0.031",
+        variants: &["spot_wide/none", "spot_wide/bias_0.25tx"],
+        keys: &["misclassified", "false shadow", "mean |dV|"],
+        tolerance: Tolerance { abs: 1.5, rel: 0.0 },
+        measured: "lesson 02's unbiased and nearly unbiased maps under the wide spot \
+                   light (lesson_02_spot_wide.toml, 640x360), whose false shadow is acne: \
+                   which texel self-shadows is decided by the last bit of a depth. none \
+                   48.17 % (lavapipe) against 47.39 % (llvmpipe), bias_0.25tx 3.23 \
+                   against 2.54 %",
+    },
+    Override {
+        variants: &[
+            "deep_range/neither",
+            "deep_range/clamp",
+            "deep_range/infinite",
+        ],
+        keys: &["misclassified", "false shadow", "false lit", "mean |dV|"],
+        tolerance: Tolerance { abs: 2.0, rel: 0.0 },
+        measured: "lesson 07's standard depth on the deep range (lesson_07_deep_range.toml, \
+                   640x360), the negative control: the casters z-fight with the floor, and \
+                   which pixel wins is the rasteriser's. neither and clamp misclassify \
+                   1.889 % (lavapipe) against 1.073 % (llvmpipe), false shadow 1.233 \
+                   against 0.168 %; infinite 1.422 against 1.170 %",
     },
 ];
 
@@ -182,9 +200,12 @@ pub fn class_of(words: &str) -> (Class, &'static str) {
 
 /// The tolerance of a number of `class` after `key` on a line of `variant`.
 pub fn tolerance_of(class: Class, key: &str, variant: &str) -> Tolerance {
+    // `run/variant` names one scene's variant; a bare name, every scene's.
+    let named =
+        |v: &&str| variant == *v || (!v.contains('/') && variant.ends_with(&format!("/{v}")));
     if let Some(o) = OVERRIDES
         .iter()
-        .find(|o| o.variant == variant && o.key == key)
+        .find(|o| o.variants.iter().any(|v| named(&v)) && o.keys.contains(&key))
     {
         return o.tolerance;
     }
