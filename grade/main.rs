@@ -159,6 +159,15 @@ fn run(cli: Cli) -> Result<bool> {
     let mut all = Vec::new();
     for l in &lessons {
         let results = grading::grade_lesson(&runner, &opts, l, cli.exercise.as_deref())?;
+        // No adapter: nothing can be graded; say what to install, once.
+        if let Some(line) = results
+            .iter()
+            .flat_map(|r| &r.checks)
+            .filter_map(|c| c.feedback.as_deref())
+            .find_map(|f| f.find("no GPU adapter found").map(|at| &f[at..]))
+        {
+            bail!("{}", line.lines().next().unwrap_or(line));
+        }
         for r in &results {
             print!("{}", grading::describe(r));
             // Beside the runs: what `tests/exercises.rs` compares with the

@@ -216,6 +216,32 @@ fn no_adapter_says_what_to_install() {
     );
 }
 
+/// The grader with no adapter (no Metal on Linux): one line that says what
+/// to install and that Windows and macOS use their GPU, exit code 2, not
+/// a failed check per exercise.
+#[test]
+fn grade_without_an_adapter_says_what_to_install() {
+    if cfg!(target_os = "macos") {
+        return;
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_grade"))
+        .args(["lesson_02", "--backend", "metal", "--out"])
+        .arg(dir().join("grade_no_adapter"))
+        .env_remove("CARGO")
+        .output()
+        .expect("run grade");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "want one line, got {stderr}");
+    assert!(
+        lines[0].contains("no GPU adapter found")
+            && lines[0].contains("mesa-vulkan-drivers")
+            && lines[0].contains("macOS"),
+        "{stderr}"
+    );
+}
+
 /// The grader's own bad input: one line, exit code 2, before any run.
 #[test]
 fn grade_bad_input_is_one_line() {
