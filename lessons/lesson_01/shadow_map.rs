@@ -191,10 +191,10 @@ pub fn shadow_pass(
 /// test, in draw order), `.1` the fragments it rasterises. Untimed: its
 /// own submits.
 ///
-/// The rasterised count is the same on Vulkan and GL; the depth writes can
-/// differ slightly (GL's depth arrives through another range conversion,
-/// so near-equal depths of a caster's overlapping faces can compare the
-/// other way).
+/// The rasterised count differs between rasterisers by a few edge
+/// fragments; the depth writes can differ more (near-equal depths of a
+/// caster's overlapping faces can compare the other way: GL's depth
+/// arrives through another range conversion, and GPUs round differently).
 pub fn count_shadow_texels<'p>(
     gpu: &Gpu,
     scene: &SceneGpu,

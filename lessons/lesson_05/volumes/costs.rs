@@ -1,6 +1,7 @@
 //! What a frame's shadow volumes cost (lesson 05): fragments rasterised,
 //! stencil writes, triangles and draw calls, counted exactly by an untimed
-//! copy of the volume pass ([`Tally`](crate::lesson_01::tally::Tally)), the same on Vulkan and GL.
+//! copy of the volume pass ([`Tally`](crate::lesson_01::tally::Tally)): exact on one adapter; rasterisers
+//! differ by a few edge fragments, and where a depth test ties.
 
 use anyhow::Result;
 use common::gpu::Gpu;
@@ -84,7 +85,8 @@ impl ShadowVolumes {
     /// The volumes' costs for `draws[light]`, every light ([`VolumeCosts`]),
     /// counted by a [`Tally`](crate::lesson_01::tally::Tally) against the frame's depth in `targets`: call
     /// it after a frame (and after `prepare_cpu` for the CPU path). Exact
-    /// and the same on Vulkan and GL. Untimed: its own submits.
+    /// on one adapter, on Vulkan and GL alike (rasterisers differ by a few
+    /// edge fragments, and where a depth test ties). Untimed: its own submits.
     pub fn count_costs(
         &self,
         gpu: &Gpu,
