@@ -205,7 +205,7 @@ pub fn tolerance_of(class: Class, key: &str, variant: &str) -> Tolerance {
         |v: &&str| variant == *v || (!v.contains('/') && variant.ends_with(&format!("/{v}")));
     if let Some(o) = OVERRIDES
         .iter()
-        .find(|o| o.variants.iter().any(|v| named(&v)) && o.keys.contains(&key))
+        .find(|o| o.variants.iter().any(named) && o.keys.contains(&key))
     {
         return o.tolerance;
     }
