@@ -327,60 +327,32 @@ fn reproduce(lesson: &str) {
         };
         let same_adapter =
             report.adapter.name == rec.adapter && report.adapter.backend == rec.backend;
-        if !same_adapter {
-            // A variant this adapter cannot render (reversed-Z on GL) is
-            // skipped by the lesson with a note; any other is compared.
-            let skipped: Vec<&str> = rec
+        // On another adapter, a variant it cannot render (reversed-Z on
+        // GL) is skipped by the lesson with a note; any other is compared.
+        let skipped: Vec<String> = rec
+            .variants
+            .iter()
+            .filter(|v| !same_adapter && !report.variants.iter().any(|w| w.name == v.name))
+            .map(|v| v.name.clone())
+            .collect();
+        if !skipped.is_empty() {
+            eprintln!(
+                "{}: not rendered on {} ({}), not compared: {}",
+                run.id(),
+                report.adapter.name,
+                report.adapter.backend,
+                skipped.join(", ")
+            );
+        }
+        let rec = Record {
+            variants: rec
                 .variants
                 .iter()
-                .filter(|v| !report.variants.iter().any(|w| w.name == v.name))
-                .map(|v| v.name.as_str())
-                .collect();
-            if !skipped.is_empty() {
-                eprintln!(
-                    "{}: not rendered on {} ({}), not compared: {}",
-                    run.id(),
-                    report.adapter.name,
-                    report.adapter.backend,
-                    skipped.join(", ")
-                );
-            }
-            let rec = Record {
-                variants: rec
-                    .variants
-                    .iter()
-                    .filter(|v| !skipped.contains(&v.name.as_str()))
-                    .cloned()
-                    .collect(),
-                ..rec.clone()
-            };
-            assert_eq!(
-                report.variants.len(),
-                rec.variants.len(),
-                "{}: the lesson now runs other variants; {REGENERATE}",
-                run.id()
-            );
-            let fresh = fresh_record(&run.id(), &rec, &report);
-            match within_tolerance(&rec, &fresh) {
-                Ok(n) => eprintln!(
-                    "{}: records made on {} ({}), this run on {} ({}): {n} differences, all within the snapshots' tolerances",
-                    run.id(),
-                    rec.adapter,
-                    rec.backend,
-                    report.adapter.name,
-                    report.adapter.backend
-                ),
-                Err(beyond) => panic!(
-                    "{}: records made on {} ({}), this run on {} ({}); beyond the tolerances of tests/support/tolerance.rs:\n{beyond}",
-                    run.id(),
-                    rec.adapter,
-                    rec.backend,
-                    report.adapter.name,
-                    report.adapter.backend
-                ),
-            }
-            continue;
-        }
+                .filter(|v| !skipped.contains(&v.name))
+                .cloned()
+                .collect(),
+            ..rec
+        };
         assert_eq!(
             report.variants.len(),
             rec.variants.len(),
@@ -388,6 +360,23 @@ fn reproduce(lesson: &str) {
             run.id()
         );
         let fresh = fresh_record(&run.id(), &rec, &report);
+        if !same_adapter {
+            let on = format!(
+                "{}: records made on {} ({}), this run on {} ({})",
+                run.id(),
+                rec.adapter,
+                rec.backend,
+                report.adapter.name,
+                report.adapter.backend
+            );
+            match within_tolerance(&rec, &fresh) {
+                Ok(n) => eprintln!("{on}: {n} differences, all within the snapshots' tolerances"),
+                Err(beyond) => {
+                    panic!("{on}; beyond the tolerances of tests/support/tolerance.rs:\n{beyond}")
+                }
+            }
+            continue;
+        }
         let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
         for (old, new) in rec.variants.iter().zip(&fresh.variants) {
             let (a, b) = (
