@@ -205,6 +205,8 @@ fn run_scene(
         variants: &names,
         backend: opts.backend.as_deref(),
         adapter: Some(&opts.adapter),
+        // The grade reads errors, never times.
+        warm_up_ms: Some(0.0),
     };
     let report = runner.run(&args, out)?;
     Ok(serde_json::to_value(report)?)
@@ -219,7 +221,7 @@ fn snapshot_part(ex: &Exercise, label: &str, report: &Value, out: &Path) -> Resu
     let (w, h) = img.dimensions();
     let ids: Vec<u32> = img.pixels().map(|p| u32::from(p.0[1] > 0)).collect();
     let vis: Vec<f32> = img.pixels().map(|p| p.0[0] as f32 / 255.0).collect();
-    let mask = common::metrics::ascii_mask(&ids, &vis, w, h, 64, 18);
+    let mask = common::reference::metrics::ascii_mask(&ids, &vis, w, h, 64, 18);
     let f = |m: &str| metric(report, &ex.variant, m).unwrap_or(f64::NAN);
     let mut text = format!(
         "scene {label}: light 0 ('#' shadow, '.' lit, ' ' background)\n{mask}\n\

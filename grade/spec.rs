@@ -211,7 +211,7 @@ impl Spec {
         }
         for ex in &spec.exercises {
             let at = format!("{}: exercise {:?}", path.display(), ex.variant);
-            if !ex.variant.starts_with(common::lesson::EXERCISE_PREFIX) {
+            if !ex.variant.starts_with(common::run::lesson::EXERCISE_PREFIX) {
                 bail!("{at}: variant must start with \"exercise_\"");
             }
             if ex.checks.is_empty() {

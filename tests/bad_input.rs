@@ -292,3 +292,79 @@ fn unknown_depth_format_is_one_line() {
         "{e}"
     );
 }
+
+/// A long bad value is quoted by its start and its length: one short line.
+#[test]
+fn long_bad_values_are_cut_in_the_error_line() {
+    let long = "x".repeat(100_000);
+    let cases = [
+        (fails(&["--variant", &long]), "--variant"),
+        (fails(&["--warm-up-ms", &"9".repeat(5_000)]), "--warm-up-ms"),
+        (
+            fails(&[
+                "--scene",
+                &scene_with_object("long_mesh.toml", &format!("mesh = \"{long}\"")),
+            ]),
+            "long_mesh.toml",
+        ),
+    ];
+    for (e, names) in cases {
+        let n = e.chars().count();
+        assert!(n < 600, "{n} characters: {}", &e[..300]);
+        assert!(e.contains(names), "{e}");
+        assert!(e.contains(" characters)"), "{e}");
+    }
+}
+
+/// A view that sees no receiver must not exit 0 with 0.000 %: a far plane
+/// in front of the whole scene, and a camera looking away from it.
+#[test]
+fn a_view_with_no_receiver_is_refused() {
+    let near_far = scene_file(
+        "far_before_scene.toml",
+        r#"
+[camera]
+eye = [0.0, 3.0, 8.0]
+target = [0.0, 0.0, 0.0]
+near = 0.1
+far = 0.5
+[[lights]]
+type = "directional"
+direction = [-0.4, -1.0, -0.3]
+[[objects]]
+mesh = "plane"
+scale = [10.0, 1.0, 10.0]
+[[objects]]
+mesh = "cube"
+translate = [0.0, 0.5, 0.0]
+"#,
+    );
+    let e = fails(&["--scene", &near_far]);
+    assert!(
+        e.contains("far_before_scene.toml")
+            && e.contains("sees no geometry")
+            && e.contains("far plane (0.5)")
+            && e.contains("[camera]"),
+        "{e}"
+    );
+    // Geometry in view, but every surface faces away from the light.
+    let away = scene_file(
+        "lit_from_below.toml",
+        r#"
+[camera]
+eye = [0.0, 3.0, 8.0]
+target = [0.0, 0.0, 0.0]
+[[lights]]
+type = "directional"
+direction = [0.0, 1.0, 0.0]
+[[objects]]
+mesh = "plane"
+scale = [10.0, 1.0, 10.0]
+"#,
+    );
+    let e = fails(&["--scene", &away]);
+    assert!(
+        e.contains("faces a light") && e.contains("lit_from_below.toml"),
+        "{e}"
+    );
+}

@@ -28,7 +28,7 @@ mod lesson09;
 #[path = "../book/generate/manifest.rs"]
 #[allow(dead_code)]
 mod manifest;
-#[path = "../book/generate/plots.rs"]
+#[path = "../book/generate/plots/mod.rs"]
 #[allow(dead_code)]
 mod plots;
 #[path = "../book/generate/record.rs"]
@@ -203,7 +203,7 @@ fn an_edited_cell_is_caught() {
 
 /// A record of `report`'s figures and counters for the variants of `rec`
 /// (times left out).
-fn fresh_record(id: &str, rec: &Record, report: &common::report::Report) -> Record {
+fn fresh_record(id: &str, rec: &Record, report: &common::measure::report::Report) -> Record {
     Record {
         variants: rec
             .variants
@@ -312,6 +312,7 @@ fn reproduce(lesson: &str) {
             variants: run.variants,
             backend,
             adapter: Some(&adapter),
+            warm_up_ms: Some(0.0),
         };
         let out = support::out_dir(&format!("drift_{}_{}", run.lesson, run.name));
         let report = match runner.run(&args, &out) {
@@ -441,7 +442,8 @@ fn h100_default_scenes_are_within_tolerance_of_the_records() {
             .expect("a results run");
         let rec = record(run);
         let text = read(&dir.join(format!("{lesson}.json")));
-        let report: common::report::Report = serde_json::from_str(&text).expect("a report");
+        let report: common::measure::report::Report =
+            serde_json::from_str(&text).expect("a report");
         assert!(report.adapter.name.contains("H100"));
         assert_eq!((report.width, report.height), (rec.width, rec.height));
         let fresh = fresh_record(&run.id(), &rec, &report);

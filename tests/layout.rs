@@ -6,7 +6,8 @@
 //! - there are no import cycles between the modules of `common/` nor
 //!   between the modules of the lessons;
 //! - no source file in `lessons/` or `common/` is over 500 lines;
-//! - `common/src/lib.rs` lists every module it has, in its docs too;
+//! - `common/src/lib.rs` and each folder's `mod.rs` list every module they
+//!   have, in their docs too;
 //! - no module of `common/` serves a single lesson (used by exactly one
 //!   lesson folder and by no other module of `common/`).
 //!
@@ -147,6 +148,9 @@ fn module_name(path: &Path, src: &Path, lessons: bool) -> Option<String> {
         .collect();
     match (lessons, parts.as_slice()) {
         (false, [m]) if m != "lib" => Some(m.clone()),
+        // A folder of `common/src/` is a module whose `mod.rs` is its root.
+        (false, [g, m]) if g != "bin" && m == "mod" => Some(g.clone()),
+        (false, [g, m]) if g != "bin" => Some(format!("{g}::{m}")),
         (true, [l, m]) if l.starts_with("lesson_") && m != "mod" && m != "main" => {
             Some(format!("{l}::{m}"))
         }
@@ -336,8 +340,32 @@ fn declared_modules(lib: &str) -> BTreeSet<String> {
 #[test]
 fn common_lib_lists_every_module() {
     let src = repo_root().join("common/src");
+    // lib.rs declares the folders; each folder's mod.rs its own modules.
+    let mut declared = BTreeSet::new();
     let lib = read(&src.join("lib.rs"));
-    let declared = declared_modules(&lib);
+    let mut roots = vec![(String::new(), src.join("lib.rs"), lib)];
+    for g in declared_modules(&roots[0].2) {
+        let root = src.join(&g).join("mod.rs");
+        if root.exists() {
+            let text = read(&root);
+            roots.push((format!("{g}::"), root, text));
+        }
+    }
+    for (prefix, path, text) in &roots {
+        for m in declared_modules(text) {
+            assert!(
+                text.contains(&format!("[`{m}`]")),
+                "{}'s docs do not list [`{m}`]",
+                path.display()
+            );
+            declared.insert(format!("{prefix}{m}"));
+        }
+    }
+    assert!(
+        roots.len() >= 4,
+        "found {} folders with a mod.rs",
+        roots.len() - 1
+    );
     let files: BTreeSet<String> = rust_files(&src)
         .iter()
         .filter_map(|p| module_name(p, &src, false))
@@ -345,14 +373,8 @@ fn common_lib_lists_every_module() {
     assert!(files.len() >= 10, "found {files:?}");
     assert_eq!(
         declared, files,
-        "common/src/lib.rs's `pub mod`s and the files of common/src differ"
+        "the `pub mod`s of common/src/lib.rs and its folders' mod.rs, and the files of common/src differ"
     );
-    for m in &declared {
-        assert!(
-            lib.contains(&format!("[`{m}`]")),
-            "common/src/lib.rs's docs do not list [`{m}`]"
-        );
-    }
 }
 
 /// For each common module: the lesson folders and the other common

@@ -9,8 +9,8 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use common::metrics::ErrorStats;
-use common::report::Report;
+use common::measure::report::Report;
+use common::reference::metrics::ErrorStats;
 
 use crate::record::{pct, Record, VariantRecord};
 

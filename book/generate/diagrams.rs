@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{bail, Context, Result};
-use common::camera::{camera_matrices, light_view_proj};
 use common::glam::{DMat4, DVec3};
+use common::scene::camera::{camera_matrices, light_view_proj};
 use common::scene::{LightKind, Scene};
 use workbook::lesson_02::bias::{depth_per_texel, SlopeScaledBias};
 use workbook::lesson_04::cube_map::{face_view_proj, CUBE_FACES};

@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
-use common::report::Report;
+use common::measure::report::Report;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use manifest::{Run, FIGURES, RUNS, TEXTS};
@@ -196,6 +196,8 @@ fn measure(
         variants: run.variants,
         backend: Some(backend),
         adapter: Some(manifest::ADAPTER),
+        // Untimed runs keep errors and counters only: no warm-up needed.
+        warm_up_ms: (!run.timed).then_some(0.0),
     };
     let mut reports: Vec<Report> = Vec::new();
     for i in 0..repeats {
@@ -227,7 +229,7 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
         .variants
         .iter()
         .map(|v| {
-            let same: Vec<&common::report::VariantReport> = reports
+            let same: Vec<&common::measure::report::VariantReport> = reports
                 .iter()
                 .filter_map(|r| r.variants.iter().find(|w| w.name == v.name))
                 .collect();

@@ -19,9 +19,9 @@ impl Stat {
     /// The median and interquartile range of pooled samples.
     pub fn of(samples: &[f64]) -> Stat {
         Stat {
-            median: common::timing::quantile(samples, 0.5),
-            q25: common::timing::quantile(samples, 0.25),
-            q75: common::timing::quantile(samples, 0.75),
+            median: common::measure::timing::quantile(samples, 0.5),
+            q25: common::measure::timing::quantile(samples, 0.25),
+            q75: common::measure::timing::quantile(samples, 0.75),
         }
     }
 
@@ -64,7 +64,7 @@ pub struct VariantRecord {
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 pub struct CameraPathRecord {
     pub frames: u32,
-    /// World-locked (see `common::camera_path`).
+    /// World-locked (see `common::scene::camera_path`).
     pub shimmer_pct: f64,
     /// Screen-space: flips the reference does not make between frames.
     pub screen_mismatch_pct: f64,
@@ -75,7 +75,7 @@ pub struct CameraPathRecord {
 
 impl CameraPathRecord {
     /// What the book keeps of a report's camera path.
-    pub fn of(v: &common::report::VariantReport) -> Option<CameraPathRecord> {
+    pub fn of(v: &common::measure::report::VariantReport) -> Option<CameraPathRecord> {
         let p = v.camera_path.as_ref()?;
         Some(CameraPathRecord {
             frames: p.frames,
@@ -90,7 +90,7 @@ impl CameraPathRecord {
 
 impl ClassRecord {
     /// What the book keeps of a report's per-class errors.
-    pub fn of(v: &common::report::VariantReport) -> Vec<ClassRecord> {
+    pub fn of(v: &common::measure::report::VariantReport) -> Vec<ClassRecord> {
         v.classes
             .iter()
             .flatten()
@@ -153,10 +153,10 @@ pub fn pool(maps: &[&BTreeMap<String, Vec<f64>>]) -> Option<Timing> {
 }
 
 /// Where a report's times came from, in words.
-pub fn timing_source(report: &common::report::Report) -> String {
+pub fn timing_source(report: &common::measure::report::Report) -> String {
     match report.variants.first().map(|v| v.timing_source) {
-        Some(common::timing::TimingSource::GpuTimestamps) => "GPU timestamps".into(),
-        Some(common::timing::TimingSource::CpuWall) => "CPU wall clock per pass".into(),
+        Some(common::measure::timing::TimingSource::GpuTimestamps) => "GPU timestamps".into(),
+        Some(common::measure::timing::TimingSource::CpuWall) => "CPU wall clock per pass".into(),
         None => String::new(),
     }
 }

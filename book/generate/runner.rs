@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use anyhow::{bail, Context, Result};
-use common::report::Report;
+use common::measure::report::Report;
 
 /// One headless run of a lesson.
 #[derive(Clone, Debug)]
@@ -24,6 +24,9 @@ pub struct RunArgs<'a> {
     pub backend: Option<&'a str>,
     /// `--adapter` (`software` pins lavapipe/llvmpipe); the default when `None`.
     pub adapter: Option<&'a str>,
+    /// `--warm-up-ms`: the lesson's default protocol when `None`; `Some(0.0)`
+    /// for runs whose times nobody reads (errors and counters only).
+    pub warm_up_ms: Option<f64>,
 }
 
 /// Finds the lesson binaries: beside this executable (`target/release/`).
@@ -83,6 +86,9 @@ impl Runner {
         }
         if let Some(ad) = a.adapter {
             cmd.args(["--adapter", ad]);
+        }
+        if let Some(ms) = a.warm_up_ms {
+            cmd.args(["--warm-up-ms", &ms.to_string()]);
         }
         let output = cmd
             .output()

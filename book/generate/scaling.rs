@@ -15,7 +15,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
-use common::report::Report;
+use common::measure::report::Report;
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
@@ -575,6 +575,7 @@ fn measure(
             variants: &step.variants,
             backend: Some(backend),
             adapter: Some(manifest::ADAPTER),
+            warm_up_ms: None,
         };
         let out = work.join("runs").join(plan.name).join(format!("p{i}"));
         let report = runner

@@ -6,11 +6,11 @@
 //!
 //! [`fit_light_box`]: super::exercises::fit_light_box
 
-use common::camera::{directional_light_view, light_view_proj};
 use common::glam::dcamera::rh::proj::directx as webgpu;
 use common::glam::{DVec3, Mat4};
+use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
-use common::render::SceneGpu;
+use common::scene::camera::{directional_light_view, light_view_proj};
 use common::scene::{LightKind, Scene};
 
 use super::exercises;
@@ -18,7 +18,7 @@ use super::shadow_map;
 
 /// Light `light`'s view-projection with the box the student fits
 /// ([`exercises::fit_light_box`]) around every vertex of every object. The
-/// light's view is the lesson's (`common::camera::directional_light_view_proj`);
+/// light's view is the lesson's (`common::scene::camera::directional_light_view_proj`);
 /// only the box differs. Spot lights keep the lesson's matrix.
 pub fn tight_light_view_proj(scene: &Scene, light: usize) -> Option<Mat4> {
     let LightKind::Directional { direction } = scene.lights[light].kind else {

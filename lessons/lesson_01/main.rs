@@ -15,14 +15,14 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use clap::ValueEnum;
-use common::app;
+use common::gpu::lit::LitPass;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::lesson::Lesson;
-use common::lit::LitPass;
-use common::render::SceneGpu;
+use common::measure::timing::Frame;
+use common::run::app;
+use common::run::lesson::Lesson;
 use common::scene::Scene;
-use common::targets::FrameTargets;
-use common::timing::Frame;
 use common::Result;
 use workbook::lesson_01::exercise_pass;
 use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
@@ -142,7 +142,7 @@ impl Lesson for DepthMap {
             maps,
             texel_at_1: texel_at_1(
                 &scene.scene,
-                common::camera::light_view_proj(&scene.scene, 0),
+                common::scene::camera::light_view_proj(&scene.scene, 0),
             ),
             map_layout: layout,
             exercise_lit: None,
@@ -220,7 +220,7 @@ impl Lesson for DepthMap {
     }
 
     fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
-        let name = common::lesson::variant_name(variant);
+        let name = common::run::lesson::variant_name(variant);
         let (map, _) = &self.maps[variant as usize];
         map.write_png(gpu, &out.join(format!("{name}_depth_map.png")))
     }
@@ -234,7 +234,7 @@ impl DepthMap {
         let tight = variant == Variant::ExerciseTightFrustum;
         if tight || self.tight_written {
             for (k, m) in self.tight.iter().enumerate() {
-                let lesson = common::camera::light_view_proj(&scene.scene, k);
+                let lesson = common::scene::camera::light_view_proj(&scene.scene, k);
                 let m = if tight { *m } else { lesson };
                 scene.write_light_view_proj(gpu, k, m.unwrap_or_default());
             }

@@ -5,15 +5,15 @@
 use std::path::Path;
 
 use anyhow::Result;
-use common::bindings::{self, float_texture_entry, sampler_entry, texture_entry};
-use common::fullscreen::{read_floats, Fullscreen, FLOAT_BYTES_FORMAT};
-use common::gpu::Gpu;
-use common::headless::save;
-use common::render::{
+use common::gpu::bindings::{self, float_texture_entry, sampler_entry, texture_entry};
+use common::gpu::fullscreen::{read_floats, Fullscreen, FLOAT_BYTES_FORMAT};
+use common::gpu::render::{
     pipeline_layout_for, shader_module as scene_shader_module, vertex_state, SceneGpu,
 };
+use common::gpu::targets::depth_texture;
+use common::gpu::Gpu;
+use common::run::headless::save;
 use common::scene::{LightKind, Scene};
-use common::targets::depth_texture;
 
 use super::tally::Tally;
 use super::tally::TallyShader;

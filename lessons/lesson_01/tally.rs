@@ -15,9 +15,9 @@
 //! it once per variant, after a frame, never inside a timed pass.
 
 use anyhow::{bail, Result};
+use common::gpu::readback::read_texture;
+use common::gpu::targets::render_texture;
 use common::gpu::Gpu;
-use common::readback::read_texture;
-use common::targets::render_texture;
 
 /// The format of the tally target.
 pub const TALLY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;

@@ -4,9 +4,9 @@
 //! shadow pass, by the rasteriser ([`SlopeScaledBias`]). Lesson 03 keeps
 //! the slope-scaled one.
 
-use common::camera::light_view_proj;
 use common::glam::DVec3;
 use common::gpu::Gpu;
+use common::scene::camera::light_view_proj;
 use common::scene::{LightKind, Scene};
 
 use crate::lesson_01::shadow_map::ShadowPassState;

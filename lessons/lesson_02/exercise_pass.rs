@@ -4,8 +4,8 @@
 //! Compiled only when an exercise runs, so that the lesson's own variants
 //! never depend on the exercise code.
 
+use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
-use common::render::SceneGpu;
 
 use crate::lesson_01::shadow_map;
 

@@ -18,15 +18,15 @@
 use std::collections::BTreeMap;
 
 use clap::ValueEnum;
-use common::app;
-use common::bindings::{params_group, params_layout};
+use common::gpu::bindings::{params_group, params_layout};
+use common::gpu::lit::LitPass;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::lesson::{variant_name, Lesson};
-use common::lit::LitPass;
-use common::render::SceneGpu;
+use common::measure::timing::Frame;
+use common::run::app;
+use common::run::lesson::{variant_name, Lesson};
 use common::scene::Scene;
-use common::targets::FrameTargets;
-use common::timing::Frame;
 use common::Result;
 use workbook::lesson_01::shadow_map::ShadowPassState;
 use workbook::lesson_01::shadow_map::{self, ShadowMap};

@@ -3,7 +3,7 @@
 //! reads them (`shaders/lesson_03/pcf.wgsl`), and the map's bindings with
 //! the extra plain-float view that depth averaging reads.
 
-use common::bindings::{self, float_texture_entry};
+use common::gpu::bindings::{self, float_texture_entry};
 use common::gpu::Gpu;
 
 use crate::lesson_01::shadow_map::{comparison_sampler, shadow_map_entries, ShadowMap};

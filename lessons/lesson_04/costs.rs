@@ -6,9 +6,9 @@
 //! Untimed: the counts are submits of their own, made once per variant.
 
 use anyhow::Result;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
-use common::render::SceneGpu;
-use common::targets::depth_texture;
 
 use super::cube_map::{cube_pipeline_with, DepthStorage, FaceUniforms, CUBE_FORMAT};
 use crate::lesson_01::tally::{Tally, TallyShader, TALLY_TARGETS};

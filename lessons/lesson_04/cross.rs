@@ -4,10 +4,10 @@
 use std::path::Path;
 
 use anyhow::Result;
-use common::bindings::{self, sampler_entry, texture_entry, uniform_buffer, uniform_entry};
-use common::fullscreen::{read_floats, Fullscreen, FLOAT_BYTES_FORMAT};
+use common::gpu::bindings::{self, sampler_entry, texture_entry, uniform_buffer, uniform_entry};
+use common::gpu::fullscreen::{read_floats, Fullscreen, FLOAT_BYTES_FORMAT};
 use common::gpu::Gpu;
-use common::headless::save;
+use common::run::headless::save;
 
 use super::cube_map::{cube_group, CubeShadowMap};
 

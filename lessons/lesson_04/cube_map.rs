@@ -7,16 +7,16 @@
 //! parameters. Culling is in [`super::culling`], the picture of the six
 //! faces in [`super::cross`].
 
-use common::bindings::{self, params_buffer, sampler_entry, storage_entry, texture_entry};
-use common::camera::{light_uniform, LightUniform};
 use common::glam::dcamera::rh::proj::directx as webgpu;
 use common::glam::dcamera::rh::view::look_at_mat4;
 use common::glam::{DMat4, DVec3, Mat4};
+use common::gpu::bindings::{self, params_buffer, sampler_entry, storage_entry, texture_entry};
+use common::gpu::render::{pipeline_layout_for, vertex_state, SceneGpu, SCENE_BUFFER_USAGE};
+use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
-use common::render::{pipeline_layout_for, vertex_state, SceneGpu, SCENE_BUFFER_USAGE};
+use common::measure::timing::Frame;
+use common::scene::camera::{light_uniform, LightUniform};
 use common::scene::{LightKind, Scene};
-use common::targets::depth_texture;
-use common::timing::Frame;
 
 pub const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Uniform slots are spaced by the dynamic-offset alignment.
@@ -78,7 +78,7 @@ impl CubeShadowMap {
             6,
             CUBE_FORMAT,
         );
-        let face_views = common::targets::layer_views(&texture, 6);
+        let face_views = common::gpu::targets::layer_views(&texture, 6);
         let cube_view = texture.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::Cube),
             ..Default::default()

@@ -3,14 +3,14 @@
 //! and consistently oriented (what shadow volumes need of their casters).
 //!
 //! Everything here works on the mesh *welded by position* (see
-//! [`common::mesh::weld_by_position`]): UV seams and flat-shaded corners
+//! [`common::scene::mesh::weld_by_position`]): UV seams and flat-shaded corners
 //! duplicate vertices, and a silhouette taken over the unwelded indices
 //! would find a false "open" edge along every seam.
 
 use std::ops::Range;
 
 use common::glam::Vec3;
-use common::mesh::{face_normal, weld_remap, Mesh};
+use common::scene::mesh::{face_normal, weld_remap, Mesh};
 
 /// One face using an edge, and which way the face's winding runs along it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -179,7 +179,7 @@ pub fn validate(mesh: &Mesh) -> MeshReport {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use common::mesh::{builtin, BUILTIN_NAMES};
+    use common::scene::mesh::{builtin, BUILTIN_NAMES};
 
     #[test]
     fn closed_builtins_have_two_opposite_faces_per_edge() {

@@ -17,10 +17,10 @@
 
 use anyhow::{bail, Result};
 use common::glam::Mat4;
+use common::gpu::readback::read_buffer;
+use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
-use common::readback::read_buffer;
-use common::render::SceneGpu;
-use common::timing::Frame;
+use common::measure::timing::Frame;
 use wgpu::util::{DeviceExt, DrawIndirectArgs};
 
 use super::adjacency::Adjacency;

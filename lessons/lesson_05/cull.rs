@@ -3,7 +3,7 @@
 //! test says can matter.
 
 use common::glam::{DVec3, DVec4};
-use common::render::SceneGpu;
+use common::gpu::render::SceneGpu;
 use common::scene::LightKind;
 
 use super::extrusion::world_light;

@@ -23,8 +23,8 @@ use std::ops::Range;
 
 use super::adjacency::Adjacency;
 use common::glam::Vec3;
+use common::gpu::render::shader_module;
 use common::gpu::Gpu;
-use common::render::shader_module;
 
 pub use super::silhouette::world_light;
 use super::silhouette::{
@@ -358,7 +358,7 @@ mod tests {
     use crate::lesson_05::silhouette::{
         caster_adjacency, light_facing_triangles, silhouette_edges,
     };
-    use common::mesh::builtin;
+    use common::scene::mesh::builtin;
 
     /// The lesson's caps, as a [`CapsFn`] would give them.
     fn lesson_caps(adj: &Adjacency, light: LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
@@ -429,11 +429,11 @@ mod tests {
     #[test]
     fn quads_open_into_the_cpu_silhouette() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-        let book = common::obj::load_obj(&dir.join("nonmanifold_book.obj")).unwrap();
+        let book = common::scene::obj::load_obj(&dir.join("nonmanifold_book.obj")).unwrap();
         let meshes = [
             builtin("knot").unwrap(),
             builtin("plane").unwrap(),
-            common::mesh_dense::any_builtin("holed_sphere").unwrap(),
+            common::scene::mesh_dense::any_builtin("holed_sphere").unwrap(),
             book,
         ];
         let lights = [

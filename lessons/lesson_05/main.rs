@@ -19,12 +19,12 @@
 use std::collections::BTreeMap;
 
 use clap::ValueEnum;
-use common::app;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::lesson::Lesson;
-use common::render::SceneGpu;
-use common::targets::FrameTargets;
-use common::timing::Frame;
+use common::measure::timing::Frame;
+use common::run::app;
+use common::run::lesson::Lesson;
 use common::Result;
 use workbook::lesson_05::cull::kept_draws;
 use workbook::lesson_05::exercises;

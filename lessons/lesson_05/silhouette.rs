@@ -10,7 +10,7 @@
 
 use super::adjacency::{validate, Adjacency};
 use common::glam::{Mat4, Vec3};
-use common::mesh::Mesh;
+use common::scene::mesh::Mesh;
 
 /// A light, in the mesh's object space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -164,7 +164,7 @@ pub fn casts_two_sided(mesh: &Mesh) -> bool {
 
 /// Light `k` as the volumes see it: origin-relative world space. Spot
 /// lights cast like point lights (the cone is applied in the lit pass).
-pub fn world_light(scene: &common::render::SceneGpu, k: usize) -> LightDir {
+pub fn world_light(scene: &common::gpu::render::SceneGpu, k: usize) -> LightDir {
     let o = scene.scene.origin();
     match scene.scene.lights[k].kind {
         common::scene::LightKind::Directional { direction } => {
@@ -180,7 +180,7 @@ pub fn world_light(scene: &common::render::SceneGpu, k: usize) -> LightDir {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use common::mesh::builtin;
+    use common::scene::mesh::builtin;
     use std::collections::HashMap;
     fn from(positions: &[Vec3], indices: &[u32]) -> Adjacency {
         Adjacency::from_triangles(positions, indices)

@@ -14,12 +14,12 @@ use std::collections::BTreeMap;
 use anyhow::{bail, Result};
 
 use super::adjacency::validate;
-use common::bvh::Bvh;
 use common::glam::Vec3;
+use common::gpu::render::{pipeline_layout_for, SceneGpu};
 use common::gpu::Gpu;
-use common::mesh::face_normal;
+use common::reference::bvh::Bvh;
 use common::reference::primary_ray;
-use common::render::{pipeline_layout_for, SceneGpu};
+use common::scene::mesh::face_normal;
 
 use super::extrusion::volume_shader_module;
 use super::extrusion::{

@@ -34,13 +34,13 @@
 use std::ops::Range;
 
 use anyhow::Result;
-use common::counters::FragmentCounter;
 use common::glam::{DVec3, Mat4};
+use common::gpu::lit::LitPass;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::lit::LitPass;
-use common::render::SceneGpu;
-use common::targets::FrameTargets;
-use common::timing::Frame;
+use common::measure::counters::FragmentCounter;
+use common::measure::timing::Frame;
 
 use super::adjacency::Adjacency;
 use super::compute::ComputeVolumes;

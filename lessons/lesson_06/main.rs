@@ -25,13 +25,13 @@
 use std::collections::BTreeMap;
 
 use clap::ValueEnum;
-use common::app;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::lesson::Lesson;
-use common::render::SceneGpu;
+use common::measure::timing::Frame;
+use common::run::app;
+use common::run::lesson::Lesson;
 use common::scene::{Far, LightKind};
-use common::targets::FrameTargets;
-use common::timing::Frame;
 use common::Result;
 use workbook::lesson_05::extrusion::{world_light, CpuParts, Extrusion};
 use workbook::lesson_05::stencil::{self, Counting, Method};

@@ -5,7 +5,7 @@
 //! pixels, are the same as with z-fail everywhere.
 
 use common::glam::{DMat4, DVec3};
-use common::render::SceneGpu;
+use common::gpu::render::SceneGpu;
 
 use super::caps::zfail;
 pub use crate::lesson_05::cull::frustum_planes;

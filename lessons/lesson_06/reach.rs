@@ -11,7 +11,7 @@
 
 use anyhow::{bail, Result};
 use common::glam::{DMat4, DVec3};
-use common::render::SceneGpu;
+use common::gpu::render::SceneGpu;
 use common::scene::{Far, LightKind};
 
 use crate::lesson_05::volumes::VolumeCaster;

@@ -3,8 +3,8 @@
 //! never use them.
 
 use anyhow::Result;
+use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
-use common::render::SceneGpu;
 
 use super::exercises;
 use super::infinite_far::{infinite_perspective, projected_scene, INFINITE_EPSILON};

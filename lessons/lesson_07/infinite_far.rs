@@ -6,8 +6,8 @@
 use anyhow::Result;
 use common::glam::dcamera::rh::view::look_at_mat4;
 use common::glam::{DMat4, DVec4};
+use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
-use common::render::SceneGpu;
 
 /// The ε of an infinite far plane: the point at infinity lands at depth
 /// 1 − ε instead of exactly 1, so f32 rounding cannot push it past w.

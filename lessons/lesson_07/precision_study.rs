@@ -24,8 +24,8 @@
 //! step divided by the slope of the mapping.
 
 use anyhow::Result;
-use common::bindings::{self, uniform_entry};
-use common::depth_probe::{self, DepthStorage};
+use common::gpu::bindings::{self, uniform_entry};
+use common::gpu::depth_probe::{self, DepthStorage};
 use common::gpu::Gpu;
 use wgpu::util::DeviceExt;
 

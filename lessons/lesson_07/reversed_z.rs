@@ -12,11 +12,11 @@
 use anyhow::{bail, Result};
 use common::glam::dcamera::rh::view::look_at_mat4;
 use common::glam::{DMat4, DVec4};
+use common::gpu::lit::LitPass;
+use common::gpu::render::{base_pipeline, pipeline_layout_for, SceneGpu};
+use common::gpu::targets::{render_texture, FrameTargets};
 use common::gpu::Gpu;
-use common::lit::LitPass;
-use common::render::{base_pipeline, pipeline_layout_for, SceneGpu};
-use common::targets::{render_texture, FrameTargets};
-use common::timing::Frame;
+use common::measure::timing::Frame;
 
 use crate::lesson_05::extrusion::{volume_shader_module, QUAD_VERTEX_LAYOUT};
 use crate::lesson_05::stencil::lit_stencil;

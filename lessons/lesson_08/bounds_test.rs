@@ -6,12 +6,12 @@
 //! costs are counted in [`super::costs`].
 
 use anyhow::Result;
-use common::bindings::{self, uniform_entry};
-use common::counters::FragmentCounter;
-use common::fullscreen::Fullscreen;
+use common::gpu::bindings::{self, uniform_entry};
+use common::gpu::fullscreen::Fullscreen;
+use common::gpu::render::{pipeline_layout_for, SceneGpu};
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::render::{pipeline_layout_for, SceneGpu};
-use common::targets::FrameTargets;
+use common::measure::counters::FragmentCounter;
 
 use super::range_sphere::LightBounds;
 use crate::lesson_05::extrusion::volume_shader_module;

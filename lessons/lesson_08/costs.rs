@@ -8,9 +8,9 @@
 //! and overwrites the stencil).
 
 use anyhow::Result;
+use common::gpu::render::{pipeline_layout_for, SceneGpu};
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::render::{pipeline_layout_for, SceneGpu};
-use common::targets::FrameTargets;
 
 use super::bounds_test::{bounded_volume_stencil, BoundedLight, BoundedVolumes, Limits};
 use crate::lesson_01::tally::{Tally, TallyShader};

@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use common::render::SceneGpu;
+use common::gpu::render::SceneGpu;
 
 use super::bounds_test::COUNT_BITS;
 use crate::lesson_05::stencil::caster_counters;

@@ -2,7 +2,7 @@
 //! with one of the two computed by the student's code
 //! ([`super::exercises`]). The lesson's own variants never use them.
 
-use common::render::SceneGpu;
+use common::gpu::render::SceneGpu;
 
 use super::exercises;
 use super::range_sphere::{all_bounds, sphere_depth_bounds, sphere_scissor, LightBounds};

@@ -25,14 +25,14 @@
 use std::collections::BTreeMap;
 
 use clap::ValueEnum;
-use common::app;
+use common::gpu::lit::LitPass;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::lesson::Lesson;
-use common::lit::LitPass;
-use common::render::SceneGpu;
+use common::measure::timing::Frame;
+use common::run::app;
+use common::run::lesson::Lesson;
 use common::scene::{Far, LightKind};
-use common::targets::FrameTargets;
-use common::timing::Frame;
 use common::Result;
 use workbook::lesson_05::extrusion::volume_shader_module;
 use workbook::lesson_05::volumes::{base_and_lit_draws, ShadowVolumes};

@@ -5,7 +5,7 @@
 //! the sphere's screen rectangle ([`sphere_scissor`]).
 
 use common::glam::{DMat4, DVec3, DVec4};
-use common::render::SceneGpu;
+use common::gpu::render::SceneGpu;
 use common::scene::LightKind;
 
 /// Widens the range sphere a little, so that a point the lit shader finds

@@ -6,10 +6,10 @@
 //!
 //! Everything is origin-relative (`Scene::origin`), like the GPU's data.
 
-use common::camera::stable_up;
 use common::glam::dcamera::rh::proj::directx as webgpu;
 use common::glam::dcamera::rh::view::look_at_mat4;
 use common::glam::{DMat4, DVec2, DVec3};
+use common::scene::camera::stable_up;
 
 /// How the view depth range [near, far] is cut into cascades.
 #[derive(Clone, Copy, Debug, PartialEq)]

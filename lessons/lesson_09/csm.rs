@@ -3,12 +3,12 @@
 //! draws with, and what the lit pass reads to pick and sample a cascade
 //! (`shaders/lesson_09/csm.wgsl`).
 
-use common::bindings::{self, sampler_entry, storage_entry, texture_entry};
-use common::camera::{light_uniform, LightUniform};
 use common::glam::DVec3;
+use common::gpu::bindings::{self, sampler_entry, storage_entry, texture_entry};
+use common::gpu::render::{SceneGpu, SCENE_BUFFER_USAGE};
+use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
-use common::render::{SceneGpu, SCENE_BUFFER_USAGE};
-use common::targets::depth_texture;
+use common::scene::camera::{light_uniform, LightUniform};
 
 use super::cascades::Cascade;
 use crate::lesson_01::shadow_map::{comparison_sampler, ShadowMap, SHADOW_FORMAT};
@@ -36,7 +36,7 @@ impl CascadeMaps {
         let layers = count.max(2) as u32;
         let label = format!("cascades {count}x{size}");
         let texture = depth_texture(gpu, &label, size, layers, SHADOW_FORMAT);
-        let layer_views = common::targets::layer_views(&texture, layers);
+        let layer_views = common::gpu::targets::layer_views(&texture, layers);
         let array_view = texture.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()

@@ -4,11 +4,11 @@
 use std::path::Path;
 
 use anyhow::Result;
+use common::gpu::readback::read_texture;
+use common::gpu::render::{pipeline_layout_for, vertex_state, SceneGpu};
+use common::gpu::targets::render_texture;
 use common::gpu::Gpu;
-use common::headless::save;
-use common::readback::read_texture;
-use common::render::{pipeline_layout_for, vertex_state, SceneGpu};
-use common::targets::render_texture;
+use common::run::headless::save;
 
 use super::csm::CascadeMaps;
 

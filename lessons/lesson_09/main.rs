@@ -20,14 +20,14 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use clap::ValueEnum;
-use common::app;
+use common::gpu::lit::LitPass;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::lesson::{variant_name, Lesson};
-use common::lit::LitPass;
-use common::render::SceneGpu;
+use common::measure::timing::Frame;
+use common::run::app;
+use common::run::lesson::{variant_name, Lesson};
 use common::scene::Scene;
-use common::targets::FrameTargets;
-use common::timing::Frame;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowPassState};
 use workbook::lesson_01::tally::{Tally, TallyShader};
@@ -152,7 +152,7 @@ impl Lesson for Csm {
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let source = include_str!("../../shaders/lesson_09/csm.wgsl");
-        let module = common::render::shader_module(gpu, "lesson_09", source);
+        let module = common::gpu::render::shader_module(gpu, "lesson_09", source);
         let state = ShadowPassState {
             cull: None,
             bias: setup::shadow_pass_bias(),

@@ -3,10 +3,10 @@
 //! camera into cascades, every frame.
 
 use anyhow::Result;
-use common::camera::directional_light_view_proj;
 use common::glam::DVec2;
+use common::gpu::render::SCENE_BUFFER_USAGE;
 use common::gpu::Gpu;
-use common::render::SCENE_BUFFER_USAGE;
+use common::scene::camera::directional_light_view_proj;
 use common::scene::{Far, LightKind, Scene};
 
 use super::cascades::{self, Cascade, Fit, FitOptions, LightBox, SplitScheme, ViewFrustum};

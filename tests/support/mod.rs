@@ -41,6 +41,12 @@ pub fn test_adapter() -> String {
 pub fn lesson_command(bin: &str) -> Command {
     let mut c = Command::new(bin);
     c.env("WORKBOOK_ADAPTER", test_adapter());
+    // The tests read errors, counters and that times exist; the protocol's
+    // warm-up is unit-tested (common::measure::protocol). A test that sets
+    // WORKBOOK_WARM_UP_MS itself keeps its own.
+    if std::env::var_os("WORKBOOK_WARM_UP_MS").is_none() {
+        c.env("WORKBOOK_WARM_UP_MS", "0");
+    }
     c
 }
 
@@ -113,7 +119,7 @@ pub fn read_visibility(path: &Path) -> (Vec<u32>, Vec<f32>, u32, u32) {
 /// The coarse text mask a learner reads in `cargo insta review`.
 pub fn ascii_of(path: &Path, cols: u32, rows: u32) -> String {
     let (ids, vis, w, h) = read_visibility(path);
-    common::metrics::ascii_mask(&ids, &vis, w, h, cols, rows)
+    common::reference::metrics::ascii_mask(&ids, &vis, w, h, cols, rows)
 }
 
 /// A three-level text mask, stable across drivers where a surface is noisy:

@@ -2,15 +2,15 @@
 //!
 //! Run: `cargo run --release --bin gen_assets`
 //!
-//! The built-ins are made by code (`common::mesh::builtin`); these files
+//! The built-ins are made by code (`common::scene::mesh::builtin`); these files
 //! are copies for other tools (a model viewer, Blender, a scene that wants
 //! a path). `tests/assets.rs` checks that they still match the code, so
 //! after changing a built-in, run this and commit the new files.
 
 use std::path::Path;
 
-use common::mesh::{builtin, BUILTIN_NAMES};
-use common::obj::to_obj_string;
+use common::scene::mesh::{builtin, BUILTIN_NAMES};
+use common::scene::obj::to_obj_string;
 use common::{Context, Result};
 
 fn run() -> Result<()> {

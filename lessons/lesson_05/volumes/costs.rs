@@ -4,9 +4,9 @@
 //! differ by a few edge fragments, and where a depth test ties.
 
 use anyhow::Result;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::render::SceneGpu;
-use common::targets::FrameTargets;
 
 use super::super::compute::ComputeVolumes;
 use super::super::extrusion::Extrusion;
@@ -57,7 +57,7 @@ pub fn base_and_lit_draws(scene: &SceneGpu) -> u64 {
 
 impl ShadowVolumes {
     /// Fragments rasterised by the volumes of `draws[light]` for every light
-    /// (see [`FragmentCounter`](common::counters::FragmentCounter)); `None` without PIPELINE_STATISTICS_QUERY.
+    /// (see [`FragmentCounter`](common::measure::counters::FragmentCounter)); `None` without PIPELINE_STATISTICS_QUERY.
     /// Call after `prepare_cpu` for the CPU path. Untimed: its own submit.
     pub fn count_fragments(
         &self,

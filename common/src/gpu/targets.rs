@@ -1,0 +1,234 @@
+//! The frame's render targets (colour, depth-stencil, object id, one
+//! visibility image per light), reading them back, and texture helpers.
+
+use anyhow::Result;
+
+use crate::gpu::readback::read_texture;
+use crate::gpu::Gpu;
+
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+pub const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+/// 8-bit, like the visibility PNGs; R32Float is not renderable on downlevel GL.
+pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
+/// The frame's render targets: shaded colour, depth-stencil, object id, and
+/// one visibility image per light.
+pub struct FrameTargets {
+    pub width: u32,
+    pub height: u32,
+    pub color: wgpu::Texture,
+    pub color_view: wgpu::TextureView,
+    pub depth: wgpu::Texture,
+    pub depth_view: wgpu::TextureView,
+    pub id: wgpu::Texture,
+    pub id_view: wgpu::TextureView,
+    pub visibility: Vec<wgpu::Texture>,
+    pub visibility_views: Vec<wgpu::TextureView>,
+}
+
+/// A 2D texture to render into and copy from (`extra`: more usages).
+pub fn render_texture(
+    gpu: &Gpu,
+    label: &str,
+    w: u32,
+    h: u32,
+    format: wgpu::TextureFormat,
+    extra: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC | extra,
+        view_formats: &[],
+    })
+}
+
+impl FrameTargets {
+    /// Targets of `w × h` pixels with one visibility image for each of
+    /// `lights` lights, depth-stencil in `depth_format`.
+    pub fn new(
+        gpu: &Gpu,
+        (w, h): (u32, u32),
+        depth_format: wgpu::TextureFormat,
+        lights: usize,
+    ) -> FrameTargets {
+        let tb = wgpu::TextureUsages::TEXTURE_BINDING;
+        let color = render_texture(gpu, "color", w, h, COLOR_FORMAT, tb);
+        let depth = render_texture(gpu, "depth", w, h, depth_format, tb);
+        let id = render_texture(gpu, "id", w, h, ID_FORMAT, wgpu::TextureUsages::empty());
+        let visibility: Vec<_> = (0..lights)
+            .map(|k| {
+                render_texture(
+                    gpu,
+                    &format!("visibility {k}"),
+                    w,
+                    h,
+                    VISIBILITY_FORMAT,
+                    wgpu::TextureUsages::empty(),
+                )
+            })
+            .collect();
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        FrameTargets {
+            width: w,
+            height: h,
+            color_view: view(&color),
+            depth_view: view(&depth),
+            id_view: view(&id),
+            visibility_views: visibility.iter().map(view).collect(),
+            color,
+            depth,
+            id,
+            visibility,
+        }
+    }
+
+    /// A pass with no colour target that keeps the base pass's depth and
+    /// starts the stencil at 0: every light's volume pass begins this way.
+    pub fn stencil_pass<'e>(
+        &self,
+        encoder: &'e mut wgpu::CommandEncoder,
+        label: &str,
+        ts: Option<wgpu::RenderPassTimestampWrites<'_>>,
+        occlusion_query_set: Option<&wgpu::QuerySet>,
+    ) -> wgpu::RenderPass<'e> {
+        let keep = wgpu::Operations {
+            load: wgpu::LoadOp::Load,
+            store: wgpu::StoreOp::Store,
+        };
+        let zero = wgpu::Operations {
+            load: wgpu::LoadOp::Clear(0),
+            store: wgpu::StoreOp::Store,
+        };
+        encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &self.depth_view,
+                depth_ops: Some(keep),
+                stencil_ops: Some(zero),
+            }),
+            timestamp_writes: ts,
+            occlusion_query_set,
+            multiview_mask: None,
+        })
+    }
+
+    pub fn color_attachment(
+        &self,
+        load: wgpu::LoadOp<wgpu::Color>,
+    ) -> wgpu::RenderPassColorAttachment<'_> {
+        wgpu::RenderPassColorAttachment {
+            view: &self.color_view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load,
+                store: wgpu::StoreOp::Store,
+            },
+        }
+    }
+
+    /// The frame's depth and stencil, loaded and kept: for the passes that
+    /// test against the base pass's depth (lit passes, counting copies).
+    pub fn depth_attachment_loaded(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        wgpu::RenderPassDepthStencilAttachment {
+            view: &self.depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            }),
+        }
+    }
+
+    pub fn id_attachment(&self) -> wgpu::RenderPassColorAttachment<'_> {
+        wgpu::RenderPassColorAttachment {
+            view: &self.id_view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        }
+    }
+
+    /// Reads back the frame: colour (RGBA8), object ids, visibility per light.
+    pub fn read(&self, gpu: &Gpu) -> Result<FrameImages> {
+        let color = read_texture(gpu, &self.color, 4)?;
+        let id: Vec<u32> = bytemuck::cast_slice(&read_texture(gpu, &self.id, 4)?).to_vec();
+        let visibility = self
+            .visibility
+            .iter()
+            .map(|t| read_texture(gpu, t, 1).map(|b| b.iter().map(|&v| v as f32 / 255.0).collect()))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(FrameImages {
+            width: self.width,
+            height: self.height,
+            color,
+            id,
+            visibility,
+        })
+    }
+}
+
+/// A frame read back to the CPU.
+pub struct FrameImages {
+    pub width: u32,
+    pub height: u32,
+    pub color: Vec<u8>,
+    pub id: Vec<u32>,
+    pub visibility: Vec<Vec<f32>>,
+}
+
+/// A depth texture the lesson samples (shadow maps).
+pub fn depth_texture(
+    gpu: &Gpu,
+    label: &str,
+    size: u32,
+    layers: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: size,
+            height: size,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+/// One 2D view per array layer of `texture` (a cube map's faces, a
+/// cascade's layers): what a pass renders into, one layer at a time.
+pub fn layer_views(texture: &wgpu::Texture, layers: u32) -> Vec<wgpu::TextureView> {
+    (0..layers)
+        .map(|i| {
+            texture.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: i,
+                array_layer_count: Some(1),
+                ..Default::default()
+            })
+        })
+        .collect()
+}

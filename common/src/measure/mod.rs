@@ -1,0 +1,16 @@
+//! Measuring a frame's cost and reporting it.
+//!
+//! - [`timing`]: GPU timestamp queries per pass, with a labelled CPU fallback;
+//!   a frame's GPU, CPU and wall-clock milliseconds.
+//! - [`protocol`]: the timing protocol: warm up until frame times settle,
+//!   time the variants interleaved with the no-shadow baseline, and tell a
+//!   stable measurement from one whose GPU clock moved.
+//! - [`counters`]: deterministic cost counters (fragments rasterised).
+//! - [`baseline`]: the no-shadow baseline frame every lesson is timed against.
+//! - [`report`]: `report.json` and the terminal table.
+
+pub mod baseline;
+pub mod counters;
+pub mod protocol;
+pub mod report;
+pub mod timing;

@@ -1,0 +1,344 @@
+//! `report.json` (INTERFACES.md) and the terminal table.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::measure::timing::{TimingSource, CPU_TOTAL, FRAME, TOTAL};
+use crate::reference::metrics::{ClassError, ErrorStats, COVERAGE_WARN_PCT};
+
+#[derive(Serialize, Deserialize, Clone, Debug)]
+pub struct AdapterReport {
+    pub name: String,
+    pub backend: String,
+    /// The scene's depth-stencil format, as wgpu names it
+    /// (`"Depth32FloatStencil8"`; empty in reports older than the field).
+    #[serde(default)]
+    pub depth_format: String,
+    /// What that format stores on this adapter, as measured
+    /// ([`crate::gpu::depth_probe`]): `"unorm24"`, `"float32"` (or `"unknown"`).
+    #[serde(default)]
+    pub depth_storage: String,
+}
+
+#[derive(Serialize, Deserialize, Clone, Debug)]
+pub struct VariantReport {
+    pub name: String,
+    /// All lights together (pixel counts summed over lights).
+    pub error: ErrorStats,
+    /// One entry per light, in scene order.
+    pub error_per_light: Vec<ErrorStats>,
+    /// Median milliseconds: `total`, one key per pass, `cpu_*` for CPU work.
+    pub timing_ms: BTreeMap<String, f64>,
+    /// The interquartile range `[q25, q75]` of each `timing_ms` key.
+    #[serde(default)]
+    pub timing_spread_ms: BTreeMap<String, [f64; 2]>,
+    /// Every timed frame's milliseconds, key by key (the generator pools
+    /// them over repeated runs).
+    #[serde(default)]
+    pub timing_samples_ms: BTreeMap<String, Vec<f64>>,
+    pub timing_source: TimingSource,
+    pub counters: BTreeMap<String, u64>,
+    /// The scene's `[camera_path]` measured (absent without one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_path: Option<CameraPathReport>,
+    /// The error per pixel class, when the lesson has classes
+    /// ([`crate::run::lesson::Lesson::pixel_classes`]; absent otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub classes: Option<Vec<ClassError>>,
+    /// How the variant's timed block went ([`crate::measure::protocol`]);
+    /// absent in reports older than the protocol.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timing_check: Option<TimingCheck>,
+}
+
+impl VariantReport {
+    /// Whether the times can be quoted: no check (an older report) or a
+    /// stable one.
+    pub fn timing_stable(&self) -> bool {
+        self.timing_check.as_ref().is_none_or(|c| c.stable)
+    }
+}
+
+/// One timed block's warm-up and its base-pass check.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct TimingCheck {
+    /// Untimed frames and their wall-clock milliseconds before timing.
+    pub warm_up_frames: u32,
+    pub warm_up_ms: f64,
+    /// Whether the frame times settled in the warm-up (else it gave up).
+    pub settled: bool,
+    /// The block's median base-pass time (ms; `None` without a base pass).
+    pub base_ms: Option<f64>,
+    /// Whether that agrees with the run's reference (see
+    /// [`TimingProtocolReport`]): the GPU ran at the same speed.
+    pub stable: bool,
+}
+
+/// The protocol a run was timed with and its verdict.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct TimingProtocolReport {
+    /// `--warm-up-ms`: each block's least warm-up (the first block's: 3×).
+    pub warm_up_min_ms: f64,
+    /// The timed blocks in the order they ran (`baseline` between variants).
+    pub order: Vec<String>,
+    /// The median base-pass time of the baseline blocks; a block whose
+    /// own is more than `base_ratio_limit` times off it either way, and
+    /// further than `base_tolerance_ms` from it, is unstable.
+    pub base_reference_ms: Option<f64>,
+    pub base_ratio_limit: f64,
+    pub base_tolerance_ms: f64,
+    /// Every block stable.
+    pub stable: bool,
+}
+
+/// A variant along the scene's camera path ([`crate::scene::camera_path::Shimmer`]).
+/// The flip percentages are of the pixels that are receivers in both
+/// frames of a pair, over every pair and light.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct CameraPathReport {
+    pub frames: u32,
+    /// World-locked: the receivers whose shadow flips when only the fit
+    /// moves to the next frame's camera and the view stays
+    /// ([`crate::scene::camera_path`]). The reference cannot flip there.
+    pub shimmer_pct: f64,
+    /// Screen-space: between consecutive frames, the technique flips
+    /// lit/shadowed and the reference does not (edges sweeping past count).
+    pub screen_mismatch_pct: f64,
+    /// The reference flips (the shadow really moves across the pixel).
+    pub reference_flip_pct: f64,
+    /// The technique flips, rightly or not.
+    pub technique_flip_pct: f64,
+    /// Each frame's misclassified % (all lights), in path order.
+    pub misclassified_pct_per_frame: Vec<f64>,
+}
+
+/// The same frame with the visibility test removed: the base pass and one
+/// unshadowed lit pass per light. What the shadows cost is a variant's
+/// time minus this.
+#[derive(Serialize, Deserialize, Clone, Debug)]
+pub struct BaselineReport {
+    pub timing_ms: BTreeMap<String, f64>,
+    pub timing_spread_ms: BTreeMap<String, [f64; 2]>,
+    pub timing_samples_ms: BTreeMap<String, Vec<f64>>,
+    /// Each baseline block (the protocol times one between every two
+    /// variants); empty in older reports.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub blocks: Vec<TimingCheck>,
+}
+
+impl BaselineReport {
+    /// Whether every baseline block was stable.
+    pub fn stable(&self) -> bool {
+        self.blocks.iter().all(|b| b.stable)
+    }
+}
+
+#[derive(Serialize, Deserialize, Clone, Debug)]
+pub struct Report {
+    pub lesson: String,
+    pub adapter: AdapterReport,
+    pub width: u32,
+    pub height: u32,
+    pub scene: String,
+    pub reference_ms: f64,
+    pub frames: u32,
+    pub variants: Vec<VariantReport>,
+    /// The no-shadow baseline, timed like the variants.
+    #[serde(default)]
+    pub baseline: Option<BaselineReport>,
+    /// The timing protocol and its verdict (absent in older reports).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timing_protocol: Option<TimingProtocolReport>,
+}
+
+/// Sums per-light statistics into one (weighted by receiver pixels).
+pub fn combine(per_light: &[ErrorStats]) -> ErrorStats {
+    let n: u64 = per_light.iter().map(|s| s.receiver_pixels).sum();
+    let interior: u64 = per_light.iter().map(|s| s.interior_receiver_pixels).sum();
+    let w = |f: fn(&ErrorStats) -> f64| -> f64 {
+        if n == 0 {
+            0.0
+        } else {
+            per_light
+                .iter()
+                .map(|s| f(s) * s.receiver_pixels as f64)
+                .sum::<f64>()
+                / n as f64
+        }
+    };
+    ErrorStats {
+        receiver_pixels: n,
+        misclassified_pct: w(|s| s.misclassified_pct),
+        false_shadow_pct: w(|s| s.false_shadow_pct),
+        false_lit_pct: w(|s| s.false_lit_pct),
+        mean_abs: w(|s| s.mean_abs),
+        // Coverage does not depend on the light: every entry has the same.
+        coverage_mismatch_pct: per_light
+            .iter()
+            .map(|s| s.coverage_mismatch_pct)
+            .fold(0.0, f64::max),
+        interior_receiver_pixels: interior,
+        interior_misclassified_pct: if interior == 0 {
+            0.0
+        } else {
+            per_light
+                .iter()
+                .map(|s| s.interior_misclassified_pct * s.interior_receiver_pixels as f64)
+                .sum::<f64>()
+                / interior as f64
+        },
+    }
+}
+
+impl Report {
+    /// One warning line when a variant's GPU image and the reference see
+    /// different surfaces on more than [`COVERAGE_WARN_PCT`] % of the covered
+    /// pixels (the worst variant is named), else `None`.
+    pub fn coverage_warning(&self) -> Option<String> {
+        let bad: Vec<&VariantReport> = self
+            .variants
+            .iter()
+            .filter(|v| v.error.coverage_mismatch_pct > COVERAGE_WARN_PCT)
+            .collect();
+        // The first of the worst, in report order.
+        let worst = bad.iter().copied().reduce(|w, v| {
+            if v.error.coverage_mismatch_pct > w.error.coverage_mismatch_pct {
+                v
+            } else {
+                w
+            }
+        })?;
+        let others = match bad.len() - 1 {
+            0 => String::new(),
+            n => format!(" and {n} other variant(s)"),
+        };
+        Some(format!(
+            "warning: {}: the GPU and the reference see different surfaces on {:.1} % of the covered pixels ({}{others}); the error figures leave those pixels out, so they hide part of the image (compare {}_visibility_l0.png with reference_visibility_l0.png)",
+            self.lesson, worst.error.coverage_mismatch_pct, worst.name, worst.name
+        ))
+    }
+
+    /// One line naming the blocks whose base pass strayed (their times are
+    /// printed as `unstable`), or `None` when every block was stable.
+    pub fn unstable_line(&self) -> Option<String> {
+        let p = self.timing_protocol.as_ref().filter(|p| !p.stable)?;
+        let mut bad: Vec<String> = self
+            .variants
+            .iter()
+            .filter_map(|v| {
+                let c = v.timing_check.as_ref().filter(|c| !c.stable)?;
+                Some(match c.base_ms {
+                    Some(ms) => format!("{} {ms:.3} ms", v.name),
+                    None => format!("{} (no base pass)", v.name),
+                })
+            })
+            .collect();
+        let baseline = self.baseline.iter().flat_map(|b| &b.blocks);
+        let n = baseline.filter(|c| !c.stable).count();
+        if n > 0 {
+            bad.push(format!("{n} baseline block(s)"));
+        }
+        Some(format!(
+            "unstable: the base pass, the same work in every block, took {} against {:.3} ms in the baseline (more than {}× off); the GPU's speed changed during the run (its clock?), so those times are not quoted. Re-run, or time one variant alone (--variant NAME --frames 300)",
+            bad.join(", "),
+            p.base_reference_ms.unwrap_or(f64::NAN),
+            p.base_ratio_limit
+        ))
+    }
+
+    /// The terminal table: adapter and reference time, then one row a variant.
+    pub fn table(&self) -> String {
+        let mut s = String::new();
+        s += &format!(
+            "{} on {} ({}), {}x{}, scene {}",
+            self.lesson,
+            self.adapter.name,
+            self.adapter.backend,
+            self.width,
+            self.height,
+            self.scene
+        );
+        if !self.adapter.depth_format.is_empty() {
+            let a = &self.adapter;
+            s += &format!(", depth {} ({})", a.depth_format, a.depth_storage);
+        }
+        s += "\n";
+        s += &format!("reference (CPU ray cast): {:.1} ms\n", self.reference_ms);
+        let src = self.variants.first().map(|v| v.timing_source);
+        if src == Some(TimingSource::CpuWall) {
+            s += "timing: CPU wall clock per pass (no GPU timestamp queries on this adapter)\n";
+        } else {
+            s += &format!("timing: GPU timestamps, median of {} frames\n", self.frames);
+        }
+        let w = self
+            .variants
+            .iter()
+            .map(|v| v.name.len())
+            .max()
+            .unwrap_or(7)
+            .max(21);
+        // A shimmer column only when some variant walked a camera path.
+        let shimmer = self.variants.iter().any(|v| v.camera_path.is_some());
+        let (head, rule) = match shimmer {
+            true => (" | shimmer %", "-|----------"),
+            false => ("", ""),
+        };
+        s += &format!(
+            "{:<w$} | misclassified % | false shadow | false lit | frame ms |   GPU ms |   CPU ms{head}\n",
+            "variant"
+        );
+        s += &format!(
+            "{}-|-----------------|--------------|-----------|----------|----------|---------{rule}\n",
+            "-".repeat(w)
+        );
+        let times = |t: &BTreeMap<String, f64>, stable: bool| {
+            let get = |k: &str| t.get(k).copied().unwrap_or(f64::NAN);
+            let clocked = |x: f64| match stable {
+                true => format!("{x:>8.3}"),
+                false => format!("{:>8}", "unstable"),
+            };
+            // CPU time does not depend on the GPU's clock.
+            format!(
+                "{} | {} | {:>8.3}",
+                clocked(get(FRAME)),
+                clocked(get(TOTAL)),
+                get(CPU_TOTAL)
+            )
+        };
+        if let Some(b) = &self.baseline {
+            let blank = format!("{:>15} | {:>12} | {:>9}", "-", "-", "-");
+            s += &format!(
+                "{:<w$} | {blank} | {}",
+                "no shadows (baseline)",
+                times(&b.timing_ms, b.stable())
+            );
+            if shimmer {
+                s += &format!(" | {:>9}", "-");
+            }
+            s += "\n";
+        }
+        for v in &self.variants {
+            s += &format!(
+                "{:<w$} | {:>15.3} | {:>12.3} | {:>9.3} | {}",
+                v.name,
+                v.error.misclassified_pct,
+                v.error.false_shadow_pct,
+                v.error.false_lit_pct,
+                times(&v.timing_ms, v.timing_stable())
+            );
+            if shimmer {
+                match &v.camera_path {
+                    Some(p) => s += &format!(" | {:>9.3}", p.shimmer_pct),
+                    None => s += &format!(" | {:>9}", "-"),
+                }
+            }
+            s += "\n";
+        }
+        if let Some(line) = self.unstable_line() {
+            s += &line;
+            s += "\n";
+        }
+        s
+    }
+}

@@ -1,0 +1,314 @@
+//! Timing a frame pass by pass.
+//!
+//! With `TIMESTAMP_QUERY`, every pass writes a GPU timestamp at its start and
+//! end; the report quotes GPU milliseconds. Without it (llvmpipe over GL, for
+//! one), each pass is submitted on its own and timed by the CPU wall clock
+//! around submit-and-wait: slower and noisier, and labelled `cpu_wall`.
+//!
+//! Beside the passes, every frame reports two more keys:
+//! - `cpu_total`: the CPU's time on the frame until it is submitted
+//!   (recording, uploads, the lesson's own CPU work such as silhouettes or
+//!   bounds), waits on the GPU left out;
+//! - `frame`: the wall-clock time from the start of the frame to the GPU
+//!   finishing it, the frame cost a user sees when each frame is waited for
+//!   (as here). It is at least `cpu_total`, and at least the GPU's `total`.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use anyhow::Result;
+
+use crate::gpu::readback::QueryReadback;
+use crate::gpu::Gpu;
+
+/// Where the milliseconds came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TimingSource {
+    GpuTimestamps,
+    CpuWall,
+}
+
+const MAX_QUERIES: u32 = 512;
+
+/// Owns the query set and its readback buffers; reused frame after frame.
+pub struct Timer {
+    queries: Option<(wgpu::QuerySet, QueryReadback)>,
+    period_ns: f64,
+}
+
+impl Timer {
+    /// GPU timestamps when the adapter has them. `WORKBOOK_TIMING=cpu` forces
+    /// the CPU wall-clock fallback (to compare the two, and to test it).
+    pub fn new(gpu: &Gpu) -> Timer {
+        let forced_cpu = std::env::var("WORKBOOK_TIMING").is_ok_and(|v| v == "cpu");
+        let queries = (gpu.has(wgpu::Features::TIMESTAMP_QUERY) && !forced_cpu).then(|| {
+            let set = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: MAX_QUERIES,
+            });
+            (set, QueryReadback::new(gpu, MAX_QUERIES, "timestamps"))
+        });
+        Timer {
+            queries,
+            period_ns: gpu.queue.get_timestamp_period() as f64,
+        }
+    }
+
+    pub fn source(&self) -> TimingSource {
+        if self.queries.is_some() {
+            TimingSource::GpuTimestamps
+        } else {
+            TimingSource::CpuWall
+        }
+    }
+
+    /// Starts recording a frame.
+    pub fn frame<'a>(&'a mut self, gpu: &'a Gpu) -> Frame<'a> {
+        Frame {
+            encoder: new_encoder(gpu),
+            gpu,
+            timer: self,
+            names: Vec::new(),
+            wall: Vec::new(),
+            cpu: Vec::new(),
+            start: Instant::now(),
+            waited_ms: 0.0,
+        }
+    }
+}
+
+fn new_encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
+    gpu.device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("frame"),
+        })
+}
+
+/// The timestamp slots of one pass; hand them to the pass descriptor.
+pub struct PassTimestamps<'q> {
+    slot: Option<(&'q wgpu::QuerySet, u32)>,
+}
+
+impl<'q> PassTimestamps<'q> {
+    pub fn render(&self) -> Option<wgpu::RenderPassTimestampWrites<'q>> {
+        self.slot
+            .map(|(query_set, i)| wgpu::RenderPassTimestampWrites {
+                query_set,
+                beginning_of_pass_write_index: Some(i),
+                end_of_pass_write_index: Some(i + 1),
+            })
+    }
+
+    pub fn compute(&self) -> Option<wgpu::ComputePassTimestampWrites<'q>> {
+        self.slot
+            .map(|(query_set, i)| wgpu::ComputePassTimestampWrites {
+                query_set,
+                beginning_of_pass_write_index: Some(i),
+                end_of_pass_write_index: Some(i + 1),
+            })
+    }
+}
+
+/// One frame being recorded. Passes are named; a name used twice (one
+/// "lighting" pass per light) adds up.
+pub struct Frame<'a> {
+    pub gpu: &'a Gpu,
+    encoder: wgpu::CommandEncoder,
+    timer: &'a mut Timer,
+    names: Vec<String>,
+    wall: Vec<(String, f64)>,
+    cpu: Vec<(String, f64)>,
+    /// When recording began, and the time spent waiting on the GPU since.
+    start: Instant,
+    waited_ms: f64,
+}
+
+/// The key of a frame's CPU time until submission.
+pub const CPU_TOTAL: &str = "cpu_total";
+/// The key of a frame's wall-clock cost, start to GPU completion.
+pub const FRAME: &str = "frame";
+/// The key of the GPU's time for the whole frame.
+pub const TOTAL: &str = "total";
+
+/// Milliseconds of one frame: `total` (GPU), `frame` (wall clock),
+/// `cpu_total`, and one entry per pass name.
+#[derive(Clone, Debug, Default)]
+pub struct FrameTimes {
+    pub ms: BTreeMap<String, f64>,
+}
+
+impl<'a> Frame<'a> {
+    /// Records one pass. `f` gets the encoder and the pass's timestamp slots.
+    pub fn pass<R>(
+        &mut self,
+        name: &str,
+        f: impl FnOnce(&mut wgpu::CommandEncoder, &PassTimestamps) -> R,
+    ) -> R {
+        match &self.timer.queries {
+            Some((set, _)) if (self.names.len() as u32 + 1) * 2 <= MAX_QUERIES => {
+                let ts = PassTimestamps {
+                    slot: Some((set, self.names.len() as u32 * 2)),
+                };
+                self.names.push(name.to_string());
+                f(&mut self.encoder, &ts)
+            }
+            Some(_) => f(&mut self.encoder, &PassTimestamps { slot: None }),
+            None => {
+                // CPU wall clock: submit what came before, then time this pass alone.
+                let before = std::mem::replace(&mut self.encoder, new_encoder(self.gpu));
+                self.gpu.queue.submit([before.finish()]);
+                self.wait();
+                let t = Instant::now();
+                let r = f(&mut self.encoder, &PassTimestamps { slot: None });
+                let this = std::mem::replace(&mut self.encoder, new_encoder(self.gpu));
+                self.gpu.queue.submit([this.finish()]);
+                self.wait();
+                self.wall
+                    .push((name.to_string(), t.elapsed().as_secs_f64() * 1e3));
+                r
+            }
+        }
+    }
+
+    /// Times CPU-side work (silhouette extraction, ...) as `cpu_<name>`.
+    pub fn cpu<R>(&mut self, name: &str, f: impl FnOnce() -> R) -> R {
+        let t = Instant::now();
+        let r = f();
+        self.cpu
+            .push((format!("cpu_{name}"), t.elapsed().as_secs_f64() * 1e3));
+        r
+    }
+
+    /// Waits for the GPU, counting the wait out of the frame's CPU time.
+    fn wait(&mut self) {
+        let t = Instant::now();
+        let _ = self.gpu.wait();
+        self.waited_ms += t.elapsed().as_secs_f64() * 1e3;
+    }
+
+    /// Direct access for copies outside any timed pass.
+    pub fn encoder(&mut self) -> &mut wgpu::CommandEncoder {
+        &mut self.encoder
+    }
+
+    /// Submits, waits, and returns the frame's milliseconds.
+    pub fn finish(mut self) -> Result<FrameTimes> {
+        let n = self.names.len() as u32 * 2;
+        if let (Some((set, readback)), true) = (&self.timer.queries, n > 0) {
+            readback.resolve(&mut self.encoder, set, n);
+        }
+        let command_buffer = self.encoder.finish();
+        let cpu_total = self.start.elapsed().as_secs_f64() * 1e3 - self.waited_ms;
+        self.gpu.queue.submit([command_buffer]);
+        self.gpu.wait()?;
+        let wall = self.start.elapsed().as_secs_f64() * 1e3;
+        let mut ms: BTreeMap<String, f64> = BTreeMap::new();
+        ms.insert(CPU_TOTAL.into(), cpu_total);
+        ms.insert(FRAME.into(), wall);
+        for (k, v) in self.cpu {
+            *ms.entry(k).or_default() += v;
+        }
+        match (&self.timer.queries, n > 0) {
+            (Some((_, readback)), true) => {
+                let stamps = readback.read(self.gpu, n)?;
+                let to_ms = self.timer.period_ns / 1e6;
+                let (mut first, mut last) = (u64::MAX, 0u64);
+                for (i, name) in self.names.iter().enumerate() {
+                    let (a, b) = (stamps[2 * i], stamps[2 * i + 1]);
+                    first = first.min(a);
+                    last = last.max(b);
+                    *ms.entry(name.clone()).or_default() += b.saturating_sub(a) as f64 * to_ms;
+                }
+                ms.insert("total".into(), last.saturating_sub(first) as f64 * to_ms);
+            }
+            _ => {
+                let mut total = 0.0;
+                for (k, v) in self.wall {
+                    total += v;
+                    *ms.entry(k).or_default() += v;
+                }
+                ms.insert("total".into(), total);
+            }
+        }
+        Ok(FrameTimes { ms })
+    }
+}
+
+/// Every frame's milliseconds, key by key (a pass a frame skipped is 0).
+pub fn samples(frames: &[FrameTimes]) -> BTreeMap<String, Vec<f64>> {
+    let mut keys: Vec<&String> = frames.iter().flat_map(|f| f.ms.keys()).collect();
+    keys.sort();
+    keys.dedup();
+    keys.into_iter()
+        .map(|k| {
+            let v = frames
+                .iter()
+                .map(|f| f.ms.get(k).copied().unwrap_or(0.0))
+                .collect();
+            (k.clone(), v)
+        })
+        .collect()
+}
+
+/// The `q`-quantile (0 to 1) of `v`, interpolated linearly between the
+/// sorted samples (the median is `quantile(v, 0.5)`). NaN for no samples.
+pub fn quantile(v: &[f64], q: f64) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    let mut s = v.to_vec();
+    s.sort_by(|a, b| a.total_cmp(b));
+    let x = q.clamp(0.0, 1.0) * (s.len() - 1) as f64;
+    let (i, f) = (x.floor() as usize, x.fract());
+    let j = (i + 1).min(s.len() - 1);
+    s[i] + f * (s[j] - s[i])
+}
+
+// ANCHOR: timing_protocol
+/// The median of each key over several frames (the report's figure).
+pub fn median_times(frames: &[FrameTimes]) -> BTreeMap<String, f64> {
+    samples(frames)
+        .into_iter()
+        .map(|(k, v)| (k, quantile(&v, 0.5)))
+        .collect()
+}
+
+/// The spread of each key: its interquartile range `[q25, q75]`.
+pub fn spread_times(frames: &[FrameTimes]) -> BTreeMap<String, [f64; 2]> {
+    samples(frames)
+        .into_iter()
+        .map(|(k, v)| (k, [quantile(&v, 0.25), quantile(&v, 0.75)]))
+        .collect()
+}
+// ANCHOR_END: timing_protocol
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        let f = |t: f64| FrameTimes {
+            ms: [("total".to_string(), t)].into_iter().collect(),
+        };
+        assert_eq!(median_times(&[f(3.0), f(1.0), f(2.0)])["total"], 2.0);
+        assert_eq!(
+            median_times(&[f(4.0), f(1.0), f(2.0), f(3.0)])["total"],
+            2.5
+        );
+    }
+
+    #[test]
+    fn spread_is_the_interquartile_range() {
+        let f = |t: f64| FrameTimes {
+            ms: [("total".to_string(), t)].into_iter().collect(),
+        };
+        let frames: Vec<FrameTimes> = [5.0, 1.0, 3.0, 2.0, 4.0].map(f).into();
+        assert_eq!(spread_times(&frames)["total"], [2.0, 4.0]);
+        assert_eq!(samples(&frames)["total"], vec![5.0, 1.0, 3.0, 2.0, 4.0]);
+        assert_eq!(quantile(&[1.0, 2.0], 0.25), 1.25);
+        assert!(quantile(&[], 0.5).is_nan());
+    }
+}

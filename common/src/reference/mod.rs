@@ -1,0 +1,319 @@
+//! The exact hard-shadow reference: one primary ray per pixel, one shadow ray
+//! per pixel and light, through a [`Bvh`], on every core (rayon).
+//!
+//! Everything is origin-relative, like the GPU's view (see [`Scene::origin`]).
+//! Two small numbers decide what "exact" means here:
+//!
+//! - [`SHADOW_OFFSET`]: a shadow ray starts this fraction of the scene's
+//!   diagonal off the surface, on the camera's side, and ignores the triangle
+//!   it starts on. That is far above `f32` rounding at the scene's size
+//!   (about `6e-8` of it) and far below anything a pixel can show.
+//! - A surface whose camera-facing normal points away from a light
+//!   (N·L <= 0) is in its own shadow: visibility 0, no ray is cast.
+//!
+//! Beside the reference:
+//! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
+//! - [`metrics`]: error of a GPU visibility image against the reference.
+
+pub mod bvh;
+pub mod metrics;
+
+use std::time::Instant;
+
+use glam::{DMat4, DVec3, DVec4, Mat4, Vec3};
+use rayon::prelude::*;
+
+use crate::reference::bvh::Bvh;
+use crate::scene::{LightKind, Scene};
+
+/// Shadow-ray start offset, as a fraction of the scene's bounding diagonal.
+pub const SHADOW_OFFSET: f32 = 1e-5;
+
+/// What the primary ray of a pixel hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PixelHit {
+    /// Index into `scene.objects`.
+    pub object: u32,
+    /// Index into `scene.world_triangles()`.
+    pub triangle: u32,
+    /// Distance from the ray's start on the near plane.
+    pub t: f32,
+    /// Origin-relative world position (see [`Scene::origin`]), on the
+    /// triangle's plane.
+    pub position: Vec3,
+    /// Unit geometric normal, flipped to face the camera.
+    pub normal: Vec3,
+}
+
+/// The reference images, row-major, row 0 at the top.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    pub width: u32,
+    pub height: u32,
+    pub hits: Vec<Option<PixelHit>>,
+    /// `visibility[k][pixel]`: 1.0 where light `k` is unoccluded, else 0.0
+    /// (also 0.0 where nothing was hit or the surface faces away from it).
+    pub visibility: Vec<Vec<f32>>,
+    /// `lit_by[k][pixel]`: geometric N·L (clamped at 0) where the pixel is
+    /// inside light `k`'s influence (range, and cone for a spot), else 0.0.
+    pub lit_by: Vec<Vec<f32>>,
+    /// Wall-clock time of [`render_reference`], BVH builds included.
+    pub ms: f64,
+}
+
+// ANCHOR: primary_ray
+/// The ray through the centre of pixel `(i, j)` of a `w × h` image, from the
+/// near plane, with a unit direction. `inv_view_proj` is the inverse of the
+/// origin-relative camera matrix.
+///
+/// It unprojects two depths of the same NDC point, 0 (the near plane) and 0.5,
+/// in `f64`: that works for an infinite far plane, where depth 1 has w = 0.
+pub fn primary_ray(inv_view_proj: DMat4, i: u32, j: u32, w: u32, h: u32) -> (Vec3, Vec3) {
+    let (o, d, _) = primary_ray_f64(inv_view_proj, i, j, w, h);
+    (o.as_vec3(), d.as_vec3())
+}
+
+/// The pixel's ray in `f64` and the distance to the far plane (infinite for
+/// an infinite far plane).
+fn primary_ray_f64(inv: DMat4, i: u32, j: u32, w: u32, h: u32) -> (DVec3, DVec3, f64) {
+    // NDC y points up, image rows go down.
+    let x = (i as f64 + 0.5) / w as f64 * 2.0 - 1.0;
+    let y = 1.0 - (j as f64 + 0.5) / h as f64 * 2.0;
+    let unproject = |z: f64| inv * DVec4::new(x, y, z, 1.0);
+    let near = unproject(0.0);
+    let near = near.truncate() / near.w;
+    let mid = unproject(0.5);
+    let dir = (mid.truncate() / mid.w - near).normalize();
+    // Depth 1: w is 0 for an infinite far plane (or rounds to either sign).
+    let far = unproject(1.0);
+    let t_far = if far.w.abs() > 1e-12 * far.truncate().length() {
+        (far.truncate() / far.w - near).dot(dir)
+    } else {
+        f64::INFINITY
+    };
+    let t_far = if t_far.is_finite() && t_far > 0.0 {
+        t_far
+    } else {
+        f64::INFINITY
+    };
+    (near, dir, t_far)
+}
+// ANCHOR_END: primary_ray
+
+/// Where a light is, seen from an origin-relative point.
+enum LightRel {
+    /// Unit vector toward the light (opposite to the way the light travels).
+    Directional { to_light: Vec3 },
+    /// `cos_half`: cosine of half the cone angle; -1 for a point light.
+    Local {
+        position: Vec3,
+        range: f32,
+        spot_dir: Vec3,
+        cos_half: f32,
+    },
+}
+
+impl LightRel {
+    fn new(kind: &LightKind, origin: DVec3) -> Self {
+        match *kind {
+            LightKind::Directional { direction } => LightRel::Directional {
+                to_light: (-direction).normalize().as_vec3(),
+            },
+            LightKind::Point { position, range } => LightRel::Local {
+                position: (position - origin).as_vec3(),
+                range: range as f32,
+                spot_dir: Vec3::ZERO,
+                cos_half: -1.0,
+            },
+            LightKind::Spot {
+                position,
+                direction,
+                range,
+                spot_angle_deg,
+            } => LightRel::Local {
+                position: (position - origin).as_vec3(),
+                range: range as f32,
+                spot_dir: direction.normalize().as_vec3(),
+                cos_half: (0.5 * spot_angle_deg).to_radians().cos() as f32,
+            },
+        }
+    }
+
+    /// Geometric N·L at a point, and whether the point is inside the light's
+    /// influence (within range, and inside a spot's cone).
+    fn n_dot_l(&self, p: Vec3, normal: Vec3) -> (f32, bool) {
+        match *self {
+            LightRel::Directional { to_light } => (normal.dot(to_light), true),
+            LightRel::Local {
+                position,
+                range,
+                spot_dir,
+                cos_half,
+            } => {
+                let v = position - p;
+                let (dist, l) = (v.length(), v.normalize_or_zero());
+                (
+                    normal.dot(l),
+                    dist <= range && (-l).dot(spot_dir) >= cos_half,
+                )
+            }
+        }
+    }
+
+    /// A shadow ray from `from`: unit direction and length. A local light's
+    /// ray stops `margin` short of it.
+    fn shadow_ray(&self, from: Vec3, margin: f32) -> (Vec3, f32) {
+        match *self {
+            LightRel::Directional { to_light } => (to_light, f32::INFINITY),
+            LightRel::Local { position, .. } => {
+                let v = position - from;
+                (v.normalize_or_zero(), v.length() - margin)
+            }
+        }
+    }
+}
+
+/// The triangles that block shadow rays: only objects with `casts_shadow`.
+struct Occluders {
+    /// `None` when every object casts: the primary BVH serves both.
+    bvh: Option<Bvh>,
+    /// `local[scene triangle]`: its index in `bvh`, or `u32::MAX`.
+    local: Vec<u32>,
+}
+
+impl Occluders {
+    fn new(scene: &Scene, tris: &[([Vec3; 3], u32)]) -> anyhow::Result<Self> {
+        let casts = |o: u32| scene.objects[o as usize].casts_shadow;
+        if tris.iter().all(|&(_, o)| casts(o)) {
+            return Ok(Occluders {
+                bvh: None,
+                local: Vec::new(),
+            });
+        }
+        let mut local = vec![u32::MAX; tris.len()];
+        let mut list = Vec::new();
+        for (i, &(t, o)) in tris.iter().enumerate() {
+            if casts(o) {
+                local[i] = list.len() as u32;
+                list.push(t);
+            }
+        }
+        Ok(Occluders {
+            bvh: Some(Bvh::try_build(list)?),
+            local,
+        })
+    }
+
+    /// Whether a caster other than scene triangle `skip` crosses the ray.
+    fn blocked(&self, primary: &Bvh, from: Vec3, dir: Vec3, t_max: f32, skip: u32) -> bool {
+        match &self.bvh {
+            None => primary.any_hit(from, dir, 0.0, t_max, Some(skip)),
+            Some(bvh) => {
+                let skip = Some(self.local[skip as usize]).filter(|&l| l != u32::MAX);
+                bvh.any_hit(from, dir, 0.0, t_max, skip)
+            }
+        }
+    }
+}
+
+// ANCHOR: render_reference
+/// Ray casts the scene through `view_proj` (origin-relative, depth in [0, 1]):
+/// what each pixel sees, and whether each light reaches it.
+///
+/// Panics where [`try_render_reference`] fails: on a scene that was not
+/// validated (a vertex beyond the BVH's bounds).
+pub fn render_reference(scene: &Scene, view_proj: Mat4, width: u32, height: u32) -> Reference {
+    try_render_reference(scene, view_proj, width, height).unwrap_or_else(|e| panic!("{e:#}"))
+}
+
+/// [`render_reference`], with the BVH's refusal of out-of-range vertices
+/// as an error (see [`Bvh::try_build`]).
+pub fn try_render_reference(
+    scene: &Scene,
+    view_proj: Mat4,
+    width: u32,
+    height: u32,
+) -> anyhow::Result<Reference> {
+    let start = Instant::now();
+    let tris = scene.world_triangles();
+    let bvh = Bvh::try_build(tris.iter().map(|(t, _)| *t).collect())?;
+    let occluders = Occluders::new(scene, &tris)?;
+
+    // Primary rays: what the camera sees at each pixel centre.
+    let inv = view_proj.as_dmat4().inverse();
+    let n = width as usize * height as usize;
+    let hits: Vec<Option<PixelHit>> = (0..n)
+        .into_par_iter()
+        .with_min_len(256)
+        .map(|p| {
+            let (i, j) = ((p % width as usize) as u32, (p / width as usize) as u32);
+            let (o, d, t_far) = primary_ray_f64(inv, i, j, width, height);
+            let (o, d) = (o.as_vec3(), d.as_vec3());
+            let hit = bvh.closest_hit(o, d, t_far as f32)?;
+            let ([a, b, c], object) = tris[hit.tri as usize];
+            let normal = (b - a).cross(c - a).normalize_or(-d);
+            // o + d·t drifts off the plane by (ray length × rounding);
+            // snap it back so that the shadow offset below is measured from the surface.
+            let on_ray = o + d * hit.t;
+            let position = on_ray - normal * (on_ray - a).dot(normal);
+            Some(PixelHit {
+                object,
+                triangle: hit.tri,
+                t: hit.t,
+                position,
+                // The side the camera sees.
+                normal: if normal.dot(d) > 0.0 { -normal } else { normal },
+            })
+        })
+        .collect();
+
+    // Shadow rays: one light at a time, one ray per pixel.
+    let (lo, hi) = scene.bounds();
+    let diagonal = (hi - lo).length() as f32;
+    let scale = if diagonal.is_finite() && diagonal > 0.0 {
+        diagonal
+    } else {
+        1.0
+    };
+    let offset = SHADOW_OFFSET * scale;
+    let origin = scene.origin();
+    let mut visibility = Vec::with_capacity(scene.lights.len());
+    let mut lit_by = Vec::with_capacity(scene.lights.len());
+    for light in &scene.lights {
+        let light = LightRel::new(&light.kind, origin);
+        let (vis, lit): (Vec<f32>, Vec<f32>) = hits
+            .par_iter()
+            .with_min_len(256)
+            .map(|hit| {
+                let Some(h) = hit else { return (0.0, 0.0) };
+                let (n_dot_l, inside) = light.n_dot_l(h.position, h.normal);
+                if n_dot_l.is_nan() || n_dot_l <= 0.0 {
+                    return (0.0, 0.0); // faces away from the light: its own shadow
+                }
+                // Off the surface on the camera's side, then straight at the light.
+                let from = h.position + h.normal * offset;
+                let (dir, t_max) = light.shadow_ray(from, offset);
+                let blocked = t_max > 0.0 && occluders.blocked(&bvh, from, dir, t_max, h.triangle);
+                let v = if blocked { 0.0 } else { 1.0 };
+                (v, if inside { n_dot_l } else { 0.0 })
+            })
+            .unzip();
+        visibility.push(vis);
+        lit_by.push(lit);
+    }
+
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    Ok(Reference {
+        width,
+        height,
+        hits,
+        visibility,
+        lit_by,
+        ms,
+    })
+}
+// ANCHOR_END: render_reference
+
+#[cfg(test)]
+#[path = "unit_tests/reference.rs"]
+mod tests;

@@ -1,0 +1,95 @@
+//! A lesson's `main`: parse the command line, then list the variants, run
+//! headless ([`crate::run::headless`]) or open the window ([`crate::run::window`]).
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::Parser;
+
+use crate::run::cli::{clip_values, Args};
+use crate::run::headless::run_headless;
+use crate::run::lesson::{all_variants, exercise_variants, select_variants, variant_name, Lesson};
+use crate::scene::Scene;
+
+/// A lesson's `main`: parse the command line, run, and turn any error into
+/// one line on stderr and a non-zero exit code.
+pub fn main<L: Lesson>() -> ExitCode {
+    let args = match Args::try_parse() {
+        Ok(a) => a,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                use std::io::Write;
+                // Like `e.print()`, but a failed write is an error, not a silent exit 0.
+                let mut out = std::io::stdout().lock();
+                if let Err(err) = write!(out, "{}", e.render()).and_then(|()| out.flush()) {
+                    eprintln!("error: {}: cannot write to stdout: {err}", L::NAME);
+                    return ExitCode::FAILURE;
+                }
+                return ExitCode::SUCCESS;
+            }
+            let msg = e.to_string();
+            let line = msg.lines().next().unwrap_or("error: bad command line");
+            eprintln!("{}", clip_values(line));
+            return ExitCode::from(2);
+        }
+    };
+    match run::<L>(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let msg = format!("{e:#}").replace('\n', " ");
+            eprintln!("error: {}: {}", L::NAME, clip_values(&msg));
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn display_available() -> bool {
+    std::env::var_os("DISPLAY").is_some_and(|v| !v.is_empty())
+        || std::env::var_os("WAYLAND_DISPLAY").is_some_and(|v| !v.is_empty())
+}
+
+/// Runs as the command line says: list variants, headless, or the window.
+fn run<L: Lesson>(args: &Args) -> Result<()> {
+    if args.list_variants {
+        // The lesson's variants, then its exercises (run only when named).
+        let names: Vec<String> = all_variants::<L>()
+            .into_iter()
+            .chain(exercise_variants::<L>())
+            .map(variant_name)
+            .collect();
+        return print_stdout(&(names.join("\n") + "\n"));
+    }
+    let variants = select_variants::<L>(&args.variants)?;
+    let scene = load_scene::<L>(args)?;
+    if args.headless || !display_available() {
+        let result = run_headless::<L>(args, scene, &variants)?;
+        if let Some(w) = result.report.coverage_warning() {
+            eprintln!("{w}");
+        }
+        let table = result.report.table();
+        print_stdout(&format!("{table}outputs: {}\n", result.out_dir.display()))
+    } else {
+        crate::run::window::run_window::<L>(args, scene, variants)
+    }
+}
+
+/// Writes to stdout and flushes: a full disk or a closed pipe is an error
+/// (`println!` would panic).
+fn print_stdout(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| anyhow::anyhow!("cannot write to stdout: {e}"))
+}
+
+/// The `--scene` file, or the lesson's default scene.
+fn load_scene<L: Lesson>(args: &Args) -> Result<Scene> {
+    let scene = match &args.scene {
+        Some(p) => Scene::load(p)?,
+        None => Scene::builtin(&format!("{} default scene", L::NAME), L::DEFAULT_SCENE)?,
+    };
+    L::check_scene(&scene)?;
+    Ok(scene)
+}

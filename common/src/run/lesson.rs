@@ -1,0 +1,140 @@
+//! The [`Lesson`] trait: what a lesson provides. The runners (headless in
+//! [`crate::run::headless`], interactive in [`crate::run::window`]) do the rest, and
+//! both call the same [`Lesson::render`], which draws into any
+//! [`FrameTargets`].
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use anyhow::Result;
+use clap::ValueEnum;
+
+use crate::gpu::render::SceneGpu;
+use crate::gpu::targets::FrameTargets;
+use crate::gpu::Gpu;
+use crate::measure::timing::Frame;
+use crate::scene::Scene;
+
+/// What a lesson provides. The runners do the rest.
+pub trait Lesson: Sized {
+    /// `"lesson_01"`.
+    const NAME: &'static str;
+    /// The default scene, as TOML text (built-in meshes only).
+    const DEFAULT_SCENE: &'static str;
+    /// The lesson's variants, in report order. `--variant NAME` and the
+    /// report use the names clap's `ValueEnum` gives them.
+    type Variant: ValueEnum + Copy + std::fmt::Debug + 'static;
+
+    /// Rejects scenes the lesson cannot render (one clear line).
+    fn check_scene(_scene: &Scene) -> Result<()> {
+        Ok(())
+    }
+
+    /// Whether the lesson re-reads the camera on every [`Lesson::render`], so
+    /// that a scene's `[camera_path]` (shimmer, chapter 09) is measured right.
+    /// A lesson that caches camera-dependent state keeps `false`, and the
+    /// runner refuses such a scene with one line.
+    const CAMERA_PATH: bool = false;
+
+    /// Classes the pixels fall into, for an error breakdown in the report
+    /// (lesson 09: the cascade each pixel samples). `view_depth[p]` is the
+    /// distance along the camera's forward axis to the surface pixel `p`
+    /// sees (the exact reference's hit), NaN where it sees nothing.
+    /// Returns the class names and one class index per pixel, or `None`.
+    fn pixel_classes(
+        &self,
+        _scene: &SceneGpu,
+        _variant: Self::Variant,
+        _view_depth: &[f32],
+    ) -> Option<(Vec<String>, Vec<u8>)> {
+        None
+    }
+
+    /// Creates the lesson's pipelines and resources.
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self>;
+
+    /// Records one frame of `variant` into `targets`, one named pass at a time.
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Self::Variant,
+    ) -> Result<()>;
+
+    /// Why this adapter cannot render `variant` (a missing feature, a
+    /// backend that loses its precision), or `None`. A default run (no
+    /// `--variant`) skips such variants with one note line each; asking for
+    /// one by name is an error that prints the reason.
+    fn unavailable(&self, _variant: Self::Variant) -> Option<String> {
+        None
+    }
+
+    /// Counters for the report (casters drawn, fragments, ...), after `render`.
+    fn counters(&self, _variant: Self::Variant) -> BTreeMap<String, u64> {
+        BTreeMap::new()
+    }
+
+    /// Extra debug images (the depth map, ...), written after the last frame.
+    fn write_extras(
+        &self,
+        _gpu: &Gpu,
+        _scene: &SceneGpu,
+        _variant: Self::Variant,
+        _out: &Path,
+    ) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// A variant's name, as `--variant` and the report spell it.
+pub fn variant_name<V: ValueEnum>(v: V) -> String {
+    v.to_possible_value()
+        .map(|p| p.get_name().to_string())
+        .unwrap_or_default()
+}
+
+/// The prefix of an exercise's variant name (`exercise_slope_bias`): the
+/// student's code from the chapter's exercises, run only when asked for by
+/// name (`--variant exercise_...`, or the grader).
+pub const EXERCISE_PREFIX: &str = "exercise_";
+
+/// Whether `v` is an exercise (its name starts with [`EXERCISE_PREFIX`]).
+pub fn is_exercise<V: ValueEnum>(v: V) -> bool {
+    variant_name(v).starts_with(EXERCISE_PREFIX)
+}
+
+/// Every variant of `L` a default run shows, in report order: the
+/// lesson's own, without its exercises.
+pub fn all_variants<L: Lesson>() -> Vec<L::Variant> {
+    let all = L::Variant::value_variants().iter().copied();
+    all.filter(|&v| !is_exercise(v)).collect()
+}
+
+/// The exercises of `L`'s chapter, in order.
+pub fn exercise_variants<L: Lesson>() -> Vec<L::Variant> {
+    let all = L::Variant::value_variants().iter().copied();
+    all.filter(|&v| is_exercise(v)).collect()
+}
+
+/// The variants `--variant` asked for (all when none), by name.
+pub fn select_variants<L: Lesson>(asked: &[String]) -> Result<Vec<L::Variant>> {
+    if asked.is_empty() {
+        return Ok(all_variants::<L>());
+    }
+    asked
+        .iter()
+        .map(|a| {
+            L::Variant::from_str(a, false).map_err(|_| {
+                let known: Vec<String> = L::Variant::value_variants()
+                    .iter()
+                    .map(|&v| variant_name(v))
+                    .collect();
+                anyhow::anyhow!(
+                    "--variant: unknown variant {a:?} (known: {})",
+                    known.join(", ")
+                )
+            })
+        })
+        .collect()
+}

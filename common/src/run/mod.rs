@@ -1,0 +1,13 @@
+//! Running a lesson.
+//!
+//! - [`app`]: a lesson's `main`: the command line, then headless or the window.
+//! - [`cli`]: the command line every lesson shares (INTERFACES.md).
+//! - [`lesson`]: the [`lesson::Lesson`] trait and its typed variants.
+//! - [`headless`]: the headless runner that writes the outputs of INTERFACES.md.
+//! - [`window`]: the interactive window (winit).
+
+pub mod app;
+pub mod cli;
+pub mod headless;
+pub mod lesson;
+pub mod window;
