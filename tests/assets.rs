@@ -4,8 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
-use common::mesh::{builtin, BUILTIN_NAMES};
-use common::obj::{load_obj, to_obj_string};
+use common::scene::mesh::{builtin, BUILTIN_NAMES};
+use common::scene::obj::{load_obj, to_obj_string};
 use workbook::lesson_05::adjacency::validate;
 
 fn asset(name: &str) -> PathBuf {

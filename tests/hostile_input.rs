@@ -1,6 +1,6 @@
 //! Hostile input (issue 8): one test per class. Nothing panics, hangs or
 //! exits 0 with a meaningless result; a refusal is one line that names the
-//! field and the allowed range (the limits are in `common::limits`).
+//! field and the allowed range (the limits are in `common::scene::limits`).
 
 mod support;
 

@@ -14,8 +14,8 @@ mod support;
 
 mod lesson_02_closer;
 
-use common::camera::light_view_proj;
 use common::glam::DVec3;
+use common::scene::camera::light_view_proj;
 use common::scene::Scene;
 use lesson_02_closer::{gpu, map_size, Closer};
 

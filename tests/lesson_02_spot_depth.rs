@@ -6,8 +6,8 @@
 
 mod support;
 
-use common::camera::light_view_proj;
 use common::glam::DVec3;
+use common::scene::camera::light_view_proj;
 use common::scene::{LightKind, Scene};
 
 #[test]

@@ -178,7 +178,7 @@ fn lesson_05_compute_matches_cpu() {
 mod compute_triangles {
     use common::glam::Vec3;
     use common::gpu::Gpu;
-    use common::mesh::builtin;
+    use common::scene::mesh::builtin;
     use workbook::lesson_05::adjacency::Adjacency;
     use workbook::lesson_05::compute::{extrude_once, unavailable};
     use workbook::lesson_05::extrusion::{cpu_volume_reaching, CpuVertex};

@@ -301,7 +301,7 @@ fn check_generated(path: &Path, text: &str) {
 fn uv_seams_weld_closed() {
     let obj = scene("seam_sphere.obj");
     check_generated(&obj, &seam_sphere_obj(32, 16));
-    let mesh = common::obj::load_obj(&obj).expect("seam sphere loads");
+    let mesh = common::scene::obj::load_obj(&obj).expect("seam sphere loads");
     let report = workbook::lesson_05::adjacency::validate(&mesh);
     assert!(
         report.closed && report.boundary_edges == 0,

@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::Result;
 
 use crate::manifest::{Peer, FAMILIES, PEERS, VOLUME_BUILDS};
-use crate::record::{count, pct, row, stat, Record, VariantRecord};
+use crate::record::{count, pct, row, stat, time_cells, Record, VariantRecord};
 
 /// Writes `generated/choosing/{families,peers,volumes_build}.md`.
 pub fn write_all(generated: &Path, records: &[Record]) -> Result<()> {
@@ -96,8 +96,12 @@ pub fn families(records: &[Record]) -> String {
                 format!("[{}]({}.md)", lesson.replace("lesson_", ""), lesson),
                 format!("`{}`", best.name),
                 pct(best.misclassified_pct),
-                best.timing.as_ref().map_or("—".into(), |t| stat(&t.total)),
-                d.baseline.as_ref().map_or("—".into(), |b| stat(&b.total)),
+                best.timing
+                    .as_ref()
+                    .map_or("—".into(), |t| time_cells(t)[0].clone()),
+                d.baseline
+                    .as_ref()
+                    .map_or("—".into(), |b| time_cells(b)[0].clone()),
                 case,
                 case_pct,
             ]);
@@ -220,7 +224,7 @@ pub fn volumes_build(records: &[Record]) -> String {
                 },
                 format!("`{name}`"),
                 pct(v.misclassified_pct),
-                t.map_or("—".into(), |t| stat(&t.total)),
+                t.map_or("—".into(), |t| time_cells(t)[0].clone()),
                 format!("`{pass}`"),
                 pass_ms.map_or("—".into(), stat),
                 edges.map_or("—".into(), count),

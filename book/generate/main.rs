@@ -20,6 +20,8 @@ mod plots;
 mod record;
 mod runner;
 mod scaling;
+mod sets;
+mod stability;
 mod summary;
 
 use std::collections::BTreeMap;
@@ -52,10 +54,26 @@ enum Command {
         /// vulkan | gl | ... (the committed tables were made on Vulkan).
         #[arg(long, default_value = manifest::BACKEND)]
         backend: String,
+        /// software (the book's own set: lavapipe) | any (your GPU) | part of
+        /// an adapter's name. Any adapter or backend other than the book's
+        /// writes a set of its own under `book/src/generated/sets/`.
+        #[arg(long, default_value = manifest::ADAPTER)]
+        adapter: String,
     },
     /// Rewrite the tables, plots and README block that are made from the
     /// committed records, without running a lesson.
     Tables,
+    /// Compare the times of two generated folders (two runs of `book`):
+    /// how many medians of B lie inside A's stated spread.
+    Compare {
+        /// A `book/src/generated` folder (or a copy of one).
+        a: PathBuf,
+        b: PathBuf,
+        /// Also write the introduction's table of the comparison
+        /// (`book/src/generated/protocol/repeatability.md`).
+        #[arg(long)]
+        write: bool,
+    },
 }
 
 fn root() -> PathBuf {
@@ -70,8 +88,12 @@ fn main() {
 }
 
 fn run(cli: Cli) -> Result<()> {
-    let (only, backend) = match cli.command {
-        Command::Book { only, backend } => (only, backend),
+    let (only, backend, adapter) = match cli.command {
+        Command::Book {
+            only,
+            backend,
+            adapter,
+        } => (only, backend, adapter),
         Command::Tables => {
             let root = root();
             derive(
@@ -82,6 +104,12 @@ fn run(cli: Cli) -> Result<()> {
             println!("tables, plots and the README block rewritten from the records");
             return Ok(());
         }
+        Command::Compare { a, b, write } => {
+            let out = root()
+                .join("book/src/generated")
+                .join(stability::REPEATABILITY);
+            return stability::compare(&a, &b, write.then_some(out.as_path()));
+        }
     };
     if let Some(l) = &only {
         if !RUNS.iter().any(|r| r.lesson == l) {
@@ -91,6 +119,7 @@ fn run(cli: Cli) -> Result<()> {
     let start = std::time::Instant::now();
     let runner = runner_or_build()?;
     let root = root();
+    let main_set = sets::is_main(&adapter, &backend);
     let generated = root.join("book/src/generated");
     let figures = root.join("book/src/figures");
     let work = root.join("target/book-runs");
@@ -107,9 +136,17 @@ fn run(cli: Cli) -> Result<()> {
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs {msg}")
             .context("progress bar template")?,
     );
+    let work = match main_set {
+        true => work,
+        false => work.join(sets::SETS_DIR),
+    };
     for run in &runs {
-        let record = measure(&runner, run, &backend, &work, &bar)?;
-        let dir = generated.join(run.lesson);
+        let record = measure(&runner, run, &backend, &adapter, &work, &bar)?;
+        let dir = match main_set {
+            true => generated.join(run.lesson),
+            // Another adapter's set: its records and tables, nothing else.
+            false => sets::set_dir(&generated, &record.adapter, &record.backend).join(run.lesson),
+        };
         std::fs::create_dir_all(&dir)?;
         write(
             &dir.join(format!("{}.json", run.name)),
@@ -126,6 +163,16 @@ fn run(cli: Cli) -> Result<()> {
                 &record.passes_table(),
             )?;
         }
+    }
+    if !main_set {
+        bar.finish_with_message("runs done");
+        sets::write_other_adapters(&generated, &sets::load_sets(&generated)?)?;
+        println!(
+            "another adapter's set written under {} in {:.0} s",
+            generated.join(sets::SETS_DIR).display(),
+            start.elapsed().as_secs_f64()
+        );
+        return Ok(());
     }
     if only.is_none() {
         scaling::run(&runner, &root, &work, &backend, &bar)?;
@@ -149,6 +196,7 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     choosing::write_all(generated, &records)?;
     lesson09::write_all(generated, figures, &records)?;
     adapters::write_all(root, generated, &records)?;
+    sets::write_other_adapters(generated, &sets::load_sets(generated)?)?;
     let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
     write_plots(figures, &defaults)?;
     let readme = root.join("README.md");
@@ -182,6 +230,7 @@ fn measure(
     runner: &Runner,
     run: &Run,
     backend: &str,
+    adapter: &str,
     work: &Path,
     bar: &ProgressBar,
 ) -> Result<Record> {
@@ -195,7 +244,7 @@ fn measure(
         frames: if run.timed { manifest::FRAMES } else { 1 },
         variants: run.variants,
         backend: Some(backend),
-        adapter: Some(manifest::ADAPTER),
+        adapter: Some(adapter),
         // Untimed runs keep errors and counters only: no warm-up needed.
         warm_up_ms: (!run.timed).then_some(0.0),
     };
@@ -247,6 +296,23 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
             }
             let maps: Vec<&BTreeMap<String, Vec<f64>>> =
                 same.iter().map(|w| &w.timing_samples_ms).collect();
+            let unstable: Vec<String> = same
+                .iter()
+                .zip(0..)
+                .filter(|(w, _)| !w.timing_stable())
+                .map(|(w, i)| {
+                    let base = w.timing_check.as_ref().and_then(|c| c.base_ms);
+                    format!(
+                        "base pass {} ms in run {}",
+                        base.map_or("—".into(), |b| format!("{b:.3}")),
+                        i + 1
+                    )
+                })
+                .collect();
+            let timing = pool(&maps).map(|t| record::Timing {
+                unstable: (!unstable.is_empty()).then(|| unstable.join(", ")),
+                ..t
+            });
             Ok(VariantRecord {
                 name: v.name.clone(),
                 receiver_pixels: v.error.receiver_pixels,
@@ -256,7 +322,7 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
                 mean_abs: v.error.mean_abs,
                 coverage_mismatch_pct: v.error.coverage_mismatch_pct,
                 counters: v.counters.clone(),
-                timing: if run.timed { pool(&maps) } else { None },
+                timing: if run.timed { timing } else { None },
                 camera_path: record::CameraPathRecord::of(v),
                 classes: record::ClassRecord::of(v),
             })
@@ -266,6 +332,16 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
         .iter()
         .filter_map(|r| r.baseline.as_ref().map(|b| &b.timing_samples_ms))
         .collect();
+    let unstable_baselines: Vec<String> = reports
+        .iter()
+        .zip(1..)
+        .filter(|(r, _)| r.baseline.as_ref().is_some_and(|b| !b.stable()))
+        .map(|(_, i)| format!("a baseline block of run {i}"))
+        .collect();
+    let baseline = pool(&baselines).map(|t| record::Timing {
+        unstable: (!unstable_baselines.is_empty()).then(|| unstable_baselines.join(", ")),
+        ..t
+    });
     Ok(Record {
         lesson: run.lesson.to_string(),
         run: run.name.to_string(),
@@ -279,7 +355,12 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
         frames: if run.timed { first.frames } else { 0 },
         timing_source: record::timing_source(first),
         variants,
-        baseline: if run.timed { pool(&baselines) } else { None },
+        warm_up_ms: first
+            .timing_protocol
+            .as_ref()
+            .filter(|_| run.timed)
+            .map(|p| p.warm_up_min_ms),
+        baseline: if run.timed { baseline } else { None },
     })
 }
 
@@ -329,7 +410,11 @@ fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
         );
         let path = figures.join(&r.lesson).join("error_vs_time.svg");
         std::fs::create_dir_all(path.parent().context("plot path")?)?;
-        let base = r.baseline.as_ref().map(|b| b.total.median);
+        let base = r
+            .baseline
+            .as_ref()
+            .filter(|b| b.stable())
+            .map(|b| b.frame().median);
         plots::error_vs_time(&path, &title, &series, base, ERROR_FLOOR_PCT)?;
         all.push(series);
     }

@@ -31,12 +31,37 @@ impl Stat {
     }
 }
 
-/// Frame time and per-pass times, pooled over the repeats.
+/// GPU total and per-pass times (`frame` and `cpu_total` among them),
+/// pooled over the repeats.
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 pub struct Timing {
     pub total: Stat,
     pub passes: BTreeMap<String, Stat>,
+    /// Why the times cannot be quoted (the protocol's base-pass check
+    /// failed in a repeat), or absent when they can.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unstable: Option<String>,
 }
+
+impl Timing {
+    /// The frame cost (`frame`: wall clock, start to GPU completion); the
+    /// GPU total in records older than the key.
+    pub fn frame(&self) -> &Stat {
+        self.passes.get(FRAME).unwrap_or(&self.total)
+    }
+
+    /// The CPU's time per frame (`cpu_total`), when recorded.
+    pub fn cpu(&self) -> Option<&Stat> {
+        self.passes.get(CPU_TOTAL)
+    }
+
+    /// Whether the times can be quoted.
+    pub fn stable(&self) -> bool {
+        self.unstable.is_none()
+    }
+}
+
+use common::measure::timing::{CPU_TOTAL, FRAME};
 
 /// One variant: its error against the reference, counters and times.
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
@@ -131,6 +156,10 @@ pub struct Record {
     pub repeats: u32,
     pub frames: u32,
     pub timing_source: String,
+    /// The protocol's least warm-up per timed block (`--warm-up-ms`);
+    /// absent in untimed runs and in records older than the protocol.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub warm_up_ms: Option<f64>,
     pub variants: Vec<VariantRecord>,
     pub baseline: Option<Timing>,
 }
@@ -149,7 +178,11 @@ pub fn pool(maps: &[&BTreeMap<String, Vec<f64>>]) -> Option<Timing> {
         .filter(|(k, _)| k.as_str() != "total")
         .map(|(k, v)| (k.clone(), Stat::of(v)))
         .collect();
-    Some(Timing { total, passes })
+    Some(Timing {
+        total,
+        passes,
+        unstable: None,
+    })
 }
 
 /// Where a report's times came from, in words.
@@ -210,8 +243,14 @@ impl Record {
         let timing = if self.frames == 0 {
             "error and counters only (untimed)".to_string()
         } else {
+            let warm_up = match self.warm_up_ms {
+                Some(ms) => format!(
+                    "each variant warmed up (≥ {ms:.0} ms, until its frame times settle) and timed back to back with the no-shadow baseline between"
+                ),
+                None => "after 2 warm-up frames".to_string(),
+            };
             format!(
-                "times: median of {} runs × {} frames after 2 warm-up frames, [interquartile range], {}",
+                "times: median of {} runs × {} frames, {warm_up}, [interquartile range], {}",
                 self.repeats,
                 self.frames,
                 self.timing_source.replace('_', " ")
@@ -270,42 +309,55 @@ impl Record {
         if timed {
             head.extend([
                 "frame ms".to_string(),
-                "shadows cost (vs no shadows)".into(),
+                "GPU ms".into(),
+                "CPU ms".into(),
+                "shadows cost (frame, vs no shadows)".into(),
                 "vs the fastest".into(),
             ]);
         }
+        let stable = |t: &&Timing| t.stable();
         let fastest = self
             .variants
             .iter()
-            .filter_map(|v| v.timing.as_ref().map(|t| (v.name.clone(), t.total)))
+            .filter_map(|v| {
+                v.timing
+                    .as_ref()
+                    .filter(stable)
+                    .map(|t| (v.name.clone(), t.frame()))
+            })
             .min_by(|a, b| a.1.median.total_cmp(&b.1.median));
+        let baseline = self.baseline.as_ref().filter(stable);
         let mut s = format!("{}\n\n", self.header());
         s += &row(&head);
         s += &row(&vec!["---".to_string(); head.len()]);
         if let (true, Some(base)) = (timed, &self.baseline) {
-            let n = head.len() - 4;
+            let n = head.len() - 6;
             let mut cells = vec!["no shadows (baseline)".to_string()];
             cells.extend(vec!["—".to_string(); n]);
-            cells.extend([stat(&base.total), "—".into(), "—".into()]);
+            cells.extend(time_cells(base));
+            cells.extend(["—".into(), "—".into()]);
             s += &row(&cells);
         }
         for v in &self.variants {
             let mut cells = self.measured_cells(v, with_mean_abs);
             if let Some(t) = v.timing.as_ref().filter(|_| timed) {
-                cells.push(stat(&t.total));
-                cells.push(match &self.baseline {
-                    Some(b) if t.total.differs_from(&b.total) => format!(
+                cells.extend(time_cells(t));
+                let frame = t.frame();
+                cells.push(match baseline {
+                    _ if !t.stable() => "—".into(),
+                    Some(b) if frame.differs_from(b.frame()) => format!(
                         "{:+.1} ms (×{:.2})",
-                        t.total.median - b.total.median,
-                        t.total.median / b.total.median
+                        frame.median - b.frame().median,
+                        frame.median / b.frame().median
                     ),
                     Some(_) => "no measurable difference".into(),
                     None => "—".into(),
                 });
                 cells.push(match &fastest {
+                    _ if !t.stable() => "—".into(),
                     Some((name, _)) if *name == v.name => "fastest".into(),
-                    Some((name, f)) if t.total.differs_from(f) => {
-                        format!("{:+.1} ms", t.total.median - f.median)
+                    Some((name, f)) if frame.differs_from(f) => {
+                        format!("{:+.1} ms", frame.median - f.median)
                     }
                     Some((name, _)) => format!("no measurable difference from `{name}`"),
                     None => "—".into(),
@@ -313,7 +365,35 @@ impl Record {
             }
             s += &row(&cells);
         }
+        if let Some(note) = self.unstable_note() {
+            s += &format!("\n{note}\n");
+        }
         s
+    }
+
+    /// A line under a table that has unstable times, naming why.
+    pub fn unstable_note(&self) -> Option<String> {
+        let mut why: Vec<String> = self
+            .variants
+            .iter()
+            .filter_map(|v| {
+                Some(format!(
+                    "`{}`: {}",
+                    v.name,
+                    v.timing.as_ref()?.unstable.as_ref()?
+                ))
+            })
+            .collect();
+        if let Some(u) = self.baseline.as_ref().and_then(|b| b.unstable.as_ref()) {
+            why.push(format!("baseline: {u}"));
+        }
+        if why.is_empty() {
+            return None;
+        }
+        Some(format!(
+            "*Unstable: the base pass, the same work in every block, took a different time in these blocks than in the baseline's, so their times are not quoted ({}).*",
+            why.join("; ")
+        ))
     }
 
     /// Per-pass times of a timed run: median [interquartile range].
@@ -348,6 +428,24 @@ impl Record {
         }
         s
     }
+}
+
+/// A timing's frame, GPU and CPU cells; `unstable` for the first two
+/// when the protocol's check failed (CPU time does not follow the GPU's
+/// clock).
+pub fn time_cells(t: &Timing) -> [String; 3] {
+    let clocked = |x: &Stat| {
+        if t.stable() {
+            stat(x)
+        } else {
+            "unstable".into()
+        }
+    };
+    [
+        clocked(t.frame()),
+        clocked(&t.total),
+        t.cpu().map_or("—".into(), stat),
+    ]
 }
 
 /// A markdown table row.

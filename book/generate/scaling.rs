@@ -194,6 +194,7 @@ pub fn table(sweep: &Sweep) -> String {
         head.push("variant".into());
     }
     head.push("frame ms".into());
+    head.push("GPU ms".into());
     head.extend(sweep.passes.iter().map(|p| format!("`{p}` ms")));
     head.extend(sweep.counters.iter().map(|c| format!("`{c}`")));
     head.push("misclassified %".into());
@@ -204,6 +205,8 @@ pub fn table(sweep: &Sweep) -> String {
         if multi {
             cells.push(format!("`{}`", p.variant));
         }
+        let frame = p.passes.get(common::measure::timing::FRAME);
+        cells.push(stat(frame.unwrap_or(&p.total)));
         cells.push(stat(&p.total));
         for k in &sweep.passes {
             cells.push(p.passes.get(k).map_or("—".into(), stat));

@@ -9,7 +9,9 @@ pub const BEGIN: &str =
     "<!-- results:begin (written by `cargo run --release --bin workbook -- book`; do not edit) -->";
 pub const END: &str = "<!-- results:end -->";
 
-/// One lesson's default run as plot points (variants with times).
+/// One lesson's default run as plot points: the variants with stable
+/// times, at their frame cost (`frame`: what a user waits per frame,
+/// CPU work included).
 pub fn series(r: &Record) -> Series {
     Series {
         name: r.lesson.clone(),
@@ -17,12 +19,13 @@ pub fn series(r: &Record) -> Series {
             .variants
             .iter()
             .filter_map(|v| {
-                let t = v.timing.as_ref()?;
+                let t = v.timing.as_ref().filter(|t| t.stable())?;
+                let f = t.frame();
                 Some(Point {
                     label: v.name.clone(),
-                    ms: t.total.median,
-                    ms_low: t.total.q25,
-                    ms_high: t.total.q75,
+                    ms: f.median,
+                    ms_low: f.q25,
+                    ms_high: f.q75,
                     error_pct: v.misclassified_pct,
                 })
             })
@@ -46,8 +49,8 @@ pub fn readme_block(defaults: &[&Record]) -> String {
     );
     s += &row(&[
         "lesson".into(),
-        "Pareto-optimal variants: misclassified %, frame ms [interquartile range]".into(),
-        "no shadows, ms".into(),
+        "Pareto-optimal variants: misclassified %, frame cost ms [interquartile range]".into(),
+        "no shadows, frame ms".into(),
         "chapter".into(),
     ]);
     s += &row(&vec!["---".to_string(); 4]);
@@ -66,7 +69,7 @@ pub fn readme_block(defaults: &[&Record]) -> String {
                     "`{}`: {} %, {}",
                     p.label,
                     pct(p.error_pct),
-                    stat(&v.timing.as_ref().expect("timed").total)
+                    stat(v.timing.as_ref().expect("timed").frame())
                 )
             })
             .collect();
@@ -74,7 +77,12 @@ pub fn readme_block(defaults: &[&Record]) -> String {
         s += &row(&[
             n.to_string(),
             front.join("; "),
-            r.baseline.as_ref().map_or("—".into(), |b| stat(&b.total)),
+            r.baseline
+                .as_ref()
+                .map_or("—".into(), |b| match b.stable() {
+                    true => stat(b.frame()),
+                    false => "unstable".into(),
+                }),
             format!("[{n}](book/src/{}.md)", r.lesson),
         ]);
     }

@@ -3,7 +3,7 @@
 //! 24-bit buffer where the driver has D24_UNORM_S8 (lavapipe and llvmpipe
 //! do) and 32-bit float where it does not. Each run's report.json says
 //! which format the scene used and what it stored (`adapter.depth_format`,
-//! `adapter.depth_storage`, measured by `common::depth_probe`).
+//! `adapter.depth_storage`, measured by `common::gpu::depth_probe`).
 
 #![allow(dead_code)]
 

@@ -3,9 +3,9 @@
 //! on the floor (acne, lost shadow, the gap at a caster's foot), and the
 //! per-axis model of the floor's acne. Used by `tests/lesson_02.rs`.
 
-use common::camera::{camera_matrices, light_view_proj};
 use common::glam::{DVec3, Vec3};
 use common::reference::{render_reference, Reference};
+use common::scene::camera::{camera_matrices, light_view_proj};
 use common::scene::{LightKind, Scene};
 
 // ---- a closer look, pixel by pixel ------------------------------------------
