@@ -265,3 +265,84 @@ fn lesson_01_spot_light_ten_km_out() {
     assert_eq!(stderr.trim().lines().count(), 1, "one line: {stderr}");
     assert!(stderr.contains("lesson_04"), "names lesson_04: {stderr}");
 }
+
+/// The timing protocol as the report records it: every variant timed
+/// between two baseline blocks, each block warmed up for at least
+/// `--warm-up-ms` (the first ten times that) and two windows of frames,
+/// then `--frames` timed frames; the baseline pools all its blocks.
+#[test]
+fn lesson_01_times_the_variants_between_baseline_blocks() {
+    let args = [
+        &SIZE[..],
+        &[
+            "--variant",
+            "res_256",
+            "--variant",
+            "res_512",
+            "--frames",
+            "2",
+        ],
+    ]
+    .concat();
+    let Some(run) = support::run_lesson_env(
+        BIN,
+        "lesson_01_protocol",
+        &args,
+        &[("WORKBOOK_WARM_UP_MS", "20")],
+    ) else {
+        return;
+    };
+    let r = &run.report;
+    let p = &r["timing_protocol"];
+    let order: Vec<&str> = p["order"]
+        .as_array()
+        .expect("order")
+        .iter()
+        .filter_map(|x| x.as_str())
+        .collect();
+    assert_eq!(
+        order,
+        ["baseline", "res_256", "baseline", "res_512", "baseline"]
+    );
+    assert_eq!(p["warm_up_min_ms"].as_f64(), Some(20.0));
+    assert!(p["base_reference_ms"].as_f64().is_some_and(|x| x > 0.0));
+    let blocks = r["baseline"]["blocks"].as_array().expect("baseline blocks");
+    assert_eq!(blocks.len(), 3);
+    // The first block warms up ten times as long as the others.
+    assert!(
+        blocks[0]["warm_up_ms"].as_f64().unwrap() >= 200.0,
+        "{}",
+        blocks[0]
+    );
+    for (i, b) in blocks.iter().enumerate().skip(1) {
+        assert!(b["warm_up_ms"].as_f64().unwrap() >= 20.0, "block {i}: {b}");
+    }
+    let base = &r["baseline"]["timing_samples_ms"]["base"];
+    assert_eq!(
+        base.as_array().map(Vec::len),
+        Some(3 * 2),
+        "3 blocks × 2 frames"
+    );
+    for v in ["res_256", "res_512"] {
+        let v = support::variant(r, v);
+        let c = &v["timing_check"];
+        assert!(c["warm_up_frames"].as_u64().unwrap() >= 6, "{c}");
+        assert!(c["warm_up_ms"].as_f64().unwrap() >= 20.0, "{c}");
+        assert!(c["base_ms"].as_f64().is_some_and(|x| x > 0.0), "{c}");
+        assert_eq!(
+            v["timing_samples_ms"]["frame"].as_array().map(Vec::len),
+            Some(2)
+        );
+        for k in ["frame", "cpu_total", "total"] {
+            assert!(
+                v["timing_ms"][k].as_f64().is_some_and(|x| x > 0.0),
+                "timing_ms.{k}"
+            );
+        }
+    }
+    assert!(
+        run.stdout.contains("frame ms |   GPU ms |   CPU ms"),
+        "{}",
+        run.stdout
+    );
+}

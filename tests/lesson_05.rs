@@ -65,6 +65,52 @@ fn lesson_05_exact_when_the_eye_is_outside() {
         cpu["cpu_silhouette"].as_f64().is_some(),
         "the CPU path reports cpu_silhouette"
     );
+    frame_cost_holds_cpu_and_gpu(&run.report);
+}
+
+/// Every timed frame's cost (`frame`) holds the CPU's work (`cpu_total`,
+/// itself holding `cpu_silhouette`) and the GPU's (`total`): a route that
+/// moves work to the CPU does not look free.
+fn frame_cost_holds_cpu_and_gpu(report: &serde_json::Value) {
+    let variants = report["variants"].as_array().expect("variants");
+    for v in variants {
+        let name = v["name"].as_str().unwrap_or("?");
+        let s = &v["timing_samples_ms"];
+        let series = |k: &str| -> Vec<f64> {
+            let a = s[k]
+                .as_array()
+                .unwrap_or_else(|| panic!("{name}: no {k} samples"));
+            a.iter().filter_map(|x| x.as_f64()).collect()
+        };
+        let (frame, cpu, gpu) = (series("frame"), series("cpu_total"), series("total"));
+        assert!(!frame.is_empty() && frame.len() == cpu.len() && frame.len() == gpu.len());
+        let silhouette = s.get("cpu_silhouette").map(|_| series("cpu_silhouette"));
+        for i in 0..frame.len() {
+            // A GPU clock and the CPU's may disagree by a hair.
+            let slack = 0.05 + 0.01 * frame[i];
+            assert!(
+                frame[i] + slack >= cpu[i],
+                "{name} frame {i}: frame {} < cpu_total {}",
+                frame[i],
+                cpu[i]
+            );
+            assert!(
+                frame[i] + slack >= gpu[i],
+                "{name} frame {i}: frame {} < GPU total {}",
+                frame[i],
+                gpu[i]
+            );
+            if let Some(sil) = &silhouette {
+                assert!(
+                    cpu[i] >= sil[i],
+                    "{name} frame {i}: cpu_total {} < cpu_silhouette {}",
+                    cpu[i],
+                    sil[i]
+                );
+                assert!(sil[i] > 0.0, "{name}: the silhouette takes no time");
+            }
+        }
+    }
 }
 
 /// The eye in the umbra, and the near plane in a volume: z-pass misses the

@@ -59,7 +59,7 @@ fn caption(records: &[Record], what: &str) -> String {
 pub fn families(records: &[Record]) -> String {
     let mut s = caption(
         records,
-        "each lesson's most accurate variant on its default scene; times: median [interquartile range] of the default run",
+        "each lesson's most accurate variant on its default scene; frame cost: median [spread] of the default run",
     );
     s += &row(&[
         "family".into(),
@@ -185,7 +185,7 @@ fn ratio(a: f64, b: f64) -> String {
 pub fn volumes_build(records: &[Record]) -> String {
     let mut s = caption(
         records,
-        "times: median [interquartile range]; edges per second = edges tested per frame / the pass that tests them",
+        "frame cost: median [spread]; edges per second = edges tested per frame / the pass that tests them",
     );
     s += &row(&[
         "scene".into(),

@@ -23,6 +23,7 @@ mod scaling;
 mod sets;
 mod stability;
 mod summary;
+mod volumes_gpu;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -140,8 +141,27 @@ fn run(cli: Cli) -> Result<()> {
         true => work,
         false => work.join(sets::SETS_DIR),
     };
-    for run in &runs {
-        let record = measure(&runner, run, &backend, &adapter, &work, &bar)?;
+    // The repeats of a timed run go in rounds over the whole manifest, not
+    // back to back: a machine whose speed drifts over minutes (this one
+    // does) then shows the drift in the run's spread instead of moving the
+    // whole run.
+    let mut reports: Vec<Vec<Report>> = vec![Vec::new(); runs.len()];
+    for round in 0..manifest::REPEATS {
+        for (run, done) in runs.iter().zip(reports.iter_mut()) {
+            if run.timed || round == 0 {
+                let a = Measure {
+                    runner: &runner,
+                    backend: &backend,
+                    adapter: &adapter,
+                    work: &work,
+                    bar: &bar,
+                };
+                done.push(a.once(run, round)?);
+            }
+        }
+    }
+    for (run, reports) in runs.iter().zip(&reports) {
+        let record = to_record(run, reports)?;
         let dir = match main_set {
             true => generated.join(run.lesson),
             // Another adapter's set: its records and tables, nothing else.
@@ -194,6 +214,7 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     let records = load_records(generated)?;
     write_scenes_tables(generated, &records)?;
     choosing::write_all(generated, &records)?;
+    volumes_gpu::write(root, generated)?;
     lesson09::write_all(generated, figures, &records)?;
     adapters::write_all(root, generated, &records)?;
     sets::write_other_adapters(generated, &sets::load_sets(generated)?)?;
@@ -225,35 +246,41 @@ fn runner_or_build() -> Result<Runner> {
     Runner::beside(&exe)
 }
 
-/// Runs one manifest entry (repeated when timed) and pools its times.
-fn measure(
-    runner: &Runner,
-    run: &Run,
-    backend: &str,
-    adapter: &str,
-    work: &Path,
-    bar: &ProgressBar,
-) -> Result<Record> {
-    let repeats = if run.timed { manifest::REPEATS } else { 1 };
-    let scene = run.scene.map(|s| root().join(s));
-    let args = RunArgs {
-        lesson: run.lesson,
-        scene: scene.as_deref(),
-        width: manifest::WIDTH,
-        height: manifest::HEIGHT,
-        frames: if run.timed { manifest::FRAMES } else { 1 },
-        variants: run.variants,
-        backend: Some(backend),
-        adapter: Some(adapter),
-        // Untimed runs keep errors and counters only: no warm-up needed.
-        warm_up_ms: (!run.timed).then_some(0.0),
-    };
-    let mut reports: Vec<Report> = Vec::new();
-    for i in 0..repeats {
+/// What one run of a lesson needs.
+struct Measure<'a> {
+    runner: &'a Runner,
+    backend: &'a str,
+    adapter: &'a str,
+    work: &'a Path,
+    bar: &'a ProgressBar,
+}
+
+impl Measure<'_> {
+    /// Runs repeat `i` of one manifest entry and returns its report.
+    fn once(&self, run: &Run, i: u32) -> Result<Report> {
+        let repeats = if run.timed { manifest::REPEATS } else { 1 };
+        let scene = run.scene.map(|s| root().join(s));
+        let args = RunArgs {
+            lesson: run.lesson,
+            scene: scene.as_deref(),
+            width: manifest::WIDTH,
+            height: manifest::HEIGHT,
+            frames: if run.timed { manifest::FRAMES } else { 1 },
+            variants: run.variants,
+            backend: Some(self.backend),
+            adapter: Some(self.adapter),
+            // Untimed runs keep errors and counters only: no warm-up needed.
+            warm_up_ms: (!run.timed).then_some(0.0),
+        };
+        let bar = self.bar;
         bar.set_message(format!("{} ({}/{repeats})", run.id(), i + 1));
-        let out = work.join(run.lesson).join(run.name).join(format!("r{i}"));
+        let out = self
+            .work
+            .join(run.lesson)
+            .join(run.name)
+            .join(format!("r{i}"));
         let t = std::time::Instant::now();
-        reports.push(runner.run(&args, &out)?);
+        let report = self.runner.run(&args, &out)?;
         bar.inc(1);
         if bar.is_hidden() {
             // Not a terminal (a log): one line a run instead of the bar.
@@ -266,8 +293,8 @@ fn measure(
                 t.elapsed().as_secs_f64()
             );
         }
+        Ok(report)
     }
-    to_record(run, &reports)
 }
 
 /// What the book keeps of a run. Errors and counters must agree between

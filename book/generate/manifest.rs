@@ -11,7 +11,7 @@ pub const HEIGHT: u32 = 360;
 /// The timing protocol (documented once, in the introduction): each timed
 /// run renders 2 warm-up frames, then `FRAMES` timed ones, in a fresh
 /// process, `REPEATS` times. Tables quote the median of the
-/// `REPEATS × FRAMES` frame times and their interquartile range.
+/// `REPEATS × FRAMES` frame times and their spread (`record::Stat::of_runs`).
 pub const REPEATS: u32 = 3;
 pub const FRAMES: u32 = 5;
 /// The backend the committed tables were made on (the drift test pins it).

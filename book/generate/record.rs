@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-/// A median with its interquartile range, in milliseconds.
+/// A median with its spread (an interquartile range, see [`Stat::of_runs`]), in milliseconds.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 pub struct Stat {
     pub median: f64,
@@ -22,6 +22,29 @@ impl Stat {
             median: common::measure::timing::quantile(samples, 0.5),
             q25: common::measure::timing::quantile(samples, 0.25),
             q75: common::measure::timing::quantile(samples, 0.75),
+        }
+    }
+
+    /// The spread of a time measured in several runs (one sample list a
+    /// run): the median of all samples; from the lower of their first
+    /// quartile and the lowest run's own median, to the higher of their
+    /// third quartile and the highest run's median. A run that went
+    /// faster or slower as a whole widens the spread instead of hiding
+    /// in the pooled frames.
+    pub fn of_runs(runs: &[&[f64]]) -> Stat {
+        let all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
+        let pooled = Stat::of(&all);
+        let medians: Vec<f64> = runs
+            .iter()
+            .filter(|r| !r.is_empty())
+            .map(|r| common::measure::timing::quantile(r, 0.5))
+            .collect();
+        let lo = medians.iter().copied().fold(pooled.q25, f64::min);
+        let hi = medians.iter().copied().fold(pooled.q75, f64::max);
+        Stat {
+            median: pooled.median,
+            q25: lo,
+            q75: hi,
         }
     }
 
@@ -164,22 +187,28 @@ pub struct Record {
     pub baseline: Option<Timing>,
 }
 
-/// Pools the samples of every key over `reports`' timing maps.
+/// Pools the samples of every key over the runs' timing maps (one map a
+/// run): each key's [`Stat::of_runs`].
 pub fn pool(maps: &[&BTreeMap<String, Vec<f64>>]) -> Option<Timing> {
-    let mut all: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    for m in maps {
-        for (k, v) in *m {
-            all.entry(k.clone()).or_default().extend(v);
-        }
-    }
-    let total = Stat::of(all.get("total")?);
-    let passes = all
+    let mut keys: Vec<&String> = maps.iter().flat_map(|m| m.keys()).collect();
+    keys.sort();
+    keys.dedup();
+    let stat = |k: &str| {
+        let runs: Vec<&[f64]> = maps
+            .iter()
+            .filter_map(|m| m.get(k))
+            .map(Vec::as_slice)
+            .collect();
+        Stat::of_runs(&runs)
+    };
+    maps.iter().find(|m| m.contains_key("total"))?;
+    let passes = keys
         .iter()
-        .filter(|(k, _)| k.as_str() != "total")
-        .map(|(k, v)| (k.clone(), Stat::of(v)))
+        .filter(|k| k.as_str() != "total")
+        .map(|k| (k.to_string(), stat(k)))
         .collect();
     Some(Timing {
-        total,
+        total: stat("total"),
         passes,
         unstable: None,
     })
@@ -222,7 +251,7 @@ fn ms(x: f64) -> String {
     }
 }
 
-/// `18.2 [17.9–18.6]`: a median and its interquartile range.
+/// `18.2 [17.9–18.6]`: a median and its spread.
 pub fn stat(s: &Stat) -> String {
     format!("{} [{}–{}]", ms(s.median), ms(s.q25), ms(s.q75))
 }
@@ -250,7 +279,7 @@ impl Record {
                 None => "after 2 warm-up frames".to_string(),
             };
             format!(
-                "times: median of {} runs × {} frames, {warm_up}, [interquartile range], {}",
+                "times: median of {} runs × {} frames, {warm_up}, [spread: the frames' interquartile range, widened to hold each run's median], {}",
                 self.repeats,
                 self.frames,
                 self.timing_source.replace('_', " ")
@@ -396,7 +425,7 @@ impl Record {
         ))
     }
 
-    /// Per-pass times of a timed run: median [interquartile range].
+    /// Per-pass times of a timed run: median [spread].
     pub fn passes_table(&self) -> String {
         let mut keys: Vec<String> = self
             .variants
@@ -488,4 +517,32 @@ pub fn scenes_table(records: &[&Record]) -> String {
         s += &row(&cells);
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_off_as_a_whole_widens_the_spread() {
+        // Three runs whose frames agree within each run: the pooled
+        // quartiles alone would hide the slow third run.
+        let runs: [&[f64]; 3] = [
+            &[10.0, 10.1, 10.2],
+            &[10.0, 10.1, 10.1],
+            &[13.0, 13.1, 13.2],
+        ];
+        let s = Stat::of_runs(&runs);
+        let all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
+        let pooled = Stat::of(&all);
+        assert_eq!(s.median, pooled.median);
+        assert!(pooled.q75 < 13.1 && s.q75 == 13.1, "{pooled:?} {s:?}");
+        assert_eq!(s.q25, pooled.q25);
+        // Runs that agree leave the interquartile range as it is.
+        let same: [&[f64]; 2] = [&[1.0, 2.0, 3.0], &[1.0, 2.0, 3.0]];
+        assert_eq!(
+            Stat::of_runs(&same),
+            Stat::of(&[1.0, 2.0, 3.0, 1.0, 2.0, 3.0])
+        );
+    }
 }

@@ -2,7 +2,7 @@
 //! their times. For every timed cell (each variant's frame cost and GPU
 //! total, and the baseline's, in every timed record of both folders) it
 //! counts the cells whose median in B lies inside A's stated spread (the
-//! interquartile range the tables print), and the other way round, and
+//! spread the tables print), and the other way round, and
 //! lists the worst. This is how the protocol's repeatability is measured
 //! (the introduction quotes it).
 
@@ -20,7 +20,7 @@ pub struct Cell {
 }
 
 impl Cell {
-    /// B's median inside A's interquartile range.
+    /// B's median inside A's spread.
     pub fn b_in_a(&self) -> bool {
         self.a.q25 <= self.b.median && self.b.median <= self.a.q75
     }
@@ -29,7 +29,7 @@ impl Cell {
         self.b.q25 <= self.a.median && self.a.median <= self.b.q75
     }
 
-    /// How far B's median is outside A's range, in A's interquartile ranges.
+    /// How far B's median is outside A's range, in A's spreads.
     pub fn miss(&self) -> f64 {
         let iqr = (self.a.q75 - self.a.q25).max(1e-9);
         if self.b.median < self.a.q25 {
@@ -142,7 +142,7 @@ fn table(a: &[Record], cells: &[Cell]) -> Result<String> {
     s += &crate::record::row(&[
         "time".into(),
         "timed cells".into(),
-        "2nd run's median inside the 1st's [q25–q75]".into(),
+        "2nd run's median inside the 1st's spread".into(),
         "1st inside the 2nd's".into(),
         "spreads overlap".into(),
     ]);

@@ -49,7 +49,7 @@ pub fn readme_block(defaults: &[&Record]) -> String {
     );
     s += &row(&[
         "lesson".into(),
-        "Pareto-optimal variants: misclassified %, frame cost ms [interquartile range]".into(),
+        "Pareto-optimal variants: misclassified %, frame cost ms [spread]".into(),
         "no shadows, frame ms".into(),
         "chapter".into(),
     ]);

@@ -40,7 +40,8 @@ pub struct Series {
     pub points: Vec<Point>,
 }
 
-const X_DESC: &str = "median frame time, ms (bars: interquartile range)";
+const X_DESC: &str =
+    "median frame cost, ms: wall clock, CPU and GPU (bars: spread over frames and runs)";
 const Y_DESC: &str = "misclassified % of receiver pixels (log)";
 
 /// The Pareto-optimal points' indices (lower ms and lower error), sorted by

@@ -30,7 +30,8 @@ use crate::measure::timing::{quantile, Frame, FrameTimes, Timer, FRAME, TOTAL};
 pub struct WarmUp {
     /// Untimed rendering of each block, at least (wall-clock ms); the
     /// first block of a run renders [`WarmUp::FIRST_BLOCK_FACTOR`] times
-    /// as long, to bring an idle GPU up to its working clock.
+    /// as long, to bring an idle GPU up to its working clock (and a fresh
+    /// lavapipe process to its steady speed, which took it 1 to 3 s).
     pub min_ms: f64,
     /// Frames compared to decide that times have settled: the median of
     /// the last `window` frames against the median of the `window` before.
@@ -45,7 +46,7 @@ pub struct WarmUp {
 }
 
 impl WarmUp {
-    pub const FIRST_BLOCK_FACTOR: f64 = 3.0;
+    pub const FIRST_BLOCK_FACTOR: f64 = 10.0;
     /// Frame-to-frame differences below this are noise at any clock.
     pub const ABS_MS: f64 = 0.02;
     /// Giving up needs at least this many frames, however slow they are.

@@ -119,7 +119,9 @@ pub struct CameraPathReport {
 #[derive(Serialize, Deserialize, Clone, Debug)]
 pub struct BaselineReport {
     pub timing_ms: BTreeMap<String, f64>,
+    #[serde(default)]
     pub timing_spread_ms: BTreeMap<String, [f64; 2]>,
+    #[serde(default)]
     pub timing_samples_ms: BTreeMap<String, Vec<f64>>,
     /// Each baseline block (the protocol times one between every two
     /// variants); empty in older reports.
@@ -342,3 +344,7 @@ impl Report {
         s
     }
 }
+
+#[cfg(test)]
+#[path = "unit_tests/report.rs"]
+mod tests;

@@ -31,7 +31,7 @@ pub struct Args {
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=MAX_FRAMES as i64))]
     pub frames: u32,
     /// Untimed warm-up of each timed block, at least (milliseconds; the
-    /// first block three times as long), until frame times settle: see the
+    /// first block ten times as long), until frame times settle: see the
     /// book's introduction. WORKBOOK_WARM_UP_MS is honoured too.
     #[arg(long, value_name = "MS", env = "WORKBOOK_WARM_UP_MS",
           default_value_t = crate::measure::protocol::DEFAULT_WARM_UP_MS,

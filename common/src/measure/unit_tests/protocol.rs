@@ -21,9 +21,9 @@ fn steady_frames_settle_once_the_minimum_time_has_passed() {
     // 10 ms frames: 100 ms is 10 frames; the frame times never move.
     let (v, n) = warm(rule, false, 10.0, &[1.0; 50]);
     assert_eq!((v, n), (Settle::Settled, 10));
-    // The first block of a run warms up three times as long.
-    let (v, n) = warm(rule, true, 10.0, &[1.0; 50]);
-    assert_eq!((v, n), (Settle::Settled, 30));
+    // The first block of a run warms up ten times as long.
+    let (v, n) = warm(rule, true, 10.0, &[1.0; 500]);
+    assert_eq!((v, n), (Settle::Settled, 100));
 }
 
 #[test]
