@@ -215,6 +215,7 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     write_scenes_tables(generated, &records)?;
     choosing::write_all(generated, &records)?;
     volumes_gpu::write(root, generated)?;
+    scaling::write_tables(root)?;
     lesson09::write_all(generated, figures, &records)?;
     adapters::write_all(root, generated, &records)?;
     sets::write_other_adapters(generated, &sets::load_sets(generated)?)?;
@@ -321,25 +322,19 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
                     v.name
                 );
             }
-            let maps: Vec<&BTreeMap<String, Vec<f64>>> =
-                same.iter().map(|w| &w.timing_samples_ms).collect();
-            let unstable: Vec<String> = same
+            let runs: Vec<(&BTreeMap<String, Vec<f64>>, bool, String)> = same
                 .iter()
-                .zip(0..)
-                .filter(|(w, _)| !w.timing_stable())
+                .zip(1..)
                 .map(|(w, i)| {
                     let base = w.timing_check.as_ref().and_then(|c| c.base_ms);
-                    format!(
-                        "base pass {} ms in run {}",
-                        base.map_or("—".into(), |b| format!("{b:.3}")),
-                        i + 1
-                    )
+                    let why = format!(
+                        "base pass {} ms in run {i}",
+                        base.map_or("—".into(), |b| format!("{b:.3}"))
+                    );
+                    (&w.timing_samples_ms, w.timing_stable(), why)
                 })
                 .collect();
-            let timing = pool(&maps).map(|t| record::Timing {
-                unstable: (!unstable.is_empty()).then(|| unstable.join(", ")),
-                ..t
-            });
+            let timing = pool_stable(&runs);
             Ok(VariantRecord {
                 name: v.name.clone(),
                 receiver_pixels: v.error.receiver_pixels,
@@ -355,20 +350,19 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    let baselines: Vec<&BTreeMap<String, Vec<f64>>> = reports
-        .iter()
-        .filter_map(|r| r.baseline.as_ref().map(|b| &b.timing_samples_ms))
-        .collect();
-    let unstable_baselines: Vec<String> = reports
+    let baselines: Vec<(&BTreeMap<String, Vec<f64>>, bool, String)> = reports
         .iter()
         .zip(1..)
-        .filter(|(r, _)| r.baseline.as_ref().is_some_and(|b| !b.stable()))
-        .map(|(_, i)| format!("a baseline block of run {i}"))
+        .filter_map(|(r, i)| {
+            let b = r.baseline.as_ref()?;
+            Some((
+                &b.timing_samples_ms,
+                b.stable(),
+                format!("every baseline block of run {i}"),
+            ))
+        })
         .collect();
-    let baseline = pool(&baselines).map(|t| record::Timing {
-        unstable: (!unstable_baselines.is_empty()).then(|| unstable_baselines.join(", ")),
-        ..t
-    });
+    let baseline = pool_stable(&baselines);
     Ok(Record {
         lesson: run.lesson.to_string(),
         run: run.name.to_string(),
@@ -389,6 +383,21 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
             .map(|p| p.warm_up_min_ms),
         baseline: if run.timed { baseline } else { None },
     })
+}
+
+/// Pools the runs whose times were stable; a run that was not is left out
+/// and named (`left_out`). When no run was stable, every run is pooled and
+/// the timing is `unstable`, with the reasons.
+fn pool_stable(runs: &[(&BTreeMap<String, Vec<f64>>, bool, String)]) -> Option<record::Timing> {
+    let stable: Vec<&BTreeMap<String, Vec<f64>>> =
+        runs.iter().filter(|r| r.1).map(|r| r.0).collect();
+    let why: Vec<&str> = runs.iter().filter(|r| !r.1).map(|r| r.2.as_str()).collect();
+    let why = (!why.is_empty()).then(|| why.join(", "));
+    if stable.is_empty() {
+        let all: Vec<&BTreeMap<String, Vec<f64>>> = runs.iter().map(|r| r.0).collect();
+        return pool(&all).map(|t| record::Timing { unstable: why, ..t });
+    }
+    pool(&stable).map(|t| record::Timing { left_out: why, ..t })
 }
 
 /// Copies the figures and lesson-written tables of the manifest.

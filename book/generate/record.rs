@@ -64,6 +64,10 @@ pub struct Timing {
     /// failed in a repeat), or absent when they can.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unstable: Option<String>,
+    /// Runs left out of the pool because the check failed in them (the
+    /// other runs' frames make the figures).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub left_out: Option<String>,
 }
 
 impl Timing {
@@ -211,6 +215,7 @@ pub fn pool(maps: &[&BTreeMap<String, Vec<f64>>]) -> Option<Timing> {
         total: stat("total"),
         passes,
         unstable: None,
+        left_out: None,
     })
 }
 
@@ -400,29 +405,36 @@ impl Record {
         s
     }
 
-    /// A line under a table that has unstable times, naming why.
+    /// The lines under a table whose protocol check failed somewhere:
+    /// the cells not quoted, and the runs left out of the others.
     pub fn unstable_note(&self) -> Option<String> {
-        let mut why: Vec<String> = self
-            .variants
-            .iter()
-            .filter_map(|v| {
-                Some(format!(
-                    "`{}`: {}",
-                    v.name,
-                    v.timing.as_ref()?.unstable.as_ref()?
-                ))
-            })
-            .collect();
-        if let Some(u) = self.baseline.as_ref().and_then(|b| b.unstable.as_ref()) {
-            why.push(format!("baseline: {u}"));
+        let named = |f: fn(&Timing) -> Option<&String>| -> Vec<String> {
+            let mut out: Vec<String> = self
+                .variants
+                .iter()
+                .filter_map(|v| Some(format!("`{}`: {}", v.name, f(v.timing.as_ref()?)?)))
+                .collect();
+            if let Some(u) = self.baseline.as_ref().and_then(f) {
+                out.push(format!("baseline: {u}"));
+            }
+            out
+        };
+        let unstable = named(|t| t.unstable.as_ref());
+        let left_out = named(|t| t.left_out.as_ref());
+        let mut lines = Vec::new();
+        if !unstable.is_empty() {
+            lines.push(format!(
+                "*Unstable: the base pass, the same work in every block, took a different time in these blocks than in the baseline's, in every run, so their times are not quoted ({}).*",
+                unstable.join("; ")
+            ));
         }
-        if why.is_empty() {
-            return None;
+        if !left_out.is_empty() {
+            lines.push(format!(
+                "*Left out: in these runs the base pass ran at another speed than the baseline's (more than 2× off), so their frames are left out and the other runs' make the figures ({}).*",
+                left_out.join("; ")
+            ));
         }
-        Some(format!(
-            "*Unstable: the base pass, the same work in every block, took a different time in these blocks than in the baseline's, so their times are not quoted ({}).*",
-            why.join("; ")
-        ))
+        (!lines.is_empty()).then(|| lines.join("\n\n"))
     }
 
     /// Per-pass times of a timed run: median [spread].

@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use common::measure::report::Report;
+use common::measure::timing::{CPU_TOTAL, FRAME};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
@@ -54,7 +55,8 @@ pub struct SweepPoint {
     /// The size as the table prints it (`1 048 576`, `1280×720`).
     pub label: String,
     pub variant: String,
-    /// Frame time: median [interquartile range] of the point's frames.
+    /// GPU time of the frame: median [interquartile range] of the point's
+    /// frames (the frame cost, `frame`, is among the passes where recorded).
     pub total: Stat,
     /// The passes the sweep shows, by their report key.
     pub passes: BTreeMap<String, Stat>,
@@ -125,6 +127,15 @@ fn generated_dir(root: &Path) -> PathBuf {
     root.join("book/src/generated/scaling")
 }
 
+/// Rewrites every sweep's table from its committed record.
+pub fn write_tables(root: &Path) -> Result<()> {
+    let generated = generated_dir(root);
+    for sweep in load_sweeps(root)? {
+        write(&generated.join(table_file(&sweep)), &table(&sweep))?;
+    }
+    Ok(())
+}
+
 /// Every committed sweep record, by file name.
 pub fn load_sweeps(root: &Path) -> Result<Vec<Sweep>> {
     let dir = generated_dir(root);
@@ -150,7 +161,7 @@ fn slope_cell(s: Option<f64>) -> String {
 
 fn curve_name(sweep: &Sweep, c: &SweepCurve) -> String {
     let what = match c.unit {
-        Unit::Ms if c.key == "total" => "frame ms".to_string(),
+        Unit::Ms if c.key == "total" => "GPU ms".to_string(),
         Unit::Ms => format!("`{}` ms", c.key),
         Unit::Count => format!("`{}`", c.key),
     };
@@ -180,7 +191,7 @@ pub fn table(sweep: &Sweep) -> String {
         "frame size: see the rows".to_string()
     };
     let mut s = format!(
-        "*{}, {} · {} · {} · median of {} frames after 2 warm-up frames, one process a point, [interquartile range], {}*\n\n",
+        "*{}, {} · {} · {} · median of {} frames, warmed up until they settle (the introduction's protocol), one process a point, [interquartile range], {}*\n\n",
         sweep.adapter,
         sweep.backend,
         size,
@@ -193,7 +204,11 @@ pub fn table(sweep: &Sweep) -> String {
     if multi {
         head.push("variant".into());
     }
-    head.push("frame ms".into());
+    // The frame cost where the records have it (older ones: GPU time only).
+    let has_frame = sweep.points.iter().any(|p| p.passes.contains_key(FRAME));
+    if has_frame {
+        head.push("frame ms".into());
+    }
     head.push("GPU ms".into());
     head.extend(sweep.passes.iter().map(|p| format!("`{p}` ms")));
     head.extend(sweep.counters.iter().map(|c| format!("`{c}`")));
@@ -205,8 +220,9 @@ pub fn table(sweep: &Sweep) -> String {
         if multi {
             cells.push(format!("`{}`", p.variant));
         }
-        let frame = p.passes.get(common::measure::timing::FRAME);
-        cells.push(stat(frame.unwrap_or(&p.total)));
+        if has_frame {
+            cells.push(p.passes.get(FRAME).map_or("—".into(), stat));
+        }
         cells.push(stat(&p.total));
         for k in &sweep.passes {
             cells.push(p.passes.get(k).map_or("—".into(), stat));
@@ -599,9 +615,11 @@ fn measure(
                 label: label.clone(),
                 variant: variant.to_string(),
                 total: Stat::of(total),
+                // The sweep's passes, and the frame cost and CPU time.
                 passes: plan
                     .passes
                     .iter()
+                    .chain(&[FRAME, CPU_TOTAL])
                     .filter_map(|&k| v.timing_samples_ms.get(k).map(|s| (k.into(), Stat::of(s))))
                     .collect(),
                 counters: plan

@@ -295,7 +295,8 @@ pub fn time_blocks(
 // ANCHOR_END: time_blocks
 
 /// What the report keeps of the blocks: each variant's frames and check,
-/// the baseline's frames (all its blocks) and checks, and the verdict.
+/// the baseline's frames (those of its stable blocks, or of all when none
+/// is) and every baseline block's check, and the verdict.
 pub struct Verdicts {
     pub variants: Vec<(Vec<FrameTimes>, TimingCheck)>,
     pub baseline: (Vec<FrameTimes>, Vec<TimingCheck>),
@@ -326,6 +327,10 @@ pub fn verdicts(blocks: &[TimedBlock], names: &[String], warm_up_min_ms: f64) ->
     let mut variants: Vec<(Vec<FrameTimes>, Option<TimingCheck>)> =
         names.iter().map(|_| (Vec::new(), None)).collect();
     let mut baseline = (Vec::new(), Vec::new());
+    let any_stable_baseline = blocks
+        .iter()
+        .zip(&checks)
+        .any(|(b, c)| b.id.is_none() && c.stable);
     for (b, c) in blocks.iter().zip(&checks) {
         match b.id {
             Some(i) if i < variants.len() => {
@@ -334,7 +339,12 @@ pub fn verdicts(blocks: &[TimedBlock], names: &[String], warm_up_min_ms: f64) ->
             }
             Some(_) => {}
             None => {
-                baseline.0.extend(b.frames.iter().cloned());
+                // An unstable baseline block is left out of the baseline's
+                // frames when another one is stable: the baseline is timed
+                // many times so that one slow block does not sink it.
+                if c.stable || !any_stable_baseline {
+                    baseline.0.extend(b.frames.iter().cloned());
+                }
                 baseline.1.push(check(b, c));
             }
         }

@@ -130,9 +130,10 @@ pub struct BaselineReport {
 }
 
 impl BaselineReport {
-    /// Whether every baseline block was stable.
+    /// Whether the baseline's times can be quoted: some block was stable
+    /// (its frames are those of the stable blocks), or an older report.
     pub fn stable(&self) -> bool {
-        self.blocks.iter().all(|b| b.stable)
+        self.blocks.is_empty() || self.blocks.iter().any(|b| b.stable)
     }
 }
 
@@ -239,7 +240,13 @@ impl Report {
         let baseline = self.baseline.iter().flat_map(|b| &b.blocks);
         let n = baseline.filter(|c| !c.stable).count();
         if n > 0 {
-            bad.push(format!("{n} baseline block(s)"));
+            let kept = self.baseline.as_ref().is_some_and(|b| b.stable());
+            let fate = if kept {
+                "left out of the baseline"
+            } else {
+                "all of them"
+            };
+            bad.push(format!("{n} baseline block(s), {fate}"));
         }
         Some(format!(
             "unstable: the base pass, the same work in every block, took {} against {:.3} ms in the baseline (more than {}× off); the GPU's speed changed during the run (its clock?), so those times are not quoted. Re-run, or time one variant alone (--variant NAME --frames 300)",

@@ -138,3 +138,42 @@ fn no_samples_is_not_stable() {
     let (_, checks) = check_base(&[(true, vec![1.0, 1.0]), (false, vec![])]);
     assert!(checks[0].stable && !checks[1].stable);
 }
+
+#[test]
+fn an_unstable_baseline_block_is_left_out_of_the_baseline() {
+    let frames = |base: f64, total: f64| -> Vec<FrameTimes> {
+        let ms = [("base".to_string(), base), ("total".to_string(), total)];
+        (0..3)
+            .map(|_| FrameTimes {
+                ms: ms.iter().cloned().collect(),
+            })
+            .collect()
+    };
+    let block = |id: BlockId, base: f64, total: f64| TimedBlock {
+        id,
+        warm_up_frames: 6,
+        warm_up_ms: 10.0,
+        settled: true,
+        frames: frames(base, total),
+    };
+    // lavapipe's first block of a process, 2.1× slow after 3 s of warm-up.
+    let blocks = vec![
+        block(None, 5.5, 8.0),
+        block(Some(0), 2.6, 4.0),
+        block(None, 2.6, 3.0),
+        block(None, 2.5, 3.0),
+    ];
+    let v = verdicts(&blocks, &["k4".to_string()], 300.0);
+    let stable: Vec<bool> = v.baseline.1.iter().map(|c| c.stable).collect();
+    assert_eq!(stable, [false, true, true]);
+    assert_eq!(v.baseline.0.len(), 6, "the two stable blocks' frames");
+    assert!(v.baseline.0.iter().all(|f| f.ms["total"] == 3.0));
+    assert!(v.variants[0].1.stable && v.variants[0].0.len() == 3);
+    assert!(!v.protocol.stable);
+    // A lone baseline block is its own reference: kept, and the variant
+    // 5.5× off it is the unstable one.
+    let blocks = vec![block(None, 5.5, 8.0), block(Some(0), 1.0, 2.0)];
+    let v = verdicts(&blocks, &["k4".to_string()], 300.0);
+    assert_eq!(v.baseline.0.len(), 3);
+    assert!(v.baseline.1[0].stable && !v.variants[0].1.stable);
+}
