@@ -226,7 +226,7 @@ fn fresh_record(id: &str, rec: &Record, report: &common::measure::report::Report
                     coverage_mismatch_pct: now.error.coverage_mismatch_pct,
                     counters: now.counters.clone(),
                     timing: None,
-                    camera_path: record::CameraPathRecord::of(now),
+                    camera_path: now.camera_path.clone(),
                     classes: record::ClassRecord::of(now),
                 }
             })

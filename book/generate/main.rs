@@ -345,7 +345,7 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
                 coverage_mismatch_pct: v.error.coverage_mismatch_pct,
                 counters: v.counters.clone(),
                 timing: if run.timed { timing } else { None },
-                camera_path: record::CameraPathRecord::of(v),
+                camera_path: v.camera_path.clone(),
                 classes: record::ClassRecord::of(v),
             })
         })

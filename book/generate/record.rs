@@ -111,34 +111,9 @@ pub struct VariantRecord {
     pub classes: Vec<ClassRecord>,
 }
 
-/// Shimmer over a camera path: pixels whose shadow flips between
-/// consecutive frames where the exact reference does not.
-#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
-pub struct CameraPathRecord {
-    pub frames: u32,
-    /// World-locked (see `common::scene::camera_path`).
-    pub shimmer_pct: f64,
-    /// Screen-space: flips the reference does not make between frames.
-    pub screen_mismatch_pct: f64,
-    pub reference_flip_pct: f64,
-    pub technique_flip_pct: f64,
-    pub misclassified_pct_per_frame: Vec<f64>,
-}
-
-impl CameraPathRecord {
-    /// What the book keeps of a report's camera path.
-    pub fn of(v: &common::measure::report::VariantReport) -> Option<CameraPathRecord> {
-        let p = v.camera_path.as_ref()?;
-        Some(CameraPathRecord {
-            frames: p.frames,
-            shimmer_pct: p.shimmer_pct,
-            screen_mismatch_pct: p.screen_mismatch_pct,
-            reference_flip_pct: p.reference_flip_pct,
-            technique_flip_pct: p.technique_flip_pct,
-            misclassified_pct_per_frame: p.misclassified_pct_per_frame.clone(),
-        })
-    }
-}
+/// Shimmer over a camera path (lesson 09): the report's own figures,
+/// kept as they are (see `common::scene::camera_path`).
+pub type CameraPathRecord = common::measure::report::CameraPathReport;
 
 impl ClassRecord {
     /// What the book keeps of a report's per-class errors.
