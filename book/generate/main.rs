@@ -322,7 +322,7 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
                     v.name
                 );
             }
-            let runs: Vec<(&BTreeMap<String, Vec<f64>>, bool, String)> = same
+            let runs: Vec<RunTimes> = same
                 .iter()
                 .zip(1..)
                 .map(|(w, i)| {
@@ -350,7 +350,7 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    let baselines: Vec<(&BTreeMap<String, Vec<f64>>, bool, String)> = reports
+    let baselines: Vec<RunTimes> = reports
         .iter()
         .zip(1..)
         .filter_map(|(r, i)| {
@@ -385,10 +385,14 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
     })
 }
 
+/// One run's samples of a timed cell, whether its block was stable, and
+/// why not.
+type RunTimes<'a> = (&'a BTreeMap<String, Vec<f64>>, bool, String);
+
 /// Pools the runs whose times were stable; a run that was not is left out
 /// and named (`left_out`). When no run was stable, every run is pooled and
 /// the timing is `unstable`, with the reasons.
-fn pool_stable(runs: &[(&BTreeMap<String, Vec<f64>>, bool, String)]) -> Option<record::Timing> {
+fn pool_stable(runs: &[RunTimes]) -> Option<record::Timing> {
     let stable: Vec<&BTreeMap<String, Vec<f64>>> =
         runs.iter().filter(|r| r.1).map(|r| r.0).collect();
     let why: Vec<&str> = runs.iter().filter(|r| !r.1).map(|r| r.2.as_str()).collect();
