@@ -22,7 +22,7 @@ use crate::gpu::fullscreen::{draw_fullscreen, Fullscreen};
 use crate::gpu::render::SceneGpu;
 use crate::gpu::targets::FrameTargets;
 use crate::gpu::Gpu;
-use crate::measure::timing::Timer;
+use crate::measure::timing::{Timer, FRAME, TOTAL};
 use crate::run::cli::Args;
 use crate::run::lesson::{variant_name, Lesson};
 use crate::scene::{LightKind, Scene};
@@ -58,7 +58,8 @@ struct App<L: Lesson> {
     error: Option<anyhow::Error>,
     dragging: bool,
     last_cursor: Option<(f64, f64)>,
-    last_ms: f64,
+    /// The last frame's cost and GPU time (ms).
+    last_ms: (f64, f64),
 }
 
 pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant>) -> Result<()> {
@@ -73,7 +74,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
         error: None,
         dragging: false,
         last_cursor: None,
-        last_ms: 0.0,
+        last_ms: (0.0, 0.0),
     };
     event_loop
         .run_app(&mut app)
@@ -153,7 +154,8 @@ impl<L: Lesson> App<L> {
         let mut frame = r.timer.frame(&r.gpu);
         r.lesson.render(&mut frame, &r.scene, &r.targets, variant)?;
         let t = frame.finish()?;
-        self.last_ms = t.ms.get("total").copied().unwrap_or(0.0);
+        let ms = |k: &str| t.ms.get(k).copied().unwrap_or(0.0);
+        self.last_ms = (ms(FRAME), ms(TOTAL));
         let surface_tex = match r.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
@@ -168,10 +170,11 @@ impl<L: Lesson> App<L> {
         r.gpu.queue.submit([enc.finish()]);
         r.gpu.queue.present(surface_tex);
         r.window.set_title(&format!(
-            "{} - {} - {:.2} ms  [V: next variant, drag: orbit, arrows: light]",
+            "{} - {} - frame {:.2} ms, GPU {:.2} ms  [V: next variant, drag: orbit, arrows: light]",
             L::NAME,
             variant_name(variant),
-            self.last_ms
+            self.last_ms.0,
+            self.last_ms.1
         ));
         Ok(())
     }
