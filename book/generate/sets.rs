@@ -92,7 +92,13 @@ pub fn write_other_adapters(generated: &Path, sets: &[(String, Vec<Record>)]) ->
                 ))
             })
             .collect();
-        let text = if tables.is_empty() {
+        let text = if tables.is_empty() && !sets.is_empty() {
+            let names: Vec<&str> = sets.iter().map(|(n, _)| n.as_str()).collect();
+            format!(
+                "*The committed sets of other adapters ({}) have no run of this lesson.*\n",
+                names.join(", ")
+            )
+        } else if tables.is_empty() {
             format!(
                 "*Only lavapipe's records are committed. On a GPU, `cargo run --release --bin workbook -- book --adapter any` measures every run there and writes its set to `book/src/generated/{SETS_DIR}/<adapter>-<backend>/`; its table then appears here, beside lavapipe's.*\n"
             )
