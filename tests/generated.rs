@@ -44,6 +44,9 @@ mod scaling;
 #[allow(dead_code)]
 mod summary;
 mod support;
+#[path = "../book/generate/table.rs"]
+#[allow(dead_code)]
+mod table;
 
 use std::path::{Path, PathBuf};
 

@@ -12,7 +12,8 @@ use anyhow::{Context, Result};
 use common::measure::report::Report;
 use common::reference::metrics::ErrorStats;
 
-use crate::record::{pct, Record, VariantRecord};
+use crate::record::{Record, VariantRecord};
+use crate::table::pct;
 
 /// The H100's reports, beside the tests that replay them.
 pub const REPORTS: &str = "tests/snapshot_replay/h100_reports";

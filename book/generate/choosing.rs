@@ -8,7 +8,8 @@ use std::path::Path;
 use anyhow::Result;
 
 use crate::manifest::{Peer, FAMILIES, PEERS, VOLUME_BUILDS};
-use crate::record::{count, pct, row, stat, time_cells, Record, VariantRecord};
+use crate::record::{Record, VariantRecord};
+use crate::table::{count, pct, row, stat, time_cells};
 
 /// Writes `generated/choosing/{families,peers,volumes_build}.md`.
 pub fn write_all(generated: &Path, records: &[Record]) -> Result<()> {

@@ -7,7 +7,8 @@ use std::path::Path;
 use anyhow::{Context, Result};
 
 use crate::plots::{self, Curve};
-use crate::record::{count, pct, row, Record};
+use crate::record::Record;
+use crate::table::{count, pct, row};
 
 /// The counters `texels_per_100m_at_<D>m`, by distance D.
 const ALIASING_PREFIX: &str = "texels_per_100m_at_";

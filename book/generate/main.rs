@@ -23,6 +23,7 @@ mod scaling;
 mod sets;
 mod stability;
 mod summary;
+mod table;
 mod volumes_gpu;
 
 use std::collections::BTreeMap;
@@ -486,7 +487,7 @@ fn write_scenes_tables(generated: &Path, records: &[Record]) -> Result<()> {
         if !cases.is_empty() {
             write(
                 &generated.join(l).join("scenes.md"),
-                &record::scenes_table(&cases),
+                &table::scenes_table(&cases),
             )?;
         }
     }

@@ -22,8 +22,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::manifest;
 use crate::plots::{self, Curve};
-use crate::record::{count, pct, row, stat, Stat};
+use crate::record::Stat;
 use crate::runner::{RunArgs, Runner};
+use crate::table::{count, pct, row, stat};
 
 /// The frame size of every sweep but the screen-size one.
 const WIDTH: u32 = 640;

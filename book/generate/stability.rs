@@ -139,21 +139,21 @@ fn table(a: &[Record], cells: &[Cell]) -> Result<String> {
         "*{}, {} · {}×{} · two runs of `workbook book`, each {} processes × {} frames a variant, compared by `workbook compare`*\n\n",
         first.adapter, first.backend, first.width, first.height, first.repeats, first.frames
     );
-    s += &crate::record::row(&[
+    s += &crate::table::row(&[
         "time".into(),
         "timed cells".into(),
         "2nd run's median inside the 1st's spread".into(),
         "1st inside the 2nd's".into(),
         "spreads overlap".into(),
     ]);
-    s += &crate::record::row(&vec!["---".to_string(); 5]);
+    s += &crate::table::row(&vec!["---".to_string(); 5]);
     for (kind, name) in [("frame", "frame cost"), ("GPU", "GPU total")] {
         let of: Vec<&Cell> = cells.iter().filter(|c| c.id.ends_with(kind)).collect();
         if of.is_empty() {
             continue;
         }
         let share = |n: usize| format!("{n} ({:.0} %)", 100.0 * n as f64 / of.len() as f64);
-        s += &crate::record::row(&[
+        s += &crate::table::row(&[
             name.into(),
             of.len().to_string(),
             share(of.iter().filter(|c| c.b_in_a()).count()),

@@ -2,7 +2,8 @@
 //! the lessons' default runs: what each lesson's Pareto front is.
 
 use crate::plots::{pareto_front, Point, Series};
-use crate::record::{pct, row, stat, Record};
+use crate::record::Record;
+use crate::table::{pct, row, stat};
 
 /// The README's table sits between these two lines.
 pub const BEGIN: &str =

@@ -9,7 +9,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use common::measure::report::Report;
 
-use crate::record::{count, row};
+use crate::table::{count, row};
 
 /// The measured reports, relative to the repository's root.
 pub const DIR: &str = "book/measured/h100-631f993";

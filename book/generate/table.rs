@@ -1,0 +1,305 @@
+//! The markdown tables made from the records ([`crate::record`]): a run's
+//! results and passes tables, a lesson's extreme cases side by side, and
+//! the cells every generated table shares (percentages, counts, times with
+//! their spread). The chapters include them; `tests/generated.rs` checks
+//! each committed table against its record.
+
+use crate::record::{Record, Stat, Timing, VariantRecord};
+
+/// An error percentage as the tables print it.
+pub fn pct(x: f64) -> String {
+    format!("{x:.3}")
+}
+
+/// A count with thin-space thousands separators: `7 336 928`.
+pub fn count(n: u64) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
+            out.push('\u{2009}');
+        }
+        out.push(c);
+    }
+    out
+}
+
+fn ms(x: f64) -> String {
+    if x >= 100.0 {
+        format!("{x:.0}")
+    } else if x >= 10.0 {
+        format!("{x:.1}")
+    } else {
+        format!("{x:.2}")
+    }
+}
+
+/// `18.2 [17.9–18.6]`: a median and its spread.
+pub fn stat(s: &Stat) -> String {
+    format!("{} [{}–{}]", ms(s.median), ms(s.q25), ms(s.q75))
+}
+
+impl Record {
+    /// The line above every table: adapter, resolution, scene, protocol.
+    pub fn header(&self) -> String {
+        let scene = if self.scene == "default" {
+            format!("the default scene (`scenes/{}.toml`)", self.lesson)
+        } else {
+            format!("`{}` ({})", self.scene, self.title)
+        };
+        let timing = if self.frames == 0 {
+            "error and counters only (untimed)".to_string()
+        } else {
+            let warm_up = match self.warm_up_ms {
+                Some(ms) => format!(
+                    "each variant warmed up (≥ {ms:.0} ms, until its frame times settle) and timed back to back with the no-shadow baseline between"
+                ),
+                None => "after 2 warm-up frames".to_string(),
+            };
+            format!(
+                "times: median of {} runs × {} frames, {warm_up}, [spread: the frames' interquartile range, widened to hold each run's median], {}",
+                self.repeats,
+                self.frames,
+                self.timing_source.replace('_', " ")
+            )
+        };
+        format!(
+            "*{}, {} · {}×{} · {} · {}*",
+            self.adapter, self.backend, self.width, self.height, scene, timing
+        )
+    }
+
+    /// Counter names that any variant reports, in a stable order.
+    fn counter_keys(&self) -> Vec<String> {
+        let mut keys: Vec<String> = self
+            .variants
+            .iter()
+            .flat_map(|v| v.counters.keys().cloned())
+            .collect();
+        keys.sort();
+        keys.dedup();
+        keys
+    }
+
+    /// The error columns and counters of one variant: the cells the drift
+    /// test compares.
+    pub fn measured_cells(&self, v: &VariantRecord, with_mean_abs: bool) -> Vec<String> {
+        let mut cells = vec![
+            format!("`{}`", v.name),
+            pct(v.misclassified_pct),
+            pct(v.false_shadow_pct),
+            pct(v.false_lit_pct),
+        ];
+        if with_mean_abs {
+            cells.push(pct(100.0 * v.mean_abs));
+        }
+        for k in self.counter_keys() {
+            cells.push(v.counters.get(&k).map_or("—".into(), |&n| count(n)));
+        }
+        cells
+    }
+
+    /// The run's main table: one row a variant (and the no-shadow
+    /// baseline, for timed runs).
+    pub fn table(&self, with_mean_abs: bool) -> String {
+        let mut head = vec![
+            "variant".to_string(),
+            "misclassified %".into(),
+            "false shadow %".into(),
+            "false lit %".into(),
+        ];
+        if with_mean_abs {
+            head.push("mean \\|ΔV\\| %".into());
+        }
+        head.extend(self.counter_keys().iter().map(|k| format!("`{k}`")));
+        let timed = self.frames > 0;
+        if timed {
+            head.extend([
+                "frame ms".to_string(),
+                "GPU ms".into(),
+                "CPU ms".into(),
+                "shadows cost (frame, vs no shadows)".into(),
+                "vs the fastest".into(),
+            ]);
+        }
+        let stable = |t: &&Timing| t.stable();
+        let fastest = self
+            .variants
+            .iter()
+            .filter_map(|v| {
+                v.timing
+                    .as_ref()
+                    .filter(stable)
+                    .map(|t| (v.name.clone(), t.frame()))
+            })
+            .min_by(|a, b| a.1.median.total_cmp(&b.1.median));
+        let baseline = self.baseline.as_ref().filter(stable);
+        let mut s = format!("{}\n\n", self.header());
+        s += &row(&head);
+        s += &row(&vec!["---".to_string(); head.len()]);
+        if let (true, Some(base)) = (timed, &self.baseline) {
+            let n = head.len() - 6;
+            let mut cells = vec!["no shadows (baseline)".to_string()];
+            cells.extend(vec!["—".to_string(); n]);
+            cells.extend(time_cells(base));
+            cells.extend(["—".into(), "—".into()]);
+            s += &row(&cells);
+        }
+        for v in &self.variants {
+            let mut cells = self.measured_cells(v, with_mean_abs);
+            if let Some(t) = v.timing.as_ref().filter(|_| timed) {
+                cells.extend(time_cells(t));
+                let frame = t.frame();
+                cells.push(match baseline {
+                    _ if !t.stable() => "—".into(),
+                    Some(b) if frame.differs_from(b.frame()) => format!(
+                        "{:+.1} ms (×{:.2})",
+                        frame.median - b.frame().median,
+                        frame.median / b.frame().median
+                    ),
+                    Some(_) => "no measurable difference".into(),
+                    None => "—".into(),
+                });
+                cells.push(match &fastest {
+                    _ if !t.stable() => "—".into(),
+                    Some((name, _)) if *name == v.name => "fastest".into(),
+                    Some((name, f)) if frame.differs_from(f) => {
+                        format!("{:+.1} ms", frame.median - f.median)
+                    }
+                    Some((name, _)) => format!("no measurable difference from `{name}`"),
+                    None => "—".into(),
+                });
+            }
+            s += &row(&cells);
+        }
+        if let Some(note) = self.unstable_note() {
+            s += &format!("\n{note}\n");
+        }
+        s
+    }
+
+    /// The lines under a table whose protocol check failed somewhere:
+    /// the cells not quoted, and the runs left out of the others.
+    pub fn unstable_note(&self) -> Option<String> {
+        let named = |f: fn(&Timing) -> Option<&String>| -> Vec<String> {
+            let mut out: Vec<String> = self
+                .variants
+                .iter()
+                .filter_map(|v| Some(format!("`{}`: {}", v.name, f(v.timing.as_ref()?)?)))
+                .collect();
+            if let Some(u) = self.baseline.as_ref().and_then(f) {
+                out.push(format!("baseline: {u}"));
+            }
+            out
+        };
+        let unstable = named(|t| t.unstable.as_ref());
+        let left_out = named(|t| t.left_out.as_ref());
+        let mut lines = Vec::new();
+        if !unstable.is_empty() {
+            lines.push(format!(
+                "*Unstable: the base pass, the same work in every block, took a different time in these blocks than in the baseline's, in every run, so their times are not quoted ({}).*",
+                unstable.join("; ")
+            ));
+        }
+        if !left_out.is_empty() {
+            lines.push(format!(
+                "*Left out: in these runs the base pass ran at another speed than the baseline's (more than 2× off), so their frames are left out and the other runs' make the figures ({}).*",
+                left_out.join("; ")
+            ));
+        }
+        (!lines.is_empty()).then(|| lines.join("\n\n"))
+    }
+
+    /// Per-pass times of a timed run: median [spread].
+    pub fn passes_table(&self) -> String {
+        let mut keys: Vec<String> = self
+            .variants
+            .iter()
+            .filter_map(|v| v.timing.as_ref())
+            .flat_map(|t| t.passes.keys().cloned())
+            .collect();
+        keys.sort();
+        keys.dedup();
+        let mut head = vec!["variant".to_string()];
+        head.extend(keys.iter().map(|k| format!("`{k}` ms")));
+        let mut s = format!("{}\n\n", self.header());
+        s += &row(&head);
+        s += &row(&vec!["---".to_string(); head.len()]);
+        let mut line = |name: String, t: &Timing| {
+            let mut cells = vec![name];
+            for k in &keys {
+                cells.push(t.passes.get(k).map_or("—".into(), stat));
+            }
+            s += &row(&cells);
+        };
+        if let Some(b) = &self.baseline {
+            line("no shadows (baseline)".into(), b);
+        }
+        for v in &self.variants {
+            if let Some(t) = &v.timing {
+                line(format!("`{}`", v.name), t);
+            }
+        }
+        s
+    }
+}
+
+/// A timing's frame, GPU and CPU cells; `unstable` for the first two
+/// when the protocol's check failed (CPU time does not follow the GPU's
+/// clock).
+pub fn time_cells(t: &Timing) -> [String; 3] {
+    let clocked = |x: &Stat| {
+        if t.stable() {
+            stat(x)
+        } else {
+            "unstable".into()
+        }
+    };
+    [
+        clocked(t.frame()),
+        clocked(&t.total),
+        t.cpu().map_or("—".into(), stat),
+    ]
+}
+
+/// A markdown table row.
+pub fn row(cells: &[String]) -> String {
+    format!("| {} |\n", cells.join(" | "))
+}
+
+/// A lesson's extreme cases side by side: one row a run, one column a
+/// variant, misclassified % in the cells.
+pub fn scenes_table(records: &[&Record]) -> String {
+    let Some(first) = records.first() else {
+        return String::new();
+    };
+    let mut names: Vec<String> = Vec::new();
+    for r in records {
+        for v in &r.variants {
+            if !names.contains(&v.name) {
+                names.push(v.name.clone());
+            }
+        }
+    }
+    let mut s = format!(
+        "*{}, {} · {}×{} · misclassified % of receiver pixels*\n\n",
+        first.adapter, first.backend, first.width, first.height
+    );
+    let mut head = vec!["scene".to_string()];
+    head.extend(names.iter().map(|n| format!("`{n}`")));
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
+    for r in records {
+        let mut cells = vec![format!("{} (`{}`)", r.title, r.scene)];
+        for n in &names {
+            cells.push(
+                r.variants
+                    .iter()
+                    .find(|v| &v.name == n)
+                    .map_or("—".into(), |v| pct(v.misclassified_pct)),
+            );
+        }
+        s += &row(&cells);
+    }
+    s
+}
