@@ -139,6 +139,13 @@ impl Variant {
     }
 
     /// The receiver-side bias: none for ours (the shadow pass has it).
+    /// Which lit pipeline draws the variant: its filter's `MODE`, plus
+    /// `Filter::MODES` if it takes a renderer's receiver bias.
+    fn lit_key(self) -> u32 {
+        let renderer_bias = self.receiver_bias() != ShadowBias::NONE;
+        self.filter().mode() + Filter::MODES * renderer_bias as u32
+    }
+
     fn receiver_bias(self) -> ShadowBias {
         match self {
             Variant::LearnOpenGlPcf => ShadowBias::LEARNOPENGL,
@@ -163,7 +170,8 @@ struct Pcf {
     map: ShadowMap,
     nearest: wgpu::BindGroup,
     linear: wgpu::BindGroup,
-    lit_pipeline: wgpu::RenderPipeline,
+    /// Per [`Variant::lit_key`], the pipelines some variant uses.
+    lit_pipelines: Vec<Option<wgpu::RenderPipeline>>,
     /// Per shadow pass of [`PASSES`], one pipeline per light.
     shadow_pipelines: Vec<Vec<wgpu::RenderPipeline>>,
     /// Their counting copies ([`shadow_map::shadow_tally_pipelines`]).
@@ -193,13 +201,31 @@ impl Lesson for Pcf {
         let layout = pcf::pcf_map_layout(gpu);
         let filter_layout =
             params_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);
-        let lit_pipeline = scene.lit_pipeline(
-            gpu,
-            &module,
-            "fs_lit",
-            &[&layout, &filter_layout],
-            Default::default(),
-        );
+        // One lit pipeline per filter (`MODE` in pcf.wgsl) and receiver
+        // bias (`RENDERER_BIAS`), compiled with only that code.
+        let used: Vec<u32> = Variant::value_variants()
+            .iter()
+            .map(|v| v.lit_key())
+            .collect();
+        let lit_pipelines = (0..2 * Filter::MODES)
+            .map(|k| {
+                if !used.contains(&k) {
+                    return None;
+                }
+                let constants = [
+                    ("MODE", (k % Filter::MODES) as f64),
+                    ("RENDERER_BIAS", (k / Filter::MODES) as f64),
+                ];
+                Some(scene.lit_pipeline_specialised(
+                    gpu,
+                    &module,
+                    "fs_lit",
+                    &[&layout, &filter_layout],
+                    scene.lit_depth_state(Default::default()),
+                    &constants,
+                ))
+            })
+            .collect();
         let map = ShadowMap::new(gpu, MAP_SIZE);
         let nearest = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
         let linear = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
@@ -245,7 +271,7 @@ impl Lesson for Pcf {
             map,
             nearest,
             linear,
-            lit_pipeline,
+            lit_pipelines,
             shadow_pipelines,
             tally_pipelines,
             texels_written: [None; 3],
@@ -270,6 +296,9 @@ impl Lesson for Pcf {
             self.texels_written[pass] = Some(n);
         }
         let filter_group = &self.filter_groups[variant as usize];
+        let lit_pipeline = self.lit_pipelines[variant.lit_key() as usize]
+            .as_ref()
+            .expect("every variant's lit pipeline is built in new");
         let map_group = match variant.filter().sampler() {
             wgpu::FilterMode::Linear => &self.linear,
             _ => &self.nearest,
@@ -284,7 +313,7 @@ impl Lesson for Pcf {
                 scene.lit_pass(
                     enc,
                     targets,
-                    LitPass::new(light, &self.lit_pipeline, &[map_group, filter_group]),
+                    LitPass::new(light, lit_pipeline, &[map_group, filter_group]),
                     ts.render(),
                 )
             });

@@ -51,6 +51,22 @@ impl Filter {
         }
     }
 
+    /// The shader's `MODE`: which filter the lit pipeline is compiled with.
+    pub fn mode(self) -> u32 {
+        match self {
+            Filter::Grid { .. } => 0,
+            Filter::Hardware2x2 => 1,
+            Filter::Poisson { .. } => 2,
+            Filter::DepthAverage { .. } => 3,
+            Filter::ExerciseGrid { .. } => 4,
+            Filter::ExerciseDisk { .. } => 5,
+            Filter::Castano13 => 6,
+        }
+    }
+
+    /// Every `MODE` value, one lit pipeline each.
+    pub const MODES: u32 = 7;
+
     /// Linear filtering for the taps that blend 2×2 texels.
     pub fn sampler(self) -> wgpu::FilterMode {
         match self {
@@ -70,7 +86,6 @@ impl Filter {
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FilterUniform {
-    mode: u32,
     n: u32,
     receiver_plane: u32,
     taps: u32,
@@ -79,7 +94,7 @@ pub struct FilterUniform {
     depth_slope: f32,
     toward_light_world: f32,
     normal_flat: f32,
-    _pad: [f32; 3],
+    _pad: [f32; 4],
 }
 
 impl FilterUniform {
@@ -99,7 +114,6 @@ impl FilterUniform {
 impl From<Filter> for FilterUniform {
     fn from(f: Filter) -> Self {
         let u = FilterUniform {
-            mode: 0,
             n: 1,
             receiver_plane: 0,
             taps: 0,
@@ -108,7 +122,7 @@ impl From<Filter> for FilterUniform {
             depth_slope: 0.0,
             toward_light_world: 0.0,
             normal_flat: 0.0,
-            _pad: [0.0; 3],
+            _pad: [0.0; 4],
         };
         match f {
             Filter::Grid { n, receiver_plane } => FilterUniform {
@@ -116,29 +130,26 @@ impl From<Filter> for FilterUniform {
                 receiver_plane: receiver_plane as u32,
                 ..u
             },
-            Filter::Hardware2x2 => FilterUniform { mode: 1, ..u },
+            Filter::Hardware2x2 => u,
             Filter::Poisson { taps, radius } => FilterUniform {
-                mode: 2,
                 taps,
                 radius,
                 receiver_plane: 1,
                 ..u
             },
-            Filter::DepthAverage { n } => FilterUniform { mode: 3, n, ..u },
+            Filter::DepthAverage { n } => FilterUniform { n, ..u },
             Filter::ExerciseGrid { n } => FilterUniform {
-                mode: 4,
                 n,
                 receiver_plane: 1,
                 ..u
             },
             Filter::ExerciseDisk { radius } => FilterUniform {
-                mode: 5,
                 taps: 16,
                 radius,
                 receiver_plane: 1,
                 ..u
             },
-            Filter::Castano13 => FilterUniform { mode: 6, ..u },
+            Filter::Castano13 => u,
         }
     }
 }

@@ -201,26 +201,60 @@ pub struct CubeParams {
     pub near: f32,
     /// 2 / face resolution: a texel's width 1 m from the light.
     pub texel_at_1m: f32,
-    /// 0 linear distance, 1 hardware depth, 2 hardware depth compared with
-    /// the Euclidean distance, 3 the exercise's ([`Storage`] in order).
-    pub storage: u32,
     /// 1: clamp the receiver to the light's range.
     pub clamp_range: u32,
+    pub _pad0: f32,
     /// A constant bias in world units.
     pub bias_world: f32,
     /// A bias in texels, plus `slope` × tan θ texels.
     pub bias_texels: f32,
     pub slope: f32,
-    /// 3D PCF radius in texels; 0 is one hard tap.
+    /// 3D PCF radius in texels, where [`LitKey::filtered`].
     pub pcf: f32,
+    /// LearnOpenGL: the disk's radius per (1 + view distance / range), in
+    /// world units; Bevy: the normal bias per unit of major-axis distance.
+    pub peer_scale: f32,
+    pub _pad: [f32; 3],
+}
+
+/// The lit pipeline's constants (`override`s in `cube_map.wgsl`): the
+/// lookup's shape, compiled in, so that a variant runs only its own taps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LitKey {
+    /// 0 linear distance, 1 hardware depth, 2 hardware depth compared with
+    /// the Euclidean distance, 3 the exercise's ([`Storage`] in order).
+    pub storage: u32,
     /// A renderer's lookup instead (`shaders/lesson_04/peers.wgsl`): 0 none,
     /// 1 LearnOpenGL's 20-tap disk, 2 Bevy's offsets and 8-tap Gaussian
     /// ([`super::peers::Peer`]).
     pub peer: u32,
-    /// LearnOpenGL: the disk's radius per (1 + view distance / range), in
-    /// world units; Bevy: the normal bias per unit of major-axis distance.
-    pub peer_scale: f32,
-    pub _pad: [f32; 2],
+    /// 3D PCF (20 taps) instead of one tap.
+    pub filtered: bool,
+}
+
+impl LitKey {
+    /// The lit pipeline for this key: `fs_lit` compiled with its constants.
+    pub fn pipeline(
+        self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        module: &wgpu::ShaderModule,
+        layout: &wgpu::BindGroupLayout,
+    ) -> wgpu::RenderPipeline {
+        let constants = [
+            ("STORAGE", self.storage as f64),
+            ("PEER", self.peer as f64),
+            ("FILTERED", self.filtered as u32 as f64),
+        ];
+        scene.lit_pipeline_specialised(
+            gpu,
+            module,
+            "fs_lit",
+            &[layout],
+            scene.lit_depth_state(Default::default()),
+            &constants,
+        )
+    }
 }
 
 /// How the cube stores depth.

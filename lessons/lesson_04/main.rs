@@ -31,7 +31,7 @@ use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_04::costs::{self, PCF3D_TAPS};
 use workbook::lesson_04::cross::write_cross_png;
 use workbook::lesson_04::cube_map::{
-    self, CubeParams, CubeShadowMap, CubeStats, FaceUniforms, Storage,
+    self, CubeParams, CubeShadowMap, CubeStats, FaceUniforms, LitKey, Storage,
 };
 use workbook::lesson_04::culling::{self, Sphere};
 use workbook::lesson_04::exercises;
@@ -180,6 +180,8 @@ fn exercise_face_test(centre: DVec3, radius: f64, face: usize) -> bool {
 /// One variant on this device: its pipeline, lit-pass bind group, map and near plane.
 struct Prepared {
     pipeline: usize,
+    /// Index into `lit_pipelines`.
+    lit: usize,
     group: wgpu::BindGroup,
     map: usize,
     near: f64,
@@ -187,7 +189,8 @@ struct Prepared {
 }
 
 struct CubeShadows {
-    lit_pipeline: wgpu::RenderPipeline,
+    /// One per [`LitKey`] the variants use.
+    lit_pipelines: Vec<wgpu::RenderPipeline>,
     shadow_pipelines: Vec<wgpu::RenderPipeline>,
     /// Their counting copies ([`costs::cube_tally_pipelines`]).
     tally_pipelines: Vec<[wgpu::RenderPipeline; 2]>,
@@ -230,8 +233,7 @@ impl Lesson for CubeShadows {
         let module = shader_module(gpu, "lesson_04", &source);
         let params_size = std::mem::size_of::<CubeParams>() as u64;
         let layout = cube_map::cube_map_layout(gpu, params_size);
-        let lit_pipeline =
-            scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
+        let (mut lit_keys, mut lit_pipelines) = (Vec::<LitKey>::new(), Vec::new());
         let has_unclipped = gpu.has(wgpu::Features::DEPTH_CLIP_CONTROL);
         let tally = TallyShader::new(gpu);
         let (mut maps, mut shadow_pipelines, mut tally_pipelines, mut keys, mut prepared) = (
@@ -271,18 +273,27 @@ impl Lesson for CubeShadows {
                     keys.len() - 1
                 });
             let (peer, peer_scale) = v.peer.params(v.size);
+            let key = LitKey {
+                storage: v.storage as u32,
+                peer,
+                filtered: v.pcf > 0.0,
+            };
+            let lit = lit_keys.iter().position(|k| *k == key).unwrap_or_else(|| {
+                lit_pipelines.push(key.pipeline(gpu, scene, &module, &layout));
+                lit_keys.push(key);
+                lit_keys.len() - 1
+            });
             let params = CubeParams {
                 near: near as f32,
                 texel_at_1m: 2.0 / v.size as f32,
-                storage: v.storage as u32,
                 clamp_range: v.clamp_range.into(),
+                _pad0: 0.0,
                 bias_world: v.bias_world,
                 bias_texels: v.bias_texels,
                 slope: v.slope,
                 pcf: v.pcf,
-                peer,
                 peer_scale,
-                _pad: [0.0; 2],
+                _pad: [0.0; 3],
             };
             let filter = if v.pcf > 0.0 || v.peer.linear() {
                 wgpu::FilterMode::Linear
@@ -298,6 +309,7 @@ impl Lesson for CubeShadows {
             );
             prepared.push(Prepared {
                 pipeline,
+                lit,
                 group,
                 map,
                 near,
@@ -307,7 +319,7 @@ impl Lesson for CubeShadows {
         let faces = FaceUniforms::new(gpu, scene);
         let spheres = culling::bounding_spheres(&scene.scene);
         Ok(CubeShadows {
-            lit_pipeline,
+            lit_pipelines,
             shadow_pipelines,
             tally_pipelines,
             texels_written: vec![None; Variant::value_variants().len()],
@@ -355,7 +367,7 @@ impl Lesson for CubeShadows {
                 scene.lit_pass(
                     enc,
                     targets,
-                    LitPass::new(light, &self.lit_pipeline, &[&p.group]),
+                    LitPass::new(light, &self.lit_pipelines[p.lit], &[&p.group]),
                     ts.render(),
                 )
             });

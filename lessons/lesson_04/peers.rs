@@ -35,7 +35,7 @@ const LEARNOPENGL_DISK_DIVISOR: f32 = 25.0;
 const BEVY_POINT_NORMAL_BIAS: f32 = 0.6;
 
 impl Peer {
-    /// `CubeParams::peer` and `peer_scale` for a cube of `size` texels a face.
+    /// `LitKey::peer` and `CubeParams::peer_scale` for a cube of `size` texels a face.
     pub fn params(self, size: u32) -> (u32, f32) {
         match self {
             Peer::None => (0, 0.0),

@@ -172,6 +172,10 @@ impl ComputeVolumes {
         if let Some(why) = unavailable(gpu) {
             bail!("{why}");
         }
+        let named: Vec<(&str, &Adjacency)> = casters.iter().map(|a| ("a caster", *a)).collect();
+        if let Some(why) = super::fit::compute_unfit(gpu, &named, lights) {
+            bail!("{why}: the _cpu and _quads variants build these volumes");
+        }
         let limits = gpu.device.limits();
         let packed: Vec<PackedMesh> = casters.iter().map(|a| pack_adjacency(a)).collect();
         // Each slot's regions: sides, front cap, back cap.
@@ -191,18 +195,6 @@ impl ComputeVolumes {
             }
         }
         let bytes = first.max(1) * VERTEX;
-        let most = limits
-            .max_storage_buffer_binding_size
-            .min(limits.max_buffer_size);
-        if bytes > most || first > u32::MAX as u64 {
-            bail!(
-                "the compute-built volumes need a {} MiB vertex buffer for the worst case, \
-                 more than {} allows ({} MiB): the _quads variants build these volumes",
-                bytes >> 20,
-                gpu.adapter_name(),
-                most >> 20
-            );
-        }
         let buffer = |label, size, usage| {
             gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),

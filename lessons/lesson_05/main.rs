@@ -24,7 +24,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::Lesson;
+use common::run::lesson::{variant_name, Lesson};
 use common::Result;
 use workbook::lesson_05::cull::kept_draws;
 use workbook::lesson_05::exercises;
@@ -174,6 +174,13 @@ impl Lesson for ZPass {
         Ok(())
     }
     // ANCHOR_END: render
+
+    /// A route whose buffers would pass the adapter's limits
+    /// ([`fit`](workbook::lesson_05::fit)) is left out; the others run.
+    fn unavailable(&self, variant: Variant) -> Option<String> {
+        let why = self.volumes.unfit(variant.extrusion())?;
+        Some(format!("{}: {why}", variant_name(variant)))
+    }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let mut c = self.scene_counters.clone();

@@ -5,6 +5,8 @@ pub mod adjacency;
 pub mod compute;
 pub mod cull;
 pub mod extrusion;
+pub mod fit;
+pub mod quads;
 pub mod silhouette;
 pub mod stencil;
 pub mod volumes;

@@ -22,9 +22,8 @@ use common::reference::primary_ray;
 use common::scene::mesh::face_normal;
 
 use super::extrusion::volume_shader_module;
-use super::extrusion::{
-    world_light, Extrusion, CPU_VERTEX_LAYOUT, QUAD_VERTEX_LAYOUT, REACH_VERTEX_LAYOUT,
-};
+use super::extrusion::{world_light, Extrusion, CPU_VERTEX_LAYOUT};
+use super::quads::{QUAD_VERTEX_LAYOUT, REACH_VERTEX_LAYOUT};
 use super::silhouette::{casts_two_sided, LightDir};
 use crate::lesson_01::tally::TallyShader;
 

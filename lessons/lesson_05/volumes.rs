@@ -43,11 +43,12 @@ use common::measure::counters::FragmentCounter;
 use common::measure::timing::Frame;
 
 use super::adjacency::Adjacency;
-use super::compute::ComputeVolumes;
+use super::compute::{self, ComputeVolumes};
 use super::extrusion::{
-    cpu_volume_parts, degenerate_quads, world_light, CpuParts, CpuVertex, Extrusion, QuadVertex,
-    VolumeRanges, REACH_SLOT,
+    cpu_volume_parts, world_light, CpuParts, CpuVertex, Extrusion, VolumeRanges,
 };
+use super::fit;
+use super::quads::{degenerate_quads, quad_sizes, QuadVertex, QUAD_VERTEX_BYTES, REACH_SLOT};
 use super::silhouette::caster_adjacency;
 use super::stencil::{Counting, Method, VolumePipelines};
 use crate::lesson_01::tally::Tally;
@@ -161,6 +162,9 @@ pub struct ShadowVolumes {
     cpu: CpuGeometry,
     /// The compute route's buffers, made when it first runs.
     compute: Option<ComputeVolumes>,
+    /// Per route (cpu, quads, compute): why its buffers would not fit the
+    /// adapter ([`fit`]), or `None`.
+    unfit: [Option<String>; 3],
     cpu_pipelines: VolumePipelines,
     quad_pipelines: VolumePipelines,
     counter: Option<FragmentCounter>,
@@ -174,6 +178,7 @@ impl ShadowVolumes {
         use wgpu::util::DeviceExt;
         let mut casters = Vec::new();
         let models = scene.scene.relative_models();
+        let max_buffer = gpu.device.limits().max_buffer_size;
         for (i, o) in scene.scene.objects.iter().enumerate() {
             if !o.casts_shadow {
                 continue;
@@ -193,7 +198,13 @@ impl ShadowVolumes {
             let center = (lo + hi) * 0.5;
             let radius =
                 world.iter().map(|p| p.distance(center)).fold(0.0, f64::max) * (1.0 + 1e-6) + 1e-6;
-            let (verts, idx, quad_ranges) = degenerate_quads(&adjacency);
+            // Built only if every caster's quads fit (`quads_unfit` below).
+            let (verts, idx, quad_ranges) = match quad_sizes(&adjacency) {
+                (v, i) if v * QUAD_VERTEX_BYTES > max_buffer || i * 4 > max_buffer => {
+                    Default::default()
+                }
+                _ => degenerate_quads(&adjacency),
+            };
             let buf = |label: &str, contents: &[u8], usage| {
                 gpu.device
                     .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -229,6 +240,15 @@ impl ShadowVolumes {
             });
         }
         let lights = scene.scene.lights.len();
+        let objects = &scene.scene.objects;
+        let adjacency: Vec<(&str, &Adjacency)> = (casters.iter())
+            .map(|c| (objects[c.object].mesh.name.as_str(), &c.adjacency))
+            .collect();
+        let unfit = [
+            fit::cpu_unfit(gpu, &adjacency, lights),
+            fit::quads_unfit(gpu, &adjacency),
+            compute::unavailable(gpu).or_else(|| fit::compute_unfit(gpu, &adjacency, lights)),
+        ];
         let reach = vec![vec![0.0; casters.len()]; lights];
         let reach_buffer = counting.finite_reach.then(|| {
             gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -251,11 +271,24 @@ impl ShadowVolumes {
             reach_buffer,
             cpu: CpuGeometry::default(),
             compute: None,
+            unfit,
             cpu_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Cpu, counting)?,
             quad_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Quads, counting)?,
             counter: FragmentCounter::new(gpu, scene.width, scene.height),
             tally: Tally::new(gpu, scene.width, scene.height),
         })
+    }
+
+    /// Why `ext`'s buffers would pass one of the adapter's limits (the
+    /// limit and the size, [`fit`]), or why it cannot run here at all (the
+    /// compute route without compute shaders); `None` if it fits.
+    pub fn unfit(&self, ext: Extrusion) -> Option<&str> {
+        let route = match ext {
+            Extrusion::Cpu => 0,
+            Extrusion::Quads => 1,
+            Extrusion::Compute => 2,
+        };
+        self.unfit[route].as_deref()
     }
 
     /// Sets `reach[light][caster]` (caster: index into `casters`), the w
@@ -338,12 +371,17 @@ impl ShadowVolumes {
             }
             let bytes = (cpu.vertices.len().max(1) * std::mem::size_of::<CpuVertex>()) as u64;
             if cpu.buffer.as_ref().is_none_or(|b| b.size() < bytes) {
-                cpu.buffer = Some(gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("cpu shadow volumes"),
-                    size: bytes.next_power_of_two(),
-                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                }));
+                cpu.buffer = Some(
+                    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("cpu shadow volumes"),
+                        // Room to grow, within the limit `fit::cpu_unfit` checked.
+                        size: bytes
+                            .next_power_of_two()
+                            .min(gpu.device.limits().max_buffer_size),
+                        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    }),
+                );
             }
             if let Some(b) = &cpu.buffer {
                 gpu.queue

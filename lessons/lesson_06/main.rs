@@ -30,7 +30,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::Lesson;
+use common::run::lesson::{variant_name, Lesson};
 use common::scene::{Far, LightKind};
 use common::Result;
 use workbook::lesson_05::extrusion::{world_light, CpuParts, Extrusion};
@@ -272,6 +272,12 @@ impl Lesson for ZFail {
         Ok(())
     }
     // ANCHOR_END: render
+
+    /// A route whose buffers would pass the adapter's limits is left out.
+    fn unavailable(&self, variant: Variant) -> Option<String> {
+        let why = self.volumes.unfit(variant.extrusion())?;
+        Some(format!("{}: {why}", variant_name(variant)))
+    }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let mut c = self.scene_counters.clone();

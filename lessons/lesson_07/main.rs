@@ -110,8 +110,13 @@ impl Route {
             unclipped_depth,
             ..zfail_counting()
         };
+        let volumes = ShadowVolumes::new(gpu, scene, &counting)?;
+        if let Some(why) = volumes.unfit(Extrusion::Quads) {
+            // Every variant here draws the quads.
+            anyhow::bail!("{why}: lesson_05's zpass_cpu builds volumes this size");
+        }
         Ok(Route {
-            volumes: ShadowVolumes::new(gpu, scene, &counting)?,
+            volumes,
             lit: stencil::stencil_lit_pipeline(gpu, scene),
         })
     }

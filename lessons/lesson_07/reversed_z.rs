@@ -18,7 +18,8 @@ use common::gpu::targets::{render_texture, FrameTargets};
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 
-use crate::lesson_05::extrusion::{volume_shader_module, QUAD_VERTEX_LAYOUT};
+use crate::lesson_05::extrusion::volume_shader_module;
+use crate::lesson_05::quads::QUAD_VERTEX_LAYOUT;
 use crate::lesson_05::stencil::lit_stencil;
 use crate::lesson_05::volumes::ShadowVolumes;
 use crate::lesson_06::caps::{zfail_stencil, CAP_DEPTH_BIAS};

@@ -15,7 +15,7 @@ use common::measure::counters::FragmentCounter;
 
 use super::range_sphere::LightBounds;
 use crate::lesson_05::extrusion::volume_shader_module;
-use crate::lesson_05::extrusion::QUAD_VERTEX_LAYOUT;
+use crate::lesson_05::quads::QUAD_VERTEX_LAYOUT;
 use crate::lesson_05::stencil::lit_stencil;
 use crate::lesson_05::volumes::ShadowVolumes;
 use crate::lesson_06::caps::{zfail_stencil, CAP_DEPTH_BIAS};

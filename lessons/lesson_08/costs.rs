@@ -14,7 +14,8 @@ use common::gpu::Gpu;
 
 use super::bounds_test::{bounded_volume_stencil, BoundedLight, BoundedVolumes, Limits};
 use crate::lesson_01::tally::{Tally, TallyShader};
-use crate::lesson_05::extrusion::{volume_shader_module, QUAD_VERTEX_LAYOUT};
+use crate::lesson_05::extrusion::volume_shader_module;
+use crate::lesson_05::quads::QUAD_VERTEX_LAYOUT;
 use crate::lesson_06::caps::CAP_DEPTH_BIAS;
 
 /// A frame's volume costs over every light ([`VolumeTally::count`]).

@@ -34,7 +34,7 @@ use common::run::app;
 use common::run::lesson::Lesson;
 use common::scene::{Far, LightKind};
 use common::Result;
-use workbook::lesson_05::extrusion::volume_shader_module;
+use workbook::lesson_05::extrusion::{volume_shader_module, Extrusion};
 use workbook::lesson_05::volumes::{base_and_lit_draws, ShadowVolumes};
 use workbook::lesson_06::caps::zfail_counting;
 use workbook::lesson_08::bounds_test::{bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits};
@@ -122,6 +122,10 @@ impl Lesson for DepthBounds {
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let volumes = ShadowVolumes::new(gpu, scene, &zfail_counting())?;
+        if let Some(why) = volumes.unfit(Extrusion::Quads) {
+            // Every variant here draws the quads.
+            anyhow::bail!("{why}: lesson_05's zpass_cpu builds volumes this size");
+        }
         // A finite far plane would clip the volumes' ends at infinity: clamp
         // depth instead, as lesson 07's `clamp` variant does.
         let unclipped_depth = scene.scene.camera.far != Far::Infinite;
@@ -169,13 +173,21 @@ impl Lesson for DepthBounds {
                 self.bounded
                     .volume_pass(enc, scene, targets, b, ts.render())
             });
+            // The scissor cuts the lit pass too: outside the sphere's
+            // rectangle the light adds nothing (fs_lit_range discards).
+            let mut lit = LitPass::new(b.light, &self.lit_pipeline, &[]);
+            if b.limits.scissor {
+                match b.bounds {
+                    Some(Some(lb)) => {
+                        let s = lb.scissor;
+                        lit = lit.scissored([s.x, s.y, s.width, s.height]);
+                    }
+                    Some(None) => lit = lit.scissored([0; 4]), // off screen
+                    None => {}                                 // directional: everywhere
+                }
+            }
             frame.pass("lighting", |enc, ts| {
-                scene.lit_pass(
-                    enc,
-                    targets,
-                    LitPass::new(b.light, &self.lit_pipeline, &[]),
-                    ts.render(),
-                )
+                scene.lit_pass(enc, targets, lit, ts.render())
             });
         }
         self.bounds = bounds;

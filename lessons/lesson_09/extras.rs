@@ -46,7 +46,11 @@ pub fn tint_pipeline(
             fragment: Some(wgpu::FragmentState {
                 module,
                 entry_point: Some("fs_cascade_tint"),
-                compilation_options: Default::default(),
+                // The band decides (0: none): the picture is not timed.
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &[("BLEND", 1.0)],
+                    ..Default::default()
+                },
                 targets: &[Some(TINT_FORMAT.into())],
             }),
             multiview_mask: None,

@@ -123,7 +123,8 @@ const ALIASING_AT: [u32; 4] = [2, 10, 50, 200];
 struct Csm {
     shadow_pipeline: wgpu::RenderPipeline,
     tally_pipeline: [wgpu::RenderPipeline; 2],
-    lit_pipeline: wgpu::RenderPipeline,
+    /// The lit pass without and with the blend band (`BLEND` in csm.wgsl).
+    lit_pipelines: [wgpu::RenderPipeline; 2],
     tint_pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     /// Per light: its cascades' matrices (shadow pass), its lit parameters.
@@ -158,14 +159,22 @@ impl Lesson for Csm {
             bias: setup::shadow_pass_bias(),
         };
         let layout = csm::csm_layout(gpu);
-        let lit_pipeline =
-            scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
+        let lit_pipelines = [false, true].map(|blend| {
+            scene.lit_pipeline_specialised(
+                gpu,
+                &module,
+                "fs_lit",
+                &[&layout],
+                scene.lit_depth_state(Default::default()),
+                &[("BLEND", blend as u32 as f64)],
+            )
+        });
         let tally = TallyShader::new(gpu);
         let n = scene.scene.lights.len();
         Ok(Csm {
             shadow_pipeline: shadow_map::shadow_pipeline(gpu, scene, &module, state),
             tally_pipeline: shadow_map::shadow_tally_pipelines(gpu, scene, &module, state, &tally),
-            lit_pipeline,
+            lit_pipelines,
             tint_pipeline: extras::tint_pipeline(gpu, scene, &module, &layout),
             lights: (0..n).map(|_| CascadeLights::new(gpu, scene)).collect(),
             params: (0..n).map(|_| setup::params_buffer(gpu)).collect(),
@@ -219,7 +228,8 @@ impl Lesson for Csm {
             }
             frame.pass("lighting", |enc, ts| {
                 let group = [group];
-                let lit = LitPass::new(light, &self.lit_pipeline, &group);
+                let pipeline = &self.lit_pipelines[(setup.blend > 0.0) as usize];
+                let lit = LitPass::new(light, pipeline, &group);
                 scene.lit_pass(enc, targets, lit, ts.render())
             });
         }

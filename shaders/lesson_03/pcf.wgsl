@@ -6,12 +6,22 @@
 // GL cannot load texels through a comparison binding).
 @group(2) @binding(2) var shadow_depths: texture_2d<f32>;
 
-// Rust: lessons/lesson_03.rs `FilterUniform`.
+// The filter, fixed when the pipeline is compiled (Rust: `Filter::mode` in
+// lessons/lesson_03/pcf.rs): 0: N×N grid, 1: hardware 2×2, 2: rotated
+// Poisson disk, 3: average depths; the exercises (exercises.wgsl):
+// 4: exercise_pcf_kernel, 5: exercise_rotated_poisson; 6: Bevy's Castaño
+// 5×5 Gaussian. An `override`, not a field of `Filter`: a switch on a value
+// read from a buffer keeps every case in the compiled shader, and a software
+// rasteriser runs them all, masked, texture reads included (on lavapipe one
+// bilinear tap cost as much as sixteen). A constant lets the compiler drop
+// the cases this pipeline never takes.
+override MODE: u32 = 0u;
+// A renderer's receiver bias (peer_receiver) in this pipeline: the
+// lesson's own filters compile without it (their bias fields are all 0).
+override RENDERER_BIAS: bool = false;
+
+// Rust: lessons/lesson_03/pcf.rs `FilterUniform`.
 struct Filter {
-    // 0: N×N grid, 1: hardware 2×2, 2: rotated Poisson disk, 3: average depths;
-    // the exercises (exercises.wgsl): 4: exercise_pcf_kernel, 5: exercise_rotated_poisson;
-    // 6: Bevy's Castaño 5×5 Gaussian.
-    mode: u32,
     // Grid and depth average: N.
     n: u32,
     // 1: each tap compares with the receiver's plane at the tap (RPDB).
@@ -30,6 +40,7 @@ struct Filter {
     _pad0: f32,
     _pad1: f32,
     _pad2: f32,
+    _pad3: f32,
 };
 @group(3) @binding(0) var<storage, read> pcf: Filter;
 
@@ -185,7 +196,10 @@ fn peer_receiver(world: vec3<f32>, normal: vec3<f32>) -> vec4<f32> {
 // ANCHOR: fs_lit
 @fragment
 fn fs_lit(in: VertexOut) -> LitOut {
-    let r = peer_receiver(in.world, in.normal);
+    var r = vec4<f32>(in.world, 0.0);
+    if RENDERER_BIAS {
+        r = peer_receiver(in.world, in.normal);
+    }
     var s = shadow_coords(r.xyz);
     s.z -= r.w;
     // Derivatives before any branch: they need all four pixels of the quad.
@@ -195,7 +209,7 @@ fn fs_lit(in: VertexOut) -> LitOut {
     }
     var v = 1.0;
     if !outside_shadow_map(r.xyz, s) {
-        switch pcf.mode {
+        switch MODE {
             case 0u: { v = pcf_grid(s, i32(pcf.n), gradient); }
             // One tap; the sampler compares the 4 nearest texels and blends.
             case 1u: { v = textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z); }

@@ -4,30 +4,42 @@
 @group(2) @binding(0) var cube_map: texture_depth_cube;
 @group(2) @binding(1) var cube_compare: sampler_comparison;
 
+// The variant's lookup, fixed when the pipeline is compiled (Rust:
+// lesson_04::cube_map::LitKey). Constants, not buffer fields: a branch on
+// a value read from a buffer stays in the compiled shader, and a software
+// rasteriser runs every side of it, masked, cube taps included (on
+// lavapipe the one-tap variants paid for all 49 taps of the four lookups).
+//
+// What the cube stores: 0 linear distance, 1 hardware depth, 2 hardware
+// depth compared with the Euclidean distance (the naive mistake), 3
+// hardware depth from the chapter's exercise (exercise_cube_depth in
+// exercises.wgsl).
+override STORAGE: u32 = 0u;
+// A renderer's lookup instead (peers.wgsl): 0 none, 1 LearnOpenGL, 2 Bevy.
+override PEER: u32 = 0u;
+// 3D PCF (params.pcf texels) instead of one tap.
+override FILTERED: bool = false;
+
 // Rust: lesson_04::cube_map::CubeParams.
 struct CubeParams {
     near: f32,
     // 2 / face resolution: a texel's width 1 m from the light.
     texel_at_1m: f32,
-    // 0 linear distance, 1 hardware depth, 2 hardware depth compared with
-    // the Euclidean distance (the naive mistake), 3 hardware depth from the
-    // chapter's exercise (exercise_cube_depth in exercises.wgsl).
-    storage: u32,
     // 1: clamp the receiver to the light's range.
     clamp_range: u32,
+    _pad0: f32,
     // A constant bias (world units), a bias in texels, a slope bias in texels
     // (times tan θ), and the 3D PCF radius in texels (0: one tap).
     bias_world: f32,
     bias_texels: f32,
     slope: f32,
     pcf: f32,
-    // A renderer's lookup instead (peers.wgsl): 0 none, 1 LearnOpenGL, 2 Bevy;
-    // and its scale (LearnOpenGL: disk per (1 + view distance / range);
-    // Bevy: normal bias per metre of major-axis distance).
-    peer: u32,
+    // A renderer's lookup's scale (LearnOpenGL: disk per (1 + view
+    // distance / range); Bevy: normal bias per metre of major-axis distance).
     peer_scale: f32,
-    _pad0: f32,
     _pad1: f32,
+    _pad2: f32,
+    _pad3: f32,
 };
 @group(2) @binding(2) var<storage, read> params: CubeParams;
 const STORAGE_LINEAR: u32 = 0u;
@@ -80,14 +92,14 @@ fn receiver_depth(v: vec3<f32>, d: f32) -> f32 {
     let far = light.color_range.w;
     let near = params.near;
     var z = d / far;
-    if params.storage == STORAGE_DEPTH_EXERCISE {
+    if STORAGE == STORAGE_DEPTH_EXERCISE {
         z = exercise_cube_depth(v, d, near, far);
-    } else if params.storage != STORAGE_LINEAR {
+    } else if STORAGE != STORAGE_LINEAR {
         // The face that holds v looks along v's major axis; its depth is a
         // function of the distance along that axis, not of |v|.
         let a = abs(v);
         var m = max(a.x, max(a.y, a.z)) * d / length(v);
-        if params.storage == STORAGE_DEPTH_EUCLID {
+        if STORAGE == STORAGE_DEPTH_EUCLID {
             m = d; // naive: right only where v is the face's axis
         }
         z = far * (m - near) / ((far - near) * m);
@@ -128,7 +140,7 @@ fn visibility(world: vec3<f32>, n: vec3<f32>) -> f32 {
     let tan_t = min(sqrt(max(1.0 - cos_t * cos_t, 0.0)) / cos_t, 10.0);
     let bias = params.bias_world + texel * (params.bias_texels + params.slope * tan_t);
     let z = receiver_depth(v, d - bias);
-    if params.pcf == 0.0 {
+    if !FILTERED {
         // The direction picks the face and the texel: no face logic here.
         return textureSampleCompareLevel(cube_map, cube_compare, v, z);
     }
@@ -148,10 +160,10 @@ fn fs_lit(in: VertexOut) -> LitOut {
     if dot(n, camera.eye.xyz - in.world) < 0.0 {
         n = -n;
     }
-    if params.peer == 1u {
+    if PEER == 1u {
         return lit_output(in, learnopengl_disk(in.world));
     }
-    if params.peer == 2u {
+    if PEER == 2u {
         if dot(n, light.position_or_dir.xyz - in.world) <= 0.0 {
             return lit_output(in, 0.0); // facing away, as in visibility
         }

@@ -119,18 +119,27 @@ fn face_count(runs: i32, two_sided: u32, n: vec3<f32>, p0: vec3<f32>) -> i32 {
 // triangle is the same with one face (runs = +1): the front cap stays, the
 // back cap goes to infinity, and a two-sided face's cap is drawn by the
 // side that faces the light.
+//
+// Rust: lessons/lesson_05/quads.rs `QuadVertex`; `flags` packs the small
+// fields (`QuadFlags`): bit 0 far, bits 1–3 copy, bits 4–5 and 6–7 each
+// face's runs + 1, bits 8 and 9 each face's two-sidedness.
 struct QuadIn {
     @location(0) position: vec3<f32>,
-    @location(1) far: u32,
+    @location(1) flags: u32,
     @location(2) reversed: vec3<f32>,
-    @location(3) copy: u32,
-    @location(4) runs: vec2<i32>,
-    @location(5) two_sided: vec2<u32>,
-    @location(6) normal_0: vec3<f32>,
-    @location(7) normal_1: vec3<f32>,
-    @location(8) point_0: vec3<f32>,
-    @location(9) point_1: vec3<f32>,
+    @location(3) normal_0: vec3<f32>,
+    @location(4) normal_1: vec3<f32>,
+    @location(5) point_0: vec3<f32>,
+    @location(6) point_1: vec3<f32>,
 };
+
+fn quad_runs(flags: u32, k: u32) -> i32 {
+    return i32((flags >> (4u + 2u * k)) & 3u) - 1;
+}
+
+fn quad_two_sided(flags: u32, k: u32) -> u32 {
+    return (flags >> (8u + k)) & 1u;
+}
 
 @vertex
 fn vs_volume_quads(v: QuadIn) -> VolumeOut {
@@ -139,15 +148,16 @@ fn vs_volume_quads(v: QuadIn) -> VolumeOut {
 
 fn volume_quad_vertex(v: QuadIn, reach_w: f32) -> VolumeOut {
     var out: VolumeOut;
-    let count = face_count(v.runs.x, v.two_sided.x, v.normal_0, v.point_0)
-        + face_count(v.runs.y, v.two_sided.y, v.normal_1, v.point_1);
-    if abs(count) <= i32(v.copy) {
+    let count = face_count(quad_runs(v.flags, 0u), quad_two_sided(v.flags, 0u), v.normal_0, v.point_0)
+        + face_count(quad_runs(v.flags, 1u), quad_two_sided(v.flags, 1u), v.normal_1, v.point_1);
+    let copy = (v.flags >> 1u) & 7u;
+    if abs(count) <= i32(copy) {
         out.clip = vec4<f32>(0.0, 0.0, 0.0, 1.0); // collapsed
         return out;
     }
     let p = select(v.position, v.reversed, count < 0);
     let world = object.model * vec4<f32>(p, 1.0);
-    if v.far == 0u {
+    if (v.flags & 1u) == 0u {
         // The same expression as vs_scene: the front cap lands on its depths.
         out.clip = camera.view_proj * world;
     } else {

@@ -22,6 +22,12 @@ struct Cascades {
 };
 @group(2) @binding(2) var<storage, read> cascades: Cascades;
 
+// Blend across the splits (options.x > 0), fixed when the pipeline is
+// compiled (Rust: lesson_09 `Csm::lit_pipelines`): a branch on a buffer
+// value stays in the shader, and a software rasteriser runs its second
+// lookup, masked, in every pixel of every variant.
+override BLEND: bool = false;
+
 // ANCHOR: select_cascade
 // The first cascade whose far split lies beyond the pixel's view depth
 // (the distance along the view axis, not to the eye: the splits are
@@ -64,7 +70,7 @@ fn csm_visibility(world: vec3<f32>, n: vec3<f32>) -> f32 {
     // In the last `band` of cascade i, fade into cascade i + 1: the step in
     // texel size at the split becomes a ramp instead of a visible seam.
     let band = cascades.options.x;
-    if band > 0.0 && i + 1u < u32(cascades.forward.w) {
+    if BLEND && band > 0.0 && i + 1u < u32(cascades.forward.w) {
         var start = cascades.options.z;
         if i > 0u {
             start = cascades.split_far[i - 1u];

@@ -14,6 +14,10 @@ pub struct LitPass<'a> {
     pub light: usize,
     pub pipeline: &'a wgpu::RenderPipeline,
     pub groups: &'a [&'a wgpu::BindGroup],
+    /// Draw only inside `[x, y, width, height]` (pixels): where the light
+    /// can reach, when the lesson knows it. Empty: draw nothing. The
+    /// light's visibility image is cleared whole either way.
+    pub scissor: Option<[u32; 4]>,
 }
 
 impl<'a> LitPass<'a> {
@@ -26,6 +30,15 @@ impl<'a> LitPass<'a> {
             light,
             pipeline,
             groups,
+            scissor: None,
+        }
+    }
+
+    /// The same pass, drawn only inside `rect` (`[x, y, width, height]`).
+    pub fn scissored(self, rect: [u32; 4]) -> LitPass<'a> {
+        LitPass {
+            scissor: Some(rect),
+            ..self
         }
     }
 }
@@ -42,15 +55,21 @@ impl SceneGpu {
         extra: &[&wgpu::BindGroupLayout],
         stencil: wgpu::StencilState,
     ) -> wgpu::RenderPipeline {
-        let depth_stencil = wgpu::DepthStencilState {
+        let depth_stencil = self.lit_depth_state(stencil);
+        self.lit_pipeline_with_depth(gpu, module, fs_entry, extra, depth_stencil)
+    }
+
+    /// The lit pass's depth test: where the depth equals the base pass's
+    /// (no depth writes), with `stencil`.
+    pub fn lit_depth_state(&self, stencil: wgpu::StencilState) -> wgpu::DepthStencilState {
+        wgpu::DepthStencilState {
             format: self.depth_format,
             depth_write_enabled: Some(false),
             // Same vertices, same matrices, @invariant: the depths are equal.
             depth_compare: Some(wgpu::CompareFunction::LessEqual),
             stencil,
             bias: Default::default(),
-        };
-        self.lit_pipeline_with_depth(gpu, module, fs_entry, extra, depth_stencil)
+        }
     }
 
     /// [`SceneGpu::lit_pipeline`] with another depth test (lesson 07's
@@ -62,6 +81,23 @@ impl SceneGpu {
         fs_entry: &str,
         extra: &[&wgpu::BindGroupLayout],
         depth_stencil: wgpu::DepthStencilState,
+    ) -> wgpu::RenderPipeline {
+        self.lit_pipeline_specialised(gpu, module, fs_entry, extra, depth_stencil, &[])
+    }
+
+    /// [`SceneGpu::lit_pipeline_with_depth`] with the fragment shader's
+    /// `override` constants set: a variant's choices fixed when the pipeline
+    /// is compiled, so the compiler drops the branches the variant does not
+    /// take (a software rasteriser runs every branch of a switch it cannot
+    /// prove dead, masked, texture reads included).
+    pub fn lit_pipeline_specialised(
+        &self,
+        gpu: &Gpu,
+        module: &wgpu::ShaderModule,
+        fs_entry: &str,
+        extra: &[&wgpu::BindGroupLayout],
+        depth_stencil: wgpu::DepthStencilState,
+        constants: &[(&str, f64)],
     ) -> wgpu::RenderPipeline {
         let layout = pipeline_layout_for(gpu, &self.frame_layout, &self.object_layout, extra);
         let add = wgpu::BlendState {
@@ -83,7 +119,10 @@ impl SceneGpu {
                 fragment: Some(wgpu::FragmentState {
                     module,
                     entry_point: Some(fs_entry),
-                    compilation_options: Default::default(),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants,
+                        ..Default::default()
+                    },
                     targets: &[
                         Some(wgpu::ColorTargetState {
                             format: COLOR_FORMAT,
@@ -112,6 +151,7 @@ impl SceneGpu {
             light,
             pipeline,
             groups,
+            scissor,
         } = lit;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("lit pass"),
@@ -132,6 +172,12 @@ impl SceneGpu {
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        if let Some([x, y, w, h]) = scissor {
+            if w == 0 || h == 0 {
+                return;
+            }
+            pass.set_scissor_rect(x, y, w, h);
+        }
         pass.set_pipeline(pipeline);
         self.bind_frame(&mut pass, light);
         for (i, g) in groups.iter().enumerate() {
