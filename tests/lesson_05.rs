@@ -340,3 +340,59 @@ mod compute_triangles {
         assert!(sides > 0);
     }
 }
+
+/// A route whose buffers would pass the adapter's limits is left out with
+/// one note naming the variant, the buffer, its size and the limit; the
+/// routes that fit still run. `WORKBOOK_MAX_BUFFER_SIZE` gives this adapter
+/// a smaller GPU's room: 60 MB holds the dense knot's CPU and compute
+/// volumes (47 MB) but not its quads (90 MB). With 20 MB nothing fits: one
+/// error line, and a non-zero exit.
+#[test]
+fn lesson_05_a_route_over_the_limit_is_left_out() {
+    let scene = support::scene_path("lesson_05_dense.toml");
+    let mut args = SIZE.to_vec();
+    args.extend(["--scene", scene.to_str().unwrap()]);
+    let env = [("WORKBOOK_MAX_BUFFER_SIZE", "60000000")];
+    let Some(run) = support::run_lesson_env(BIN, "lesson_05_small_buffers", &args, &env) else {
+        return;
+    };
+    let notes: Vec<&str> = run
+        .stderr
+        .lines()
+        .filter(|l| l.starts_with("note:"))
+        .collect();
+    assert_eq!(notes.len(), 1, "one route left out: {}", run.stderr);
+    assert!(
+        notes[0].contains("skipped zpass_quads: the quad route's vertex buffer for dense_knot")
+            && notes[0].contains("(max_buffer_size = 60000000 bytes)"),
+        "the note names the variant, the buffer and the limit: {}",
+        notes[0]
+    );
+    let ran: Vec<&str> = (run.report["variants"].as_array().unwrap().iter())
+        .map(|v| v["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        ran,
+        ["zpass_cpu", "zpass_compute"],
+        "the routes that fit run"
+    );
+    for v in ran {
+        let m = support::misclassified(&run, v);
+        assert!(m <= 0.5, "{v}: {m:.3}% misclassified");
+    }
+
+    let out = support::out_dir("lesson_05_no_room");
+    let o = support::lesson_command(BIN)
+        .env("WORKBOOK_MAX_BUFFER_SIZE", "20000000")
+        .args(["--headless", "--out"])
+        .arg(&out)
+        .args(&args)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error")).collect();
+    assert!(!o.status.success(), "nothing fits: a non-zero exit");
+    assert_eq!(errors.len(), 1, "one error line: {stderr}");
+    assert!(errors[0].contains("none of the variants"), "{stderr}");
+    assert_eq!(stderr.lines().filter(|l| l.starts_with("note:")).count(), 3);
+}

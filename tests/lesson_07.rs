@@ -277,6 +277,7 @@ fn run_or_refused(name: &str, args: &[&str]) -> Option<support::LessonRun> {
         report,
         out,
         stdout,
+        stderr: stderr.to_string(),
     })
 }
 

@@ -235,6 +235,7 @@ fn run_finite(bin: &str, name: &str, file: &str, variants: &[&str]) -> Option<su
         out,
         report: serde_json::from_str(&text).expect("report.json parses"),
         stdout: String::from_utf8_lossy(&o.stdout).to_string(),
+        stderr: stderr.to_string(),
     })
 }
 

@@ -35,6 +35,12 @@ const FRAMES: u32 = 5;
 /// Torus tessellations (minor segments; major = 2 × minor), 4·v² triangles:
 /// 1k, 4k, 16k, 64k, 256k and 1M.
 const TORUS_MINOR: [u32; 6] = [16, 32, 64, 128, 256, 512];
+/// The volume routes' sweep goes on to the 4.2 M-triangle torus (v = 1024),
+/// where a route whose buffers pass the adapter's limits is left out.
+const TORUS_MINOR_ROUTES: [u32; 7] = [16, 32, 64, 128, 256, 512, 1024];
+/// The three volume routes of lesson 05, each run in a process of its own,
+/// so that one left out (a limit) does not stop the others.
+const ROUTES: [&str; 3] = ["zpass_cpu", "zpass_quads", "zpass_compute"];
 /// lesson_01's resolution variants, in order, and their side in texels.
 const SHADOW_RES: [(&str, u32); 5] = [
     ("res_256", 256),
@@ -116,6 +122,20 @@ pub struct Sweep {
     pub counters: Vec<String>,
     pub points: Vec<SweepPoint>,
     pub curves: Vec<SweepCurve>,
+    /// Variants the lesson left out at some size: their buffers would pass
+    /// one of the adapter's limits (the lesson's own note says which).
+    #[serde(default)]
+    pub stops: Vec<SweepStop>,
+}
+
+/// A variant left out at one size of a sweep, and why.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub struct SweepStop {
+    pub x: f64,
+    pub label: String,
+    pub variant: String,
+    /// The lesson's line: the buffer, its size and the limit.
+    pub why: String,
 }
 
 /// The .md file name of a sweep's table (in `book/src/generated/scaling/`).
@@ -234,6 +254,7 @@ pub fn table(sweep: &Sweep) -> String {
         cells.push(pct(p.misclassified_pct));
         s += &row(&cells);
     }
+    s += &stops_table(sweep);
     let mut xs: Vec<f64> = sweep.points.iter().map(|p| p.x).collect();
     xs.sort_by(f64::total_cmp);
     xs.dedup();
@@ -259,6 +280,45 @@ pub fn table(sweep: &Sweep) -> String {
             slope_cell(c.slope_all),
             slope_cell(c.slope_top),
         ]);
+    }
+    s
+}
+
+/// Where each variant of a sweep with stops stops: the largest size it ran
+/// and the first it was left out at, with the lesson's reason.
+fn stops_table(sweep: &Sweep) -> String {
+    if sweep.stops.is_empty() {
+        return String::new();
+    }
+    let mut s = format!(
+        "\n*Where each variant stops on {} ({}): the largest {} it ran, and the lesson's line where it left the variant out.*\n\n",
+        sweep.adapter, sweep.backend, sweep.axis
+    );
+    s += &row(&[
+        "variant".into(),
+        format!("largest {} run", sweep.axis),
+        "left out at".into(),
+        "why".into(),
+    ]);
+    s += &row(&vec!["---".to_string(); 4]);
+    let mut variants = distinct_variants(sweep);
+    for t in &sweep.stops {
+        if !variants.contains(&t.variant) {
+            variants.push(t.variant.clone());
+        }
+    }
+    for v in variants {
+        let largest = (sweep.points.iter())
+            .filter(|p| p.variant == v)
+            .max_by(|a, b| a.x.total_cmp(&b.x))
+            .map_or("—".to_string(), |p| p.label.clone());
+        let stop = (sweep.stops.iter())
+            .filter(|t| t.variant == v)
+            .min_by(|a, b| a.x.total_cmp(&b.x));
+        let (at, why) = stop.map_or(("—".into(), "ran every size".into()), |t| {
+            (t.label.clone(), t.why.clone())
+        });
+        s += &row(&[format!("`{v}`"), largest, at, why]);
     }
     s
 }
@@ -348,7 +408,7 @@ fn plans(work: &Path) -> Result<Vec<(Plan, Vec<Step>)>> {
     // 1. Triangles: a torus at rising tessellation.
     let mut l02 = Vec::new();
     let mut l05 = Vec::new();
-    for v in TORUS_MINOR {
+    for v in TORUS_MINOR_ROUTES {
         let dir = work.join(format!("torus_{v}"));
         std::fs::create_dir_all(&dir)?;
         let tris = write_torus(&dir.join("torus.obj"), 2 * v, v)?;
@@ -357,25 +417,28 @@ fn plans(work: &Path) -> Result<Vec<(Plan, Vec<Step>)>> {
         let s05 = dir.join("lesson_05.toml");
         write(&s05, &torus_scene(Light::Point))?;
         let x = tris as f64;
-        l02.push(Step {
-            scene: Some(s02),
-            width: WIDTH,
-            height: HEIGHT,
-            variants: vec!["slope_hw"],
-            xs: vec![("slope_hw", x, count(tris))],
-        });
-        l05.push(Step {
-            scene: Some(s05),
-            width: WIDTH,
-            height: HEIGHT,
-            variants: vec!["zpass_cpu", "zpass_quads"],
-            xs: vec![
-                ("zpass_cpu", x, count(tris)),
-                ("zpass_quads", x, count(tris)),
-            ],
-        });
+        if TORUS_MINOR.contains(&v) {
+            l02.push(Step {
+                scene: Some(s02),
+                width: WIDTH,
+                height: HEIGHT,
+                variants: vec!["slope_hw"],
+                xs: vec![("slope_hw", x, count(tris))],
+            });
+        }
+        for route in ROUTES {
+            l05.push(Step {
+                scene: Some(s05.clone()),
+                width: WIDTH,
+                height: HEIGHT,
+                variants: vec![route],
+                xs: vec![(route, x, count(tris))],
+            });
+        }
     }
     let torus = "a floor and one torus of n triangles (4·v² for v = 16 … 512), generated";
+    let torus_routes =
+        "a floor and one torus of n triangles (4·v² for v = 16 … 1024), generated, one process per route and size";
     out.push((
         Plan {
             name: "triangles_lesson_02",
@@ -409,9 +472,9 @@ fn plans(work: &Path) -> Result<Vec<(Plan, Vec<Step>)>> {
             title: "Shadow volumes (lesson 05) against caster triangles",
             axis: "triangles",
             x_label: "caster triangles n (log)",
-            scene: format!("{torus}, one point light"),
-            variants: &["zpass_cpu", "zpass_quads"],
-            passes: &["cpu_silhouette", "volume", "base", "lighting"],
+            scene: format!("{torus_routes}, one point light"),
+            variants: &ROUTES,
+            passes: &["cpu_silhouette", "extrude", "volume", "base", "lighting"],
             counters: &["volume_triangles", "volume_fragments", "stencil_updates"],
             curves: vec![
                 ("zpass_cpu", "total", Unit::Ms, "O(n)", 1.0),
@@ -419,6 +482,8 @@ fn plans(work: &Path) -> Result<Vec<(Plan, Vec<Step>)>> {
                 ("zpass_cpu", "volume", Unit::Ms, "O(√n)", 0.5),
                 ("zpass_quads", "total", Unit::Ms, "O(n)", 1.0),
                 ("zpass_quads", "volume", Unit::Ms, "O(n)", 1.0),
+                ("zpass_compute", "total", Unit::Ms, "O(n)", 1.0),
+                ("zpass_compute", "extrude", Unit::Ms, "O(n)", 1.0),
                 ("zpass_cpu", "volume_triangles", Unit::Count, "O(√n)", 0.5),
                 ("zpass_quads", "volume_triangles", Unit::Count, "O(n)", 1.0),
                 ("zpass_cpu", "volume_fragments", Unit::Count, "O(1)", 0.0),
@@ -583,6 +648,7 @@ fn measure(
     bar: &ProgressBar,
 ) -> Result<Sweep> {
     let mut points: Vec<SweepPoint> = Vec::new();
+    let mut stops: Vec<SweepStop> = Vec::new();
     let mut first: Option<Report> = None;
     for (i, step) in steps.iter().enumerate() {
         bar.set_message(format!("scaling {} ({}/{})", plan.name, i + 1, steps.len()));
@@ -598,9 +664,26 @@ fn measure(
             warm_up_ms: None,
         };
         let out = work.join("runs").join(plan.name).join(format!("p{i}"));
-        let report = runner
-            .run(&args, &out)
-            .with_context(|| format!("scaling sweep {}, point {}", plan.name, i + 1))?;
+        let report = match runner.run(&args, &out) {
+            Ok(r) => r,
+            // A variant whose buffers pass the adapter's limits: the lesson
+            // refuses it by name in one line; where it stops is a result.
+            Err(e) if step.variants.len() == 1 && limit_line(&e.to_string()).is_some() => {
+                let (variant, x, label) = &step.xs[0];
+                stops.push(SweepStop {
+                    x: *x,
+                    label: label.clone(),
+                    variant: variant.to_string(),
+                    why: limit_line(&e.to_string()).unwrap_or_default(),
+                });
+                bar.inc(1);
+                continue;
+            }
+            Err(e) => {
+                return Err(e)
+                    .with_context(|| format!("scaling sweep {}, point {}", plan.name, i + 1))
+            }
+        };
         for (variant, x, label) in &step.xs {
             let v = report
                 .variants
@@ -711,7 +794,20 @@ fn measure(
         counters,
         points,
         curves,
+        stops,
     })
+}
+
+/// The lesson's line about a buffer that passes one of the adapter's
+/// limits (lesson 05's `fit`), from a failed run's message, or `None`.
+fn limit_line(message: &str) -> Option<String> {
+    let line = message.lines().last()?;
+    let limits = ["(max_buffer_size = ", "(max_storage_buffer_binding_size = "];
+    if !limits.iter().any(|l| line.contains(l)) {
+        return None;
+    }
+    let why = line.rsplit_once("failed: ").map_or(line, |(_, w)| w);
+    Some(why.trim_start_matches("error: ").to_string())
 }
 
 /// A point's value of `key` (a time's median, or a counter).

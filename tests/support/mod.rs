@@ -54,6 +54,7 @@ pub struct LessonRun {
     pub out: PathBuf,
     pub report: serde_json::Value,
     pub stdout: String,
+    pub stderr: String,
 }
 
 /// A fresh output folder under the target directory.
@@ -102,6 +103,7 @@ pub fn run_lesson_env(
         out,
         report,
         stdout,
+        stderr,
     })
 }
 

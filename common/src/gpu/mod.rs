@@ -23,6 +23,24 @@ pub mod targets;
 
 use anyhow::{anyhow, bail, Result};
 
+/// `limits` with `WORKBOOK_MAX_BUFFER_SIZE` (bytes), if set, as the
+/// largest buffer and storage binding: a smaller GPU's room on this one,
+/// to see what a lesson leaves out there (lesson 05's routes).
+pub fn buffer_cap(mut limits: wgpu::Limits) -> Result<wgpu::Limits> {
+    let Ok(v) = std::env::var("WORKBOOK_MAX_BUFFER_SIZE") else {
+        return Ok(limits);
+    };
+    let cap: u64 = v.trim().parse().map_err(|_| {
+        anyhow!(
+            "WORKBOOK_MAX_BUFFER_SIZE = {:?}: give a size in bytes, such as 134217728",
+            v
+        )
+    })?;
+    limits.max_buffer_size = limits.max_buffer_size.min(cap);
+    limits.max_storage_buffer_binding_size = limits.max_storage_buffer_binding_size.min(cap);
+    Ok(limits)
+}
+
 /// The line for a device that would not open. wgpu's GL backend fails on
 /// NVIDIA's drivers ("Parent device is lost", gfx-rs/wgpu#7068, seen on an
 /// H100): that case names the issue and the backend that works.
@@ -290,10 +308,11 @@ impl Gpu {
         let info = adapter.get_info();
         let features = adapter.features() & OPTIONAL_FEATURES;
         let depth_format = depth_choice.resolve(features, depth_source, &info.name)?;
+        let limits = buffer_cap(adapter.limits())?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("workbook device"),
             required_features: features,
-            required_limits: adapter.limits(),
+            required_limits: limits,
             ..Default::default()
         }))
         .map_err(|e| anyhow!("{}", device_failure(&info, &e)))?;

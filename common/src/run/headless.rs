@@ -82,7 +82,7 @@ pub fn run_headless<L: Lesson>(
         }
     }
     if runnable.is_empty() {
-        anyhow::bail!("{}: this adapter can render none of the variants", L::NAME);
+        anyhow::bail!("this adapter can render none of the variants (the notes above say why)");
     }
 
     // 1. Time every variant first, back to back and interleaved with the
