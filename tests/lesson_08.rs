@@ -10,7 +10,14 @@ use std::path::Path;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_08");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
-const VARIANTS: [&str; 4] = ["unbounded", "scissor", "depth_bounds", "bounds_scissor"];
+const VARIANTS: [&str; 6] = [
+    "unbounded",
+    "scissor",
+    "depth_bounds",
+    "bounds_scissor",
+    "cull",
+    "cull_bounds_scissor",
+];
 
 fn scene(name: &str) -> String {
     format!("{}/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
@@ -80,6 +87,12 @@ fn check_identical_and_cheaper(run: &support::LessonRun) {
         u("bounds_scissor"),
         u("unbounded")
     );
+    // The cull leaves out whole casters: never more triangles, and the
+    // pixel limits add none.
+    let t = |v| counter(&run.report, v, "volume_triangles");
+    assert!(t("cull") <= t("unbounded"), "the cull adds triangles");
+    assert_eq!(t("cull_bounds_scissor"), t("cull"));
+    assert!(f("cull_bounds_scissor") <= f("bounds_scissor"));
 }
 
 #[test]
@@ -123,6 +136,14 @@ fn lesson_08_bounds_and_scissor_keep_pixels_identical() {
     assert!(
         both * 2 < all,
         "bounds + scissor: {both} of {all} stencil fragments"
+    );
+    // Each light reaches one or two of the six casters here.
+    let t = |v| counter(&run.report, v, "volume_triangles");
+    assert!(
+        t("cull") * 2 < t("unbounded"),
+        "cull: {} of {} volume triangles",
+        t("cull"),
+        t("unbounded")
     );
     // `volume_fragments` is the true rasterised count: with no depth bounds
     // every rasterised fragment reaches the stencil, and the bounds (after

@@ -13,7 +13,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::counters::FragmentCounter;
 
-use super::range_sphere::LightBounds;
+use super::range_sphere::{caster_reaches, LightBounds};
 use crate::lesson_05::extrusion::volume_shader_module;
 use crate::lesson_05::quads::QUAD_VERTEX_LAYOUT;
 use crate::lesson_05::stencil::lit_stencil;
@@ -33,6 +33,9 @@ const SLOT: u64 = 256;
 struct Caster {
     object: usize,
     mirrored: bool,
+    /// Bounding sphere, origin-relative ([`caster_reaches`]).
+    center: common::glam::DVec3,
+    radius: f64,
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     /// The index ranges, each with "is it a cap?" (caps get lesson 06's bias).
@@ -61,6 +64,9 @@ pub struct BoundedVolumes {
 pub struct Limits {
     pub scissor: bool,
     pub depth_bounds: bool,
+    /// Draw only the casters that reach into the light's range
+    /// ([`caster_reaches`]).
+    pub cull: bool,
 }
 
 /// One light's bounded volume pass: the light, its range sphere's bounds
@@ -146,6 +152,8 @@ impl BoundedVolumes {
                 Caster {
                     object: c.object,
                     mirrored: c.mirrored,
+                    center: c.center,
+                    radius: c.radius,
                     vertices,
                     indices,
                     ranges: ranges
@@ -265,10 +273,13 @@ impl BoundedVolumes {
         })
     }
 
-    /// Draw calls and triangles of one light's volumes (every caster's
-    /// sides and caps), without the two bounds-marker triangles.
-    pub fn volume_draws(&self) -> (u64, u64) {
-        let ranges = self.casters.iter().flat_map(|c| &c.ranges);
+    /// Draw calls and triangles of one light's volumes, as
+    /// [`draw_volumes`](Self::draw_volumes) draws them, without the two
+    /// bounds-marker triangles.
+    pub fn volume_draws(&self, scene: &SceneGpu, b: &BoundedLight) -> (u64, u64) {
+        let ranges = (self.casters.iter())
+            .filter(|c| self.drawn(scene, b, c))
+            .flat_map(|c| &c.ranges);
         ranges.fold((0, 0), |(d, t), (r, _)| (d + 1, t + r.len() as u64 / 3))
     }
 
@@ -279,17 +290,29 @@ impl BoundedVolumes {
             .write_buffer(&self.bounds_buf, SLOT * k as u64, bytemuck::cast_slice(&v));
     }
 
-    /// Draws light `light`'s volumes (every caster: sides and caps) with
+    /// Whether `b`'s volume pass draws caster `c`: every caster, or with
+    /// `cull` only those that reach into the light's range.
+    fn drawn(&self, scene: &SceneGpu, b: &BoundedLight, c: &Caster) -> bool {
+        !b.limits.cull || caster_reaches(&scene.scene, b.light, c.center, c.radius)
+    }
+
+    /// Draws light `b.light`'s volumes (sides and caps of every caster, or
+    /// with `cull` of the casters that reach into its range) with
     /// `pipes[mirrored][cap]`. Returns the casters drawn.
     pub(super) fn draw_volumes(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         scene: &SceneGpu,
-        light: usize,
+        b: &BoundedLight,
         pipes: Pipes<'_>,
     ) -> u32 {
-        scene.bind_frame(pass, light);
+        scene.bind_frame(pass, b.light);
+        let mut drawn = 0;
         for c in &self.casters {
+            if !self.drawn(scene, b, c) {
+                continue;
+            }
+            drawn += 1;
             scene.bind_object(pass, c.object);
             pass.set_vertex_buffer(0, c.vertices.slice(..));
             pass.set_index_buffer(c.indices.slice(..), wgpu::IndexFormat::Uint32);
@@ -298,7 +321,7 @@ impl BoundedVolumes {
                 pass.draw_indexed(range.clone(), 0, 0..1);
             }
         }
-        self.casters.len() as u32
+        drawn
     }
 
     /// Scissor and the bit-7 marker for one light, inside an open pass.
@@ -343,7 +366,7 @@ impl BoundedVolumes {
         pass.set_stencil_reference(BOUNDS_BIT);
         let p = &self.volume[bounded as usize];
         let pipes = [[&p[0][0], &p[0][1]], [&p[1][0], &p[1][1]]];
-        self.draw_volumes(&mut pass, scene, b.light, pipes)
+        self.draw_volumes(&mut pass, scene, &b, pipes)
     }
     // ANCHOR_END: bounded_volume_pass
 
@@ -372,7 +395,7 @@ impl BoundedVolumes {
                         ),
                         _ => pass.set_scissor_rect(0, 0, scene.width, scene.height),
                     }
-                    self.draw_volumes(pass, scene, b.light, [[&self.rasterised; 2]; 2]);
+                    self.draw_volumes(pass, scene, b, [[&self.rasterised; 2]; 2]);
                 }
             })
             .ok()

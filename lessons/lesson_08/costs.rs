@@ -124,8 +124,8 @@ impl VolumeTally {
         lights: &[BoundedLight],
     ) -> Result<BoundedCosts> {
         let mut costs = BoundedCosts::default();
-        let (calls, triangles) = volumes.volume_draws();
         for b in lights {
+            let (calls, triangles) = volumes.volume_draws(scene, b);
             if b.limits != Limits::default() && b.bounds == Some(None) {
                 continue; // the volume pass draws nothing for this light
             }
@@ -147,7 +147,7 @@ impl VolumeTally {
                             pass.set_scissor_rect(s.x, s.y, s.width, s.height);
                         }
                         pass.set_stencil_reference(super::bounds_test::BOUNDS_BIT);
-                        volumes.draw_volumes(pass, scene, b.light, [[&p[0], &p[1]]; 2]);
+                        volumes.draw_volumes(pass, scene, b, [[&p[0], &p[1]]; 2]);
                     })
             };
             let rasterised = tally(false, false)?;

@@ -11,9 +11,15 @@
 //!   range and its count cannot matter. wgpu has no depth-bounds test, so
 //!   it is emulated with stencil bit 7 ([`bounds_test`](workbook::lesson_08::bounds_test)).
 //!
-//! Variants: `unbounded`, `scissor`, `depth_bounds`, `bounds_scissor`. The
-//! pixels are the same in all four; the counters say how many volume
-//! fragments each one rasterises and lets through to the stencil.
+//! A third limit works on objects, not pixels: a caster whose bounding
+//! sphere misses the range sphere cannot shadow anything in range, so its
+//! volume is left out ([`caster_reaches`](workbook::lesson_08::range_sphere::caster_reaches)).
+//!
+//! Variants: `unbounded`, `scissor`, `depth_bounds`, `bounds_scissor`,
+//! `cull`, `cull_bounds_scissor`. The pixels are the same in all six; the
+//! counters say how many volume triangles each one draws, and how many
+//! fragments it rasterises and lets through to the stencil. The scissor
+//! cuts the lit pass as well.
 //!
 //! A finite far plane is clamped, not clipped, as in lesson 07's `clamp`
 //! (needs DEPTH_CLIP_CONTROL). Bit 7 holds the bounds mark, so the count
@@ -54,6 +60,12 @@ enum Variant {
     DepthBounds,
     #[value(name = "bounds_scissor")]
     BoundsScissor,
+    /// Only the casters that reach into the light's range cast volumes.
+    #[value(name = "cull")]
+    Cull,
+    /// The cull, the depth bounds and the scissor together.
+    #[value(name = "cull_bounds_scissor")]
+    CullBoundsScissor,
     /// Exercise 1: the scissor from `exercises::scissor_rect`.
     #[value(name = "exercise_scissor_rect")]
     ExerciseScissorRect,
@@ -63,17 +75,19 @@ enum Variant {
 }
 
 impl Variant {
-    /// Which of the two limits the variant's volume pass uses.
+    /// Which of the three limits the variant's volume pass uses.
     fn limits(self) -> Limits {
+        use Variant::*;
         Limits {
             scissor: matches!(
                 self,
-                Variant::Scissor | Variant::BoundsScissor | Variant::ExerciseScissorRect
+                Scissor | BoundsScissor | CullBoundsScissor | ExerciseScissorRect
             ),
             depth_bounds: matches!(
                 self,
-                Variant::DepthBounds | Variant::BoundsScissor | Variant::ExerciseDepthBounds
+                DepthBounds | BoundsScissor | CullBoundsScissor | ExerciseDepthBounds
             ),
+            cull: matches!(self, Cull | CullBoundsScissor),
         }
     }
 

@@ -212,8 +212,53 @@ pub fn all_bounds(scene: &SceneGpu) -> Vec<Option<Option<LightBounds>>> {
 }
 // ANCHOR_END: light_bounds
 
+// ANCHOR: caster_reaches
+/// Whether a caster (its bounding sphere, origin-relative) can shadow
+/// anything inside light `light`'s range sphere. A point in range is
+/// shadowed only by a caster on the segment from the light to it, and that
+/// segment lies inside the range sphere: a caster whose bounding sphere
+/// misses the range sphere casts nothing there. Its volume may still cross
+/// pixels beyond the range, which the lit pass discards in every variant,
+/// so leaving it out changes no pixel. A light without a range reaches
+/// every caster.
+pub fn caster_reaches(
+    scene: &common::scene::Scene,
+    light: usize,
+    center: DVec3,
+    radius: f64,
+) -> bool {
+    match scene.lights[light].kind {
+        LightKind::Point { position, range }
+        | LightKind::Spot {
+            position, range, ..
+        } => (position - scene.origin()).distance(center) <= range + radius,
+        _ => true,
+    }
+}
+// ANCHOR_END: caster_reaches
+
 #[cfg(test)]
 mod tests {
+
+    /// A caster reaches a light's range when its bounding sphere meets the
+    /// range sphere, even with its centre outside; a directional light
+    /// reaches everything.
+    #[test]
+    fn a_caster_reaches_the_range_when_its_sphere_meets_it() {
+        let text = "[camera]\neye = [0.0, 0.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n\
+            [[lights]]\ntype = \"point\"\nposition = [0.0, 0.0, 0.0]\nrange = 3.0\n\
+            [[lights]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\n\
+            [[objects]]\nmesh = \"cube\"\n";
+        let scene = common::scene::Scene::parse(text, "test", std::path::Path::new(".")).unwrap();
+        let at = |x: f64| DVec3::new(x, 0.0, 0.0) - scene.origin();
+        assert!(
+            caster_reaches(&scene, 0, at(3.5), 1.0),
+            "centre out, sphere in"
+        );
+        assert!(!caster_reaches(&scene, 0, at(4.5), 1.0), "sphere out");
+        assert!(caster_reaches(&scene, 1, at(100.0), 1.0), "directional");
+    }
+
     use super::*;
     use glam::dcamera::rh::proj::directx::{perspective, perspective_infinite};
 
