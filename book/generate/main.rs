@@ -14,6 +14,7 @@
 mod adapters;
 mod choosing;
 mod diagrams;
+mod gpu_costs;
 mod lesson09;
 mod manifest;
 mod plots;
@@ -216,6 +217,7 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     write_scenes_tables(generated, &records)?;
     choosing::write_all(generated, &records)?;
     volumes_gpu::write(root, generated)?;
+    gpu_costs::write(root, generated)?;
     scaling::write_tables(root)?;
     lesson09::write_all(generated, figures, &records)?;
     adapters::write_all(root, generated, &records)?;
@@ -265,9 +267,9 @@ impl Measure<'_> {
         let args = RunArgs {
             lesson: run.lesson,
             scene: scene.as_deref(),
-            width: manifest::WIDTH,
-            height: manifest::HEIGHT,
-            frames: if run.timed { manifest::FRAMES } else { 1 },
+            width: run.size.0,
+            height: run.size.1,
+            frames: if run.timed { run.frames } else { 1 },
             variants: run.variants,
             backend: Some(self.backend),
             adapter: Some(self.adapter),

@@ -39,6 +39,10 @@ pub struct Run {
     pub timed: bool,
     /// Only these variants (all when empty).
     pub variants: &'static [&'static str],
+    /// The frame size and timed frames per repeat: the book's
+    /// ([`WIDTH`]×[`HEIGHT`], [`FRAMES`]) except for [`interactive`] runs.
+    pub size: (u32, u32),
+    pub frames: u32,
 }
 
 impl Run {
@@ -55,6 +59,8 @@ const fn default(lesson: &'static str) -> Run {
         title: "default scene",
         timed: true,
         variants: &[],
+        size: (WIDTH, HEIGHT),
+        frames: FRAMES,
     }
 }
 
@@ -71,6 +77,8 @@ const fn case(
         title,
         timed: false,
         variants: &[],
+        size: (WIDTH, HEIGHT),
+        frames: FRAMES,
     }
 }
 
@@ -89,6 +97,29 @@ const fn timed_case(
         title,
         timed: true,
         variants,
+        size: (WIDTH, HEIGHT),
+        frames: FRAMES,
+    }
+}
+
+/// The size a reader's window opens at, where 33 ms a frame is the bar
+/// for interactive (30 frames a second).
+pub const INTERACTIVE: (u32, u32) = (1280, 720);
+/// Timed frames per repeat of an [`interactive`] run.
+pub const INTERACTIVE_FRAMES: u32 = 10;
+
+/// A lesson's recommended variants on its default scene at
+/// [`INTERACTIVE`] size (`book/src/generated/<lesson>/hd.md`).
+const fn interactive(lesson: &'static str, variants: &'static [&'static str]) -> Run {
+    Run {
+        lesson,
+        name: "hd",
+        scene: None,
+        title: "default scene at 1280×720",
+        timed: true,
+        variants,
+        size: INTERACTIVE,
+        frames: INTERACTIVE_FRAMES,
     }
 }
 
@@ -99,7 +130,9 @@ const BUILD_VARIANTS: &[&str] = &["zpass_cpu", "zpass_quads", "zpass_compute"];
 #[rustfmt::skip]
 pub const RUNS: &[Run] = &[
     default("lesson_01"),
+    interactive("lesson_01", &["res_2048"]),
     default("lesson_02"),
+    interactive("lesson_02", &["front_cull"]),
     case("lesson_02", "contact", "scenes/lesson_02_contact.toml", "a cube resting on the floor"),
     case("lesson_02", "grazing_80", "scenes/lesson_02_grazing_80.toml", "light 80° from the floor's normal"),
     case("lesson_02", "grazing_85", "scenes/lesson_02_grazing_85.toml", "light 85° from the floor's normal"),
@@ -108,12 +141,14 @@ pub const RUNS: &[Run] = &[
     case("lesson_02", "far", "scenes/lesson_02_far.toml", "the scene 10 km from the origin"),
     case("lesson_02", "spot_wide", "scenes/lesson_02_spot_wide.toml", "a wide spot light far away"),
     default("lesson_03"),
+    interactive("lesson_03", &["poisson_16"]),
     case("lesson_03", "closeup", "scenes/lesson_03_closeup.toml", "close-up of one shadow edge"),
     case("lesson_03", "grazing_85", "scenes/lesson_02_grazing_85.toml", "light 85° from the floor's normal"),
     case("lesson_03", "thin_plate", "scenes/lesson_02_thin_plate.toml", "a 2 cm plate above the floor"),
     case("lesson_03", "far", "scenes/lesson_02_far.toml", "the scene 10 km from the origin"),
     case("lesson_03", "spot_wide", "scenes/lesson_02_spot_wide.toml", "a wide spot light far away"),
     default("lesson_04"),
+    interactive("lesson_04", &["depth_1024", "linear_2048"]),
     case("lesson_04", "seams", "scenes/lesson_04_seams.toml", "shadows across cube edges and corners"),
     case("lesson_04", "near_caster", "scenes/lesson_04_near_caster.toml", "a caster 3 cm from the light"),
     case("lesson_04", "beyond_range", "scenes/lesson_04_beyond_range.toml", "a wall past the light's range"),
@@ -121,6 +156,7 @@ pub const RUNS: &[Run] = &[
     case("lesson_04", "axes_pos", "scenes/lesson_04_axes_pos.toml", "one caster on each + axis"),
     case("lesson_04", "axes_neg", "scenes/lesson_04_axes_neg.toml", "one caster on each − axis"),
     default("lesson_05"),
+    interactive("lesson_05", &["zpass_cpu", "zpass_compute"]),
     timed_case("lesson_05", "holed", "scenes/lesson_05_holed.toml", "a closed mesh of 50k+ triangles with holes punched in it (casts two-sided)", BUILD_VARIANTS),
     timed_case("lesson_05", "dense", "scenes/lesson_05_dense.toml", "a closed mesh of about 100k triangles", BUILD_VARIANTS),
     case("lesson_05", "eye_in_umbra", "scenes/volume_eye_in_umbra.toml", "the eye inside a shadow"),
@@ -128,6 +164,7 @@ pub const RUNS: &[Run] = &[
     case("lesson_05", "open_quad", "scenes/volume_open_quad.toml", "an open caster (one quad)"),
     case("lesson_05", "mirrored", "scenes/volume_mirrored.toml", "mirrored models (negative scale)"),
     default("lesson_06"),
+    interactive("lesson_06", &["zfail_selective"]),
     case("lesson_06", "eye_in_umbra", "scenes/volume_eye_in_umbra.toml", "the eye inside a shadow"),
     case("lesson_06", "near_slice", "scenes/volume_near_slice.toml", "the near plane slicing a volume"),
     case("lesson_06", "open_quad", "scenes/volume_open_quad.toml", "an open caster (one quad)"),
@@ -141,11 +178,13 @@ pub const RUNS: &[Run] = &[
     case("lesson_06", "finite_far_close_light", "scenes/lesson_06_finite_far_close_light.toml", "far = 200: a point light 0.3 above a box"),
     case("lesson_06", "finite_far_back_cap", "scenes/lesson_06_finite_far_back_cap.toml", "far = 200: the back cap inside the far plane"),
     default("lesson_07"),
+    interactive("lesson_07", &["infinite"]),
     case("lesson_07", "deep_range", "scenes/lesson_07_deep_range.toml", "near 1e-3, far 1e5, the objects 400 units away"),
     case("lesson_07", "near_1e-3_far_1e5", "scenes/lesson_07_near_1e-3_far_1e5.toml", "near 1e-3, far 1e5"),
     case("lesson_07", "far_200", "scenes/lesson_08_far_200.toml", "lesson 08's scene, far = 200"),
     case("lesson_07", "far_crossing", "scenes/lesson_08_far_crossing.toml", "far = 15, through two range spheres"),
     default("lesson_08"),
+    interactive("lesson_08", &["bounds_scissor", "cull_bounds_scissor"]),
     case("lesson_08", "lesson_07_scene", "scenes/lesson_07.toml", "lesson 07's scene (far = 16)"),
     case("lesson_08", "far_200", "scenes/lesson_08_far_200.toml", "far = 200"),
     case("lesson_08", "far_crossing", "scenes/lesson_08_far_crossing.toml", "far = 15, through two range spheres"),
@@ -154,6 +193,7 @@ pub const RUNS: &[Run] = &[
     case("lesson_08", "camera_inside", "scenes/lesson_08_camera_inside.toml", "the camera inside a range sphere"),
     case("lesson_08", "nested_128", "scenes/lesson_08_nested_128.toml", "128 nested volumes"),
     default("lesson_09"),
+    interactive("lesson_09", &["k4", "k4_aabb"]),
     case("lesson_09", "look_down", "scenes/lesson_09_look_down.toml", "the camera looking straight down"),
     case("lesson_09", "grazing", "scenes/lesson_09_grazing.toml", "the light almost parallel to the ground"),
     case("lesson_09", "far_10km", "scenes/lesson_09_far_10km.toml", "far plane at 10 km"),

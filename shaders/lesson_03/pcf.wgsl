@@ -58,16 +58,17 @@ struct Filter {
 // read from storage came out wrong: 5.0 % misclassified instead of 0.2 % on
 // this lesson's scene. Differentiating the interpolated world position is
 // exact to first order on every backend.)
-fn shadow_coords_delta(world: vec3<f32>, d_world: vec3<f32>) -> vec3<f32> {
-    let c = light.view_proj * vec4<f32>(world, 1.0);
+// `c`: the light's clip coordinates of the point, light.view_proj · (world, 1).
+fn shadow_coords_delta(c: vec4<f32>, d_world: vec3<f32>) -> vec3<f32> {
     let dc = light.view_proj * vec4<f32>(d_world, 0.0);
     let d_ndc = (dc.xyz - c.xyz / c.w * dc.w) / c.w;
     return vec3<f32>(0.5 * d_ndc.x, -0.5 * d_ndc.y, d_ndc.z);
 }
 
 fn receiver_plane_gradient(world: vec3<f32>) -> vec2<f32> {
-    let dx = shadow_coords_delta(world, dpdx(world));
-    let dy = shadow_coords_delta(world, dpdy(world));
+    let c = light.view_proj * vec4<f32>(world, 1.0);
+    let dx = shadow_coords_delta(c, dpdx(world));
+    let dy = shadow_coords_delta(c, dpdy(world));
     let det = dx.x * dy.y - dx.y * dy.x;
     if abs(det) < 1e-20 {
         return vec2<f32>(0.0);

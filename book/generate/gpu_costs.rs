@@ -1,0 +1,96 @@
+//! The choosing chapter's GPU cost table: each lesson's recommended
+//! variants on an NVIDIA H100 with its clock held (one variant per process,
+//! 300 frames; `book/measured/h100-631f993/clock_held.txt`, whose README
+//! gives the commit and the commands), against the half millisecond over
+//! the no-shadow frame a shadow technique should cost on such a GPU.
+
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+
+use crate::table::row;
+use crate::volumes_gpu::DIR;
+
+/// What a shadow technique may cost over the no-shadow frame on a GPU like
+/// the H100 at 1920×1080.
+pub const BUDGET_MS: f64 = 0.5;
+
+/// One line of `clock_held.txt`.
+struct Line {
+    lesson: String,
+    variant: String,
+    total: f64,
+    baseline: f64,
+    cost: f64,
+    clock: String,
+}
+
+fn parse(text: &str) -> Result<Vec<Line>> {
+    let mut out = Vec::new();
+    for (i, l) in text.lines().enumerate().skip(1) {
+        let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+        if cells.len() != 8 {
+            bail!(
+                "clock_held.txt line {}: {} cells, not 8",
+                i + 1,
+                cells.len()
+            );
+        }
+        let (lesson, variant) = cells[0]
+            .split_once(' ')
+            .with_context(|| format!("clock_held.txt line {}: no variant", i + 1))?;
+        let num = |k: usize| -> Result<f64> {
+            cells[k]
+                .trim_start_matches('+')
+                .parse()
+                .with_context(|| format!("clock_held.txt line {}: cell {k}", i + 1))
+        };
+        out.push(Line {
+            lesson: lesson.into(),
+            variant: variant.into(),
+            total: num(1)?,
+            baseline: num(3)?,
+            cost: num(5)?,
+            clock: cells[7].into(),
+        });
+    }
+    Ok(out)
+}
+
+/// The table.
+pub fn table(root: &Path) -> Result<String> {
+    let path = root.join(DIR).join("clock_held.txt");
+    let text = std::fs::read_to_string(&path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    let mut s = format!(
+        "*NVIDIA H100 80GB HBM3, Vulkan · 1920×1080 · the default scenes · commit `631f993` (before the lit passes were compiled per variant, lesson 08's cull and lit-pass scissor) · one variant per process, median of 300 frames, the GPU kept busy: `{DIR}/README.md` · GPU ms from timestamps*\n\n"
+    );
+    s += &row(&[
+        "lesson".into(),
+        "variant".into(),
+        "GPU ms".into(),
+        "no shadows, GPU ms".into(),
+        "shadows cost".into(),
+        format!("within {BUDGET_MS} ms?"),
+        "SM clock, MHz (min, max)".into(),
+    ]);
+    s += &row(&vec!["---".to_string(); 7]);
+    for l in parse(&text)? {
+        s += &row(&[
+            l.lesson.clone(),
+            format!("`{}`", l.variant),
+            format!("{:.2}", l.total),
+            format!("{:.2}", l.baseline),
+            format!("{:+.2} ms", l.cost),
+            if l.cost <= BUDGET_MS { "yes" } else { "no" }.into(),
+            l.clock.clone(),
+        ]);
+    }
+    Ok(s)
+}
+
+/// Writes `choosing/gpu_costs.md`.
+pub fn write(root: &Path, generated: &Path) -> Result<()> {
+    let path = generated.join("choosing/gpu_costs.md");
+    std::fs::write(&path, table(root)?).with_context(|| format!("cannot write {}", path.display()))
+}
