@@ -670,11 +670,13 @@ fn measure(
             // refuses it by name in one line; where it stops is a result.
             Err(e) if step.variants.len() == 1 && limit_line(&e.to_string()).is_some() => {
                 let (variant, x, label) = &step.xs[0];
+                let why = limit_line(&e.to_string()).unwrap_or_default();
+                let own = format!("{}: ", plan.lesson);
                 stops.push(SweepStop {
                     x: *x,
                     label: label.clone(),
                     variant: variant.to_string(),
-                    why: limit_line(&e.to_string()).unwrap_or_default(),
+                    why: why.strip_prefix(&own).unwrap_or(&why).to_string(),
                 });
                 bar.inc(1);
                 continue;

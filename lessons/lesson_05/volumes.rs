@@ -34,7 +34,7 @@
 use std::ops::Range;
 
 use anyhow::Result;
-use common::glam::{DVec3, Mat4};
+use common::glam::Mat4;
 use common::gpu::lit::LitPass;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
@@ -48,12 +48,14 @@ use super::extrusion::{
     cpu_volume_parts, world_light, CpuParts, CpuVertex, Extrusion, VolumeRanges,
 };
 use super::fit;
-use super::quads::{degenerate_quads, quad_sizes, QuadVertex, QUAD_VERTEX_BYTES, REACH_SLOT};
-use super::silhouette::caster_adjacency;
+use super::quads::REACH_SLOT;
 use super::stencil::{Counting, Method, VolumePipelines};
 use crate::lesson_01::tally::Tally;
 
+mod casters;
 mod costs;
+use casters::build_casters;
+pub use casters::VolumeCaster;
 pub use costs::{base_and_lit_draws, VolumeCosts};
 
 /// Which pipelines [`ShadowVolumes::draw_casters`] draws with: the volume
@@ -111,31 +113,6 @@ pub struct LightVolumes<'a> {
     pub draws: &'a [CasterDraw],
 }
 
-/// One shadow caster: its welded adjacency and its pre-built quads.
-pub struct VolumeCaster {
-    /// Index into `scene.objects`.
-    pub object: usize,
-    pub adjacency: Adjacency,
-    /// det(model) < 0: windings flip in world space.
-    pub mirrored: bool,
-    /// Origin-relative bounding sphere.
-    pub center: DVec3,
-    pub radius: f64,
-    quad_vertices: wgpu::Buffer,
-    quad_indices: wgpu::Buffer,
-    pub quad_ranges: VolumeRanges,
-}
-
-impl VolumeCaster {
-    /// The pre-built quads' vertex and index buffers (cheap handles), and
-    /// the index count of the whole volume: sides, front cap and back cap.
-    pub fn quad_buffers(&self) -> (wgpu::Buffer, wgpu::Buffer, u32) {
-        let r = &self.quad_ranges;
-        let count = r.sides.end.max(r.front.end).max(r.back.end);
-        (self.quad_vertices.clone(), self.quad_indices.clone(), count)
-    }
-}
-
 /// The per-frame CPU geometry: one buffer for every light, so the writes of
 /// light 0 and light 1 do not overwrite each other before the submit.
 #[derive(Default)]
@@ -175,70 +152,8 @@ impl ShadowVolumes {
     /// Every caster's adjacency and pre-built quads, and the pipelines of
     /// both extrusions, counting with `counting`.
     pub fn new(gpu: &Gpu, scene: &SceneGpu, counting: &Counting) -> Result<ShadowVolumes> {
-        use wgpu::util::DeviceExt;
-        let mut casters = Vec::new();
+        let casters = build_casters(gpu, scene);
         let models = scene.scene.relative_models();
-        let max_buffer = gpu.device.limits().max_buffer_size;
-        for (i, o) in scene.scene.objects.iter().enumerate() {
-            if !o.casts_shadow {
-                continue;
-            }
-            let adjacency = caster_adjacency(&o.mesh);
-            let model = models[i];
-            let world: Vec<DVec3> = adjacency
-                .positions
-                .iter()
-                .map(|p| model.as_dmat4().transform_point3(p.as_dvec3()))
-                .collect();
-            let (lo, hi) = world
-                .iter()
-                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), p| {
-                    (a.min(*p), b.max(*p))
-                });
-            let center = (lo + hi) * 0.5;
-            let radius =
-                world.iter().map(|p| p.distance(center)).fold(0.0, f64::max) * (1.0 + 1e-6) + 1e-6;
-            // Built only if every caster's quads fit (`quads_unfit` below).
-            let (verts, idx, quad_ranges) = match quad_sizes(&adjacency) {
-                (v, i) if v * QUAD_VERTEX_BYTES > max_buffer || i * 4 > max_buffer => {
-                    Default::default()
-                }
-                _ => degenerate_quads(&adjacency),
-            };
-            let buf = |label: &str, contents: &[u8], usage| {
-                gpu.device
-                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents,
-                        usage,
-                    })
-            };
-            // wgpu rejects empty buffers: a caster with no edges gets one dummy.
-            let verts = if verts.is_empty() {
-                vec![QuadVertex::zeroed_vertex()]
-            } else {
-                verts
-            };
-            let idx_bytes: Vec<u32> = if idx.is_empty() { vec![0] } else { idx };
-            casters.push(VolumeCaster {
-                object: i,
-                mirrored: model.determinant() < 0.0,
-                center,
-                radius,
-                quad_vertices: buf(
-                    "volume quads",
-                    bytemuck::cast_slice(&verts),
-                    wgpu::BufferUsages::VERTEX,
-                ),
-                quad_indices: buf(
-                    "volume quad indices",
-                    bytemuck::cast_slice(&idx_bytes),
-                    wgpu::BufferUsages::INDEX,
-                ),
-                quad_ranges,
-                adjacency,
-            });
-        }
         let lights = scene.scene.lights.len();
         let objects = &scene.scene.objects;
         let adjacency: Vec<(&str, &Adjacency)> = (casters.iter())
