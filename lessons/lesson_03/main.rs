@@ -216,7 +216,7 @@ impl Lesson for Pcf {
                     ("MODE", (k % Filter::MODES) as f64),
                     ("RENDERER_BIAS", (k / Filter::MODES) as f64),
                 ];
-                Some(scene.lit_pipeline_specialised(
+                Some(scene.lit_pipeline_with_depth(
                     gpu,
                     &module,
                     "fs_lit",

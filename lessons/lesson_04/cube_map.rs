@@ -246,7 +246,7 @@ impl LitKey {
             ("PEER", self.peer as f64),
             ("FILTERED", self.filtered as u32 as f64),
         ];
-        scene.lit_pipeline_specialised(
+        scene.lit_pipeline_with_depth(
             gpu,
             module,
             "fs_lit",

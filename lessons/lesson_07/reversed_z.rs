@@ -154,6 +154,7 @@ impl ReversedZ {
             "fs_stencil_lit",
             &[],
             reversed_depth(GreaterEqual, false, lit_stencil(), Default::default()),
+            &[],
         );
         Ok(ReversedZ {
             scene: s,

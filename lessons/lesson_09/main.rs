@@ -160,7 +160,7 @@ impl Lesson for Csm {
         };
         let layout = csm::csm_layout(gpu);
         let lit_pipelines = [false, true].map(|blend| {
-            scene.lit_pipeline_specialised(
+            scene.lit_pipeline_with_depth(
                 gpu,
                 &module,
                 "fs_lit",

@@ -56,7 +56,7 @@ impl SceneGpu {
         stencil: wgpu::StencilState,
     ) -> wgpu::RenderPipeline {
         let depth_stencil = self.lit_depth_state(stencil);
-        self.lit_pipeline_with_depth(gpu, module, fs_entry, extra, depth_stencil)
+        self.lit_pipeline_with_depth(gpu, module, fs_entry, extra, depth_stencil, &[])
     }
 
     /// The lit pass's depth test: where the depth equals the base pass's
@@ -73,24 +73,13 @@ impl SceneGpu {
     }
 
     /// [`SceneGpu::lit_pipeline`] with another depth test (lesson 07's
-    /// reversed-Z tests `GreaterEqual` on its own depth format).
-    pub fn lit_pipeline_with_depth(
-        &self,
-        gpu: &Gpu,
-        module: &wgpu::ShaderModule,
-        fs_entry: &str,
-        extra: &[&wgpu::BindGroupLayout],
-        depth_stencil: wgpu::DepthStencilState,
-    ) -> wgpu::RenderPipeline {
-        self.lit_pipeline_specialised(gpu, module, fs_entry, extra, depth_stencil, &[])
-    }
-
-    /// [`SceneGpu::lit_pipeline_with_depth`] with the fragment shader's
-    /// `override` constants set: a variant's choices fixed when the pipeline
-    /// is compiled, so the compiler drops the branches the variant does not
+    /// reversed-Z tests `GreaterEqual` on its own depth format; else
+    /// [`SceneGpu::lit_depth_state`]) and the fragment shader's `override`
+    /// constants set: a variant's choices fixed when the pipeline is
+    /// compiled, so the compiler drops the branches the variant does not
     /// take (a software rasteriser runs every branch of a switch it cannot
     /// prove dead, masked, texture reads included).
-    pub fn lit_pipeline_specialised(
+    pub fn lit_pipeline_with_depth(
         &self,
         gpu: &Gpu,
         module: &wgpu::ShaderModule,
