@@ -443,11 +443,23 @@ fn h100_default_scenes_are_within_tolerance_of_the_records() {
             .iter()
             .find(|r| r.lesson == lesson && r.name == "results")
             .expect("a results run");
-        let rec = record(run);
+        let mut rec = record(run);
         let text = read(&dir.join(format!("{lesson}.json")));
         let report: common::measure::report::Report =
             serde_json::from_str(&text).expect("a report");
         assert!(report.adapter.name.contains("H100"));
+        // The H100 ran commit 631f993: a variant added since (lesson 08's
+        // cull) has no H100 figures, and is checked on lavapipe only.
+        let ran = |name: &str| report.variants.iter().any(|w| w.name == name);
+        let added_since: &[&str] = match lesson.as_str() {
+            "lesson_08" => &["cull", "cull_bounds_scissor"],
+            _ => &[],
+        };
+        for v in &rec.variants {
+            let new = added_since.contains(&v.name.as_str());
+            assert_eq!(ran(&v.name), !new, "{lesson}: {} on the H100", v.name);
+        }
+        rec.variants.retain(|v| ran(&v.name));
         assert_eq!((report.width, report.height), (rec.width, rec.height));
         let fresh = fresh_record(&run.id(), &rec, &report);
         let n = within_tolerance(&rec, &fresh)
