@@ -166,15 +166,11 @@ pub struct ComputeVolumes {
 
 impl ComputeVolumes {
     /// Uploads every caster's adjacency and sizes the outputs for the
-    /// worst case. A one-line error if the adapter cannot, or if the
-    /// buffers would pass its limits.
+    /// worst case. A one-line error if the adapter cannot; whether the
+    /// buffers fit its limits is `fit::compute_unfit`'s to say, before.
     pub fn new(gpu: &Gpu, casters: &[&Adjacency], lights: usize) -> Result<ComputeVolumes> {
         if let Some(why) = unavailable(gpu) {
             bail!("{why}");
-        }
-        let named: Vec<(&str, &Adjacency)> = casters.iter().map(|a| ("a caster", *a)).collect();
-        if let Some(why) = super::fit::compute_unfit(gpu, &named, lights) {
-            bail!("{why}: the _cpu and _quads variants build these volumes");
         }
         let limits = gpu.device.limits();
         let packed: Vec<PackedMesh> = casters.iter().map(|a| pack_adjacency(a)).collect();

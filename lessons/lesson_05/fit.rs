@@ -15,7 +15,9 @@
 //! quad ([`quad_sizes`]): E for a closed manifold mesh.
 
 use super::adjacency::Adjacency;
-use super::quads::{quad_sizes, QUAD_VERTEX_BYTES};
+#[cfg(doc)]
+use super::quads::quad_sizes;
+use super::quads::QUAD_VERTEX_BYTES;
 use common::gpu::Gpu;
 
 /// Bytes per CPU-route or compute-route vertex (`CpuVertex`).
@@ -61,11 +63,11 @@ pub fn worst_case_vertices(casters: &[&Adjacency], lights: usize) -> u64 {
 }
 
 /// Why the quads route's buffers would pass a limit, or `None`: each
-/// caster's vertex and index buffers against `max_buffer_size`.
-pub fn quads_unfit(gpu: &Gpu, casters: &[(&str, &Adjacency)]) -> Option<String> {
+/// caster's vertex and index buffers (its name and [`quad_sizes`]) against
+/// `max_buffer_size`.
+pub fn quads_unfit(gpu: &Gpu, casters: &[(&str, (u64, u64))]) -> Option<String> {
     let max = gpu.device.limits().max_buffer_size;
-    casters.iter().find_map(|(name, adj)| {
-        let (vertices, indices) = quad_sizes(adj);
+    casters.iter().find_map(|&(name, (vertices, indices))| {
         let what = format!(
             "the quad route's vertex buffer for {name} ({vertices} vertices × {QUAD_VERTEX_BYTES} bytes)"
         );

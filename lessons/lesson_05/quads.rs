@@ -124,7 +124,11 @@ fn quad_copies(group: &[(i32, bool)]) -> u32 {
 /// without building them: what the quads route's buffers will hold, to
 /// check against the adapter's limits first.
 pub fn quad_sizes(adj: &Adjacency) -> (u64, u64) {
-    let two_sided = pair_twins(adj);
+    sizes_with(adj, &pair_twins(adj))
+}
+
+/// [`quad_sizes`] with the faces' pairing ([`pair_twins`]) already made.
+fn sizes_with(adj: &Adjacency, two_sided: &[Option<bool>]) -> (u64, u64) {
     let (mut vertices, mut indices) = (0u64, 0u64);
     for e in &adj.edges {
         let faces: Vec<(i32, bool)> = (adj.faces_of(e).iter())
@@ -163,7 +167,7 @@ pub fn quad_sizes(adj: &Adjacency) -> (u64, u64) {
 /// Returns (vertices, indices, index ranges).
 pub fn degenerate_quads(adj: &Adjacency) -> (Vec<QuadVertex>, Vec<u32>, VolumeRanges) {
     let two_sided = pair_twins(adj);
-    let (n_verts, n_idx) = quad_sizes(adj);
+    let (n_verts, n_idx) = sizes_with(adj, &two_sided);
     let mut verts: Vec<QuadVertex> = Vec::with_capacity(n_verts as usize);
     let mut idx: Vec<u32> = Vec::with_capacity(n_idx as usize);
     // One face as a quad vertex sees it: (runs, two-sided, normal, point).

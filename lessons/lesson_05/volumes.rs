@@ -159,9 +159,12 @@ impl ShadowVolumes {
         let adjacency: Vec<(&str, &Adjacency)> = (casters.iter())
             .map(|c| (objects[c.object].mesh.name.as_str(), &c.adjacency))
             .collect();
+        let sizes: Vec<(&str, (u64, u64))> = (casters.iter())
+            .map(|c| (objects[c.object].mesh.name.as_str(), c.quad_sizes))
+            .collect();
         let unfit = [
             fit::cpu_unfit(gpu, &adjacency, lights),
-            fit::quads_unfit(gpu, &adjacency),
+            fit::quads_unfit(gpu, &sizes),
             compute::unavailable(gpu).or_else(|| fit::compute_unfit(gpu, &adjacency, lights)),
         ];
         let reach = vec![vec![0.0; casters.len()]; lights];
@@ -317,6 +320,9 @@ impl ShadowVolumes {
         scene: &SceneGpu,
         draws: &[Vec<CasterDraw>],
     ) -> Result<()> {
+        if let Some(why) = self.unfit(Extrusion::Compute) {
+            anyhow::bail!("{why}");
+        }
         if self.compute.is_none() {
             let adjacency: Vec<_> = self.casters.iter().map(|c| &c.adjacency).collect();
             let lights = scene.scene.lights.len();

@@ -23,6 +23,9 @@ pub struct VolumeCaster {
     pub(super) quad_vertices: wgpu::Buffer,
     pub(super) quad_indices: wgpu::Buffer,
     pub quad_ranges: VolumeRanges,
+    /// (vertices, indices) of its quads ([`quad_sizes`]), counted once:
+    /// what `fit::quads_unfit` checks.
+    pub quad_sizes: (u64, u64),
 }
 
 impl VolumeCaster {
@@ -64,7 +67,8 @@ pub(super) fn build_casters(gpu: &Gpu, scene: &SceneGpu) -> Vec<VolumeCaster> {
         let radius =
             world.iter().map(|p| p.distance(center)).fold(0.0, f64::max) * (1.0 + 1e-6) + 1e-6;
         // Built only if every caster's quads fit (`quads_unfit` below).
-        let (verts, idx, quad_ranges) = match quad_sizes(&adjacency) {
+        let quad_sizes = quad_sizes(&adjacency);
+        let (verts, idx, quad_ranges) = match quad_sizes {
             (v, i) if v * QUAD_VERTEX_BYTES > max_buffer || i * 4 > max_buffer => {
                 Default::default()
             }
@@ -101,6 +105,7 @@ pub(super) fn build_casters(gpu: &Gpu, scene: &SceneGpu) -> Vec<VolumeCaster> {
                 wgpu::BufferUsages::INDEX,
             ),
             quad_ranges,
+            quad_sizes,
             adjacency,
         });
     }
