@@ -64,6 +64,12 @@ struct Cli {
     /// proves that the checks can fail and that each says why.
     #[arg(long)]
     check_starters: bool,
+    /// For maintainers (CI), built with `--features chapter_copies`: grade
+    /// each exercise answered with the nearest code its chapter prints
+    /// (`tests/chapter_copies/`) and succeed only if EVERY one fails,
+    /// which proves that no chapter hands out its exercises' answers.
+    #[arg(long)]
+    check_copies: bool,
 }
 
 /// The workbook's root: where this binary was built from.
@@ -100,6 +106,8 @@ fn rebuild_lessons() -> Result<()> {
         .current_dir(root());
     if cfg!(feature = "solutions") {
         cmd.args(["--features", "solutions"]);
+    } else if cfg!(feature = "chapter_copies") {
+        cmd.args(["--features", "chapter_copies"]);
     }
     let status = cmd
         .status()
@@ -113,6 +121,12 @@ fn rebuild_lessons() -> Result<()> {
 fn run(cli: Cli) -> Result<bool> {
     if cli.check_starters && cfg!(feature = "solutions") {
         bail!("--check-starters grades the starter code: build without --features solutions");
+    }
+    if cli.check_copies && (cfg!(feature = "solutions") || !cfg!(feature = "chapter_copies")) {
+        bail!("--check-copies grades the chapters' copies: build with --features chapter_copies (and without solutions)");
+    }
+    if cli.check_starters && cfg!(feature = "chapter_copies") {
+        bail!("--check-starters grades the starter code: build without --features chapter_copies");
     }
     let root = root();
     let lessons = if cli.lessons.is_empty() {
@@ -205,6 +219,8 @@ fn run(cli: Cli) -> Result<bool> {
         all.len() - passed,
         if cfg!(feature = "solutions") {
             "reference solutions"
+        } else if cfg!(feature = "chapter_copies") {
+            "the chapters' own code, copied"
         } else {
             "your code"
         },
@@ -225,6 +241,25 @@ fn run(cli: Cli) -> Result<bool> {
         }
         println!(
             "starter check passed: all {} starters fail, each with its likely cause",
+            all.len()
+        );
+        return Ok(true);
+    }
+    if cli.check_copies {
+        let bad: Vec<String> = all
+            .iter()
+            .filter(|r| r.passed)
+            .map(|r| format!("{} {}", r.lesson, r.exercise))
+            .collect();
+        if !bad.is_empty() {
+            println!(
+                "copy check FAILED: the chapter's own code passes these exercises: {}",
+                bad.join(", ")
+            );
+            return Ok(false);
+        }
+        println!(
+            "copy check passed: all {} exercises fail when answered with the chapter's code",
             all.len()
         );
         return Ok(true);
