@@ -18,6 +18,7 @@ mod gpu_costs;
 mod lesson09;
 mod manifest;
 mod plots;
+mod prose;
 mod record;
 mod runner;
 mod scaling;
@@ -224,6 +225,9 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     sets::write_other_adapters(generated, &sets::load_sets(generated)?)?;
     let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
     write_plots(figures, &defaults)?;
+    for chapter in prose::write_chapters(&root.join("book/src"), generated)? {
+        println!("figures in prose rewritten: {chapter}");
+    }
     let readme = root.join("README.md");
     let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
     let text = summary::splice(&text, &summary::readme_block(&defaults))

@@ -24,7 +24,8 @@ pub fn count(n: u64) -> String {
     out
 }
 
-fn ms(x: f64) -> String {
+/// A time in milliseconds at the tables' precision.
+pub fn ms(x: f64) -> String {
     if x >= 100.0 {
         format!("{x:.0}")
     } else if x >= 10.0 {

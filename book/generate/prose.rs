@@ -1,0 +1,180 @@
+//! Measured figures inside the chapters' sentences, written by the
+//! generator. A chapter never types a number a run produced: it names the
+//! record cell, and `workbook book` / `workbook tables` writes the value
+//! between the markers (invisible in the rendered book):
+//!
+//! ```text
+//! <!--fig:lesson_07/results:clamp:misclassified_pct-->1.889 %<!--/fig-->
+//! ```
+//!
+//! The key is `RUN:VARIANT:FIELD`: `RUN` a record under
+//! `book/src/generated/` (`lesson_07/results` for `lesson_07/results.json`),
+//! `VARIANT` a variant's name (or `baseline` for the no-shadow frame), and
+//! `FIELD` one of
+//!
+//! - `misclassified_pct`, `false_shadow_pct`, `false_lit_pct`: `1.889 %`;
+//! - `mean_abs`: mean |ΔV| as the tables print it, `0.123 %`;
+//! - a counter's name: `37 390`;
+//! - `frame`, `cpu_total` or a pass (`lighting`, `volume`, ...): its median,
+//!   `12.4 ms`;
+//! - `cost`: the frame's time over the no-shadow baseline's, `+5.1 ms`, or
+//!   `no measurable difference` when their spreads overlap.
+//!
+//! `tests/book_prose.rs` fails when a chapter's marked value is not the
+//! record's, and when a sentence quotes a measured-looking figure that is
+//! neither marked nor in the chapter's included generated output.
+
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+
+use crate::record::Record;
+use crate::table::{count, ms, pct};
+
+/// Opens a marker: `<!--fig:KEY-->`.
+pub const OPEN: &str = "<!--fig:";
+/// Closes a marker's value.
+pub const CLOSE: &str = "<!--/fig-->";
+
+/// The text with every marker's value written from `lookup(key)`.
+pub fn fill(text: &str, lookup: &mut dyn FnMut(&str) -> Result<String>) -> Result<String> {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find(OPEN) {
+        let line = text[..text.len() - rest.len() + at].lines().count().max(1);
+        out.push_str(&rest[..at]);
+        let after = &rest[at + OPEN.len()..];
+        let Some(end_key) = after.find("-->") else {
+            bail!("line {line}: a `{OPEN}` marker without `-->`");
+        };
+        let key = &after[..end_key];
+        let value_start = &after[end_key + 3..];
+        let Some(end_value) = value_start.find(CLOSE) else {
+            bail!("line {line}: the marker `{key}` has no `{CLOSE}`");
+        };
+        if value_start[..end_value].contains('\n') || value_start[..end_value].contains(OPEN) {
+            bail!("line {line}: the marker `{key}` is not closed on its own line");
+        }
+        let value = lookup(key).with_context(|| format!("line {line}: `{key}`"))?;
+        out.push_str(OPEN);
+        out.push_str(key);
+        out.push_str("-->");
+        out.push_str(&value);
+        out.push_str(CLOSE);
+        rest = &value_start[end_value + CLOSE.len()..];
+    }
+    out.push_str(rest);
+    Ok(out)
+}
+
+/// The value of one key, read from the records under `generated`.
+pub fn lookup(generated: &Path, key: &str) -> Result<String> {
+    let mut parts = key.split(':');
+    let (Some(run), Some(variant), Some(field), None) =
+        (parts.next(), parts.next(), parts.next(), parts.next())
+    else {
+        bail!("a key is RUN:VARIANT:FIELD");
+    };
+    let path = generated.join(format!("{run}.json"));
+    let text =
+        std::fs::read_to_string(&path).with_context(|| format!("no record {}", path.display()))?;
+    let record: Record =
+        serde_json::from_str(&text).with_context(|| format!("{}: not a record", path.display()))?;
+    value(&record, variant, field)
+}
+
+/// One field of one variant of a record, formatted as the tables print it.
+pub fn value(record: &Record, variant: &str, field: &str) -> Result<String> {
+    let timing = |name: &str| {
+        if name == "baseline" {
+            return record.baseline.as_ref();
+        }
+        record
+            .variants
+            .iter()
+            .find(|v| v.name == name)
+            .and_then(|v| v.timing.as_ref())
+    };
+    if variant == "baseline" || ["frame", "cost"].contains(&field) || is_pass(record, field) {
+        let Some(t) = timing(variant) else {
+            bail!("no times for `{variant}` in the record");
+        };
+        if !t.stable() {
+            bail!("`{variant}`'s times are not quotable: {:?}", t.unstable);
+        }
+        if field == "cost" {
+            let Some(base) = record.baseline.as_ref() else {
+                bail!("no baseline in the record");
+            };
+            let (f, b) = (t.frame(), base.frame());
+            return Ok(if f.differs_from(b) {
+                format!("{:+.1} ms", f.median - b.median)
+            } else {
+                "no measurable difference".into()
+            });
+        }
+        let stat = if field == "frame" {
+            Some(t.frame())
+        } else {
+            t.passes.get(field)
+        };
+        let Some(stat) = stat else {
+            bail!("no time `{field}` for `{variant}`");
+        };
+        return Ok(format!("{} ms", ms(stat.median)));
+    }
+    let Some(v) = record.variants.iter().find(|v| v.name == variant) else {
+        bail!("no variant `{variant}` in the record");
+    };
+    Ok(match field {
+        "misclassified_pct" => format!("{} %", pct(v.misclassified_pct)),
+        "false_shadow_pct" => format!("{} %", pct(v.false_shadow_pct)),
+        "false_lit_pct" => format!("{} %", pct(v.false_lit_pct)),
+        "mean_abs" => format!("{} %", pct(100.0 * v.mean_abs)),
+        counter => match v.counters.get(counter) {
+            Some(&n) => count(n),
+            None => bail!("`{variant}` has no field or counter `{counter}`"),
+        },
+    })
+}
+
+/// Whether `field` names a timed pass of some variant in the record.
+fn is_pass(record: &Record, field: &str) -> bool {
+    record
+        .variants
+        .iter()
+        .filter_map(|v| v.timing.as_ref())
+        .any(|t| t.passes.contains_key(field))
+}
+
+/// Rewrites every chapter under `src` (not the generated files) with its
+/// markers' values from `generated`; returns the chapters changed.
+pub fn write_chapters(src: &Path, generated: &Path) -> Result<Vec<String>> {
+    let mut changed = Vec::new();
+    let mut stack = vec![src.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).with_context(|| format!("{}", dir.display()))? {
+            let p = e?.path();
+            if p.is_dir() {
+                if !p.ends_with("generated") && !p.ends_with("figures") && !p.ends_with("katex") {
+                    stack.push(p);
+                }
+                continue;
+            }
+            if p.extension().is_none_or(|x| x != "md") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&p)?;
+            if !text.contains(OPEN) {
+                continue;
+            }
+            let new = fill(&text, &mut |k| lookup(generated, k))
+                .with_context(|| format!("{}", p.display()))?;
+            if new != text {
+                std::fs::write(&p, &new)?;
+                changed.push(p.display().to_string());
+            }
+        }
+    }
+    Ok(changed)
+}
