@@ -16,6 +16,9 @@
 //! Pure std and the generator's own modules; no GPU. The scanner is tested
 //! on in-memory text first.
 
+#[path = "../book/generate/legend.rs"]
+#[allow(dead_code)]
+mod legend;
 #[path = "../book/generate/prose.rs"]
 mod prose;
 #[path = "../book/generate/record.rs"]

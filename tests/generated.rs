@@ -22,6 +22,9 @@ mod adapters;
 #[path = "../book/generate/choosing.rs"]
 #[allow(dead_code)]
 mod choosing;
+#[path = "../book/generate/legend.rs"]
+#[allow(dead_code)]
+mod legend;
 #[path = "../book/generate/lesson09.rs"]
 #[allow(dead_code)]
 mod lesson09;
@@ -95,9 +98,15 @@ fn committed_tables_are_the_tables_their_records_make() {
         let r = record(run);
         let dir = generated().join(run.lesson);
         let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
-        let mut expected = vec![(format!("{}.md", run.name), r.table(mean_abs))];
+        let mut expected = vec![(
+            format!("{}.md", run.name),
+            r.table(mean_abs).expect("every column defined"),
+        )];
         if run.timed {
-            expected.push((format!("{}_passes.md", run.name), r.passes_table()));
+            expected.push((
+                format!("{}_passes.md", run.name),
+                r.passes_table().expect("every pass defined"),
+            ));
         }
         for (file, want) in expected {
             let got = read(&dir.join(&file));
@@ -192,11 +201,11 @@ fn derived_tables_are_the_tables_their_records_make() {
 fn an_edited_cell_is_caught() {
     let run = &manifest::RUNS[0];
     let mut r = record(run);
-    let table = r.table(false);
+    let table = r.table(false).expect("table");
     r.variants[0].misclassified_pct += 0.01;
     assert_ne!(
         table,
-        r.table(false),
+        r.table(false).expect("table"),
         "the table must show a changed error cell"
     );
     let a = "x\n| a | 1.000 |\n";

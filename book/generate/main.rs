@@ -15,6 +15,7 @@ mod adapters;
 mod choosing;
 mod diagrams;
 mod gpu_costs;
+mod legend;
 mod lesson09;
 mod manifest;
 mod plots;
@@ -175,17 +176,7 @@ fn run(cli: Cli) -> Result<()> {
             &dir.join(format!("{}.json", run.name)),
             &serde_json::to_string_pretty(&record)?,
         )?;
-        let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
-        write(
-            &dir.join(format!("{}.md", run.name)),
-            &record.table(mean_abs),
-        )?;
-        if run.timed {
-            write(
-                &dir.join(format!("{}_passes.md", run.name)),
-                &record.passes_table(),
-            )?;
-        }
+        write_run_tables(&dir, run, &record)?;
     }
     if !main_set {
         bar.finish_with_message("runs done");
@@ -215,6 +206,9 @@ fn run(cli: Cli) -> Result<()> {
 /// and the README's results block.
 fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     let records = load_records(generated)?;
+    for (run, record) in RUNS.iter().zip(&records) {
+        write_run_tables(&generated.join(run.lesson), run, record)?;
+    }
     write_scenes_tables(generated, &records)?;
     choosing::write_all(generated, &records)?;
     volumes_gpu::write(root, generated)?;
@@ -233,6 +227,22 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     let text = summary::splice(&text, &summary::readme_block(&defaults))
         .with_context(|| format!("README.md has no line {}", summary::BEGIN))?;
     write(&readme, &text)
+}
+
+/// A run's results table and, for a timed run, its passes table.
+fn write_run_tables(dir: &Path, run: &Run, record: &Record) -> Result<()> {
+    let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
+    write(
+        &dir.join(format!("{}.md", run.name)),
+        &record.table(mean_abs)?,
+    )?;
+    if run.timed {
+        write(
+            &dir.join(format!("{}_passes.md", run.name)),
+            &record.passes_table()?,
+        )?;
+    }
+    Ok(())
 }
 
 /// The runner, building the lesson binaries first when one is missing.
@@ -493,7 +503,7 @@ fn write_scenes_tables(generated: &Path, records: &[Record]) -> Result<()> {
         if !cases.is_empty() {
             write(
                 &generated.join(l).join("scenes.md"),
-                &table::scenes_table(&cases),
+                &table::scenes_table(&cases)?,
             )?;
         }
     }

@@ -22,7 +22,7 @@ pub const BACKEND: &str = "vulkan";
 pub const ADAPTER: &str = "software";
 
 /// Lessons whose tables show the mean |ΔV| (fractional visibility).
-pub const MEAN_ABS_LESSONS: &[&str] = &["lesson_03"];
+pub const MEAN_ABS_LESSONS: &[&str] = &["lesson_03", "lesson_09"];
 
 /// One run of one lesson.
 #[derive(Clone, Copy, Debug)]

@@ -81,17 +81,19 @@ pub fn write_other_adapters(generated: &Path, sets: &[(String, Vec<Record>)]) ->
         let tables: Vec<String> = sets
             .iter()
             .filter_map(|(_, records)| {
-                let r = records
+                records
                     .iter()
-                    .find(|r| r.lesson == lesson && r.run == "results")?;
-                Some(format!(
+                    .find(|r| r.lesson == lesson && r.run == "results")
+            })
+            .map(|r| {
+                Ok(format!(
                     "**{} ({})**\n\n{}",
                     r.adapter,
                     r.backend,
-                    r.table(mean_abs)
+                    r.table(mean_abs)?
                 ))
             })
-            .collect();
+            .collect::<Result<_>>()?;
         let text = if tables.is_empty() && !sets.is_empty() {
             let names: Vec<&str> = sets.iter().map(|(n, _)| n.as_str()).collect();
             format!(

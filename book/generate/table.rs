@@ -4,6 +4,9 @@
 //! their spread). The chapters include them; `tests/generated.rs` checks
 //! each committed table against its record.
 
+use anyhow::Result;
+
+use crate::legend::legend;
 use crate::record::{Record, Stat, Timing, VariantRecord};
 
 /// An error percentage as the tables print it.
@@ -77,7 +80,7 @@ impl Record {
             .iter()
             .flat_map(|v| v.counters.keys().cloned())
             .collect();
-        keys.sort();
+        keys.sort_by_key(|k| crate::legend::counter_rank(k));
         keys.dedup();
         keys
     }
@@ -102,7 +105,7 @@ impl Record {
 
     /// The run's main table: one row a variant (and the no-shadow
     /// baseline, for timed runs).
-    pub fn table(&self, with_mean_abs: bool) -> String {
+    pub fn table(&self, with_mean_abs: bool) -> Result<String> {
         let mut head = vec![
             "variant".to_string(),
             "misclassified %".into(),
@@ -173,10 +176,11 @@ impl Record {
             }
             s += &row(&cells);
         }
+        s += &legend(&head)?;
         if let Some(note) = self.unstable_note() {
             s += &format!("\n{note}\n");
         }
-        s
+        Ok(s)
     }
 
     /// The lines under a table whose protocol check failed somewhere:
@@ -212,14 +216,14 @@ impl Record {
     }
 
     /// Per-pass times of a timed run: median [spread].
-    pub fn passes_table(&self) -> String {
+    pub fn passes_table(&self) -> Result<String> {
         let mut keys: Vec<String> = self
             .variants
             .iter()
             .filter_map(|v| v.timing.as_ref())
             .flat_map(|t| t.passes.keys().cloned())
             .collect();
-        keys.sort();
+        keys.sort_by_key(|k| crate::legend::pass_rank(k));
         keys.dedup();
         let mut head = vec!["variant".to_string()];
         head.extend(keys.iter().map(|k| format!("`{k}` ms")));
@@ -241,7 +245,8 @@ impl Record {
                 line(format!("`{}`", v.name), t);
             }
         }
-        s
+        s += &legend(&head)?;
+        Ok(s)
     }
 }
 
@@ -270,9 +275,9 @@ pub fn row(cells: &[String]) -> String {
 
 /// A lesson's extreme cases side by side: one row a run, one column a
 /// variant, misclassified % in the cells.
-pub fn scenes_table(records: &[&Record]) -> String {
+pub fn scenes_table(records: &[&Record]) -> Result<String> {
     let Some(first) = records.first() else {
-        return String::new();
+        return Ok(String::new());
     };
     let mut names: Vec<String> = Vec::new();
     for r in records {
@@ -302,5 +307,16 @@ pub fn scenes_table(records: &[&Record]) -> String {
         }
         s += &row(&cells);
     }
-    s
+    let own: Vec<(String, String)> = names
+        .iter()
+        .map(|n| {
+            (
+                format!("`{n}`"),
+                format!("variant `{n}`'s misclassified % on the row's scene"),
+            )
+        })
+        .collect();
+    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+    s += &crate::legend::legend_with(&head, &own)?;
+    Ok(s)
 }
