@@ -25,6 +25,7 @@ mod sets;
 mod stability;
 mod summary;
 mod table;
+mod volume_diagrams;
 mod volumes_gpu;
 
 use std::collections::BTreeMap;
@@ -202,9 +203,6 @@ fn run(cli: Cli) -> Result<()> {
     bar.finish_with_message("runs done");
     copy_outputs(&work, &figures, &generated, only.as_deref())?;
     derive(&root, &generated, &figures)?;
-    let dir = figures.join("diagrams");
-    std::fs::create_dir_all(&dir)?;
-    diagrams::write_all(&root, &dir)?;
     println!("regenerated in {:.0} s", start.elapsed().as_secs_f64());
     Ok(())
 }
@@ -224,6 +222,8 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     sets::write_other_adapters(generated, &sets::load_sets(generated)?)?;
     let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
     write_plots(figures, &defaults)?;
+    diagrams::write_all(root, &figures.join("diagrams"))?;
+    volume_diagrams::write_all(root, &figures.join("diagrams"))?;
     let readme = root.join("README.md");
     let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
     let text = summary::splice(&text, &summary::readme_block(&defaults))
