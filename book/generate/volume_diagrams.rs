@@ -382,8 +382,11 @@ const LIGHT_2D: P = (-2.6, 6.4);
 const EYE_2D: P = (7.6, 4.6);
 const FAR_Y: f64 = -2.6;
 
+/// A segment of the cross-section.
+type Segment = (P, P);
+
 /// The prism's cross-section: (front cap segments, silhouette points).
-fn prism_section() -> Result<(Vec<(P, P)>, Vec<P>)> {
+fn prism_section() -> Result<(Vec<Segment>, Vec<P>)> {
     let model = DMat4::from_translation(DVec3::new(0.2, 2.7, 0.0))
         * DMat4::from_rotation_z(20f64.to_radians())
         * DMat4::from_scale(DVec3::new(1.8, 0.8, 4.0));
