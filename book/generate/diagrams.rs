@@ -1,4 +1,4 @@
-//! The book's four conceptual diagrams, drawn as hand-built SVG from the
+//! The book's conceptual diagrams (chapter 05's are in `volume_diagrams.rs`), drawn as hand-built SVG from the
 //! workbook's own code and scenes (issue 9): every number a picture shows
 //! is computed here, from the lesson's functions, not typed in.
 
@@ -18,9 +18,9 @@ const LESSON_02_MAP_SIZE: u32 = 1024;
 /// Lesson 08's default image size, the one its tables are measured at.
 const SCREEN: (u32, u32) = (640, 360);
 
-type P = (f64, f64);
+pub(crate) type P = (f64, f64);
 
-/// Writes the four diagrams into `dir` and returns the file names written.
+/// Writes the diagrams into `dir` and returns the file names written.
 pub fn write_all(root: &Path, dir: &Path) -> Result<Vec<String>> {
     std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
     let mut names = Vec::new();
@@ -32,9 +32,10 @@ pub fn write_all(root: &Path, dir: &Path) -> Result<Vec<String>> {
     Ok(names)
 }
 
-/// The four diagrams, as (file name, SVG text).
-fn render(root: &Path) -> Result<[(&'static str, String); 4]> {
+/// The diagrams, as (file name, SVG text).
+fn render(root: &Path) -> Result<[(&'static str, String); 5]> {
     Ok([
+        ("shadow_map_idea.svg", shadow_map_idea()?),
         ("acne_staircase.svg", acne_staircase(root)?),
         ("zpass_zfail_ray.svg", zpass_zfail_ray()?),
         ("cube_faces.svg", cube_faces()?),
@@ -44,12 +45,12 @@ fn render(root: &Path) -> Result<[(&'static str, String); 4]> {
 
 /// Estimated width of one line of text: 0.6 em a character, generous for
 /// sans-serif, so that what fits by this estimate fits when rendered.
-fn text_width(s: &str, size: f64) -> f64 {
+pub(crate) fn text_width(s: &str, size: f64) -> f64 {
     0.6 * size * s.chars().count() as f64
 }
 
 /// The estimated horizontal extent of a text drawn at `x` with `anchor`.
-fn text_span(x: f64, size: f64, anchor: &str, s: &str) -> (f64, f64) {
+pub(crate) fn text_span(x: f64, size: f64, anchor: &str, s: &str) -> (f64, f64) {
     let w = text_width(s, size);
     match anchor {
         "start" => (x, x + w),
@@ -59,7 +60,7 @@ fn text_span(x: f64, size: f64, anchor: &str, s: &str) -> (f64, f64) {
 }
 
 /// Greedy word wrap of `s` into lines no wider than `width` (estimated).
-fn wrap(s: &str, size: f64, width: f64) -> Vec<String> {
+pub(crate) fn wrap(s: &str, size: f64, width: f64) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for word in s.split_whitespace() {
         match lines.last_mut() {
@@ -74,34 +75,34 @@ fn wrap(s: &str, size: f64, width: f64) -> Vec<String> {
 }
 
 /// Two attributes from a point: `x="…" y="…"`.
-fn xy(x: &str, y: &str, p: P) -> String {
+pub(crate) fn xy(x: &str, y: &str, p: P) -> String {
     format!(r#"{x}="{:.2}" {y}="{:.2}""#, p.0, p.1)
 }
 
 /// A hand-built SVG: white background, a title, then whatever is drawn.
-struct Svg {
-    w: f64,
-    h: f64,
+pub(crate) struct Svg {
+    pub(crate) w: f64,
+    pub(crate) h: f64,
     body: String,
 }
 
-const INK: &str = r##"stroke="#222" stroke-width="1.5" fill="none""##;
+pub(crate) const INK: &str = r##"stroke="#222" stroke-width="1.5" fill="none""##;
 
 /// A stroke style: colour, width, and a dash pattern ("" for none).
-fn stroke(colour: &str, width: f64, dash: &str) -> String {
+pub(crate) fn stroke(colour: &str, width: f64, dash: &str) -> String {
     format!(r#"stroke="{colour}" stroke-width="{width}" stroke-dasharray="{dash}" fill="none""#)
 }
 
-fn fill(colour: &str, edge: &str) -> String {
+pub(crate) fn fill(colour: &str, edge: &str) -> String {
     format!(r#"fill="{colour}" stroke="{edge}" stroke-width="1.5""#)
 }
 
-fn add(p: P, dx: f64, dy: f64) -> P {
+pub(crate) fn add(p: P, dx: f64, dy: f64) -> P {
     (p.0 + dx, p.1 + dy)
 }
 
 impl Svg {
-    fn new(w: f64, h: f64, title: &str) -> Svg {
+    pub(crate) fn new(w: f64, h: f64, title: &str) -> Svg {
         let mut s = Svg {
             w,
             h,
@@ -110,15 +111,15 @@ impl Svg {
         s.text((w / 2.0, 24.0), 17.0, "middle", title);
         s
     }
-    fn line(&mut self, a: P, b: P, style: &str) {
+    pub(crate) fn line(&mut self, a: P, b: P, style: &str) {
         let (a, b) = (xy("x1", "y1", a), xy("x2", "y2", b));
         let _ = writeln!(self.body, "<line {a} {b} {style}/>");
     }
-    fn arrow(&mut self, a: P, b: P, colour: &str) {
+    pub(crate) fn arrow(&mut self, a: P, b: P, colour: &str) {
         let style = stroke(colour, 1.5, "") + r#" marker-end="url(#arrow)""#;
         self.line(a, b, &style);
     }
-    fn poly(&mut self, pts: &[P], closed: bool, style: &str) {
+    pub(crate) fn poly(&mut self, pts: &[P], closed: bool, style: &str) {
         let pts: Vec<String> = pts
             .iter()
             .map(|p| format!("{:.2},{:.2}", p.0, p.1))
@@ -126,34 +127,34 @@ impl Svg {
         let tag = if closed { "polygon" } else { "polyline" };
         let _ = writeln!(self.body, r#"<{tag} points="{}" {style}/>"#, pts.join(" "));
     }
-    fn rect(&mut self, at: P, size: P, style: &str) {
+    pub(crate) fn rect(&mut self, at: P, size: P, style: &str) {
         let (at, size) = (xy("x", "y", at), xy("width", "height", size));
         let _ = writeln!(self.body, "<rect {at} {size} {style}/>");
     }
-    fn circle(&mut self, c: P, r: f64, style: &str) {
+    pub(crate) fn circle(&mut self, c: P, r: f64, style: &str) {
         let c = xy("cx", "cy", c);
         let _ = writeln!(self.body, r#"<circle {c} r="{r:.2}" {style}/>"#);
     }
-    fn text(&mut self, at: P, size: f64, anchor: &str, s: &str) {
+    pub(crate) fn text(&mut self, at: P, size: f64, anchor: &str, s: &str) {
         let s = s.replace('&', "&amp;").replace('<', "&lt;");
         let at = xy("x", "y", at);
         let attrs = format!(r#"{at} font-size="{size:.0}" text-anchor="{anchor}""#);
         let _ = writeln!(self.body, "<text {attrs}>{s}</text>");
     }
     /// Lines one under another; returns the baseline a next line would take.
-    fn texts(&mut self, at: P, size: f64, anchor: &str, lines: &[String]) -> f64 {
+    pub(crate) fn texts(&mut self, at: P, size: f64, anchor: &str, lines: &[String]) -> f64 {
         for (i, l) in lines.iter().enumerate() {
             self.text((at.0, at.1 + (size + 5.0) * i as f64), size, anchor, l);
         }
         at.1 + (size + 5.0) * lines.len() as f64
     }
     /// `s` wrapped to `width` and drawn as lines; returns the next baseline.
-    fn para(&mut self, at: P, size: f64, anchor: &str, width: f64, s: &str) -> f64 {
+    pub(crate) fn para(&mut self, at: P, size: f64, anchor: &str, width: f64, s: &str) -> f64 {
         self.texts(at, size, anchor, &wrap(s, size, width))
     }
     /// The document; the white background is drawn here, so that `h` may
     /// be set once the content's height is known.
-    fn finish(mut self) -> String {
+    pub(crate) fn finish(mut self) -> String {
         let body = std::mem::take(&mut self.body);
         self.rect((0.0, 0.0), (self.w, self.h), r##"fill="#fff""##);
         self.body += &body;
@@ -168,6 +169,124 @@ impl Svg {
             body = self.body
         )
     }
+}
+
+// ---------------------------------------------------------------- shadow map idea
+
+/// The shadow-map family's idea in a side view: a point light, a box caster
+/// over a floor, and two receiver points, each compared with the depth the
+/// map stores along its ray (the nearest surface the light sees).
+const MAP_LIGHT: P = (-1.0, 6.0);
+const MAP_BOX: (P, P) = ((0.2, 2.4), (2.2, 3.2));
+
+/// The distance from the light to the first surface along the ray
+/// towards `dir`: the box's sides or the floor (y = 0).
+fn first_hit(dir: P) -> f64 {
+    let (lo, hi) = MAP_BOX;
+    let mut best = -MAP_LIGHT.1 / dir.1;
+    let sides = [
+        ((lo.0, lo.1), (hi.0, lo.1)),
+        ((lo.0, hi.1), (hi.0, hi.1)),
+        ((lo.0, lo.1), (lo.0, hi.1)),
+        ((hi.0, lo.1), (hi.0, hi.1)),
+    ];
+    for (a, b) in sides {
+        let e = (b.0 - a.0, b.1 - a.1);
+        let den = dir.0 * e.1 - dir.1 * e.0;
+        if den.abs() < 1e-12 {
+            continue;
+        }
+        let w = (a.0 - MAP_LIGHT.0, a.1 - MAP_LIGHT.1);
+        let (t, u) = (
+            (w.0 * e.1 - w.1 * e.0) / den,
+            (w.0 * dir.1 - w.1 * dir.0) / den,
+        );
+        if t > 0.0 && (0.0..=1.0).contains(&u) {
+            best = best.min(t);
+        }
+    }
+    best
+}
+
+fn shadow_map_idea() -> Result<String> {
+    let title = "The shadow-map idea: store the nearest depth per ray, then compare";
+    let mut s = Svg::new(800.0, 0.0, title);
+    let (lo, hi) = MAP_BOX;
+    // The box's shadow on the floor, from its lower-left and upper-right corners.
+    let on_floor = |p: P| MAP_LIGHT.0 + (p.0 - MAP_LIGHT.0) * MAP_LIGHT.1 / (MAP_LIGHT.1 - p.1);
+    let (s0, s1) = (on_floor((lo.0, hi.1)), on_floor((hi.0, lo.1)));
+    let receivers = [("A", ((s0 + s1) / 2.0, 0.0)), ("B", (s1 + 1.6, 0.0))];
+    let (x0, y1, k) = (-2.0, 6.6, 62.0);
+    let at = |p: P| (40.0 + (p.0 - x0) * k, 50.0 + (y1 - p.1) * k);
+    s.line(
+        at((x0, 0.0)),
+        at((x0 + 11.5, 0.0)),
+        &stroke("#8b5a2b", 3.0, ""),
+    );
+    s.text(
+        add(at((x0, 0.0)), 4.0, 18.0),
+        12.0,
+        "start",
+        "receiver (floor)",
+    );
+    let corner = at((lo.0, hi.1));
+    s.rect(
+        corner,
+        ((hi.0 - lo.0) * k, (hi.1 - lo.1) * k),
+        &fill("#c9553f", "#222"),
+    );
+    s.text(add(at((hi.0, hi.1)), 8.0, -4.0), 12.0, "start", "caster");
+    let (a, b) = (at((s0, 0.0)), at((s1, 0.0)));
+    s.line(a, b, &stroke("#555", 7.0, ""));
+    s.text(add(at((s0, 0.0)), 0.0, 18.0), 12.0, "start", "shadow");
+    let mut lines = Vec::new();
+    for (name, p) in receivers {
+        let d = (p.0 - MAP_LIGHT.0, p.1 - MAP_LIGHT.1);
+        let depth = (d.0 * d.0 + d.1 * d.1).sqrt();
+        let dir = (d.0 / depth, d.1 / depth);
+        let stored = first_hit(dir);
+        let hit = (MAP_LIGHT.0 + stored * dir.0, MAP_LIGHT.1 + stored * dir.1);
+        let shadowed = depth > stored + 1e-9;
+        let colour = ["#2ca02c", "#d62728"][shadowed as usize];
+        s.line(at(MAP_LIGHT), at(hit), &stroke("#a80", 2.0, ""));
+        if shadowed {
+            s.line(at(hit), at(p), &stroke("#a80", 1.5, "5,4"));
+        }
+        s.circle(at(hit), 5.0, &fill("#1f5fbf", "none"));
+        s.circle(at(p), 6.0, &fill(colour, "#222"));
+        s.text(add(at(p), 0.0, 34.0), 14.0, "middle", name);
+        let (sign, verdict) = if shadowed {
+            (">", "in shadow")
+        } else {
+            ("≤", "lit")
+        };
+        lines.push(format!(
+            "{name}: its depth {depth:.2} {sign} stored {stored:.2} → {verdict}"
+        ));
+    }
+    s.circle(at(MAP_LIGHT), 10.0, &fill("#ffd400", "#a80"));
+    s.text(add(at(MAP_LIGHT), 14.0, 5.0), 12.0, "start", "light");
+    let legend = [
+        (
+            "#1f5fbf",
+            "the depth the map stores: the first surface along the ray",
+        ),
+        ("#2ca02c", "receiver point as far as the stored depth: lit"),
+        (
+            "#d62728",
+            "receiver point farther than the stored depth: shadowed",
+        ),
+    ];
+    let mut y = at((0.0, 0.0)).1 + 64.0;
+    for (c, t) in legend {
+        s.rect((40.0, y - 10.0), (14.0, 10.0), &fill(c, "none"));
+        s.text((62.0, y), 12.0, "start", t);
+        y += 18.0;
+    }
+    y = s.texts((40.0, y + 8.0), 13.0, "start", &lines);
+    let note = "Pass 1 renders the scene from the light and keeps, per texel (per ray), the         distance to the nearest surface. Pass 2 takes each point the eye sees, finds its texel         and compares: farther than what the light saw means something is in between.";
+    s.h = s.para((40.0, y + 4.0), 12.0, "start", 720.0, note);
+    Ok(s.finish())
 }
 
 // ---------------------------------------------------------------- acne
@@ -317,11 +436,11 @@ fn acne_panel(s: &mut Svg, top: f64, name: &str, tan: f64, bias: f64) -> f64 {
 // ---------------------------------------------------------------- z-pass / z-fail
 
 /// One face of a 2D shadow volume, with its outward normal.
-struct Face {
-    a: P,
-    b: P,
-    name: &'static str,
-    out: P,
+pub(crate) struct Face {
+    pub(crate) a: P,
+    pub(crate) b: P,
+    pub(crate) name: &'static str,
+    pub(crate) out: P,
 }
 
 /// The 2D layout: a point light, an occluder segment, its volume's four
@@ -365,7 +484,7 @@ fn faces(poly: &[P]) -> Vec<Face> {
 
 /// Where the ray `eye + t (target − eye)` crosses each face: (t, ±1 as seen
 /// from the ray: +1 entering through a front face, −1 leaving by a back face).
-fn crossings(eye: P, target: P, faces: &[Face]) -> Vec<(f64, i32, &'static str)> {
+pub(crate) fn crossings(eye: P, target: P, faces: &[Face]) -> Vec<(f64, i32, &'static str)> {
     let d = (target.0 - eye.0, target.1 - eye.1);
     let mut out = Vec::new();
     for f in faces {
@@ -387,11 +506,11 @@ fn crossings(eye: P, target: P, faces: &[Face]) -> Vec<(f64, i32, &'static str)>
 }
 
 /// "+1", "−1" with a true minus sign.
-fn signed(x: i32) -> String {
+pub(crate) fn signed(x: i32) -> String {
     format!("{x:+}").replace('-', "−")
 }
 
-fn inside(poly: &[P], p: P) -> bool {
+pub(crate) fn inside(poly: &[P], p: P) -> bool {
     let mut odd = false;
     for i in 0..poly.len() {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
@@ -736,7 +855,7 @@ fn sphere_outline(c: DVec3, r: f64, proj: DMat4, w: u32, h: u32) -> Vec<P> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// The value of attribute `name` in a tag's attribute text.
@@ -748,42 +867,46 @@ mod tests {
             .expect(name)
     }
 
-    /// Every text of every diagram lies inside its canvas by the same width
+    /// Every text of `svg` lies inside its canvas by the same width
     /// estimate the layout uses, and no two texts' boxes overlap.
+    pub(crate) fn assert_texts_fit(name: &str, svg: &str) {
+        let svg_tag = &svg[..svg.find('>').unwrap()];
+        let (w, h) = (attr(svg_tag, "width"), attr(svg_tag, "height"));
+        let mut boxes: Vec<(f64, f64, f64, f64, String)> = Vec::new();
+        for part in svg.split("<text").skip(1) {
+            let (tag, rest) = part.split_once('>').unwrap();
+            let text = rest.split_once("</text>").unwrap().0;
+            let text = text.replace("&lt;", "<").replace("&amp;", "&");
+            let anchor = tag
+                .split("text-anchor=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next();
+            let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
+            let (x0, x1) = text_span(x, size, anchor.unwrap(), &text);
+            let (y0, y1) = (y - 0.8 * size, y + 0.25 * size);
+            assert!(
+                x0 >= 0.0 && x1 <= w,
+                "{name}: {text:?} spans x {x0:.0}..{x1:.0} of {w}"
+            );
+            assert!(
+                y0 >= 0.0 && y1 <= h,
+                "{name}: {text:?} spans y {y0:.0}..{y1:.0} of {h}"
+            );
+            for (a0, a1, b0, b1, other) in &boxes {
+                let apart = x1 <= *a0 || *a1 <= x0 || y1 <= *b0 || *b1 <= y0;
+                assert!(apart, "{name}: {text:?} overlaps {other:?}");
+            }
+            boxes.push((x0, x1, y0, y1, text));
+        }
+    }
+
     #[test]
     fn texts_inside_the_canvas_and_apart() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
         for (name, svg) in render(root).unwrap() {
-            let svg_tag = &svg[..svg.find('>').unwrap()];
-            let (w, h) = (attr(svg_tag, "width"), attr(svg_tag, "height"));
-            let mut boxes: Vec<(f64, f64, f64, f64, String)> = Vec::new();
-            for part in svg.split("<text").skip(1) {
-                let (tag, rest) = part.split_once('>').unwrap();
-                let text = rest.split_once("</text>").unwrap().0;
-                let text = text.replace("&lt;", "<").replace("&amp;", "&");
-                let anchor = tag
-                    .split("text-anchor=\"")
-                    .nth(1)
-                    .unwrap()
-                    .split('"')
-                    .next();
-                let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
-                let (x0, x1) = text_span(x, size, anchor.unwrap(), &text);
-                let (y0, y1) = (y - 0.8 * size, y + 0.25 * size);
-                assert!(
-                    x0 >= 0.0 && x1 <= w,
-                    "{name}: {text:?} spans x {x0:.0}..{x1:.0} of {w}"
-                );
-                assert!(
-                    y0 >= 0.0 && y1 <= h,
-                    "{name}: {text:?} spans y {y0:.0}..{y1:.0} of {h}"
-                );
-                for (a0, a1, b0, b1, other) in &boxes {
-                    let apart = x1 <= *a0 || *a1 <= x0 || y1 <= *b0 || *b1 <= y0;
-                    assert!(apart, "{name}: {text:?} overlaps {other:?}");
-                }
-                boxes.push((x0, x1, y0, y1, text));
-            }
+            assert_texts_fit(name, &svg);
         }
     }
 }

@@ -27,6 +27,7 @@ mod sets;
 mod stability;
 mod summary;
 mod table;
+mod volume_diagrams;
 mod volumes_gpu;
 
 use std::collections::BTreeMap;
@@ -194,9 +195,6 @@ fn run(cli: Cli) -> Result<()> {
     bar.finish_with_message("runs done");
     copy_outputs(&work, &figures, &generated, only.as_deref())?;
     derive(&root, &generated, &figures)?;
-    let dir = figures.join("diagrams");
-    std::fs::create_dir_all(&dir)?;
-    diagrams::write_all(&root, &dir)?;
     println!("regenerated in {:.0} s", start.elapsed().as_secs_f64());
     Ok(())
 }
@@ -222,6 +220,8 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     for chapter in prose::write_chapters(&root.join("book/src"), generated)? {
         println!("figures in prose rewritten: {chapter}");
     }
+    diagrams::write_all(root, &figures.join("diagrams"))?;
+    volume_diagrams::write_all(root, &figures.join("diagrams"))?;
     let readme = root.join("README.md");
     let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
     let text = summary::splice(&text, &summary::readme_block(&defaults))
