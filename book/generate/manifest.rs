@@ -274,8 +274,8 @@ pub const FIGURES: &[Figure] = &[
     fig("lesson_09/results", "k4_cascades.png", "lesson_09/k4_cascades.png"),
     fig("lesson_09/results", "single_2048_diff_l0.png", "lesson_09/single_2048_diff.png"),
     fig("lesson_09/results", "k4_diff_l0.png", "lesson_09/k4_diff.png"),
-    fig("lesson_09/results", "k4_shimmer.png", "lesson_09/k4_shimmer.png"),
-    fig("lesson_09/results", "k4_aabb_nosnap_shimmer.png", "lesson_09/k4_aabb_nosnap_shimmer.png"),
+    fig("lesson_09/results", "k4_shimmer_over.png", "lesson_09/k4_shimmer.png"),
+    fig("lesson_09/results", "k4_aabb_nosnap_shimmer_over.png", "lesson_09/k4_aabb_nosnap_shimmer.png"),
 ];
 
 /// Text files a run writes that the book includes as they are (measured

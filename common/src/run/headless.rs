@@ -162,8 +162,11 @@ pub fn run_headless<L: Lesson>(
                     timer: &mut timer,
                     references: &mut path_references,
                 };
-                let (report, image) = walk.measure(&mut lesson, variant, &path)?;
-                save(&image, &out_dir.join(format!("{v}_shimmer.png")))?;
+                let (report, shimmer) = walk.measure(&mut lesson, variant, &path)?;
+                let lights = sg.scene.lights.len();
+                save(&shimmer.image(lights), &out_dir.join(format!("{v}_shimmer.png")))?;
+                let over = shimmer.image_over(lights, &color);
+                save(&over, &out_dir.join(format!("{v}_shimmer_over.png")))?;
                 Some(report)
             }
             None => None,
@@ -265,7 +268,7 @@ impl PathWalk<'_> {
         lesson: &mut L,
         variant: L::Variant,
         path: &CameraPath,
-    ) -> Result<(CameraPathReport, image::GrayImage)> {
+    ) -> Result<(CameraPathReport, Shimmer)> {
         let base = self.sg.scene.camera.clone();
         let mut shimmer = Shimmer::new(self.sg.width, self.sg.height);
         let cameras = path_cameras(&base, path);
@@ -283,7 +286,7 @@ impl PathWalk<'_> {
         self.sg.scene.camera = base;
         self.sg.set_camera(self.gpu);
         walked?;
-        Ok((shimmer.report(), shimmer.image(self.sg.scene.lights.len())))
+        Ok((shimmer.report(), shimmer))
     }
 
     /// Path frame `i`, seen from `camera`: every light's pixel states.

@@ -18,7 +18,7 @@
 
 use anyhow::Result;
 use glam::DQuat;
-use image::{GrayImage, Luma};
+use image::{GrayImage, Luma, Rgba, RgbaImage};
 
 use crate::measure::report::CameraPathReport;
 use crate::reference::metrics::PixelState;
@@ -210,6 +210,25 @@ impl Shimmer {
                 80.0 + 175.0 * (c as f64 - 1.0).min(most - 1.0) / (most - 1.0)
             };
             Luma([gray.round() as u8])
+        })
+    }
+
+    /// [`Self::image`] drawn over the frame it was measured on: the frame
+    /// in dim grey, so that the scene shows where nothing flipped, and each
+    /// pixel that flipped in orange to yellow on the same fixed scale.
+    pub fn image_over(&self, lights: usize, frame: &RgbaImage) -> RgbaImage {
+        let flips = self.image(lights);
+        RgbaImage::from_fn(self.width, self.height, |x, y| {
+            let f = frame.get_pixel(x, y).0;
+            let c = flips.get_pixel(x, y).0[0];
+            if c > 0 {
+                let t = (c as f32 - 80.0) / 175.0;
+                Rgba([255, (140.0 + 115.0 * t) as u8, (40.0 * t) as u8, 255])
+            } else {
+                let luma = 0.299 * f[0] as f32 + 0.587 * f[1] as f32 + 0.114 * f[2] as f32;
+                let g = (30.0 + 0.45 * luma) as u8;
+                Rgba([g, g, g, 255])
+            }
         })
     }
 }
