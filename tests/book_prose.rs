@@ -20,6 +20,7 @@
 #[allow(dead_code)]
 mod legend;
 #[path = "../book/generate/prose.rs"]
+#[allow(dead_code)]
 mod prose;
 #[path = "../book/generate/record.rs"]
 #[allow(dead_code)]

@@ -1,5 +1,5 @@
 //! lesson_09 (cascaded shadow maps): the snapshot (masks, error per variant,
-//! texels per metre), the lesson's claims as numbers, the cascade math
+//! texels per 100 m), the lesson's claims as numbers, the cascade math
 //! (splits, sphere fit, snapping) as unit tests, and one extreme scene per
 //! failure mode with its measured criterion.
 //!
@@ -111,11 +111,11 @@ fn lesson_09_cascades_beat_one_map() {
     );
     // More cascades, same texels: better (k1 is one fitted map).
     assert!(m("k1") > m("k2") && m("k2") > m("k4"), "k1, k2, k4");
-    // Near the camera, k4 spends many times the single map's texels per metre.
+    // Near the camera, k4 spends many times the single map's texels per 100 m.
     let near = |v: &str| support::counter(&run.report, v, "texels_per_100m_at_2m");
     assert!(
         near("k4") >= 10 * near("single_2048"),
-        "texels per metre at 2 m"
+        "texels per 100 m at 2 m"
     );
 }
 

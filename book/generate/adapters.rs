@@ -112,19 +112,35 @@ pub fn h100_table(records: &[Record], reports: &[Report]) -> String {
     let mut last = vec!["every lesson".to_string(), n.to_string()];
     last.extend(all.iter().map(cell));
     rows.push(format!("| {} |", last.join(" | ")));
-    let head: Vec<String> = FIGURES
+    let mut head = vec!["lesson".to_string(), "variants".into()];
+    head.extend(
+        FIGURES
+            .iter()
+            .map(|f| format!("{} %, largest difference", f.name)),
+    );
+    let own: Vec<(String, String)> = FIGURES
         .iter()
         .map(|f| {
-            format!(
-                "{}: largest difference, points (variant: ours → H100)",
-                f.name
+            (
+                format!("{} %, largest difference", f.name),
+                format!(
+                    "the largest |ours − H100| of the {} % over the lesson's variants, in percentage points of the receiver pixels, then the variant it is on and its two values (ours, from the records → the H100's); in the last row, the largest over every lesson; — where no variant is in both",
+                    f.name
+                ),
             )
         })
+        .chain([
+            ("lesson".into(), "the lesson whose default scene both adapters ran (the last row: every lesson together)".into()),
+            ("variants".into(), "the variants in the H100's report of that lesson, every one compared with the record's".into()),
+        ])
         .collect();
+    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
     format!(
-        "*{theirs} against the records ({adapter}) · {size} · each lesson's default scene, every variant · error figures in percentage points of receiver pixels*\n\n| lesson | variants | {} |\n| --- | --- | --- | --- | --- |\n{}\n",
+        "*{theirs} against the records ({adapter}) · {size} · each lesson's default scene, every variant · error figures in percentage points of receiver pixels*\n\n| {} |\n| {} |\n{}\n{}",
         head.join(" | "),
-        rows.join("\n")
+        vec!["---"; head.len()].join(" | "),
+        rows.join("\n"),
+        crate::legend::legend_own(&head, &own)
     )
 }
 

@@ -62,8 +62,8 @@ pub fn families(records: &[Record]) -> String {
         records,
         "each lesson's most accurate variant on its default scene; frame cost: median [spread] of the default run",
     );
-    s += &row(&[
-        "family".into(),
+    let head = [
+        "family".to_string(),
         "lesson".into(),
         "most accurate variant".into(),
         "misclassified %".into(),
@@ -71,8 +71,9 @@ pub fn families(records: &[Record]) -> String {
         "no shadows ms".into(),
         "its worst extreme case".into(),
         "misclassified % there".into(),
-    ]);
-    s += &row(&vec!["---".to_string(); 8]);
+    ];
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
     for (family, lessons) in FAMILIES {
         for lesson in *lessons {
             let Some(d) = default_of(records, lesson) else {
@@ -108,8 +109,21 @@ pub fn families(records: &[Record]) -> String {
             ]);
         }
     }
+    s += &crate::legend::legend_own(&head, FAMILIES_LEGEND);
     s
 }
+
+/// The families table's own columns.
+const FAMILIES_LEGEND: &[(&str, &str)] = &[
+    ("family", "the family of techniques the lesson belongs to: shadow maps (lessons 01–04), shadow volumes (05–08), cascaded shadow maps (09)"),
+    ("lesson", "the lesson, linked to its chapter"),
+    ("most accurate variant", "the lesson's variant with the lowest misclassified % on the lesson's default scene (the first in the lesson's order on a tie)"),
+    ("misclassified %", "that variant's misclassified % on the default scene: receiver pixels classified differently from the exact reference, in % of the receiver pixels of every light"),
+    ("frame ms", "that variant's frame cost in the default run, wall clock from the start of recording to the GPU's completion: median [spread], ms; `unstable` where the protocol's check failed; — where the run is untimed"),
+    ("no shadows ms", "the frame cost of the same run's no-shadow baseline (the scene drawn without shadows): median [spread], ms; — where the run has none"),
+    ("its worst extreme case", "of the lesson's other runs (its extreme cases: other scenes, sizes), the one where that variant's misclassified % is highest; — where the lesson has none"),
+    ("misclassified % there", "that variant's misclassified % in that extreme case"),
+];
 
 /// Each peer's default beside ours, on every scene of its lesson.
 pub fn peers(records: &[Record]) -> String {
@@ -117,16 +131,17 @@ pub fn peers(records: &[Record]) -> String {
         records,
         "misclassified % of receiver pixels on each scene of the lesson; difference in percentage points (peer − ours)",
     );
-    s += &row(&[
-        "peer default (variant)".into(),
+    let head = [
+        "peer default (variant)".to_string(),
         "ours".into(),
         "scene".into(),
         "peer %".into(),
         "ours %".into(),
         "peer − ours".into(),
         "better".into(),
-    ]);
-    s += &row(&vec!["---".to_string(); 7]);
+    ];
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
     for p in PEERS {
         let runs = default_of(records, p.lesson)
             .into_iter()
@@ -138,8 +153,20 @@ pub fn peers(records: &[Record]) -> String {
             s += &row(&peer_cells(p, r, theirs, ours));
         }
     }
+    s += &crate::legend::legend_own(&head, PEERS_LEGEND);
     s
 }
+
+/// The peers table's own columns.
+const PEERS_LEGEND: &[(&str, &str)] = &[
+    ("peer default (variant)", "a published renderer's or tutorial's documented default, and the lesson's variant that reproduces it"),
+    ("ours", "the lesson's variant the book recommends in its place"),
+    ("scene", "the run: the lesson's default scene, or the title of one of its extreme cases"),
+    ("peer %", "the peer's variant's misclassified % on that scene: receiver pixels classified differently from the exact reference, in % of the receiver pixels"),
+    ("ours %", "our variant's misclassified % on that scene"),
+    ("peer − ours", "peer % − ours %, in percentage points: positive where ours misclassifies fewer pixels"),
+    ("better", "which misclassifies fewer pixels, and how many times fewer (the larger % over the smaller; ∞ where ours is 0); `equal` where the two differ by less than 0.0005 points, under the tables' three decimals"),
+];
 
 fn peer_cells(p: &Peer, r: &Record, theirs: &VariantRecord, ours: &VariantRecord) -> Vec<String> {
     let d = theirs.misclassified_pct - ours.misclassified_pct;
@@ -188,8 +215,8 @@ pub fn volumes_build(records: &[Record]) -> String {
         records,
         "frame cost: median [spread]; edges per second = edges tested per frame / the pass that tests them",
     );
-    s += &row(&[
-        "scene".into(),
+    let head = [
+        "scene".to_string(),
         "variant".into(),
         "misclassified %".into(),
         "frame ms".into(),
@@ -198,8 +225,9 @@ pub fn volumes_build(records: &[Record]) -> String {
         "edges tested".into(),
         "M edges/s".into(),
         "volume fragments".into(),
-    ]);
-    s += &row(&vec!["---".to_string(); 9]);
+    ];
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
     for (run, variants) in VOLUME_BUILDS {
         let Some(r) = records.iter().find(|r| r.id() == *run) else {
             continue;
@@ -236,5 +264,19 @@ pub fn volumes_build(records: &[Record]) -> String {
             ]);
         }
     }
+    s += &crate::legend::legend_own(&head, VOLUMES_BUILD_LEGEND);
     s
 }
+
+/// The volume builds table's own columns.
+const VOLUMES_BUILD_LEGEND: &[(&str, &str)] = &[
+    ("scene", "the run of lesson 05: `default` is its default scene, else the extreme case's title"),
+    ("variant", "the route that builds the volumes: `zpass_cpu` finds the silhouettes on the CPU every frame; `zpass_quads` sends a degenerate quad for every edge, built once, and extrudes it in the vertex shader; `zpass_compute` finds silhouettes and writes the sides in a compute pass, drawn indirectly"),
+    ("misclassified %", "the route's misclassified % on that scene: receiver pixels classified differently from the exact reference, in % of the receiver pixels of every light"),
+    ("frame ms", "the route's frame cost, wall clock from the start of recording to the GPU's completion: median [spread], ms; `unstable` where the protocol's check failed"),
+    ("edge pass", "the pass in which the route tests the caster edges for the silhouette: `cpu_silhouette` (on the CPU), `volume` (the vertex shader of the volume pass, which also rasterises the volumes), `extrude` (the compute pass)"),
+    ("edge pass ms", "that pass's time, CPU time for `cpu_silhouette` and GPU time for the others: median [spread], ms; — where not recorded"),
+    ("edges tested", "caster edges tested for the silhouette in one frame, over all lights (the counter `edges_tested`)"),
+    ("M edges/s", "edges tested over the edge pass's median time, in millions of edges per second; for `volume` the pass also rasterises, so this understates its testing rate; — where either is missing"),
+    ("volume fragments", "shadow-volume fragments rasterised in one frame (the counter `volume_fragments`: an exact, untimed tally)"),
+];

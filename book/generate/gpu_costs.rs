@@ -65,16 +65,17 @@ pub fn table(root: &Path) -> Result<String> {
     let mut s = format!(
         "*NVIDIA H100 80GB HBM3, Vulkan · 1920×1080 · the default scenes · commit `631f993` (before the lit passes were compiled per variant, lesson 08's cull and lit-pass scissor) · one variant per process, median of 300 frames, the GPU kept busy: `{DIR}/README.md` · GPU ms from timestamps*\n\n"
     );
-    s += &row(&[
-        "lesson".into(),
+    let head = [
+        "lesson".to_string(),
         "variant".into(),
         "GPU ms".into(),
         "no shadows, GPU ms".into(),
         "shadows cost".into(),
         format!("within {BUDGET_MS} ms?"),
         "SM clock, MHz (min, max)".into(),
-    ]);
-    s += &row(&vec!["---".to_string(); 7]);
+    ];
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
     for l in parse(&text)? {
         s += &row(&[
             l.lesson.clone(),
@@ -86,6 +87,19 @@ pub fn table(root: &Path) -> Result<String> {
             l.clock.clone(),
         ]);
     }
+    let within = format!(
+        "yes where the shadows cost at most {BUDGET_MS} ms over the no-shadow frame, what a shadow technique may cost on such a GPU at 1920×1080; else no"
+    );
+    let own = [
+        ("lesson", "the lesson, on its default scene"),
+        ("variant", "the lesson's most accurate variant (the families table's), alone in its process"),
+        ("GPU ms", "the GPU's time for the whole frame, first timestamp to last: median of the process's 300 frames, ms"),
+        ("no shadows, GPU ms", "the same for the lesson's no-shadow baseline (the scene drawn without shadows), ms"),
+        ("shadows cost", "GPU ms − no shadows, GPU ms: what the shadows add to the frame, ms"),
+        (head[5].as_str(), within.as_str()),
+        ("SM clock, MHz (min, max)", "the lowest and highest clock of the GPU's streaming multiprocessors seen during the run, MHz: a minimum below the maximum means the clock fell (the times are then less sure)"),
+    ];
+    s += &crate::legend::legend_own(&head, &own);
     Ok(s)
 }
 

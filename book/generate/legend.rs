@@ -78,15 +78,36 @@ pub const COUNTERS: &[(&str, &str)] = &[
 
 /// The timed passes of a frame (the passes tables' columns, `` `name` ms ``).
 pub const PASSES: &[(&str, &str)] = &[
-    ("base", "the base pass: the scene's depth and colour, with no shadow"),
-    ("shadow", "the shadow-map passes: every map, face and cascade"),
-    ("extrude", "the compute pass that finds silhouettes and writes the volumes"),
-    ("volume", "the shadow-volume pass into the stencil (and the bounds marks)"),
+    (
+        "base",
+        "the base pass: the scene's depth and colour, with no shadow",
+    ),
+    (
+        "shadow",
+        "the shadow-map passes: every map, face and cascade",
+    ),
+    (
+        "extrude",
+        "the compute pass that finds silhouettes and writes the volumes",
+    ),
+    (
+        "volume",
+        "the shadow-volume pass into the stencil (and the bounds marks)",
+    ),
     ("lighting", "the lit passes, one per light"),
-    ("cpu_silhouette", "CPU time finding silhouettes and building the volumes"),
-    ("cpu_bounds", "CPU time computing the lights' range-sphere bounds"),
+    (
+        "cpu_silhouette",
+        "CPU time finding silhouettes and building the volumes",
+    ),
+    (
+        "cpu_bounds",
+        "CPU time computing the lights' range-sphere bounds",
+    ),
     ("cpu_total", "the CPU's time to record and submit the frame"),
-    ("frame", "the frame's wall-clock cost, start of recording to GPU completion"),
+    (
+        "frame",
+        "the frame's wall-clock cost, start of recording to GPU completion",
+    ),
 ];
 
 /// The rank of a counter in [`COUNTERS`] (unknown ones last, by name).

@@ -1,6 +1,6 @@
 //! Chapter 09's own tables and plots, from the record of its default run:
-//! shimmer over the camera path, the error per cascade, and texels per
-//! metre on the ground against view distance (perspective aliasing).
+//! shimmer over the camera path, the error per cascade, and shadow-map
+//! texels per 100 m against view depth (perspective aliasing).
 
 use std::path::Path;
 
@@ -38,6 +38,10 @@ pub fn write_all(generated: &Path, figures: &Path, records: &[Record]) -> Result
     aliasing_plot(&fig.join("aliasing.svg"), r)
 }
 
+/// Lesson 09's variants (`lessons/lesson_09/main.rs`), as the legends
+/// define them. Every one spends about 2048² texels: K maps of 2048 / √K.
+const VARIANTS: &str = "lesson 09's variant, each spending about 2048² shadow-map texels (K cascades of 2048 / √K a side): `single_2048`: lesson 01's one 2048² map fitted to the scene's bounds, the baseline; `k1` … `k4`: K cascades, practical splits (λ = 0.9), each fitted with a bounding sphere, snapped to its texel grid and reaching back towards the light; `k4_uniform`, `k4_log`: `k4` with uniform or logarithmic splits; `k4_aabb`: `k4` with a tight box instead of the sphere, snapped to its own, changing, texel size; `k4_nosnap`: `k4` not snapped; `k4_aabb_nosnap`: the tight box, not snapped (the naive fit); `k4_noextend`: `k4` with boxes only as deep as the sphere, so casters outside it are lost; `k4_blend`: `k4` fading into the next cascade over the last 10 % of each";
+
 fn caption(r: &Record, what: &str) -> String {
     format!(
         "*{}, {} · {}×{} · the default scene (`scenes/{}.toml`) · {what}*\n\n",
@@ -59,15 +63,16 @@ pub fn shimmer_table(r: &Record) -> String {
             "camera path of {frames} frames (a pan, then a dolly); % of the receivers per pair of consecutive frames, pooled over the pairs. Shimmer: frame i's view with frame i + 1's fit against frame i's own (world-locked). Screen-space: consecutive frames, flips the reference does not make"
         ),
     );
-    s += &row(&[
-        "variant".into(),
+    let head = [
+        "variant".to_string(),
         "shimmer % (world-locked)".into(),
         "screen-space mismatch %".into(),
         "technique flips %".into(),
         "reference flips %".into(),
         "misclassified % per frame (min–max)".into(),
-    ]);
-    s += &row(&vec!["---".to_string(); 6]);
+    ];
+    s += &row(&head);
+    s += &row(&vec!["---".to_string(); head.len()]);
     for v in &r.variants {
         let Some(p) = &v.camera_path else {
             continue;
@@ -95,8 +100,19 @@ pub fn shimmer_table(r: &Record) -> String {
             },
         ]);
     }
+    s += &crate::legend::legend_own(&head, SHIMMER_LEGEND);
     s
 }
+
+/// The shimmer table's own columns.
+const SHIMMER_LEGEND: &[(&str, &str)] = &[
+        ("variant", VARIANTS),
+        ("shimmer % (world-locked)", "of the receiver pixels (every light) whose surface frame i + 1 sees too, those whose shadow state changes when frame i's view is rendered with frame i + 1's cascade fit instead of its own: the view and the reference stay put, so every change is the fit moving; pooled over the path's pairs of consecutive frames, in %"),
+        ("screen-space mismatch %", "of the pixels that are receivers in both of two consecutive frames (every light), those whose shadow state the technique changes while the exact reference's stays the same; pooled over the pairs, in %"),
+        ("technique flips %", "of those pixels, the ones whose shadow state the technique changes from one frame to the next (the view moves, so edges sweep across the screen), in %"),
+        ("reference flips %", "the same for the exact reference: the changes the moving view makes by itself, the same for every variant, in %"),
+        ("misclassified % per frame (min–max)", "the lowest and the highest of the path's per-frame misclassified %: in each frame, the receiver pixels (every light) classified differently from the exact reference, in % of them; — where the variant has no frame"),
+];
 
 /// One row a variant with classes; per cascade: its share of the receiver
 /// pixels and its misclassified %.
@@ -113,6 +129,20 @@ pub fn cascades_table(r: &Record) -> String {
     );
     let mut head = vec!["variant".to_string(), "overall %".into()];
     head.extend((0..k).map(|i| format!("cascade {i}")));
+    let mut own: Vec<(String, String)> = vec![
+        ("variant".into(), VARIANTS.into()),
+        ("overall %".into(), "the variant's misclassified % over all its receiver pixels: those classified differently from the exact reference, in % of the receiver pixels of every light (the run's main figure)".into()),
+    ];
+    own.extend((0..k).map(|i| {
+        let which = match i {
+            0 => "the cascade nearest the camera (a single map's only one)".to_string(),
+            _ => format!("the next cascade out from the camera, after cascade {}", i - 1),
+        };
+        (
+            format!("cascade {i}"),
+            format!("{which}: the misclassified % of the receiver pixels whose view depth selects it (as the lit pass picks the cascade), in % of those pixels, and in parentheses how many they are; — where the variant has fewer cascades"),
+        )
+    }));
     s += &row(&head);
     s += &row(&vec!["---".to_string(); head.len()]);
     for v in r.variants.iter().filter(|v| !v.classes.is_empty()) {
@@ -124,6 +154,8 @@ pub fn cascades_table(r: &Record) -> String {
         }
         s += &row(&cells);
     }
+    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+    s += &crate::legend::legend_own(&head, &own);
     s
 }
 
@@ -143,15 +175,23 @@ fn distances(r: &Record) -> Vec<(u64, String)> {
     d
 }
 
-/// Texels per metre on the ground at each distance, per variant.
+/// Shadow-map texels per 100 m at each view depth, per variant (by
+/// depth, nearest first).
 pub fn aliasing_table(r: &Record) -> String {
     let d = distances(r);
     let mut s = caption(
         r,
-        "shadow-map texels per 100 m on the ground, at view distances along the view direction",
+        "shadow-map texels per 100 m of scene, in the cascade that holds each view depth",
     );
     let mut head = vec!["variant".to_string()];
     head.extend(d.iter().map(|(m, _)| format!("{m} m")));
+    let mut own: Vec<(String, String)> = vec![("variant".into(), VARIANTS.into())];
+    own.extend(d.iter().map(|(m, k)| {
+        (
+            format!("{m} m"),
+            format!("shadow-map texels per 100 m of scene in the cascade that holds view depth {m} m (the counter `{k}`): 100 × the map's side in texels ÷ that cascade's width in metres, rounded; more is finer; — where the variant does not report it"),
+        )
+    }));
     s += &row(&head);
     s += &row(&vec!["---".to_string(); head.len()]);
     for v in &r.variants {
@@ -165,6 +205,8 @@ pub fn aliasing_table(r: &Record) -> String {
         );
         s += &row(&cells);
     }
+    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+    s += &crate::legend::legend_own(&head, &own);
     s
 }
 

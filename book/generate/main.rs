@@ -498,7 +498,8 @@ fn write_scenes_tables(generated: &Path, records: &[Record]) -> Result<()> {
     for l in lessons {
         let cases: Vec<&Record> = records
             .iter()
-            .filter(|r| r.lesson == l && r.run != "results")
+            // The extreme cases: not the default scene, at either size.
+            .filter(|r| r.lesson == l && r.run != "results" && r.run != manifest::HD)
             .collect();
         if !cases.is_empty() {
             write(

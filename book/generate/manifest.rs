@@ -108,12 +108,15 @@ pub const INTERACTIVE: (u32, u32) = (1280, 720);
 /// Timed frames per repeat of an [`interactive`] run.
 pub const INTERACTIVE_FRAMES: u32 = 10;
 
+/// The name of the [`interactive`] runs.
+pub const HD: &str = "hd";
+
 /// A lesson's recommended variants on its default scene at
 /// [`INTERACTIVE`] size (`book/src/generated/<lesson>/hd.md`).
 const fn interactive(lesson: &'static str, variants: &'static [&'static str]) -> Run {
     Run {
         lesson,
-        name: "hd",
+        name: HD,
         scene: None,
         title: "default scene at 1280×720",
         timed: true,

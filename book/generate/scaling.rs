@@ -231,8 +231,14 @@ pub fn table(sweep: &Sweep) -> String {
         head.push("frame ms".into());
     }
     head.push("GPU ms".into());
-    head.extend(sweep.passes.iter().map(|p| format!("`{p}` ms")));
-    head.extend(sweep.counters.iter().map(|c| format!("`{c}`")));
+    // Passes in the frame's order, counters in the tables' order
+    // (`legend.rs`), whatever order the record lists them in.
+    let mut passes = sweep.passes.clone();
+    passes.sort_by_key(|k| crate::legend::pass_rank(k));
+    let mut counters = sweep.counters.clone();
+    counters.sort_by_key(|k| crate::legend::counter_rank(k));
+    head.extend(passes.iter().map(|p| format!("`{p}` ms")));
+    head.extend(counters.iter().map(|c| format!("`{c}`")));
     head.push("misclassified %".into());
     s += &row(&head);
     s += &row(&vec!["---".to_string(); head.len()]);
@@ -245,15 +251,16 @@ pub fn table(sweep: &Sweep) -> String {
             cells.push(p.passes.get(FRAME).map_or("—".into(), stat));
         }
         cells.push(stat(&p.total));
-        for k in &sweep.passes {
+        for k in &passes {
             cells.push(p.passes.get(k).map_or("—".into(), stat));
         }
-        for k in &sweep.counters {
+        for k in &counters {
             cells.push(p.counters.get(k).map_or("—".into(), |&n| count(n)));
         }
         cells.push(pct(p.misclassified_pct));
         s += &row(&cells);
     }
+    s += &points_legend(sweep, &head, &passes, &counters);
     s += &stops_table(sweep);
     let mut xs: Vec<f64> = sweep.points.iter().map(|p| p.x).collect();
     xs.sort_by(f64::total_cmp);
@@ -281,7 +288,139 @@ pub fn table(sweep: &Sweep) -> String {
             slope_cell(c.slope_top),
         ]);
     }
+    s += &slopes_legend(sweep, top);
     s
+}
+
+/// The size axis's column: what the size is, and its symbol in the
+/// expected orders.
+fn axis_definition(sweep: &Sweep) -> (String, &'static str) {
+    match sweep.axis.as_str() {
+        "triangles" => (
+            "the caster's triangles n, the size the row ran at: a torus of v minor × 2v major segments, two triangles a quad (4·v²), on a floor".into(),
+            "n",
+        ),
+        "shadow map" => (
+            "the shadow map's size in texels, s² for a side of s texels: lesson 01's variant `res_<s>`, all sizes in one process".into(),
+            "s",
+        ),
+        "screen" => (
+            "the frame's size, width×height in pixels (P = width · height): the default scene rendered at each size".into(),
+            "P",
+        ),
+        "lights" => (
+            format!(
+                "the number of lights N in the scene, on a circle above lesson 01's floor and casters ({}: see the caption)",
+                if sweep.lesson == "lesson_02" {
+                    "spot lights, one 1024² shadow map each"
+                } else {
+                    "point lights"
+                }
+            ),
+            "N",
+        ),
+        _ => ("the size of the problem the row ran at".into(), "x"),
+    }
+}
+
+/// The legend of a sweep's points table.
+fn points_legend(sweep: &Sweep, head: &[String], passes: &[String], counters: &[String]) -> String {
+    let frames = sweep.frames;
+    let spread = format!("median [interquartile range] of the point's {frames} timed frames, ms");
+    let gpu = if sweep.timing_source == "cpu_wall" {
+        "the frame's passes, each submitted and timed on its own by the CPU's wall clock, summed"
+    } else {
+        "the GPU's time for the whole frame, from its first pass's start timestamp to its last pass's end"
+    };
+    let mut own: Vec<(String, String)> = vec![
+        (sweep.axis.clone(), axis_definition(sweep).0),
+        (
+            "variant".into(),
+            format!("{}'s variant the row ran (its `--variant` name)", sweep.lesson.replace('_', " ")),
+        ),
+        (
+            "frame ms".into(),
+            format!("the frame's wall-clock cost, from the start of recording to the GPU's completion: {spread}"),
+        ),
+        ("GPU ms".into(), format!("{gpu}: {spread}")),
+        (
+            "misclassified %".into(),
+            "the receiver pixels classified differently from the exact reference (lit where V ≥ ½), in % of the receiver pixels of every light".into(),
+        ),
+    ];
+    for p in passes {
+        let d = crate::legend::PASSES
+            .iter()
+            .find(|(n, _)| *n == p.as_str())
+            .map_or("the pass of that name", |(_, d)| d);
+        own.push((
+            format!("`{p}` ms"),
+            format!("{d}: {spread}; — where the variant has no such pass"),
+        ));
+    }
+    for c in counters {
+        let Some((_, d)) = crate::legend::COUNTERS
+            .iter()
+            .find(|(n, _)| *n == c.as_str())
+        else {
+            continue;
+        };
+        own.push((
+            format!("`{c}`"),
+            format!(
+                "{}; in one frame; — where the variant does not report it",
+                d.replace(
+                    "of those, ",
+                    "of the volume fragments that reach the stencil, "
+                )
+            ),
+        ));
+    }
+    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+    crate::legend::legend_own(head, &own)
+}
+
+/// The legend of a sweep's slopes table.
+fn slopes_legend(sweep: &Sweep, top: usize) -> String {
+    let axis = &sweep.axis;
+    let x = axis_definition(sweep).1;
+    let multi = distinct_variants(sweep).len() > 1;
+    let curve = format!(
+        "what is fitted against the {axis} {x}: {}a time's median (GPU ms: the GPU's time for the frame; `` `pass` ms ``: that pass's time), or a counter (`` `name` ``) in one frame",
+        if multi {
+            "the variant, where the curve is one variant's (none named: every variant's points together); "
+        } else {
+            ""
+        }
+    );
+    let head = [
+        "curve".to_string(),
+        "expected order".into(),
+        "expected slope".into(),
+        "measured slope (all points)".into(),
+        format!("measured slope (largest {top})"),
+    ];
+    let own = [
+        ("curve", curve),
+        (
+            "expected order",
+            format!("how the curve should grow with {x}, from what the algorithm does (O(1): not at all)"),
+        ),
+        (
+            "expected slope",
+            "the log-log slope that order means once fixed costs are small: O(1) → 0, O(√n) → 0.5, O(n) → 1, O(s²) → 2".into(),
+        ),
+        (
+            "measured slope (all points)",
+            format!("the least-squares slope of log(value) against log({x}) over every point of the curve; — where it is not defined (a value of 0, or a single point)"),
+        ),
+        (
+            head[4].as_str(),
+            format!("the same over the curve's largest {top} sizes, where fixed costs weigh least"),
+        ),
+    ];
+    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (*a, b.as_str())).collect();
+    crate::legend::legend_own(&head, &own)
 }
 
 /// Where each variant of a sweep with stops stops: the largest size it ran
@@ -320,6 +459,33 @@ fn stops_table(sweep: &Sweep) -> String {
         });
         s += &row(&[format!("`{v}`"), largest, at, why]);
     }
+    let axis = &sweep.axis;
+    let head = [
+        "variant".to_string(),
+        format!("largest {axis} run"),
+        "left out at".into(),
+        "why".into(),
+    ];
+    let own = [
+        (
+            "variant".to_string(),
+            format!("{}'s variant (its `--variant` name)", sweep.lesson.replace('_', " ")),
+        ),
+        (
+            head[1].clone(),
+            format!("the largest size (the {axis} column's) at which the variant ran (— where it ran at none)"),
+        ),
+        (
+            "left out at".into(),
+            format!("the smallest size (the {axis} column's) at which the lesson refused to run the variant (— where it ran every size)"),
+        ),
+        (
+            "why".into(),
+            "the lesson's own line: the buffer the variant would need there, its size, and the adapter's limit it passes".into(),
+        ),
+    ];
+    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+    s += &crate::legend::legend_own(&head, &own);
     s
 }
 

@@ -139,14 +139,15 @@ fn table(a: &[Record], cells: &[Cell]) -> Result<String> {
         "*{}, {} · {}×{} · two runs of `workbook book`, each {} processes × {} frames a variant, compared by `workbook compare`*\n\n",
         first.adapter, first.backend, first.width, first.height, first.repeats, first.frames
     );
-    s += &crate::table::row(&[
-        "time".into(),
+    let head = [
+        "time".to_string(),
         "timed cells".into(),
         "2nd run's median inside the 1st's spread".into(),
         "1st inside the 2nd's".into(),
         "spreads overlap".into(),
-    ]);
-    s += &crate::table::row(&vec!["---".to_string(); 5]);
+    ];
+    s += &crate::table::row(&head);
+    s += &crate::table::row(&vec!["---".to_string(); head.len()]);
     for (kind, name) in [("frame", "frame cost"), ("GPU", "GPU total")] {
         let of: Vec<&Cell> = cells.iter().filter(|c| c.id.ends_with(kind)).collect();
         if of.is_empty() {
@@ -161,5 +162,15 @@ fn table(a: &[Record], cells: &[Cell]) -> Result<String> {
             share(of.iter().filter(|c| !c.a.differs_from(&c.b)).count()),
         ]);
     }
+    s += &crate::legend::legend_own(&head, REPEATABILITY_LEGEND);
     Ok(s)
 }
+
+/// The repeatability table's own columns.
+const REPEATABILITY_LEGEND: &[(&str, &str)] = &[
+    ("time", "which time of each cell: the frame cost (wall clock, from the start of recording to the GPU's completion) or the GPU total (the GPU's time for the whole frame)"),
+    ("timed cells", "the cells timed in both runs with times that can be quoted: every variant's and every no-shadow baseline's, in every timed record"),
+    ("2nd run's median inside the 1st's spread", "the cells whose median in the second run lies inside the spread the first run's table prints for it, [low–high] inclusive; in parentheses, their share of the timed cells"),
+    ("1st inside the 2nd's", "the same the other way round: the first run's median inside the second's spread"),
+    ("spreads overlap", "the cells whose two spreads overlap, so that the tables would see no measurable difference between the two runs; in parentheses, their share"),
+];

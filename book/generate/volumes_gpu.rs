@@ -43,16 +43,8 @@ pub fn table(root: &Path) -> Result<String> {
                 "*{}, {} · {}×{} · measured elsewhere with the protocol of commit `631f993` (2 warm-up frames; median of the frames of one process): `{DIR}/README.md` gives the commands · GPU ms from timestamps, CPU ms from the CPU's clock*\n\n",
                 r.adapter.name, r.adapter.backend, r.width, r.height
             );
-            s += &row(&[
-                "scene".into(),
-                "caster triangles".into(),
-                "route".into(),
-                "GPU ms".into(),
-                "base pass ms".into(),
-                "CPU silhouette ms".into(),
-                "GPU + CPU ms".into(),
-            ]);
-            s += &row(&vec!["---".to_string(); 7]);
+            s += &row(&HEAD.map(String::from));
+            s += &row(&vec!["---".to_string(); HEAD.len()]);
             head_done = true;
         }
         let fastest = ROUTES
@@ -79,8 +71,31 @@ pub fn table(root: &Path) -> Result<String> {
             ]);
         }
     }
+    s += &crate::legend::legend_own(&HEAD.map(String::from), LEGEND);
     Ok(s)
 }
+
+/// The table's columns.
+const HEAD: [&str; 7] = [
+    "scene",
+    "caster triangles",
+    "route",
+    "GPU ms",
+    "base pass ms",
+    "CPU silhouette ms",
+    "GPU + CPU ms",
+];
+
+/// What they mean.
+const LEGEND: &[(&str, &str)] = &[
+    ("scene", "the scene: a floor and a generated torus of major × minor segments, or one of lesson 05's scene files"),
+    ("caster triangles", "the caster's triangles (the torus: two a quad)"),
+    ("route", "lesson 05's variant, how the volumes are built: `zpass_cpu` finds the silhouettes on the CPU every frame; `zpass_quads` sends a degenerate quad for every edge, built once, and extrudes it in the vertex shader; `zpass_compute` finds silhouettes and writes the sides in a compute pass, drawn indirectly"),
+    ("GPU ms", "the GPU's time for the whole frame, first timestamp to last: median of the process's frames, ms"),
+    ("base pass ms", "the base pass's GPU time (the scene's depth and colour, no shadow): the same work in every route, so where it is slower the GPU's clock had fallen; median, ms"),
+    ("CPU silhouette ms", "the CPU's time finding silhouettes and building the volumes: median, ms; — for the routes that do it on the GPU"),
+    ("GPU + CPU ms", "GPU ms + CPU silhouette ms: a floor under the frame's cost when the two do not overlap; (least): the lowest of the routes on that scene"),
+];
 
 /// GPU total plus the CPU's silhouette: what a frame costs at least when
 /// the two do not overlap.
