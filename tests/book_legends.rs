@@ -100,7 +100,8 @@ fn generated_files(dir: &Path, out: &mut Vec<PathBuf>) {
 
 #[test]
 fn the_checker_finds_undefined_columns() {
-    let table = "| variant | misclassified % | mean \\|ΔV\\| % |\n| --- | --- | --- |\n| `a` | 1 | 2 |\n";
+    let table =
+        "| variant | misclassified % | mean \\|ΔV\\| % |\n| --- | --- | --- |\n| `a` | 1 | 2 |\n";
     assert_eq!(
         cells("| a | b \\| c |"),
         vec!["a".to_string(), "b \\| c".to_string()]

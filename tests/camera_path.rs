@@ -98,8 +98,14 @@ fn lesson_01_does_not_shimmer_while_its_acne_crawls_on_screen() {
             .expect("shimmer image over the frame")
             .to_rgba8();
         assert_eq!(over.dimensions(), (320, 180));
-        assert!(over.pixels().all(|p| p.0[0] == p.0[1] && p.0[1] == p.0[2]), "{name}: a flip drawn");
-        assert!(over.pixels().any(|p| p.0[0] > 40), "{name}: no scene under the flips");
+        assert!(
+            over.pixels().all(|p| p.0[0] == p.0[1] && p.0[1] == p.0[2]),
+            "{name}: a flip drawn"
+        );
+        assert!(
+            over.pixels().any(|p| p.0[0] > 40),
+            "{name}: no scene under the flips"
+        );
         assert!(v.get("classes").is_none(), "lesson 01 has no pixel classes");
     }
 }

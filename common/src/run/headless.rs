@@ -164,7 +164,10 @@ pub fn run_headless<L: Lesson>(
                 };
                 let (report, shimmer) = walk.measure(&mut lesson, variant, &path)?;
                 let lights = sg.scene.lights.len();
-                save(&shimmer.image(lights), &out_dir.join(format!("{v}_shimmer.png")))?;
+                save(
+                    &shimmer.image(lights),
+                    &out_dir.join(format!("{v}_shimmer.png")),
+                )?;
                 let over = shimmer.image_over(lights, &color);
                 save(&over, &out_dir.join(format!("{v}_shimmer_over.png")))?;
                 Some(report)
