@@ -109,13 +109,78 @@ fn rebuild_lessons() -> Result<()> {
     } else if cfg!(feature = "chapter_copies") {
         cmd.args(["--features", "chapter_copies"]);
     }
-    let status = cmd
-        .status()
+    // cargo's messages pass through as they are, and are read for the files
+    // that have errors.
+    use std::io::{BufRead, IsTerminal};
+    if std::io::stderr().is_terminal() {
+        cmd.args(["--color", "always"]);
+    }
+    let mut child = cmd
+        .stderr(std::process::Stdio::piped())
+        .spawn()
         .context("cannot run cargo to build the lessons")?;
+    let mut files: Vec<String> = Vec::new();
+    if let Some(err) = child.stderr.take() {
+        let mut in_error = false;
+        for line in std::io::BufReader::new(err).lines() {
+            let line = line.context("cannot read cargo's output")?;
+            eprintln!("{line}");
+            let plain = strip_ansi(&line);
+            let t = plain.trim_start();
+            if t.starts_with("error") {
+                in_error = true;
+            } else if t.starts_with("warning") {
+                in_error = false;
+            } else if let Some(at) = t.strip_prefix("--> ").filter(|_| in_error) {
+                // `lessons/lesson_02/exercises.rs:14:5`: keep the file and line.
+                let at: String = at.rsplitn(2, ':').last().unwrap_or(at).to_string();
+                if !files.contains(&at) {
+                    files.push(at);
+                }
+            }
+        }
+    }
+    let status = child.wait().context("cannot wait for cargo")?;
     if !status.success() {
-        bail!("the lessons do not build: fix the compile errors above, then grade again");
+        bail!("{}", build_failure(&files));
     }
     Ok(())
+}
+
+/// The grader's line when the lessons do not build: which file to fix,
+/// and that the lessons are one crate, so one exercise stops them all.
+fn build_failure(files: &[String]) -> String {
+    let all = "the lessons are one crate, so one exercise that does not compile \
+               stops every lesson and the grader";
+    if files.is_empty() {
+        return format!(
+            "the lessons do not build: fix the compile errors above, then grade again \
+             ({all}: an error in any lessons/lesson_NN/exercises.rs counts)"
+        );
+    }
+    format!(
+        "the lessons do not build: fix {} (the errors above), then grade again ({all})",
+        files.join(", ")
+    )
+}
+
+/// A line of cargo's output without its colour codes.
+fn strip_ansi(line: &str) -> String {
+    let mut out = String::with_capacity(line.len());
+    let mut chars = line.chars();
+    while let Some(c) = chars.next() {
+        if c == '\u{1b}' {
+            // ESC [ ... letter
+            for d in chars.by_ref() {
+                if d.is_ascii_alphabetic() {
+                    break;
+                }
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 fn run(cli: Cli) -> Result<bool> {

@@ -17,3 +17,16 @@ pub mod lesson_06;
 pub mod lesson_07;
 pub mod lesson_08;
 pub mod lesson_09;
+
+/// The file that a chapter's `exercises::EXERCISES_WGSL` is read from in
+/// this build (the starter, the solution, or CI's chapter copy): a WGSL
+/// error in it names this file and its own line.
+pub fn exercises_wgsl_path(lesson: &str) -> String {
+    if cfg!(feature = "solutions") {
+        format!("solutions/{lesson}.wgsl")
+    } else if cfg!(feature = "chapter_copies") {
+        format!("tests/chapter_copies/{lesson}.wgsl")
+    } else {
+        format!("shaders/{lesson}/exercises.wgsl")
+    }
+}

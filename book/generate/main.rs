@@ -15,6 +15,7 @@ mod adapters;
 mod choosing;
 mod diagrams;
 mod gpu_costs;
+mod grade_times;
 mod legend;
 mod lesson09;
 mod manifest;
@@ -80,6 +81,9 @@ enum Command {
         #[arg(long)]
         write: bool,
     },
+    /// Time `grade --adapter software` once per chapter and write the
+    /// coursework page's table (`generated/coursework/grade_times.md`).
+    GradeTimes,
 }
 
 fn root() -> PathBuf {
@@ -115,6 +119,9 @@ fn run(cli: Cli) -> Result<()> {
                 .join("book/src/generated")
                 .join(stability::REPEATABILITY);
             return stability::compare(&a, &b, write.then_some(out.as_path()));
+        }
+        Command::GradeTimes => {
+            return grade_times::run(&root(), &root().join("book/src/generated"));
         }
     };
     if let Some(l) = &only {

@@ -52,18 +52,21 @@ pub fn depth_compare_pipeline(
     gpu: &Gpu,
     scene: &SceneGpu,
     layout: &wgpu::BindGroupLayout,
-) -> wgpu::RenderPipeline {
-    let wgsl = format!(
-        "{}\n{}",
-        exercises::EXERCISES_WGSL,
-        include_str!("../../shaders/lesson_01/exercise_lit.wgsl"),
-    );
-    let module = shadow_map::shader_module(gpu, "lesson_01 exercises", &wgsl);
-    scene.lit_pipeline(
+) -> anyhow::Result<wgpu::RenderPipeline> {
+    let exercises_path = crate::exercises_wgsl_path("lesson_01");
+    let files = [
+        (exercises_path.as_str(), exercises::EXERCISES_WGSL),
+        (
+            "shaders/lesson_01/exercise_lit.wgsl",
+            include_str!("../../shaders/lesson_01/exercise_lit.wgsl"),
+        ),
+    ];
+    let module = shadow_map::shader_module_from_files(gpu, "lesson_01 exercises", &files)?;
+    Ok(scene.lit_pipeline(
         gpu,
         &module,
         "fs_exercise_depth_compare",
         &[layout],
         Default::default(),
-    )
+    ))
 }

@@ -160,7 +160,7 @@ impl Lesson for DepthMap {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        self.exercise_setup(frame.gpu, scene, variant);
+        self.exercise_setup(frame.gpu, scene, variant)?;
         if self.texels_written[variant as usize].is_none() {
             // Once per variant, its own submit: untimed.
             let n =
@@ -230,7 +230,7 @@ impl DepthMap {
     /// Before an exercise runs: its light matrix into the light buffer
     /// (`exercise_tight_frustum`; the others put the lesson's back) and its
     /// lit pipeline (`exercise_depth_compare`).
-    fn exercise_setup(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) {
+    fn exercise_setup(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) -> Result<()> {
         let tight = variant == Variant::ExerciseTightFrustum;
         if tight || self.tight_written {
             for (k, m) in self.tight.iter().enumerate() {
@@ -241,9 +241,10 @@ impl DepthMap {
             self.tight_written = tight;
         }
         if variant == Variant::ExerciseDepthCompare && self.exercise_lit.is_none() {
-            let p = exercise_pass::depth_compare_pipeline(gpu, scene, &self.map_layout);
+            let p = exercise_pass::depth_compare_pipeline(gpu, scene, &self.map_layout)?;
             self.exercise_lit = Some(p);
         }
+        Ok(())
     }
 }
 

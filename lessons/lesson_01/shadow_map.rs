@@ -337,3 +337,15 @@ pub fn shader_module(gpu: &Gpu, label: &str, lesson_wgsl: &str) -> wgpu::ShaderM
         &format!("{SHADOW_MAP_WGSL}\n// ---- {label} ----\n{lesson_wgsl}"),
     )
 }
+
+/// Compiles `common.wgsl`, then `shadow_map.wgsl`, then a lesson's WGSL
+/// files given as (path, text), so that an error names its own file.
+pub fn shader_module_from_files(
+    gpu: &Gpu,
+    label: &str,
+    files: &[(&str, &str)],
+) -> Result<wgpu::ShaderModule> {
+    let mut all = vec![("shaders/lesson_01/shadow_map.wgsl", SHADOW_MAP_WGSL)];
+    all.extend_from_slice(files);
+    common::gpu::render::shader_module_from_files(gpu, label, &all)
+}

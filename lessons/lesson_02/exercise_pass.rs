@@ -33,13 +33,19 @@ pub fn lit_pipeline(
     scene: &SceneGpu,
     exercise: Exercise,
     layouts: &[&wgpu::BindGroupLayout],
-) -> wgpu::RenderPipeline {
-    let wgsl = format!(
-        "{}\n{}\n{}",
-        include_str!("../../shaders/lesson_02/bias.wgsl"),
-        super::exercises::EXERCISES_WGSL,
-        include_str!("../../shaders/lesson_02/exercise_lit.wgsl"),
-    );
-    let module = shadow_map::shader_module(gpu, "lesson_02 exercises", &wgsl);
-    scene.lit_pipeline(gpu, &module, exercise.entry(), layouts, Default::default())
+) -> anyhow::Result<wgpu::RenderPipeline> {
+    let exercises_path = crate::exercises_wgsl_path("lesson_02");
+    let files = [
+        (
+            "shaders/lesson_02/bias.wgsl",
+            include_str!("../../shaders/lesson_02/bias.wgsl"),
+        ),
+        (exercises_path.as_str(), super::exercises::EXERCISES_WGSL),
+        (
+            "shaders/lesson_02/exercise_lit.wgsl",
+            include_str!("../../shaders/lesson_02/exercise_lit.wgsl"),
+        ),
+    ];
+    let module = shadow_map::shader_module_from_files(gpu, "lesson_02 exercises", &files)?;
+    Ok(scene.lit_pipeline(gpu, &module, exercise.entry(), layouts, Default::default()))
 }

@@ -310,7 +310,7 @@ impl Lesson for Bias {
         if let Fix::Exercise(e) = fix {
             if !self.exercise_lit.iter().any(|(x, _)| *x == e) {
                 let [map, bias] = &self.layouts;
-                let p = exercise_pass::lit_pipeline(frame.gpu, scene, e, &[map, bias]);
+                let p = exercise_pass::lit_pipeline(frame.gpu, scene, e, &[map, bias])?;
                 self.exercise_lit.push((e, p));
             }
         }

@@ -192,12 +192,15 @@ impl Lesson for Pcf {
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         // The lesson's filters, then the exercises' functions.
-        let source = format!(
-            "{}\n{}",
-            include_str!("../../shaders/lesson_03/pcf.wgsl"),
-            exercises::EXERCISES_WGSL
-        );
-        let module = shadow_map::shader_module(gpu, "lesson_03", &source);
+        let exercises_path = workbook::exercises_wgsl_path("lesson_03");
+        let files = [
+            (
+                "shaders/lesson_03/pcf.wgsl",
+                include_str!("../../shaders/lesson_03/pcf.wgsl"),
+            ),
+            (exercises_path.as_str(), exercises::EXERCISES_WGSL),
+        ];
+        let module = shadow_map::shader_module_from_files(gpu, "lesson_03", &files)?;
         let layout = pcf::pcf_map_layout(gpu);
         let filter_layout =
             params_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);

@@ -19,7 +19,7 @@ use std::path::Path;
 use clap::ValueEnum;
 use common::glam::DVec3;
 use common::gpu::lit::LitPass;
-use common::gpu::render::{shader_module, SceneGpu};
+use common::gpu::render::{shader_module_from_files, SceneGpu};
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
@@ -224,13 +224,19 @@ impl Lesson for CubeShadows {
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         // The lesson's shader, the renderers' lookups, the exercise's function.
-        let source = format!(
-            "{}\n{}\n{}",
-            include_str!("../../shaders/lesson_04/cube_map.wgsl"),
-            include_str!("../../shaders/lesson_04/peers.wgsl"),
-            exercises::EXERCISES_WGSL
-        );
-        let module = shader_module(gpu, "lesson_04", &source);
+        let exercises_path = workbook::exercises_wgsl_path("lesson_04");
+        let files = [
+            (
+                "shaders/lesson_04/cube_map.wgsl",
+                include_str!("../../shaders/lesson_04/cube_map.wgsl"),
+            ),
+            (
+                "shaders/lesson_04/peers.wgsl",
+                include_str!("../../shaders/lesson_04/peers.wgsl"),
+            ),
+            (exercises_path.as_str(), exercises::EXERCISES_WGSL),
+        ];
+        let module = shader_module_from_files(gpu, "lesson_04", &files)?;
         let params_size = std::mem::size_of::<CubeParams>() as u64;
         let layout = cube_map::cube_map_layout(gpu, params_size);
         let (mut lit_keys, mut lit_pipelines) = (Vec::<LitKey>::new(), Vec::new());

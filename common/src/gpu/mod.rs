@@ -20,6 +20,7 @@ pub mod lit;
 pub mod readback;
 pub mod render;
 pub mod targets;
+pub mod wgsl;
 
 use anyhow::{anyhow, bail, Result};
 

@@ -110,6 +110,22 @@ pub fn shader_module(gpu: &Gpu, label: &str, lesson_wgsl: &str) -> wgpu::ShaderM
         })
 }
 
+/// Compiles `common.wgsl` followed by a lesson's WGSL files, each given as
+/// (path from the repository root, text): an error in one of them names
+/// that file, line and column ([`crate::gpu::wgsl`]).
+pub fn shader_module_from_files(
+    gpu: &Gpu,
+    label: &str,
+    files: &[(&str, &str)],
+) -> Result<wgpu::ShaderModule> {
+    let mut source = crate::gpu::wgsl::WgslSource::new();
+    source.push("shaders/common.wgsl", COMMON_WGSL);
+    for (path, text) in files {
+        source.push(path, text);
+    }
+    Ok(source.shader_module(gpu, label)?)
+}
+
 impl SceneGpu {
     pub fn new(gpu: &Gpu, scene: Scene, width: u32, height: u32) -> Result<SceneGpu> {
         let device = &gpu.device;

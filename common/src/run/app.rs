@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Parser;
 
+use crate::gpu::wgsl::WgslError;
 use crate::run::cli::{clip_values, Args};
 use crate::run::headless::run_headless;
 use crate::run::lesson::{all_variants, exercise_variants, select_variants, variant_name, Lesson};
@@ -38,6 +39,12 @@ pub fn main<L: Lesson>() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             let msg = format!("{e:#}").replace('\n', " ");
+            // A WGSL error: first the compiler's message at the file's own
+            // line, then the one line (last, where the grader reads it).
+            let wgsl = e.chain().find_map(|c| c.downcast_ref::<WgslError>());
+            for line in wgsl.map_or(&[][..], |w| w.detail()) {
+                eprintln!("{line}");
+            }
             eprintln!("error: {}: {}", L::NAME, clip_values(&msg));
             ExitCode::FAILURE
         }
