@@ -4,16 +4,61 @@
 use common::glam::{DMat4, DVec3};
 
 // ANCHOR: tight_frustum
-/// Exercise 1, solved: the light-space bounds of every vertex.
-pub fn fit_light_box(light_view: DMat4, points: &[DVec3]) -> (DVec3, DVec3) {
+/// The camera of exercise 1, in origin-relative world space.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraFrustum {
+    /// World → camera view space (the camera looks down −z).
+    pub view: DMat4,
+    /// tan(fov_y / 2): at view distance d the image is 2·d·tan_half_fov_y tall.
+    pub tan_half_fov_y: f64,
+    /// Width / height of the image.
+    pub aspect: f64,
+    /// The near plane's distance. The far plane is left to you.
+    pub near: f64,
+}
+
+/// Exercise 1, solved: the vertices' light-space box, cut in x and y to
+/// the light-space box of the camera's frustum, which ends at the farthest
+/// vertex from the camera. Depth stays the vertices': a caster outside the
+/// camera's view can still shadow what it sees.
+pub fn fit_light_box(
+    light_view: DMat4,
+    points: &[DVec3],
+    camera: &CameraFrustum,
+) -> (DVec3, DVec3) {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    let mut far = f64::NEG_INFINITY;
     for &p in points {
         let v = light_view.transform_point3(p);
         lo = lo.min(v);
         hi = hi.max(v);
+        // The view looks down -z: a point's distance along it is -z.
+        far = far.max(-camera.view.transform_point3(p).z);
     }
-    (lo, hi)
+    if far <= camera.near {
+        return (lo, hi); // nothing in front of the camera
+    }
+    // The frustum's eight corners, camera space -> world -> light space.
+    let to_light = light_view * camera.view.inverse();
+    let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for d in [camera.near, far] {
+        let h = d * camera.tan_half_fov_y;
+        let w = h * camera.aspect;
+        for (x, y) in [(-w, -h), (w, -h), (-w, h), (w, h)] {
+            let v = to_light.transform_point3(DVec3::new(x, y, -d));
+            a = a.min(v);
+            b = b.max(v);
+        }
+    }
+    let (cut_lo, cut_hi) = (lo.max(a), hi.min(b));
+    if cut_lo.x >= cut_hi.x || cut_lo.y >= cut_hi.y {
+        return (lo, hi); // the camera sees none of the scene
+    }
+    (
+        DVec3::new(cut_lo.x, cut_lo.y, lo.z),
+        DVec3::new(cut_hi.x, cut_hi.y, hi.z),
+    )
 }
 // ANCHOR_END: tight_frustum
 

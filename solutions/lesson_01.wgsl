@@ -3,17 +3,25 @@
 
 // ANCHOR: depth_compare
 fn depth_compare(world: vec3<f32>) -> f32 {
-    let clip = light.view_proj * vec4<f32>(world, 1.0);
-    if clip.w <= 0.0 {
-        return 1.0; // behind the light
+    let s = shadow_coords(world);
+    if outside_shadow_map(world, s) {
+        return 1.0;
     }
-    let ndc = clip.xyz / clip.w;
-    // NDC y points up, texture v down; depth is already in [0, 1].
-    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, -ndc.y * 0.5 + 0.5);
-    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) || ndc.z > 1.0 {
-        return 1.0; // outside the map: nothing was rendered there
-    }
-    // 1 where ndc.z <= the stored depth: lit.
-    return textureSampleCompareLevel(shadow_map, shadow_compare, uv, ndc.z);
+    let size = vec2<i32>(textureDimensions(shadow_map));
+    // Texel (i, j)'s centre is at ((i, j) + 0.5) / N: t's whole part is the
+    // centre up and left of (u, v), its fraction the way to the next ones.
+    let t = s.xy * vec2<f32>(size) - 0.5;
+    let i = vec2<i32>(floor(t));
+    let f = t - floor(t);
+    let lo = vec2<i32>(0);
+    let hi = size - 1;
+    let d00 = textureLoad(shadow_depths, clamp(i, lo, hi), 0).x;
+    let d10 = textureLoad(shadow_depths, clamp(i + vec2<i32>(1, 0), lo, hi), 0).x;
+    let d01 = textureLoad(shadow_depths, clamp(i + vec2<i32>(0, 1), lo, hi), 0).x;
+    let d11 = textureLoad(shadow_depths, clamp(i + vec2<i32>(1, 1), lo, hi), 0).x;
+    // A flat caster's depth is linear between the centres: exact there.
+    let stored = mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
+    // The margin covers rounding, not a slope.
+    return select(0.0, 1.0, s.z <= stored + 1e-5);
 }
 // ANCHOR_END: depth_compare

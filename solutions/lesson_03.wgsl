@@ -3,16 +3,30 @@
 
 // ANCHOR: pcf_kernel
 fn exercise_pcf_kernel(s: vec3<f32>, radius: i32, gradient: vec2<f32>) -> f32 {
-    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let size = f32(textureDimensions(shadow_map).x);
+    let texel = 1.0 / size;
+    // The texel centre up and left of s, and the fraction from it to s.
+    let t = s.xy * size - 0.5;
+    let base = (floor(t) + 0.5) * texel;
+    let f = t - floor(t);
     var lit = 0.0;
-    for (var y = -radius; y <= radius; y++) {
-        for (var x = -radius; x <= radius; x++) {
-            let o = vec2<f32>(f32(x), f32(y)) * texel;
-            lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
+    for (var y = -radius; y <= radius + 1; y++) {
+        // The first row weighs 1 - f.y, the last f.y, the others 1.
+        var wy = 1.0;
+        if y == -radius { wy = 1.0 - f.y; }
+        if y == radius + 1 { wy = f.y; }
+        for (var x = -radius; x <= radius + 1; x++) {
+            var wx = 1.0;
+            if x == -radius { wx = 1.0 - f.x; }
+            if x == radius + 1 { wx = f.x; }
+            let c = base + vec2<f32>(f32(x), f32(y)) * texel;
+            let o = c - s.xy;
+            let v = textureSampleCompareLevel(shadow_map, shadow_compare, c, s.z + dot(gradient, o));
+            lit += wx * wy * v;
         }
     }
-    let n = 2 * radius + 1;
-    return lit / f32(n * n);
+    let n = f32(2 * radius + 1);
+    return lit / (n * n);
 }
 // ANCHOR_END: pcf_kernel
 

@@ -7,20 +7,41 @@
 use common::glam::{DMat4, DVec3};
 
 // ANCHOR: tight_frustum
-/// Exercise 1: fit the directional light's orthographic box.
+/// The camera of exercise 1, in origin-relative world space.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraFrustum {
+    /// World → camera view space (the camera looks down −z).
+    pub view: DMat4,
+    /// tan(fov_y / 2): at view distance d the image is 2·d·tan_half_fov_y tall.
+    pub tan_half_fov_y: f64,
+    /// Width / height of the image.
+    pub aspect: f64,
+    /// The near plane's distance. The far plane is left to you.
+    pub near: f64,
+}
+
+/// Exercise 1: fit the directional light's orthographic box to what the
+/// camera sees.
 ///
 /// `light_view` is the light's view matrix (world → light view space: the
 /// light looks down −z, so points in front of it have negative z).
 /// `points` are every vertex of every object (casters and receivers), in
-/// origin-relative world space. Return the box's two corners in light view
-/// space, `(min, max)`: the caller builds the projection from them as
-/// `orthographic(min.x, max.x, min.y, max.y, -max.z, -min.z)` (left, right,
-/// bottom, top, near, far). Every point must be inside the box; the smaller
-/// the box, the smaller each of the map's texels.
-pub fn fit_light_box(light_view: DMat4, points: &[DVec3]) -> (DVec3, DVec3) {
-    let _ = (light_view, points);
-    // TODO: transform the points and keep their extremes. This stub is a
-    // fixed box, 100 m wide and 500 m deep, whatever the scene.
+/// origin-relative world space; `camera` is the camera's frustum, whose far
+/// plane is not given: it ends where the scene does. Return the box's two
+/// corners in light view space, `(min, max)`: the caller builds the
+/// projection from them as `orthographic(min.x, max.x, min.y, max.y,
+/// -max.z, -min.z)` (left, right, bottom, top, near, far). Every point the
+/// camera sees must be inside the box, and in depth every point that can
+/// shadow one; the smaller the box's x and y sides, the smaller each of
+/// the map's texels.
+pub fn fit_light_box(
+    light_view: DMat4,
+    points: &[DVec3],
+    camera: &CameraFrustum,
+) -> (DVec3, DVec3) {
+    let _ = (light_view, points, camera);
+    // TODO: the points' box, cut in x and y to the camera's frustum. This
+    // stub is a fixed box, 100 m wide and 500 m deep, whatever the scene.
     (
         DVec3::new(-50.0, -50.0, -500.0),
         DVec3::new(50.0, 50.0, 0.0),

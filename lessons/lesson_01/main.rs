@@ -82,6 +82,8 @@ struct DepthMap {
     map_layout: wgpu::BindGroupLayout,
     /// `exercise_depth_compare`'s lit pipeline, compiled when it first runs.
     exercise_lit: Option<wgpu::RenderPipeline>,
+    /// Its group 3: the map it reads as plain floats.
+    exercise_depths: Option<wgpu::BindGroup>,
     /// Per light, `exercise_tight_frustum`'s view-projection, and whether
     /// the light buffer holds it now (the other variants restore the lesson's).
     tight: Vec<Option<common::glam::Mat4>>,
@@ -95,7 +97,8 @@ impl Lesson for DepthMap {
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_01.toml");
     type Variant = Variant;
     // The light's box fits the scene bounds, not the camera: a camera
-    // path (chapter 09's shimmer) needs nothing re-fitted.
+    // path (chapter 09's shimmer) needs nothing re-fitted (but
+    // exercise_tight_frustum, fitted to the camera, is each frame).
     const CAMERA_PATH: bool = true;
 
     fn check_scene(scene: &Scene) -> Result<()> {
@@ -131,7 +134,9 @@ impl Lesson for DepthMap {
             })
             .collect();
         let tight: Vec<_> = (0..scene.scene.lights.len())
-            .map(|k| exercise_pass::tight_light_view_proj(&scene.scene, k))
+            .map(|k| {
+                exercise_pass::tight_light_view_proj(&scene.scene, k, scene.width, scene.height)
+            })
             .collect();
         Ok(DepthMap {
             shadow_pipeline,
@@ -146,6 +151,7 @@ impl Lesson for DepthMap {
             ),
             map_layout: layout,
             exercise_lit: None,
+            exercise_depths: None,
             tight_texel_at_1: texel_at_1(&scene.scene, tight.first().copied().flatten()),
             tight,
             tight_written: false,
@@ -181,13 +187,12 @@ impl Lesson for DepthMap {
             frame.pass("shadow", |enc, ts| {
                 shadow_map::shadow_pass(enc, scene, &self.shadow_pipeline, map, light, ts.render())
             });
+            let groups = match (variant, &self.exercise_depths) {
+                (Variant::ExerciseDepthCompare, Some(depths)) => vec![group, depths],
+                _ => vec![group],
+            };
             frame.pass("lighting", |enc, ts| {
-                scene.lit_pass(
-                    enc,
-                    targets,
-                    LitPass::new(light, lit, &[group]),
-                    ts.render(),
-                )
+                scene.lit_pass(enc, targets, LitPass::new(light, lit, &groups), ts.render())
             });
         }
         Ok(())
@@ -232,6 +237,15 @@ impl DepthMap {
     /// lit pipeline (`exercise_depth_compare`).
     fn exercise_setup(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) -> Result<()> {
         let tight = variant == Variant::ExerciseTightFrustum;
+        if tight {
+            // Fitted to the camera: re-fit to where it is now (a camera path).
+            self.tight = (0..scene.scene.lights.len())
+                .map(|k| {
+                    exercise_pass::tight_light_view_proj(&scene.scene, k, scene.width, scene.height)
+                })
+                .collect();
+            self.tight_texel_at_1 = texel_at_1(&scene.scene, self.tight.first().copied().flatten());
+        }
         if tight || self.tight_written {
             for (k, m) in self.tight.iter().enumerate() {
                 let lesson = common::scene::camera::light_view_proj(&scene.scene, k);
@@ -241,8 +255,11 @@ impl DepthMap {
             self.tight_written = tight;
         }
         if variant == Variant::ExerciseDepthCompare && self.exercise_lit.is_none() {
-            let p = exercise_pass::depth_compare_pipeline(gpu, scene, &self.map_layout)?;
+            let depths = exercise_pass::depths_layout(gpu);
+            let p = exercise_pass::depth_compare_pipeline(gpu, scene, &self.map_layout, &depths)?;
             self.exercise_lit = Some(p);
+            let (map, _) = &self.maps[variant as usize];
+            self.exercise_depths = Some(exercise_pass::depths_group(gpu, &depths, map));
         }
         Ok(())
     }

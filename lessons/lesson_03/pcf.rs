@@ -25,7 +25,8 @@ pub enum Filter {
     /// Average N×N stored depths, then compare once: filtering depth.
     DepthAverage { n: u32 },
     /// Exercise 1 (`exercise_pcf_kernel` in `exercises.wgsl`): the
-    /// student's N×N grid with the receiver plane, radius N / 2.
+    /// student's smooth N×N grid with the receiver plane, radius N / 2:
+    /// (N + 1)² comparisons at texel centres, bilinearly weighted.
     ExerciseGrid { n: u32 },
     /// Exercise 2 (`exercise_rotated_poisson`): the student's 16 bilinear
     /// taps on a disk of `radius` texels, rotated per pixel.
@@ -45,7 +46,7 @@ impl Filter {
             Filter::Poisson { taps, .. } => (taps as u64, 4 * taps as u64),
             Filter::DepthAverage { n } => (1, (n * n) as u64),
             // What the exercise asks for (the starter takes one tap).
-            Filter::ExerciseGrid { n } => ((n * n) as u64, (n * n) as u64),
+            Filter::ExerciseGrid { n } => (((n + 1) * (n + 1)) as u64, ((n + 1) * (n + 1)) as u64),
             Filter::ExerciseDisk { .. } => (16, 64),
             Filter::Castano13 => (9, 36),
         }

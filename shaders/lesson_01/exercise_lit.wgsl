@@ -1,6 +1,10 @@
 // lesson_01/exercise_lit.wgsl: the lit pass of exercise_depth_compare, the
 // student's `depth_compare` (exercises.wgsl) as the visibility.
 
+// The shadow map again, as plain floats for `textureLoad` (GL cannot load
+// texels through the depth binding at group 2).
+@group(3) @binding(0) var shadow_depths: texture_2d<f32>;
+
 @fragment
 fn fs_exercise_depth_compare(in: VertexOut) -> LitOut {
     return lit_output(in, depth_compare(in.world));

@@ -6,13 +6,19 @@
 // `cargo run --release --bin grade -- lesson_03`.
 
 // ANCHOR: pcf_kernel
-// Exercise 1: the N×N PCF loop, N = 2·radius + 1. Take one depth comparison
-// at each texel offset o = (x, y) / map size, x and y in -radius..=radius,
-// comparing at depth s.z + dot(gradient, o) (the receiver's own plane at the
-// tap), and return the average: the fraction of taps that see the light.
-// `s`: the receiver's (u, v, depth) in the shadow map.
+// Exercise 1: smooth PCF, the N×N grid (N = 2·radius + 1) slid to the
+// receiver's exact (u, v) instead of snapped to texels. The lesson's grid
+// taps the texels whose centres lie nearest s.xy + o, so its penumbra moves
+// in whole-texel steps. Take the comparisons at texel centres instead: the
+// (N + 1)×(N + 1) centres around s.xy (from the centre up and left of it,
+// floor(s.xy · size − 0.5) + 0.5, over size), each compared at
+// s.z + dot(gradient, c − s.xy) (the receiver's plane at the centre c), and
+// weigh them with the bilinear fractions f of s.xy between those centres:
+// the first column 1 − f.x, the last f.x, the others 1 (rows likewise).
+// Return the weighted sum over N²: the N×N box filter, interpolated.
+// `s`: the receiver's (u, v, depth) in the shadow map. The sampler is nearest.
 fn exercise_pcf_kernel(s: vec3<f32>, radius: i32, gradient: vec2<f32>) -> f32 {
-    // Starter: one comparison at the centre, a hard edge.
+    // Starter: one comparison at the nearest texel, a hard edge.
     return textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z);
 }
 // ANCHOR_END: pcf_kernel

@@ -1,32 +1,23 @@
-// lesson_02/exercises.wgsl: the chapter's exercises, starter code. Compiled
-// after common.wgsl, lesson_01/shadow_map.wgsl and lesson_02/bias.wgsl, so
-// `to_light`, `shadow_coords`, `shadow_texel_size` and `shadow_texel_extent`
-// are there to call. Each stub runs, and is wrong: grade says how.
+// lesson_02 exercises answered with the chapter's own code (grade
+// --check-copies must see every one fail). Compiled in place of
+// shaders/lesson_02/exercises.wgsl.
 
 // ANCHOR: slope_bias
-// Exercise 1: slope-scaled bias. How many shadow-map texels to move the
-// receiver towards the light, given cos θ = N·L (already clamped to [0, 1];
-// θ is the angle between the surface normal and the light). A receiver at θ
-// needs tan θ / 2 texels; grazing receivers need many, so scale with tan θ,
-// add a small constant, and clamp the result where tan θ runs away.
-// The caller moves the receiver `slope_bias(cos_t) × texel` along the light.
+// Copies the chapter's `slope_shader` (Slope scaling: b0 = 0.1, k = 1, b_max = 4).
 fn slope_bias(cos_t: f32) -> f32 {
-    // TODO: return a constant plus a multiple of tan θ, clamped.
-    return 0.0;
+    let tan_t = sqrt(1.0 - cos_t * cos_t) / max(cos_t, 1e-4);
+    return 0.1 + min(1.0 * tan_t, 4.0);
 }
 // ANCHOR_END: slope_bias
 
 // ANCHOR: grazing_bias
-// Exercise 2 (beyond the lesson): a bias for grazing light. Return the
-// shadow-map coordinates (u, v, depth) to compare for the receiver at `world`
-// (origin-relative) with unit normal `n` on the light's side: the caller
-// compares `depth` with the map at (u, v). `shadow_coords(p)` gives them for
-// any point p; `shadow_texel_extent(world)` is one texel's two sides in world
-// units there, `to_light(world)` the unit vector towards the light.
+// Copies the chapter's `biased_receiver` listing with slope_shader's settings.
 fn grazing_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
-    // TODO: move the receiver off its surface (or its depth), so that it
-    // stops shadowing itself at grazing angles without letting light under
-    // thin casters.
-    return shadow_coords(world);
+    let l = to_light(world);
+    let cos_t = clamp(dot(n, l), 0.0, 1.0);
+    let tan_t = sqrt(1.0 - cos_t * cos_t) / max(cos_t, 1e-4);
+    let texel = shadow_texel_size(world, n);
+    let along_light = 0.1 + min(1.0 * tan_t, 4.0);
+    return shadow_coords(world + texel * along_light * l);
 }
 // ANCHOR_END: grazing_bias

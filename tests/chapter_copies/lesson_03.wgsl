@@ -1,33 +1,25 @@
-// lesson_03/exercises.wgsl: the chapter's exercises, starter code. Appended
-// to pcf.wgsl, so `shadow_map`, `shadow_compare` (a comparison sampler: 1.0
-// where the stored depth is not in front of the compared depth) and
-// `textureDimensions(shadow_map)` are in scope. Each stub runs and gives a
-// wrong answer until you fill it in; grade with
-// `cargo run --release --bin grade -- lesson_03`.
+// lesson_03 exercises answered with the chapter's own code (grade
+// --check-copies must see every one fail). Appended to pcf.wgsl in place of
+// shaders/lesson_03/exercises.wgsl.
 
 // ANCHOR: pcf_kernel
-// Exercise 1: the N×N PCF loop, N = 2·radius + 1. Take one depth comparison
-// at each texel offset o = (x, y) / map size, x and y in -radius..=radius,
-// comparing at depth s.z + dot(gradient, o) (the receiver's own plane at the
-// tap), and return the average: the fraction of taps that see the light.
-// `s`: the receiver's (u, v, depth) in the shadow map.
+// Copies the chapter's `pcf_grid` listing (N = 2 radius + 1).
 fn exercise_pcf_kernel(s: vec3<f32>, radius: i32, gradient: vec2<f32>) -> f32 {
-    // Starter: one comparison at the centre, a hard edge.
-    return textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z);
+    return pcf_grid(s, 2 * radius + 1, gradient);
 }
 // ANCHOR_END: pcf_kernel
 
 // ANCHOR: rotated_poisson
-// Exercise 2 (beyond the lesson): 16 taps on a disk of `radius` texels that
-// you generate (no table), rotated per pixel. Tap i sits at distance
-// radius · sqrt((i + 0.5) / 16) from the centre, at angle i · 2.39996 (the
-// golden angle) plus a per-pixel angle from `pixel` (the fragment's
-// position in pixels): interleaved gradient noise,
-// 2π · fract(52.9829189 · fract(dot(pixel, vec2(0.06711056, 0.00583715)))).
-// Compare each tap at s.z + dot(gradient, o) as in exercise 1 (the sampler
-// is bilinear here: each tap blends 2×2 comparisons) and return the average.
+// Copies the chapter's `poisson` listing (the rotated Poisson disk).
 fn exercise_rotated_poisson(s: vec3<f32>, pixel: vec2<f32>, radius: f32, gradient: vec2<f32>) -> f32 {
-    // Starter: one bilinear comparison at the centre (a 2-texel penumbra).
-    return textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z);
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let a = rotation_angle(pixel);
+    let rot = mat2x2<f32>(cos(a), sin(a), -sin(a), cos(a));
+    var lit = 0.0;
+    for (var i = 0u; i < 16u; i++) {
+        let o = rot * POISSON_DISK[i] * radius * texel;
+        lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
+    }
+    return lit / 16.0;
 }
 // ANCHOR_END: rotated_poisson
