@@ -34,7 +34,7 @@
 use std::ops::Range;
 
 use anyhow::Result;
-use common::glam::Mat4;
+use common::glam::{DVec3, Mat4};
 use common::gpu::lit::LitPass;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
@@ -260,6 +260,11 @@ impl ShadowVolumes {
         let casters = &self.casters;
         let reach = &self.reach;
         let models = &self.models;
+        // An exercise's sides also get the view frustum (object space).
+        let view = match parts.sides {
+            Some(_) => super::cull::frustum_planes(scene.camera.view_proj.as_dmat4()),
+            None => Vec::new(),
+        };
         frame.cpu("silhouette", || {
             cpu.vertices.clear();
             cpu.ranges.clear();
@@ -277,11 +282,21 @@ impl ShadowVolumes {
                     // Silhouettes in object space: the light moves, not the mesh.
                     let model = models[c.object];
                     let w = reach.get(k).and_then(|r| r.get(ci)).copied();
+                    // A plane (n, d) in object space: (n, d) · (M x, 1).
+                    let m = model.as_dmat4().transpose();
+                    let view: Vec<(DVec3, f64)> = view
+                        .iter()
+                        .map(|&(n, d)| {
+                            let p = m * n.extend(d);
+                            (p.truncate(), p.w)
+                        })
+                        .collect();
                     ranges[ci] = cpu_volume_parts(
                         &c.adjacency,
                         light.to_object_space(model),
                         w.unwrap_or(0.0),
                         parts,
+                        &view,
                         &mut cpu.vertices,
                     );
                 }
