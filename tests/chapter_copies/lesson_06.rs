@@ -7,8 +7,19 @@ use common::glam::DVec3;
 use crate::lesson_05::adjacency::Adjacency;
 use crate::lesson_05::silhouette::LightDir;
 
-/// Exercise 1, copied: the lesson's occlusion pyramid and its sphere test.
-pub fn needs_zfail(center: DVec3, radius: f64, light: LightDir, near_rect: &[DVec3; 4]) -> bool {
+/// Exercise 1, copied: the lesson's occlusion pyramid and its sphere test,
+/// on the sphere around the points.
+pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) -> bool {
+    let (lo, hi) = points
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), p| {
+            (a.min(*p), b.max(*p))
+        });
+    let center = (lo + hi) * 0.5;
+    let radius = points
+        .iter()
+        .map(|p| p.distance(center))
+        .fold(0.0, f64::max);
     // Chapter 06's listings `plan.rs:plan` (`reaches_near`) and
     // `plan.rs:occlusion_pyramid`, called as printed.
     let (point, dir) = match light {
