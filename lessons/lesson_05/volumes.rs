@@ -34,7 +34,7 @@
 use std::ops::Range;
 
 use anyhow::Result;
-use common::glam::{DVec3, Mat4};
+use common::glam::{DMat4, DVec3, DVec4, Mat4};
 use common::gpu::lit::LitPass;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
@@ -262,7 +262,7 @@ impl ShadowVolumes {
         let models = &self.models;
         // An exercise's sides also get the view frustum (object space).
         let view = match parts.sides {
-            Some(_) => super::cull::frustum_planes(scene.camera.view_proj.as_dmat4()),
+            Some(_) => frustum_planes(scene.camera.view_proj.as_dmat4()),
             None => Vec::new(),
         };
         frame.cpu("silhouette", || {
@@ -467,4 +467,26 @@ impl ShadowVolumes {
     pub fn counter(&self) -> Option<&FragmentCounter> {
         self.counter.as_ref()
     }
+}
+
+/// Planes `(n, d)`, `n` of unit length, with n·p + d ≥ 0 inside, from a
+/// WebGPU view-projection (depth in [0, 1]). A far plane at infinity is
+/// left out.
+pub fn frustum_planes(vp: DMat4) -> Vec<(DVec3, f64)> {
+    let r = |i: usize| vp.row(i);
+    let candidates = [
+        r(3) + r(0),
+        r(3) - r(0),
+        r(3) + r(1),
+        r(3) - r(1),
+        r(2),
+        r(3) - r(2),
+    ];
+    candidates
+        .iter()
+        .filter_map(|p: &DVec4| {
+            let len = p.truncate().length();
+            (len > 1e-9 * p.length().max(1.0)).then(|| (p.truncate() / len, p.w / len))
+        })
+        .collect()
 }
