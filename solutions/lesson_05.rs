@@ -4,43 +4,38 @@
 use common::glam::DVec3;
 
 use super::adjacency::Adjacency;
-use super::silhouette::{LightDir, SilhouetteEdge};
+use super::silhouette::{silhouette_edges, LightDir, SilhouetteEdge};
 
-// ANCHOR: silhouette_edges
-/// Exercise 1: the silhouette edges of a caster for one light (object
-/// space), each oriented the way its light-facing face runs it.
-pub fn silhouette_edges(adj: &Adjacency, light: LightDir) -> Vec<SilhouetteEdge> {
-    let facing: Vec<bool> = adj
-        .triangles
-        .iter()
-        .zip(&adj.face_normals)
-        .map(|(t, n)| match light {
-            LightDir::Point(p) => n.dot(p - adj.positions[t[0] as usize]) > 0.0,
-            LightDir::Directional(d) => n.dot(-d) > 0.0,
-        })
-        .collect();
-    let mut out = Vec::new();
-    for edge in &adj.edges {
-        // +1 per lit face running v[0] → v[1], −1 per lit face running back.
-        let sum: i32 = adj
-            .faces_of(edge)
-            .iter()
-            .filter(|f| facing[f.face as usize])
-            .map(|f| if f.forward { 1 } else { -1 })
-            .sum();
-        let [v0, v1] = edge.v;
-        let e = if sum > 0 {
-            SilhouetteEdge { a: v0, b: v1 }
-        } else {
-            SilhouetteEdge { a: v1, b: v0 }
+// ANCHOR: edges_in_view
+/// Exercise 1: the lesson's silhouette, less the edges whose quad lies
+/// wholly outside one frustum plane. The quad's finite corners are `a`
+/// and `b`; its corners at infinity are the homogeneous points
+/// `(a − L, 0)`, `(b − L, 0)` (point light) or `(d, 0)` (directional),
+/// whose value for the plane is `n · (a − L)`, `n · (b − L)` or `n · d`.
+pub fn silhouette_edges_in_view(
+    adj: &Adjacency,
+    light: LightDir,
+    view: &[(DVec3, f64)],
+) -> Vec<SilhouetteEdge> {
+    let p = |i: u32| adj.positions[i as usize].as_dvec3();
+    let quad_outside = |e: &SilhouetteEdge, &(n, d): &(DVec3, f64)| {
+        let (a, b) = (p(e.a), p(e.b));
+        let finite_out = n.dot(a) + d < 0.0 && n.dot(b) + d < 0.0;
+        let infinite_out = match light {
+            LightDir::Point(l) => {
+                let l = l.as_dvec3();
+                n.dot(a - l) <= 0.0 && n.dot(b - l) <= 0.0
+            }
+            LightDir::Directional(dir) => n.dot(dir.as_dvec3()) <= 0.0,
         };
-        for _ in 0..sum.unsigned_abs() {
-            out.push(e);
-        }
-    }
-    out
+        finite_out && infinite_out
+    };
+    silhouette_edges(adj, light)
+        .into_iter()
+        .filter(|e| !view.iter().any(|plane| quad_outside(e, plane)))
+        .collect()
 }
-// ANCHOR_END: silhouette_edges
+// ANCHOR_END: edges_in_view
 
 // ANCHOR: volume_can_matter
 /// Exercise 2: a caster's volume cannot matter when every point of it is

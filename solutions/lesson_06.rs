@@ -5,54 +5,26 @@ use common::glam::DVec3;
 
 use crate::lesson_05::adjacency::Adjacency;
 use crate::lesson_05::silhouette::LightDir;
+use crate::lesson_06::plan::occlusion_pyramid;
 
 // ANCHOR: needs_zfail
 /// Exercise 1: a caster shadows a point q of the near-plane rectangle only
-/// if it meets the segment from q to the light. All those segments fill
-/// the pyramid from a point light to the rectangle (or, for a directional
-/// light, the rectangle swept towards the light): z-fail unless the
-/// bounding sphere lies wholly outside one of its faces.
-pub fn needs_zfail(center: DVec3, radius: f64, light: LightDir, near_rect: &[DVec3; 4]) -> bool {
-    let mid = near_rect.iter().sum::<DVec3>() / 4.0;
-    let size = (near_rect[2] - near_rect[0]).length();
-    let (towards_light, inside) = match light {
-        LightDir::Point(p) => (p.as_dvec3() - mid, (p.as_dvec3() + mid) * 0.5),
-        LightDir::Directional(d) => {
-            let d = d.as_dvec3().normalize_or_zero();
-            (-d, mid - d * size)
-        }
+/// if it meets the segment from q to the light; those segments fill the
+/// lesson's occlusion pyramid. The caster lies in the convex hull of its
+/// vertices, so it misses the pyramid when all of them lie outside one of
+/// its faces: z-pass then counts the same.
+pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) -> bool {
+    let (point, dir) = match light {
+        LightDir::Point(p) => (Some(p.as_dvec3()), None),
+        LightDir::Directional(d) => (None, Some(d.as_dvec3())),
     };
-    let near_n = (near_rect[1] - near_rect[0]).cross(near_rect[3] - near_rect[0]);
-    if near_n
-        .normalize_or_zero()
-        .dot(towards_light.normalize_or_zero())
-        .abs()
-        < 1e-9
-    {
-        return true; // the light on the near plane: no pyramid, be safe
-    }
-    // The faces: the rectangle, and one through each of its edges.
-    let mut faces = vec![(near_n, mid)];
-    for i in 0..4 {
-        let (a, b) = (near_rect[i], near_rect[(i + 1) % 4]);
-        let n = match light {
-            LightDir::Point(p) => (a - p.as_dvec3()).cross(b - p.as_dvec3()),
-            LightDir::Directional(d) => (b - a).cross(d.as_dvec3()),
-        };
-        faces.push((n, a));
-    }
-    for (n, on_face) in faces {
-        let n = n.normalize_or_zero();
-        if n == DVec3::ZERO {
-            return true;
-        }
-        // Orient the face's normal towards the inside.
-        let n = if n.dot(inside - on_face) < 0.0 { -n } else { n };
-        if n.dot(center - on_face) < -radius {
-            return false; // wholly outside this face
-        }
-    }
-    true
+    let Some(planes) = occlusion_pyramid(near_rect, point, dir) else {
+        return true; // degenerate: be safe
+    };
+    // z-pass only if one face has every vertex strictly outside it.
+    !planes
+        .iter()
+        .any(|(n, d)| points.iter().all(|p| n.dot(*p) + d < 0.0))
 }
 // ANCHOR_END: needs_zfail
 

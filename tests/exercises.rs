@@ -112,7 +112,7 @@ exercises! {
     l03_rotated_poisson: lesson_03 exercise_rotated_poisson,
     l04_cull_faces: lesson_04 exercise_cull_faces,
     l04_cube_depth: lesson_04 exercise_cube_depth,
-    l05_silhouette_edges: lesson_05 exercise_silhouette_edges,
+    l05_edges_in_view: lesson_05 exercise_edges_in_view,
     l05_skip_casters: lesson_05 exercise_skip_casters,
     l06_choose_method: lesson_06 exercise_choose_method,
     l06_light_cap: lesson_06 exercise_light_cap,

@@ -7,11 +7,13 @@ use common::scene::Scene;
 
 use super::cube_map::CUBE_FACES;
 
-/// A bounding sphere, origin-relative.
+/// A bounding sphere, origin-relative, around the world-space box of
+/// half extents `half` (the chapter's exercise tests the box).
 #[derive(Clone, Copy, Debug)]
 pub struct Sphere {
     pub centre: DVec3,
     pub radius: f64,
+    pub half: DVec3,
 }
 
 /// Each object's bounding sphere: around its world-space bounding box.
@@ -30,6 +32,7 @@ pub fn bounding_spheres(scene: &Scene) -> Vec<Sphere> {
             Sphere {
                 centre: (lo + hi) * 0.5,
                 radius: (hi - lo).length() * 0.5,
+                half: (hi - lo) * 0.5,
             }
         })
         .collect()

@@ -8,15 +8,18 @@ use common::glam::DVec3;
 
 // ANCHOR: cull_faces
 /// Exercise 1: which of the six cube faces, in the order +X, −X, +Y, −Y,
-/// +Z, −Z, a caster's bounding sphere can touch, `centre` relative to the
-/// light. Face +X sees the directions with x ≥ |y| and x ≥ |z|: its frustum
-/// is bounded by four planes through the light with normals
-/// (1, −1, 0)/√2, (1, 1, 0)/√2, (1, 0, −1)/√2, (1, 0, 1)/√2. The sphere
-/// touches the face when its signed distance to each of the four planes is
-/// more than −radius; the other faces likewise with their own axis.
-pub fn faces_touched(centre: DVec3, radius: f64) -> [bool; 6] {
+/// +Z, −Z, a caster can touch, tested with its bounding box rather than
+/// the lesson's sphere around that box: `centre` is the box's centre
+/// relative to the light, `half` its half extents (world axes, each ≥ 0).
+/// Face +X sees the directions with x ≥ |y| and x ≥ |z|: four planes
+/// through the light, with normals (1, ∓1, 0)/√2 and (1, 0, ∓1)/√2. Drop
+/// a face only when the whole box lies outside one of its planes (the
+/// box's corner farthest along the normal is behind it); answer `true`
+/// when unsure, since a dropped face that the caster reaches loses a
+/// shadow.
+pub fn faces_touched(centre: DVec3, half: DVec3) -> [bool; 6] {
     // Starter: every face, so nothing is culled (and nothing is wrong).
-    let _ = (centre, radius);
+    let _ = (centre, half);
     [true; 6]
 }
 // ANCHOR_END: cull_faces

@@ -117,7 +117,7 @@ const BASE: Settings = Settings {
     slope: 1.0,
     bias_world: 0.0,
     pcf: 0.0,
-    cull: Some(culling::sphere_touches_face),
+    cull: Some(sphere_test),
     unclipped: true,
     clamp_range: true,
     peer: Peer::None,
@@ -169,12 +169,19 @@ const NEAR: f64 = 0.05;
 const NEAR_FALLBACK: f64 = 0.001;
 // ANCHOR_END: variants
 
-/// Whether a sphere (centre relative to the light, radius) can touch a face.
-type FaceTest = fn(DVec3, f64, usize) -> bool;
+/// Whether a caster (its bounding sphere's centre relative to the light,
+/// radius, and the half extents of the box inside it) can touch a face.
+type FaceTest = fn(DVec3, f64, DVec3, usize) -> bool;
 
-/// `exercise_cull_faces`: the student's [`exercises::faces_touched`].
-fn exercise_face_test(centre: DVec3, radius: f64, face: usize) -> bool {
-    exercises::faces_touched(centre, radius)[face]
+/// The lesson's test: the sphere only.
+fn sphere_test(centre: DVec3, radius: f64, _half: DVec3, face: usize) -> bool {
+    culling::sphere_touches_face(centre, radius, face)
+}
+
+/// `exercise_cull_faces`: the student's [`exercises::faces_touched`], on
+/// the box.
+fn exercise_face_test(centre: DVec3, _radius: f64, half: DVec3, face: usize) -> bool {
+    exercises::faces_touched(centre, half)[face]
 }
 
 /// One variant on this device: its pipeline, lit-pass bind group, map and near plane.
@@ -458,8 +465,8 @@ fn face_casters(
         .filter(|&o| scene.casts_shadow(o))
         .filter(|&o| {
             let c = spheres[o].centre - pos;
-            let r = spheres[o].radius;
-            cull.is_none_or(|touches| c.length() - r < range && touches(c, r, face))
+            let (r, half) = (spheres[o].radius, spheres[o].half);
+            cull.is_none_or(|touches| c.length() - r < range && touches(c, r, half, face))
         })
         .collect()
 }

@@ -1,8 +1,9 @@
 //! Leaving casters out (lesson 05's second exercise, and lesson 06's plan):
-//! the view frustum's planes, and the draws of the casters whose volume a
-//! test says can matter.
+//! the draws of the casters whose volume a test says can matter. The view
+//! frustum's planes are in `volumes` (the CPU path gives them to lesson
+//! 05's first exercise).
 
-use common::glam::{DVec3, DVec4};
+use common::glam::DVec3;
 use common::gpu::render::SceneGpu;
 use common::scene::LightKind;
 
@@ -10,27 +11,7 @@ use super::extrusion::world_light;
 use super::silhouette::LightDir;
 use super::volumes::{CasterDraw, ShadowVolumes};
 
-/// Planes `(n, d)`, `n` of unit length, with n·p + d ≥ 0 inside, from a
-/// WebGPU view-projection (depth in [0, 1]). A far plane at infinity is
-/// left out.
-pub fn frustum_planes(vp: common::glam::DMat4) -> Vec<(DVec3, f64)> {
-    let r = |i: usize| vp.row(i);
-    let candidates = [
-        r(3) + r(0),
-        r(3) - r(0),
-        r(3) + r(1),
-        r(3) - r(1),
-        r(2),
-        r(3) - r(2),
-    ];
-    candidates
-        .iter()
-        .filter_map(|p: &DVec4| {
-            let len = p.truncate().length();
-            (len > 1e-9 * p.length().max(1.0)).then(|| (p.truncate() / len, p.w / len))
-        })
-        .collect()
-}
+pub use super::volumes::frustum_planes;
 
 /// A test "can this caster's volume matter?" (lesson 05's exercise
 /// `volume_can_matter`): the caster's bounding sphere (centre, radius), the

@@ -8,26 +8,35 @@ use common::glam::DVec3;
 use super::adjacency::Adjacency;
 use super::silhouette::{LightDir, SilhouetteEdge};
 
-// ANCHOR: silhouette_edges
+// ANCHOR: edges_in_view
 /// Exercise 1: the silhouette edges of a caster for one light (object
-/// space), the edges the CPU path extrudes into the volume's sides.
+/// space), leaving out each edge whose side of the volume the view
+/// cannot see. The lesson's CPU path extrudes every silhouette edge; a
+/// big caster half out of view, or one behind the camera, builds quads
+/// that the clipper then throws away.
 ///
-/// A face faces the light when its unnormalised normal `n`
-/// (`adj.face_normals`) points towards it: `n · (p − v0) > 0` for a point
-/// light at `p` (`v0` the face's first vertex), `n · (−d) > 0` for a
-/// directional light travelling along `d`; exactly 0 is not facing.
-/// Walk `adj.edges`: each light-facing face on an edge
-/// (`adj.faces_of(edge)`) adds +1 if it runs `v[0] → v[1]`
-/// (`forward`), −1 if it runs `v[1] → v[0]`. Emit the edge |sum| times,
-/// as `a → b` in the direction of the sum's sign (the way the lit face runs
-/// it): the extruded quad then faces outwards.
+/// - `adj`, `light`: as for
+///   [`silhouette_edges`](super::silhouette::silhouette_edges), whose
+///   edges (each oriented like its lit face) you may start from;
+/// - `view`: the view frustum's planes `(n, d)` in the caster's object
+///   space, `n · x + d ≥ 0` inside (`n` is not of unit length; there is
+///   no far plane under `far = "infinite"`).
+///
+/// An edge `a → b` extrudes to the quad `a, b, b∞, a∞`. Leave an edge out
+/// only when its whole quad, the points at infinity included, lies
+/// outside one plane: then it cannot cover a pixel, and the counts, so
+/// the image, stay the same.
 ///
 /// Starter: no edges, so no volume has sides and nothing is shadowed.
-pub fn silhouette_edges(adj: &Adjacency, light: LightDir) -> Vec<SilhouetteEdge> {
-    let _ = (adj, light);
+pub fn silhouette_edges_in_view(
+    adj: &Adjacency,
+    light: LightDir,
+    view: &[(DVec3, f64)],
+) -> Vec<SilhouetteEdge> {
+    let _ = (adj, light, view);
     Vec::new()
 }
-// ANCHOR_END: silhouette_edges
+// ANCHOR_END: edges_in_view
 
 // ANCHOR: volume_can_matter
 /// Exercise 2 (beyond the lesson): can this caster's shadow volume change

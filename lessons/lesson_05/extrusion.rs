@@ -18,6 +18,7 @@
 use std::ops::Range;
 
 use super::adjacency::Adjacency;
+use common::glam::DVec3;
 use common::gpu::render::shader_module;
 use common::gpu::Gpu;
 
@@ -85,16 +86,18 @@ pub fn cpu_volume_reaching(
     reach_w: f32,
     out: &mut Vec<CpuVertex>,
 ) -> VolumeRanges {
-    cpu_volume_parts(adj, light, reach_w, CpuParts::default(), out)
+    cpu_volume_parts(adj, light, reach_w, CpuParts::default(), &[], out)
 }
 
 /// [`cpu_volume_reaching`], with the sides or the caps found by `parts`
 /// where it says so (an exercise's code), else by the lesson's own.
+/// `view`: the view frustum's planes in object space, for `parts.sides`.
 pub fn cpu_volume_parts(
     adj: &Adjacency,
     light: LightDir,
     reach_w: f32,
     parts: CpuParts,
+    view: &[(DVec3, f64)],
     out: &mut Vec<CpuVertex>,
 ) -> VolumeRanges {
     let facing = face_facing(adj, light);
@@ -106,7 +109,7 @@ pub fn cpu_volume_parts(
     let directional = matches!(light, LightDir::Directional(_));
     let start = out.len() as u32;
     let edges = match parts.sides {
-        Some(sides) => sides(adj, light),
+        Some(sides) => sides(adj, light, view),
         None => silhouette_edges_for(adj, &facing),
     };
     for e in edges {
@@ -148,8 +151,10 @@ pub fn cpu_volume_parts(
 // ANCHOR_END: cpu_volume
 
 /// A silhouette finder: the edges to extrude, as
-/// [`silhouette_edges`](super::silhouette::silhouette_edges) gives them.
-pub type SidesFn = fn(&Adjacency, LightDir) -> Vec<SilhouetteEdge>;
+/// [`silhouette_edges`](super::silhouette::silhouette_edges) gives them,
+/// given also the view frustum's planes `(n, d)` in object space (`n` not
+/// of unit length, `n · x + d ≥ 0` inside).
+pub type SidesFn = fn(&Adjacency, LightDir, &[(DVec3, f64)]) -> Vec<SilhouetteEdge>;
 
 /// A cap builder: (front cap, back cap) triangles, welded ids, each wound
 /// as drawn (the back cap's vertices go to infinity).
@@ -171,6 +176,11 @@ mod tests {
     use common::glam::Vec3;
     use common::scene::mesh::builtin;
 
+    /// The lesson's sides, as a [`SidesFn`] would give them.
+    fn lesson_sides(adj: &Adjacency, light: LightDir, _: &[(DVec3, f64)]) -> Vec<SilhouetteEdge> {
+        silhouette_edges(adj, light)
+    }
+
     /// The lesson's caps, as a [`CapsFn`] would give them.
     fn lesson_caps(adj: &Adjacency, light: LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
         let front = light_facing_triangles(adj, light);
@@ -182,7 +192,7 @@ mod tests {
     fn parts_given_as_functions_build_the_same_volume() {
         let adj = Adjacency::new(&builtin("knot").unwrap());
         let parts = CpuParts {
-            sides: Some(silhouette_edges),
+            sides: Some(lesson_sides),
             caps: Some(lesson_caps),
         };
         for light in [
@@ -192,7 +202,7 @@ mod tests {
             for reach in [0.0, 0.25] {
                 let (mut own, mut given) = (Vec::new(), Vec::new());
                 let r = cpu_volume_reaching(&adj, light, reach, &mut own);
-                let s = cpu_volume_parts(&adj, light, reach, parts, &mut given);
+                let s = cpu_volume_parts(&adj, light, reach, parts, &[], &mut given);
                 assert_eq!((r, &own), (s, &given), "{light:?}, reach {reach}");
                 assert!(!own.is_empty());
             }

@@ -48,9 +48,9 @@ enum Variant {
     /// Silhouettes and sides written by a compute shader, drawn indirectly.
     #[value(name = "zpass_compute")]
     ZpassCompute,
-    /// Exercise 1: `zpass_cpu` with your `silhouette_edges`.
-    #[value(name = "exercise_silhouette_edges")]
-    ExerciseSilhouetteEdges,
+    /// Exercise 1: `zpass_cpu` with your `silhouette_edges_in_view`.
+    #[value(name = "exercise_edges_in_view")]
+    ExerciseEdgesInView,
     /// Exercise 2: `zpass_cpu` drawing only the casters your
     /// `volume_can_matter` keeps.
     #[value(name = "exercise_skip_casters")]
@@ -69,8 +69,8 @@ impl Variant {
     /// The parts of the CPU path that an exercise's code builds.
     fn cpu_parts(self) -> CpuParts {
         match self {
-            Variant::ExerciseSilhouetteEdges => CpuParts {
-                sides: Some(exercises::silhouette_edges),
+            Variant::ExerciseEdgesInView => CpuParts {
+                sides: Some(exercises::silhouette_edges_in_view),
                 caps: None,
             },
             _ => CpuParts::default(),

@@ -34,7 +34,7 @@
 use std::ops::Range;
 
 use anyhow::Result;
-use common::glam::Mat4;
+use common::glam::{DMat4, DVec3, DVec4, Mat4};
 use common::gpu::lit::LitPass;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
@@ -260,6 +260,11 @@ impl ShadowVolumes {
         let casters = &self.casters;
         let reach = &self.reach;
         let models = &self.models;
+        // An exercise's sides also get the view frustum (object space).
+        let view = match parts.sides {
+            Some(_) => frustum_planes(scene.camera.view_proj.as_dmat4()),
+            None => Vec::new(),
+        };
         frame.cpu("silhouette", || {
             cpu.vertices.clear();
             cpu.ranges.clear();
@@ -277,11 +282,21 @@ impl ShadowVolumes {
                     // Silhouettes in object space: the light moves, not the mesh.
                     let model = models[c.object];
                     let w = reach.get(k).and_then(|r| r.get(ci)).copied();
+                    // A plane (n, d) in object space: (n, d) · (M x, 1).
+                    let m = model.as_dmat4().transpose();
+                    let view: Vec<(DVec3, f64)> = view
+                        .iter()
+                        .map(|&(n, d)| {
+                            let p = m * n.extend(d);
+                            (p.truncate(), p.w)
+                        })
+                        .collect();
                     ranges[ci] = cpu_volume_parts(
                         &c.adjacency,
                         light.to_object_space(model),
                         w.unwrap_or(0.0),
                         parts,
+                        &view,
                         &mut cpu.vertices,
                     );
                 }
@@ -452,4 +467,26 @@ impl ShadowVolumes {
     pub fn counter(&self) -> Option<&FragmentCounter> {
         self.counter.as_ref()
     }
+}
+
+/// Planes `(n, d)`, `n` of unit length, with n·p + d ≥ 0 inside, from a
+/// WebGPU view-projection (depth in [0, 1]). A far plane at infinity is
+/// left out.
+pub fn frustum_planes(vp: DMat4) -> Vec<(DVec3, f64)> {
+    let r = |i: usize| vp.row(i);
+    let candidates = [
+        r(3) + r(0),
+        r(3) - r(0),
+        r(3) + r(1),
+        r(3) - r(1),
+        r(2),
+        r(3) - r(2),
+    ];
+    candidates
+        .iter()
+        .filter_map(|p: &DVec4| {
+            let len = p.truncate().length();
+            (len > 1e-9 * p.length().max(1.0)).then(|| (p.truncate() / len, p.w / len))
+        })
+        .collect()
 }

@@ -12,9 +12,12 @@ use crate::lesson_05::silhouette::LightDir;
 /// Exercise 1: must this caster be counted with z-fail for this light?
 /// It must when its shadow volume can contain a point of the near-plane
 /// rectangle (then z-pass misses an "enter"); otherwise z-pass counts the
-/// same, for fewer stencil updates.
+/// same, for fewer stencil updates. The lesson answers from the caster's
+/// bounding sphere; answer from the caster itself, its vertices `points`,
+/// so that a long thin caster beside the occlusion pyramid is not counted
+/// with z-fail because its sphere reaches in.
 ///
-/// - `center`, `radius`: the caster's bounding sphere;
+/// - `points`: the caster's vertices (its convex hull holds the caster);
 /// - `light`: a point light's position, or the direction a directional
 ///   light travels;
 /// - `near_rect`: the four corners of the near-plane rectangle, in order
@@ -25,8 +28,8 @@ use crate::lesson_05::silhouette::LightDir;
 ///
 /// Starter: never, so z-pass everywhere, wrong wherever the eye is in a
 /// shadow.
-pub fn needs_zfail(center: DVec3, radius: f64, light: LightDir, near_rect: &[DVec3; 4]) -> bool {
-    let _ = (center, radius, light, near_rect);
+pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) -> bool {
+    let _ = (points, light, near_rect);
     false
 }
 // ANCHOR_END: needs_zfail

@@ -25,6 +25,7 @@
 use std::collections::BTreeMap;
 
 use clap::ValueEnum;
+use common::glam::DVec3;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
@@ -36,7 +37,7 @@ use common::Result;
 use workbook::lesson_05::extrusion::{world_light, CpuParts, Extrusion};
 use workbook::lesson_05::stencil::{self, Counting, Method};
 use workbook::lesson_05::volumes::{
-    base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes, VolumeCosts,
+    base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes, VolumeCaster, VolumeCosts,
 };
 use workbook::lesson_06::caps::{self, zfail_counting};
 use workbook::lesson_06::exercises;
@@ -107,7 +108,14 @@ impl Variant {
             Variant::ExerciseChooseMethod => {
                 let near_rect = near_rectangle(scene.camera.view_proj.as_dmat4());
                 let l = world_light(scene, light);
-                let student = |c, r| exercises::needs_zfail(c, r, l, &near_rect);
+                let models = scene.scene.relative_models();
+                // The caster's vertices in world space (origin-relative).
+                let student = |c: &VolumeCaster| {
+                    let m = models[c.object].as_dmat4();
+                    let p = c.adjacency.positions.iter();
+                    let world: Vec<DVec3> = p.map(|p| m.transform_point3(p.as_dvec3())).collect();
+                    exercises::needs_zfail(&world, l, &near_rect)
+                };
                 return plan_with(volumes, scene, light, student);
             }
             Variant::ZpassQuads => {

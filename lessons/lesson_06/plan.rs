@@ -11,7 +11,7 @@ use super::caps::zfail;
 pub use crate::lesson_05::cull::frustum_planes;
 use crate::lesson_05::extrusion::world_light;
 use crate::lesson_05::silhouette::LightDir;
-use crate::lesson_05::volumes::{CasterDraw, ShadowVolumes};
+use crate::lesson_05::volumes::{CasterDraw, ShadowVolumes, VolumeCaster};
 
 /// What [`plan`] chose: casters counted with z-pass, with z-fail, and
 /// left out.
@@ -43,17 +43,16 @@ pub fn plan(
         Some(planes) => !planes.iter().any(|(n, d)| n.dot(center) + d < -radius),
         None => true, // degenerate pyramid: be safe
     };
-    plan_with(volumes, scene, light, reaches_near)
+    plan_with(volumes, scene, light, |c| reaches_near(c.center, c.radius))
 }
 
-/// [`plan`] with the choice of z-fail made by `needs_zfail(center,
-/// radius)` of each caster's bounding sphere (lesson 06's exercise puts
-/// the student's test there).
+/// [`plan`] with the choice of z-fail made by `needs_zfail(caster)`
+/// (lesson 06's exercise puts the student's test there).
 pub fn plan_with(
     volumes: &ShadowVolumes,
     scene: &SceneGpu,
     light: usize,
-    needs_zfail: impl Fn(DVec3, f64) -> bool,
+    needs_zfail: impl Fn(&VolumeCaster) -> bool,
 ) -> (Vec<CasterDraw>, PlanStats) {
     let frustum = frustum_planes(scene.camera.view_proj.as_dmat4());
     let (l_point, l_dir) = match world_light(scene, light) {
@@ -79,7 +78,7 @@ pub fn plan_with(
             stats.skipped += 1;
             continue;
         }
-        if needs_zfail(c.center, c.radius) {
+        if needs_zfail(c) {
             stats.zfail += 1;
             out.push(zfail(c.object));
         } else {

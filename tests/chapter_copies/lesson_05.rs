@@ -1,50 +1,25 @@
-//! Lesson 05's exercises: the starter code. Each function compiles and
-//! runs, and gives a wrong but harmless answer until you write it. Grade
-//! with `cargo run --release --bin grade -- lesson_05`; the chapter's
-//! "Exercises" section says what each one asks.
+//! Lesson 05's exercises answered with the nearest code the book prints
+//! (`--features chapter_copies`, for `grade --check-copies`): each must
+//! fail its grade, or the chapter hands out the answer.
 
 use common::glam::DVec3;
 
 use super::adjacency::Adjacency;
 use super::silhouette::{LightDir, SilhouetteEdge};
 
-// ANCHOR: silhouette_edges
-/// Exercise 1: the silhouette edges of a caster for one light (object
-/// space), the edges the CPU path extrudes into the volume's sides.
-///
-/// A face faces the light when its unnormalised normal `n`
-/// (`adj.face_normals`) points towards it: `n · (p − v0) > 0` for a point
-/// light at `p` (`v0` the face's first vertex), `n · (−d) > 0` for a
-/// directional light travelling along `d`; exactly 0 is not facing.
-/// Walk `adj.edges`: each light-facing face on an edge
-/// (`adj.faces_of(edge)`) adds +1 if it runs `v[0] → v[1]`
-/// (`forward`), −1 if it runs `v[1] → v[0]`. Emit the edge |sum| times,
-/// as `a → b` in the direction of the sum's sign (the way the lit face runs
-/// it): the extruded quad then faces outwards.
-///
-/// Starter: no edges, so no volume has sides and nothing is shadowed.
-pub fn silhouette_edges(adj: &Adjacency, light: LightDir) -> Vec<SilhouetteEdge> {
-    let _ = (adj, light);
-    Vec::new()
+/// Exercise 1, copied: every silhouette edge, none left out.
+pub fn silhouette_edges_in_view(
+    adj: &Adjacency,
+    light: LightDir,
+    view: &[(DVec3, f64)],
+) -> Vec<SilhouetteEdge> {
+    let _ = view;
+    // Chapter 05's listing `silhouette.rs:silhouette_edges`, called as printed.
+    super::silhouette::silhouette_edges(adj, light)
 }
-// ANCHOR_END: silhouette_edges
 
-// ANCHOR: volume_can_matter
-/// Exercise 2 (beyond the lesson): can this caster's shadow volume change
-/// a pixel the error is measured on? Return `false` only when it surely
-/// cannot; the caster is then not drawn for this light.
-///
-/// - `center`, `radius`: the caster's bounding sphere;
-/// - `light`: the light (a point light's position, or the direction a
-///   directional light travels);
-/// - `range`: a point or spot light's range (`None` for a directional
-///   light); pixels beyond it are not lit by it anyway;
-/// - `frustum`: the view frustum's planes `(n, d)`, `|n| = 1`, with
-///   `n · x + d ≥ 0` inside (no far plane under `far = "infinite"`).
-///
-/// All in world space, relative to the scene's origin.
-///
-/// Starter: every caster can matter, so none is skipped.
+/// Exercise 2, copied: chapter 05 prints no caster test; the nearest is
+/// chapter 06's, which skips by the frustum only.
 pub fn volume_can_matter(
     center: DVec3,
     radius: f64,
@@ -52,7 +27,18 @@ pub fn volume_can_matter(
     range: Option<f64>,
     frustum: &[(DVec3, f64)],
 ) -> bool {
-    let _ = (center, radius, light, range, frustum);
-    true
+    let _ = range;
+    // Chapter 06's listing `plan.rs:plan`, its `outside` test, pasted.
+    let outside = |(n, d): &(DVec3, f64)| {
+        let s = n.dot(center) + d;
+        if s + radius >= 0.0 {
+            return false;
+        }
+        // The extrusion must also move away from the plane.
+        match light {
+            LightDir::Point(p) => s + radius <= n.dot(p.as_dvec3()) + d,
+            LightDir::Directional(dir) => n.dot(dir.as_dvec3()) <= 0.0,
+        }
+    };
+    !frustum.iter().any(outside)
 }
-// ANCHOR_END: volume_can_matter

@@ -1,51 +1,41 @@
-//! Lesson 06's exercises: the starter code. Each function compiles and
-//! runs, and gives a wrong but harmless answer until you write it. Grade
-//! with `cargo run --release --bin grade -- lesson_06`; the chapter's
-//! "Exercises" section says what each one asks.
+//! Lesson 06's exercises answered with the nearest code the book prints
+//! (`--features chapter_copies`, for `grade --check-copies`): each must
+//! fail its grade, or the chapter hands out the answer.
 
 use common::glam::DVec3;
 
 use crate::lesson_05::adjacency::Adjacency;
 use crate::lesson_05::silhouette::LightDir;
 
-// ANCHOR: needs_zfail
-/// Exercise 1: must this caster be counted with z-fail for this light?
-/// It must when its shadow volume can contain a point of the near-plane
-/// rectangle (then z-pass misses an "enter"); otherwise z-pass counts the
-/// same, for fewer stencil updates.
-///
-/// - `center`, `radius`: the caster's bounding sphere;
-/// - `light`: a point light's position, or the direction a directional
-///   light travels;
-/// - `near_rect`: the four corners of the near-plane rectangle, in order
-///   around it.
-///
-/// All in world space, relative to the scene's origin. Answer `true` when
-/// unsure: z-fail is always right, only dearer.
-///
-/// Starter: never, so z-pass everywhere, wrong wherever the eye is in a
-/// shadow.
-pub fn needs_zfail(center: DVec3, radius: f64, light: LightDir, near_rect: &[DVec3; 4]) -> bool {
-    let _ = (center, radius, light, near_rect);
-    false
+/// Exercise 1, copied: the lesson's occlusion pyramid and its sphere test,
+/// on the sphere around the points.
+pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) -> bool {
+    let (lo, hi) = points
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), p| {
+            (a.min(*p), b.max(*p))
+        });
+    let center = (lo + hi) * 0.5;
+    let radius = points
+        .iter()
+        .map(|p| p.distance(center))
+        .fold(0.0, f64::max);
+    // Chapter 06's listings `plan.rs:plan` (`reaches_near`) and
+    // `plan.rs:occlusion_pyramid`, called as printed.
+    let (point, dir) = match light {
+        LightDir::Point(p) => (Some(p.as_dvec3()), None),
+        LightDir::Directional(d) => (None, Some(d.as_dvec3())),
+    };
+    match super::plan::occlusion_pyramid(near_rect, point, dir) {
+        Some(planes) => !planes.iter().any(|(n, d)| n.dot(center) + d < -radius),
+        None => true,
+    }
 }
-// ANCHOR_END: needs_zfail
 
-// ANCHOR: volume_caps
-/// Exercise 2: the caps that close a caster's shadow volume for one light
-/// (object space): `(front, back)`, as welded vertex ids of `adj`.
-///
-/// The front cap is the light-facing triangles (`adj.triangles` whose
-/// normal `adj.face_normals` points to the light: `n · (p − v0) > 0` for
-/// a point light at `p`, `n · (−d) > 0` for a directional light travelling
-/// along `d`), in their own winding: they face out of the volume, towards
-/// the light. The back cap is the same triangles moved to infinity (the
-/// caller does that), where they must face out of the volume too, away
-/// from the light.
-///
-/// Starter: no caps, so z-fail's count leaks.
+/// Exercise 2, copied: the caps `cpu_volume` builds.
 pub fn volume_caps(adj: &Adjacency, light: LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
-    let _ = (adj, light);
-    (Vec::new(), Vec::new())
+    // Chapter 06's listing `extrusion.rs:cpu_volume` (from lesson 05), its caps.
+    let lit = crate::lesson_05::silhouette::light_facing_triangles(adj, light);
+    let back = lit.iter().map(|t| [t[0], t[2], t[1]]).collect();
+    (lit, back)
 }
-// ANCHOR_END: volume_caps
