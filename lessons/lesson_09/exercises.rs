@@ -1,27 +1,39 @@
 //! Lesson 09's exercises, the starter code: two Rust functions,
-//! [`practical_splits`] and [`snap_to_texel`]. Grade them with
+//! [`fitted_splits`] and [`snap_to_texel`]. Grade them with
 //! `cargo run --release --bin grade -- lesson_09`. The reference solutions
 //! are `solutions/lesson_09.rs` (`--features solutions`).
 
-use common::glam::DVec2;
+use common::glam::{DVec2, DVec3};
 
-// ANCHOR: practical_splits
-/// Exercise 1: the practical split scheme.
+use crate::lesson_09::cascades::{split_depths, SplitScheme};
+
+// ANCHOR: fitted_splits
+/// Exercise 1: splits fitted to where the scene begins.
 ///
-/// Return the `k + 1` view depths that bound `k` cascades, from `near` to
-/// `far` (both included, increasing): at each `i`, the blend
-/// `lambda · log_i + (1 − lambda) · uniform_i` of the logarithmic split
-/// `near · (far / near)^(i / k)` and the uniform one
-/// `near + (far − near) · i / k`.
-pub fn practical_splits(near: f64, far: f64, k: usize, lambda: f64) -> Vec<f64> {
-    let _ = lambda;
-    // TODO: blend in the logarithmic split. This stub is uniform: the
-    // near cascade is as long as the far one, and coarse where it matters.
-    (0..=k)
-        .map(|i| near + (far - near) * i as f64 / k as f64)
-        .collect()
+/// Return the `k + 1` view depths that bound `k` cascades (increasing, the
+/// last one `far`): the lesson's practical split with this `lambda`, but
+/// starting at the nearest view depth the scene can have instead of the
+/// camera's `near`. The scene lies inside the box whose 8 corners are
+/// `scene`; view depth is `(p − eye) · forward` (`forward` a unit vector).
+/// Start at the smallest depth over the corners when it is larger than
+/// `near` (and smaller than `far`), else at `near`: a camera inside the
+/// box, or beside it, may see something just past its near plane.
+pub fn fitted_splits(
+    eye: DVec3,
+    forward: DVec3,
+    scene: &[DVec3],
+    near: f64,
+    far: f64,
+    k: usize,
+    lambda: f64,
+) -> Vec<f64> {
+    let _ = (eye, forward, scene);
+    // TODO: start where the scene starts. This stub is the lesson's split
+    // from the near plane: a camera far from the scene spends its first
+    // cascades on empty air.
+    split_depths(SplitScheme::Practical { lambda }, near, far, k)
 }
-// ANCHOR_END: practical_splits
+// ANCHOR_END: fitted_splits
 
 // ANCHOR: snap_to_texel
 /// Exercise 2: snap a cascade's light-space origin to whole texels.

@@ -71,7 +71,7 @@ enum Variant {
     /// k4, fading into the next cascade over the last 10 % of each.
     #[value(name = "k4_blend")]
     K4Blend,
-    /// Exercise 1: k4 with the student's `practical_splits`.
+    /// Exercise 1: k4 with the student's `fitted_splits`.
     #[value(name = "exercise_practical_splits")]
     ExercisePracticalSplits,
     /// Exercise 2: k4 with the student's `snap_to_texel`.

@@ -38,7 +38,7 @@ pub struct Setup {
 /// The chapter's exercises (`exercises.rs`): k4 with the student's code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Exercise {
-    /// `practical_splits` instead of [`cascades::split_depths`].
+    /// `fitted_splits` instead of [`cascades::split_depths`].
     PracticalSplits,
     /// `snap_to_texel` instead of [`cascades::snap`].
     SnapToTexel,
@@ -112,7 +112,9 @@ impl Setup {
         let splits = match self.exercise {
             Some(Exercise::PracticalSplits) => {
                 let lambda = cascades::PRACTICAL_LAMBDA;
-                let d = exercises::practical_splits(near, reach, self.count, lambda);
+                let (eye, fwd) = (view.eye, view.forward);
+                let d =
+                    exercises::fitted_splits(eye, fwd, &corners, near, reach, self.count, lambda);
                 check_splits(&d, self.count)?;
                 d
             }
@@ -154,7 +156,7 @@ fn student_snap(b: LightBox, resolution: u32) -> LightBox {
 fn check_splits(d: &[f64], k: usize) -> Result<()> {
     if d.len() != k + 1 {
         anyhow::bail!(
-            "exercise_practical_splits: practical_splits returned {} depths for {k} cascades (expected {})",
+            "exercise_practical_splits: fitted_splits returned {} depths for {k} cascades (expected {})",
             d.len(),
             k + 1
         );
