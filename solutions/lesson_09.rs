@@ -39,10 +39,17 @@ pub fn fitted_splits(
 }
 // ANCHOR_END: fitted_splits
 
-// ANCHOR: snap_to_texel
-/// Exercise 2, solved: floor to the texel grid.
-pub fn snap_to_texel(min: DVec2, width: f64, resolution: u32) -> DVec2 {
-    let texel = width / resolution as f64;
-    (min / texel).floor() * texel
+// ANCHOR: snap_tight_box
+/// Exercise 2, solved: the width rounded up to a ladder of fixed sizes,
+/// four to an octave (a power of 2^(1/4) metres), with a texel to spare;
+/// the corner floored to that width's grid.
+pub fn snap_tight_box(min: DVec2, max: DVec2, resolution: u32) -> (DVec2, f64) {
+    let n = resolution as f64;
+    // Flooring the corner moves it down by less than a texel: with one
+    // texel to spare, the box still reaches max.
+    let need = (max - min).max_element() * n / (n - 1.0);
+    let w = ((need.log2() * 4.0).ceil() / 4.0).exp2();
+    let texel = w / n;
+    ((min / texel).floor() * texel, w)
 }
-// ANCHOR_END: snap_to_texel
+// ANCHOR_END: snap_tight_box

@@ -1,5 +1,5 @@
 //! Lesson 09's exercises, the starter code: two Rust functions,
-//! [`fitted_splits`] and [`snap_to_texel`]. Grade them with
+//! [`fitted_splits`] and [`snap_tight_box`]. Grade them with
 //! `cargo run --release --bin grade -- lesson_09`. The reference solutions
 //! are `solutions/lesson_09.rs` (`--features solutions`).
 
@@ -35,17 +35,26 @@ pub fn fitted_splits(
 }
 // ANCHOR_END: fitted_splits
 
-// ANCHOR: snap_to_texel
-/// Exercise 2: snap a cascade's light-space origin to whole texels.
+// ANCHOR: snap_tight_box
+/// Exercise 2: snap a tight box, so that it stops shimmering.
 ///
-/// `min` is the box's min x/y in light space, `width` its width in metres,
-/// `resolution` its map's texels across. Return the origin moved down to
-/// the nearest whole number of texels (a texel is `width / resolution`),
-/// so that the box moves by whole texels only as the camera moves.
-pub fn snap_to_texel(min: DVec2, width: f64, resolution: u32) -> DVec2 {
-    let _ = (width, resolution);
-    // TODO: round to the texel grid. This stub leaves the box where the
-    // fit put it: the shadows' edges crawl as the camera moves.
-    min
+/// `min` and `max` are the light-space x/y corners of a cascade's tight
+/// box (`fit_aabb`'s square; its side changes as the camera turns), and
+/// `resolution` its map's texels across. Return the snapped box as its
+/// lower corner and its width `w` (the box is `[origin, origin + w]` in x
+/// and y; a texel is `w / resolution`), such that:
+///
+/// - the box holds `[min, max]`;
+/// - `w` depends on the size of `[min, max]` only, changes only when that
+///   size crosses one of a few fixed steps (not every frame the camera
+///   turns), and is less than twice the size (the box stays tight);
+/// - `origin` lies on its texel grid: both coordinates whole multiples of
+///   `w / resolution`.
+pub fn snap_tight_box(min: DVec2, max: DVec2, resolution: u32) -> (DVec2, f64) {
+    let _ = resolution;
+    // TODO: a width that holds still, and a corner on its grid. This stub
+    // is the tight box unsnapped: its width, and so its texel size,
+    // follows the camera every frame, and its edges crawl.
+    (min, (max - min).max_element())
 }
-// ANCHOR_END: snap_to_texel
+// ANCHOR_END: snap_tight_box

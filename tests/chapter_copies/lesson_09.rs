@@ -22,10 +22,12 @@ pub fn fitted_splits(
 }
 // ANCHOR_END: fitted_splits
 
-// ANCHOR: snap_to_texel
-/// Exercise 2, copied: the body of the chapter's `snap` listing.
-pub fn snap_to_texel(min: DVec2, width: f64, resolution: u32) -> DVec2 {
-    let texel = width / resolution as f64; // listing `snap` (cascades.rs)
-    (min / texel).floor() * texel
+// ANCHOR: snap_tight_box
+/// Exercise 2, copied: the body of the chapter's `snap` listing, on the
+/// tight box (`k4_aabb`).
+pub fn snap_tight_box(min: DVec2, max: DVec2, resolution: u32) -> (DVec2, f64) {
+    let w = max.x - min.x; // listing `snap` (cascades.rs)
+    let texel = w / resolution as f64;
+    ((min / texel).floor() * texel, w)
 }
-// ANCHOR_END: snap_to_texel
+// ANCHOR_END: snap_tight_box
