@@ -108,12 +108,14 @@ fn variant<'a>(report: &'a Value, name: &str) -> Option<&'a Value> {
         .find(|v| v["name"] == name)
 }
 
-/// A metric of a variant: an error figure or `counters.<name>`.
+/// A metric of a variant: an error figure, `counters.<name>` or
+/// `camera_path.<name>` (on a scene with a `[camera_path]`).
 fn metric(report: &Value, variant_name: &str, metric: &str) -> Option<f64> {
     let v = variant(report, variant_name)?;
-    match metric.strip_prefix("counters.") {
-        Some(c) => v["counters"][c].as_f64(),
-        None => v["error"][metric].as_f64(),
+    match metric.split_once('.') {
+        Some(("counters", c)) => v["counters"][c].as_f64(),
+        Some(("camera_path", c)) => v["camera_path"][c].as_f64(),
+        _ => v["error"][metric].as_f64(),
     }
 }
 

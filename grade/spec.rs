@@ -61,7 +61,8 @@ pub struct Check {
     /// `"default"` (the lesson's own scene) or a file in `scenes/`.
     pub scene: String,
     /// `misclassified_pct`, `false_shadow_pct`, `false_lit_pct`, `mean_abs`
-    /// (an error figure of report.json) or `counters.<name>`.
+    /// (an error figure of report.json), `counters.<name>` or
+    /// `camera_path.<name>` (e.g. `camera_path.shimmer_pct`).
     pub metric: String,
     #[serde(flatten)]
     pub bound: Bound,
@@ -178,14 +179,16 @@ const ERROR_METRICS: [&str; 4] = [
     "mean_abs",
 ];
 
+/// Whether `metric` is an error figure, `counters.<name>` or
+/// `camera_path.<name>` (measured on a scene with a `[camera_path]`).
 fn check_metric(metric: &str, at: &str) -> Result<()> {
     let ok = ERROR_METRICS.contains(&metric)
-        || metric
-            .strip_prefix("counters.")
-            .is_some_and(|c| !c.is_empty());
+        || ["counters.", "camera_path."]
+            .iter()
+            .any(|p| metric.strip_prefix(p).is_some_and(|c| !c.is_empty()));
     if !ok {
         bail!(
-            "{at}: metric {metric:?} is not one of {} or counters.<name>",
+            "{at}: metric {metric:?} is not one of {}, counters.<name> or camera_path.<name>",
             ERROR_METRICS.join(", ")
         );
     }
@@ -323,6 +326,18 @@ say = "acne {value}"
             (t.side, t.variant, t.slack),
             (Side::AtMost, Some("slope_hw"), 0.1)
         );
+    }
+
+    #[test]
+    fn camera_path_metrics_load() {
+        let path = GOOD.replace("\"misclassified_pct\"", "\"camera_path.shimmer_pct\"");
+        let s = load(&path).unwrap();
+        assert_eq!(s.exercises[0].checks[0].metric, "camera_path.shimmer_pct");
+        let e = format!(
+            "{:#}",
+            load(&GOOD.replace("\"misclassified_pct\"", "\"camera_path.\"")).unwrap_err()
+        );
+        assert!(e.contains("camera_path.<name>"), "{e}");
     }
 
     #[test]

@@ -1,26 +1,55 @@
 //! Lesson 09's exercises, the reference solutions: the same items as the
 //! starter, `lessons/lesson_09/exercises.rs`.
 
-use common::glam::DVec2;
+use common::glam::{DVec2, DVec3};
 
-// ANCHOR: practical_splits
-/// Exercise 1, solved: log and uniform, blended by `lambda`.
-pub fn practical_splits(near: f64, far: f64, k: usize, lambda: f64) -> Vec<f64> {
+// ANCHOR: fitted_splits
+/// Exercise 1, solved: view depth is linear in p, so over the box it is
+/// smallest at a corner; the practical split runs from there.
+pub fn fitted_splits(
+    eye: DVec3,
+    forward: DVec3,
+    scene: &[DVec3],
+    near: f64,
+    far: f64,
+    k: usize,
+    lambda: f64,
+) -> Vec<f64> {
+    let nearest = scene
+        .iter()
+        .map(|&p| (p - eye).dot(forward))
+        .fold(f64::INFINITY, f64::min);
+    let start = if nearest > near && nearest < far {
+        nearest
+    } else {
+        near
+    };
     (0..=k)
         .map(|i| {
             let t = i as f64 / k as f64;
-            let log = near * (far / near).powf(t);
-            let uniform = near + (far - near) * t;
-            lambda * log + (1.0 - lambda) * uniform
+            let log = start * (far / start).powf(t);
+            let uniform = start + (far - start) * t;
+            match i {
+                0 => start,
+                _ if i == k => far,
+                _ => lambda * log + (1.0 - lambda) * uniform,
+            }
         })
         .collect()
 }
-// ANCHOR_END: practical_splits
+// ANCHOR_END: fitted_splits
 
-// ANCHOR: snap_to_texel
-/// Exercise 2, solved: floor to the texel grid.
-pub fn snap_to_texel(min: DVec2, width: f64, resolution: u32) -> DVec2 {
-    let texel = width / resolution as f64;
-    (min / texel).floor() * texel
+// ANCHOR: snap_tight_box
+/// Exercise 2, solved: the width rounded up to a ladder of fixed sizes,
+/// four to an octave (a power of 2^(1/4) metres), with a texel to spare;
+/// the corner floored to that width's grid.
+pub fn snap_tight_box(min: DVec2, max: DVec2, resolution: u32) -> (DVec2, f64) {
+    let n = resolution as f64;
+    // Flooring the corner moves it down by less than a texel: with one
+    // texel to spare, the box still reaches max.
+    let need = (max - min).max_element() * n / (n - 1.0);
+    let w = ((need.log2() * 4.0).ceil() / 4.0).exp2();
+    let texel = w / n;
+    ((min / texel).floor() * texel, w)
 }
-// ANCHOR_END: snap_to_texel
+// ANCHOR_END: snap_tight_box

@@ -121,7 +121,7 @@ exercises! {
     l08_scissor_rect: lesson_08 exercise_scissor_rect,
     l08_depth_bounds: lesson_08 exercise_depth_bounds,
     l09_practical_splits: lesson_09 exercise_practical_splits,
-    l09_snap_to_texel: lesson_09 exercise_snap_to_texel,
+    l09_snap_tight_box: lesson_09 exercise_snap_tight_box,
 }
 
 /// Every exercise of every chapter's spec has its test above, and every

@@ -1,6 +1,7 @@
-//! The bounds of chapter 08's exercises: each light's range-sphere bounds
-//! with one of the two computed by the student's code
-//! ([`super::exercises`]). The lesson's own variants never use them.
+//! The bounds of chapter 08's exercises: each spot light's bounds with one
+//! of the two computed from its cone by the student's code
+//! ([`super::exercises`]); point lights keep their range sphere's. The
+//! lesson's own variants never use them.
 
 use common::gpu::render::SceneGpu;
 
@@ -11,36 +12,49 @@ use common::scene::LightKind;
 /// Which bound the student's code computes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Student {
-    /// `exercises::scissor_rect`, with the lesson's depth bounds.
+    /// The scissor of `exercises::cone_sphere`, with the range sphere's
+    /// depth bounds.
     Scissor,
-    /// `exercises::depth_bounds`, with the lesson's scissor.
+    /// `exercises::cone_depth_bounds`, with the range sphere's scissor.
     DepthBounds,
 }
 
-/// As [`all_bounds`], one of the two bounds from the exercise.
+/// As [`all_bounds`], a spot light's scissor or depth bounds from the
+/// exercise.
 pub fn exercise_bounds(scene: &SceneGpu, student: Student) -> Vec<Option<Option<LightBounds>>> {
     let (cam, s) = (&scene.camera, &scene.scene);
     let (view, proj) = (cam.view.as_dmat4(), cam.proj.as_dmat4());
     let (near, w, h) = (s.camera.near, scene.width, scene.height);
     let mut out = all_bounds(scene);
     for (b, l) in out.iter_mut().zip(&s.lights) {
-        let (LightKind::Point { position, range }
-        | LightKind::Spot {
-            position, range, ..
-        }) = l.kind
+        let LightKind::Spot {
+            position,
+            direction,
+            range,
+            spot_angle_deg,
+        } = l.kind
         else {
             continue;
         };
-        let c = view.transform_point3(position - s.origin());
+        let half = (0.5 * spot_angle_deg).to_radians();
+        let p = position - s.origin();
+        let c = view.transform_point3(p);
         let (depth, scissor) = match student {
-            Student::Scissor => (
-                sphere_depth_bounds(proj, near, c, range),
-                exercises::scissor_rect(proj, near, c, range, w, h),
-            ),
-            Student::DepthBounds => (
-                exercises::depth_bounds(proj, near, c, range),
-                sphere_scissor(proj, near, c, range, w, h),
-            ),
+            Student::Scissor => {
+                let (centre, r) = exercises::cone_sphere(p, direction, range, half);
+                let centre = view.transform_point3(centre);
+                (
+                    sphere_depth_bounds(proj, near, c, range),
+                    sphere_scissor(proj, near, centre, r, w, h),
+                )
+            }
+            Student::DepthBounds => {
+                let axis = view.transform_vector3(direction);
+                (
+                    exercises::cone_depth_bounds(proj, near, c, axis, range, half),
+                    sphere_scissor(proj, near, c, range, w, h),
+                )
+            }
         };
         *b = Some(
             depth

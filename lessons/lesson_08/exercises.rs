@@ -4,50 +4,49 @@
 
 use common::glam::{DMat4, DVec3};
 
-use crate::lesson_08::range_sphere::Scissor;
-
-// ANCHOR: scissor_rect
-/// Exercise 1 (`--variant exercise_scissor_rect`): the pixel rectangle that
-/// holds the image of a light's range sphere, centre `centre_view` (view
-/// space: the camera at the origin looking down −z) and radius `r`, on a
-/// `w × h` target (x right, y down, from the top-left pixel). `proj` is the
-/// camera's projection: a view point (x, y, z) lands at NDC
-/// (proj.x_axis.x · x / −z, proj.y_axis.y · y / −z), pixels
-/// ((ndc_x + 1)/2 · w, (1 − ndc_y)/2 · h). Return `None` when the sphere
-/// lies wholly on the camera's side of the near plane (every z > −near)
-/// or off screen; the full screen when the camera is inside it. Round
-/// outwards, stay on screen. Widen `r` by `r · range_sphere::SPHERE_MARGIN`
-/// first, as the lesson does, so rounding never cuts off a sliver.
-/// `Scissor { x, y, width, height }` is in pixels: `x, y` the top-left
-/// corner, y down (wgpu's `set_scissor_rect`).
+// ANCHOR: cone_sphere
+/// Exercise 1 (`--variant exercise_scissor_rect`): the smallest sphere
+/// that holds a spot light's lit cone, as `(centre, radius)`. The cone has
+/// its apex at the light's `position`, its axis along the unit `direction`,
+/// the half angle `half_angle` (radians, below 90°), and ends at distance
+/// `range` from the apex: every lit point p has |p − position| ≤ range and
+/// an angle to the axis ≤ half_angle. The exercise variant scissors each
+/// spot light's volumes to this sphere's rectangle (the lesson's
+/// `sphere_scissor`) instead of the range sphere's.
 ///
-/// Starter: the full screen for every light (correct, and saves nothing).
-pub fn scissor_rect(
+/// Starter: the range sphere itself (correct, and no tighter than the
+/// lesson's `scissor` variant).
+pub fn cone_sphere(position: DVec3, direction: DVec3, range: f64, half_angle: f64) -> (DVec3, f64) {
+    let _ = (direction, half_angle);
+    (position, range)
+}
+// ANCHOR_END: cone_sphere
+
+// ANCHOR: cone_depth_bounds
+/// Exercise 2 (`--variant exercise_depth_bounds`): the window-depth
+/// interval (zmin, zmax) of a spot light's lit cone, for the emulated
+/// depth-bounds test. `apex` (view space: the camera at the origin looking
+/// down −z) is the light's position, `axis` the unit cone axis in view
+/// space, `half_angle` (radians, below 90°) and `range` as in exercise 1.
+/// View distance is d = −z; window depth is z_clip / w_clip of
+/// `proj * (0, 0, −d, 1)`, monotonic in d. Return `None` when the cone
+/// lies wholly on the camera's side of the near plane (every d ≤ `near`),
+/// else the depths of its nearest and farthest view distance (the nearest
+/// no nearer than `near`), widened by `range_sphere::DEPTH_MARGIN` (and
+/// `range` by `range_sphere::SPHERE_MARGIN`), clamped to [0, 1].
+///
+/// Starter: the range sphere's interval, the lesson's
+/// `sphere_depth_bounds` (correct, and no tighter than the lesson's
+/// `depth_bounds` variant).
+pub fn cone_depth_bounds(
     proj: DMat4,
     near: f64,
-    centre_view: DVec3,
-    r: f64,
-    w: u32,
-    h: u32,
-) -> Option<Scissor> {
-    let _ = (proj, near, centre_view, r);
-    Some(Scissor::full(w, h))
+    apex: DVec3,
+    axis: DVec3,
+    range: f64,
+    half_angle: f64,
+) -> Option<(f32, f32)> {
+    let _ = (axis, half_angle);
+    crate::lesson_08::range_sphere::sphere_depth_bounds(proj, near, apex, range)
 }
-// ANCHOR_END: scissor_rect
-
-// ANCHOR: depth_bounds
-/// Exercise 2 (`--variant exercise_depth_bounds`): the window-depth
-/// interval (zmin, zmax) of the same sphere, for the emulated depth-bounds
-/// test. The sphere spans view distances d = −z from −c.z − r to −c.z + r
-/// (never nearer than `near`); window depth is z_clip / w_clip of
-/// `proj * (0, 0, −d, 1)`, monotonic in d. Return `None` when the sphere is
-/// wholly behind the near plane, else the two depths widened by
-/// `range_sphere::DEPTH_MARGIN` (and r by `SPHERE_MARGIN`) and clamped to
-/// [0, 1].
-///
-/// Starter: [0, 1], every stored depth in bounds (correct, saves nothing).
-pub fn depth_bounds(proj: DMat4, near: f64, centre_view: DVec3, r: f64) -> Option<(f32, f32)> {
-    let _ = (proj, near, centre_view, r);
-    Some((0.0, 1.0))
-}
-// ANCHOR_END: depth_bounds
+// ANCHOR_END: cone_depth_bounds

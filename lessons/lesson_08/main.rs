@@ -66,10 +66,10 @@ enum Variant {
     /// The cull, the depth bounds and the scissor together.
     #[value(name = "cull_bounds_scissor")]
     CullBoundsScissor,
-    /// Exercise 1: the scissor from `exercises::scissor_rect`.
+    /// Exercise 1: spot lights scissored to `exercises::cone_sphere`.
     #[value(name = "exercise_scissor_rect")]
     ExerciseScissorRect,
-    /// Exercise 2: the depth bounds from `exercises::depth_bounds`.
+    /// Exercise 2: spot lights depth-bounded by `exercises::cone_depth_bounds`.
     #[value(name = "exercise_depth_bounds")]
     ExerciseDepthBounds,
 }

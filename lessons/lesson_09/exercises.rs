@@ -1,39 +1,60 @@
 //! Lesson 09's exercises, the starter code: two Rust functions,
-//! [`practical_splits`] and [`snap_to_texel`]. Grade them with
+//! [`fitted_splits`] and [`snap_tight_box`]. Grade them with
 //! `cargo run --release --bin grade -- lesson_09`. The reference solutions
 //! are `solutions/lesson_09.rs` (`--features solutions`).
 
-use common::glam::DVec2;
+use common::glam::{DVec2, DVec3};
 
-// ANCHOR: practical_splits
-/// Exercise 1: the practical split scheme.
-///
-/// Return the `k + 1` view depths that bound `k` cascades, from `near` to
-/// `far` (both included, increasing): at each `i`, the blend
-/// `lambda · log_i + (1 − lambda) · uniform_i` of the logarithmic split
-/// `near · (far / near)^(i / k)` and the uniform one
-/// `near + (far − near) · i / k`.
-pub fn practical_splits(near: f64, far: f64, k: usize, lambda: f64) -> Vec<f64> {
-    let _ = lambda;
-    // TODO: blend in the logarithmic split. This stub is uniform: the
-    // near cascade is as long as the far one, and coarse where it matters.
-    (0..=k)
-        .map(|i| near + (far - near) * i as f64 / k as f64)
-        .collect()
-}
-// ANCHOR_END: practical_splits
+use crate::lesson_09::cascades::{split_depths, SplitScheme};
 
-// ANCHOR: snap_to_texel
-/// Exercise 2: snap a cascade's light-space origin to whole texels.
+// ANCHOR: fitted_splits
+/// Exercise 1: splits fitted to where the scene begins.
 ///
-/// `min` is the box's min x/y in light space, `width` its width in metres,
-/// `resolution` its map's texels across. Return the origin moved down to
-/// the nearest whole number of texels (a texel is `width / resolution`),
-/// so that the box moves by whole texels only as the camera moves.
-pub fn snap_to_texel(min: DVec2, width: f64, resolution: u32) -> DVec2 {
-    let _ = (width, resolution);
-    // TODO: round to the texel grid. This stub leaves the box where the
-    // fit put it: the shadows' edges crawl as the camera moves.
-    min
+/// Return the `k + 1` view depths that bound `k` cascades (increasing, the
+/// last one `far`): the lesson's practical split with this `lambda`, but
+/// starting at the nearest view depth the scene can have instead of the
+/// camera's `near`. The scene lies inside the box whose 8 corners are
+/// `scene`; view depth is `(p − eye) · forward` (`forward` a unit vector).
+/// Start at the smallest depth over the corners when it is larger than
+/// `near` (and smaller than `far`), else at `near`: a camera inside the
+/// box, or beside it, may see something just past its near plane.
+pub fn fitted_splits(
+    eye: DVec3,
+    forward: DVec3,
+    scene: &[DVec3],
+    near: f64,
+    far: f64,
+    k: usize,
+    lambda: f64,
+) -> Vec<f64> {
+    let _ = (eye, forward, scene);
+    // TODO: start where the scene starts. This stub is the lesson's split
+    // from the near plane: a camera far from the scene spends its first
+    // cascades on empty air.
+    split_depths(SplitScheme::Practical { lambda }, near, far, k)
 }
-// ANCHOR_END: snap_to_texel
+// ANCHOR_END: fitted_splits
+
+// ANCHOR: snap_tight_box
+/// Exercise 2: snap a tight box, so that it stops shimmering.
+///
+/// `min` and `max` are the light-space x/y corners of a cascade's tight
+/// box (`fit_aabb`'s square; its side changes as the camera turns), and
+/// `resolution` its map's texels across. Return the snapped box as its
+/// lower corner and its width `w` (the box is `[origin, origin + w]` in x
+/// and y; a texel is `w / resolution`), such that:
+///
+/// - the box holds `[min, max]`;
+/// - `w` depends on the size of `[min, max]` only, changes only when that
+///   size crosses one of a few fixed steps (not every frame the camera
+///   turns), and is less than twice the size (the box stays tight);
+/// - `origin` lies on its texel grid: both coordinates whole multiples of
+///   `w / resolution`.
+pub fn snap_tight_box(min: DVec2, max: DVec2, resolution: u32) -> (DVec2, f64) {
+    let _ = resolution;
+    // TODO: a width that holds still, and a corner on its grid. This stub
+    // is the tight box unsnapped: its width, and so its texel size,
+    // follows the camera every frame, and its edges crawl.
+    (min, (max - min).max_element())
+}
+// ANCHOR_END: snap_tight_box

@@ -71,12 +71,12 @@ enum Variant {
     /// k4, fading into the next cascade over the last 10 % of each.
     #[value(name = "k4_blend")]
     K4Blend,
-    /// Exercise 1: k4 with the student's `practical_splits`.
+    /// Exercise 1: k4 with the student's `fitted_splits`.
     #[value(name = "exercise_practical_splits")]
     ExercisePracticalSplits,
-    /// Exercise 2: k4 with the student's `snap_to_texel`.
-    #[value(name = "exercise_snap_to_texel")]
-    ExerciseSnapToTexel,
+    /// Exercise 2: k4_aabb with the student's `snap_tight_box`.
+    #[value(name = "exercise_snap_tight_box")]
+    ExerciseSnapTightBox,
 }
 
 impl Variant {
@@ -108,9 +108,9 @@ impl Variant {
                 exercise: Some(Exercise::PracticalSplits),
                 ..k4
             },
-            Variant::ExerciseSnapToTexel => Setup {
-                exercise: Some(Exercise::SnapToTexel),
-                ..k4
+            Variant::ExerciseSnapTightBox => Setup {
+                exercise: Some(Exercise::SnapTightBox),
+                ..k4.with_fit(Fit::Aabb, true, true)
             },
         }
     }

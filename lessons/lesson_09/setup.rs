@@ -35,13 +35,14 @@ pub struct Setup {
     pub exercise: Option<Exercise>,
 }
 
-/// The chapter's exercises (`exercises.rs`): k4 with the student's code.
+/// The chapter's exercises (`exercises.rs`): k4 (exercise 2: k4_aabb) with the
+/// student's code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Exercise {
-    /// `practical_splits` instead of [`cascades::split_depths`].
+    /// `fitted_splits` instead of [`cascades::split_depths`].
     PracticalSplits,
-    /// `snap_to_texel` instead of [`cascades::snap`].
-    SnapToTexel,
+    /// `snap_tight_box` instead of [`cascades::snap`] (on the tight box).
+    SnapTightBox,
 }
 
 impl Setup {
@@ -112,7 +113,9 @@ impl Setup {
         let splits = match self.exercise {
             Some(Exercise::PracticalSplits) => {
                 let lambda = cascades::PRACTICAL_LAMBDA;
-                let d = exercises::practical_splits(near, reach, self.count, lambda);
+                let (eye, fwd) = (view.eye, view.forward);
+                let d =
+                    exercises::fitted_splits(eye, fwd, &corners, near, reach, self.count, lambda);
                 check_splits(&d, self.count)?;
                 d
             }
@@ -120,7 +123,7 @@ impl Setup {
         };
         let (res, v, d) = (self.resolution, &view, direction);
         Ok(match self.exercise {
-            Some(Exercise::SnapToTexel) => {
+            Some(Exercise::SnapTightBox) => {
                 cascades::fit_cascades_with(v, d, &splits, options, res, &corners, student_snap)
             }
             _ => cascades::fit_cascades(v, d, &splits, options, res, &corners),
@@ -140,10 +143,10 @@ impl Setup {
     }
 }
 
-/// The student's `snap_to_texel`, applied to a box as [`cascades::snap`] is.
+/// The student's `snap_tight_box`, applied to a box as [`cascades::snap`] is.
 fn student_snap(b: LightBox, resolution: u32) -> LightBox {
-    let w = b.width();
-    let min = exercises::snap_to_texel(DVec2::new(b.min.x, b.min.y), w, resolution);
+    let xy = |v: common::glam::DVec3| DVec2::new(v.x, v.y);
+    let (min, w) = exercises::snap_tight_box(xy(b.min), xy(b.max), resolution);
     LightBox {
         min: min.extend(b.min.z),
         max: (min + DVec2::splat(w)).extend(b.max.z),
@@ -154,7 +157,7 @@ fn student_snap(b: LightBox, resolution: u32) -> LightBox {
 fn check_splits(d: &[f64], k: usize) -> Result<()> {
     if d.len() != k + 1 {
         anyhow::bail!(
-            "exercise_practical_splits: practical_splits returned {} depths for {k} cascades (expected {})",
+            "exercise_practical_splits: fitted_splits returned {} depths for {k} cascades (expected {})",
             d.len(),
             k + 1
         );
