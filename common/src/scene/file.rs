@@ -37,6 +37,10 @@ pub(crate) struct CameraFile {
     pub(crate) near: f64,
     #[serde(default = "default_far", deserialize_with = "far_file")]
     pub(crate) far: FarFile,
+    /// Lens shift in NDC units: the image moves by `[sx, sy]` half-widths
+    /// and half-heights (an off-centre frustum).
+    #[serde(default)]
+    pub(crate) shift: [f64; 2],
 }
 
 /// Written by hand, not `untagged`: serde's message for that names a Rust
