@@ -60,9 +60,9 @@ fn one() -> f64 {
 pub struct Check {
     /// `"default"` (the lesson's own scene) or a file in `scenes/`.
     pub scene: String,
-    /// `misclassified_pct`, `false_shadow_pct`, `false_lit_pct`, `mean_abs`
-    /// (an error figure of report.json), `counters.<name>` or
-    /// `camera_path.<name>` (e.g. `camera_path.shimmer_pct`).
+    /// `misclassified_pct`, `false_shadow_pct`, `false_lit_pct`, `mean_abs`,
+    /// `coverage_mismatch_pct` (an error figure of report.json),
+    /// `counters.<name>` or `camera_path.<name>` (e.g. `camera_path.shimmer_pct`).
     pub metric: String,
     #[serde(flatten)]
     pub bound: Bound,
@@ -172,11 +172,12 @@ impl Hint {
 }
 
 /// The error figures a metric may name, besides `counters.<name>`.
-const ERROR_METRICS: [&str; 4] = [
+const ERROR_METRICS: [&str; 5] = [
     "misclassified_pct",
     "false_shadow_pct",
     "false_lit_pct",
     "mean_abs",
+    "coverage_mismatch_pct",
 ];
 
 /// Whether `metric` is an error figure, `counters.<name>` or

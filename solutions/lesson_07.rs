@@ -5,20 +5,21 @@ use common::glam::{DVec3, Mat4, Vec4};
 
 use crate::lesson_07::infinite_far::INFINITE_EPSILON;
 
-// ANCHOR: infinite_projection
-/// Exercise 1: the finite z row (f/(n − f), n·f/(n − f)) tends to (−1, −n)
-/// as f → ∞; times (1 − ε) it puts w = 0 at depth 1 − ε.
-pub fn infinite_projection(fov_y_rad: f32, aspect: f32, near: f32) -> Mat4 {
-    let h = 1.0 / (0.5 * fov_y_rad).tan();
+// ANCHOR: infinite_frustum
+/// Exercise 1: x_ndc = (2n·x/d − (r + l)) / (r − l) at view depth d = −z,
+/// so clip x = 2n/(r − l)·x + (r + l)/(r − l)·z with w = −z (y alike); the
+/// z row is the finite one's limit as f → ∞, (−1, −n), times (1 − ε).
+pub fn infinite_frustum(left: f32, right: f32, bottom: f32, top: f32, near: f32) -> Mat4 {
+    let (w, h) = (right - left, top - bottom);
     let k = 1.0 - INFINITE_EPSILON as f32;
     Mat4::from_cols(
-        Vec4::new(h / aspect, 0.0, 0.0, 0.0),
-        Vec4::new(0.0, h, 0.0, 0.0),
-        Vec4::new(0.0, 0.0, -k, -1.0),
+        Vec4::new(2.0 * near / w, 0.0, 0.0, 0.0),
+        Vec4::new(0.0, 2.0 * near / h, 0.0, 0.0),
+        Vec4::new((right + left) / w, (top + bottom) / h, -k, -1.0),
         Vec4::new(0.0, 0.0, -near * k, 0.0),
     )
 }
-// ANCHOR_END: infinite_projection
+// ANCHOR_END: infinite_frustum
 
 // ANCHOR: adaptive_near
 /// Exercise 2: view depth is linear in p, so its minimum over the box is

@@ -110,6 +110,55 @@ fn lesson_07_volume_crossing_finite_far_plane() {
     }
 }
 
+/// A shifted lens (`[camera] shift`, an off-centre frustum): `infinite`
+/// applies the shift to its own projection, so it sees what the exact
+/// reference sees (the same surfaces, and the volumes counted right).
+#[test]
+fn lesson_07_infinite_exact_on_a_shifted_camera() {
+    let file = scene("lesson_07_shifted.toml");
+    let args = [&SIZE[..], &["--scene", &file, "--variant", "infinite"]].concat();
+    let Some(run) = support::run_lesson(BIN, "lesson_07_shifted", &args) else {
+        return;
+    };
+    let inf = support::error(&run.report, "infinite", "misclassified_pct");
+    let cover = support::error(&run.report, "infinite", "coverage_mismatch_pct");
+    let off = worst_off_edge(&run, "infinite");
+    eprintln!("shifted: infinite {inf:.3}%, coverage mismatch {cover:.3}%, off-edge {off:.3}%");
+    assert!(
+        inf <= 0.5,
+        "infinite on a shifted camera: {inf}% misclassified"
+    );
+    assert!(
+        cover <= 0.5,
+        "infinite sees other surfaces than the reference on {cover}%"
+    );
+    assert!(off <= 0.01, "infinite: {off}% wrong away from shadow edges");
+}
+
+/// A lesson that fits to a centred frustum (lesson 08's scissor reads the
+/// projection's diagonal) refuses a shifted scene: one line naming
+/// `camera.shift` and lesson 07, exit non-zero, before any GPU work.
+#[test]
+fn a_shifted_camera_is_refused_where_the_frustum_is_fitted_centred() {
+    let o = support::lesson_command(env!("CARGO_BIN_EXE_lesson_08"))
+        .args(["--headless", "--out"])
+        .arg(support::out_dir("lesson_08_shifted_refused"))
+        .args(["--scene", &scene("lesson_07_shifted.toml")])
+        .output()
+        .expect("run lesson_08");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success(),
+        "lesson_08 drew a shifted camera: {stderr}"
+    );
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "one line: {stderr}");
+    assert!(
+        lines[0].contains("camera.shift") && lines[0].contains("lesson_07"),
+        "the line names the field and the lesson that draws it: {stderr}"
+    );
+}
+
 /// `clamp` needs DEPTH_CLIP_CONTROL: it either renders right, or fails with
 /// one line naming the feature (never something else).
 #[test]

@@ -5,15 +5,39 @@
 use anyhow::Result;
 use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
+use common::scene::Camera;
 
 use super::exercises;
-use super::infinite_far::{infinite_perspective, projected_scene, INFINITE_EPSILON};
+use super::infinite_far::{
+    infinite_perspective, projected_scene, scene_with_projection, INFINITE_EPSILON,
+};
 
-/// Exercise 1: the camera with `exercises::infinite_projection`.
+/// The near-plane rectangle `[left, right, bottom, top]` of `camera` for
+/// an image of `aspect` (width / height): the symmetric one of its field
+/// of view, moved by its lens shift. The shift adds `shift` to NDC x, y,
+/// so the view-space window that lands on [−1, 1] is [−1 − s, 1 − s]
+/// times the half-size.
+pub fn near_rectangle(camera: &Camera, aspect: f64) -> [f64; 4] {
+    let half_h = camera.near * (0.5 * camera.fov_y_deg.to_radians()).tan();
+    let half_w = half_h * aspect;
+    let s = camera.shift;
+    [
+        half_w * (-1.0 - s.x),
+        half_w * (1.0 - s.x),
+        half_h * (-1.0 - s.y),
+        half_h * (1.0 - s.y),
+    ]
+}
+
+/// Exercise 1: the camera with `exercises::infinite_frustum` of the
+/// scene camera's near-plane rectangle (its shift included: the matrix
+/// is used as it is).
 pub fn infinite_projection_scene(gpu: &Gpu, scene: &SceneGpu) -> Result<SceneGpu> {
-    projected_scene(gpu, scene, |fov_y, aspect, near| {
-        exercises::infinite_projection(fov_y as f32, aspect as f32, near as f32).as_dmat4()
-    })
+    let c = &scene.scene.camera;
+    let aspect = scene.width as f64 / scene.height as f64;
+    let [l, r, b, t] = near_rectangle(c, aspect).map(|x| x as f32);
+    let proj = exercises::infinite_frustum(l, r, b, t, c.near as f32).as_dmat4();
+    scene_with_projection(gpu, scene, proj)
 }
 
 /// The near distance `exercises::adaptive_near` picks for `scene`'s camera

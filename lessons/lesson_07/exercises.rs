@@ -5,21 +5,26 @@
 use common::glam::camera::rh::proj::directx::perspective;
 use common::glam::{DVec3, Mat4};
 
-// ANCHOR: infinite_projection
-/// Exercise 1 (`--variant exercise_infinite_projection`): the right-handed
-/// perspective projection for WebGPU's [0, 1] depth with the far plane at
-/// infinity. Take the finite matrix's z row, let far → ∞, and scale it by
-/// (1 − ε) with ε = `workbook::lesson_07::infinite_far::INFINITE_EPSILON`,
-/// so a point at infinity (w = 0) lands at depth 1 − ε, inside the clip
-/// volume. `fov_y_rad` is the vertical field of view in radians, `aspect`
-/// width / height, `near` the near distance (> 0).
+// ANCHOR: infinite_frustum
+/// Exercise 1 (`--variant exercise_infinite_projection`): the projection
+/// of a general, off-centre frustum with its far plane at infinity. The
+/// frustum is given by its near-plane rectangle: `left < right` and
+/// `bottom < top` are view-space x and y on the plane z = −`near`
+/// (`near` > 0), in a right-handed view space looking down −z; the
+/// rectangle's corners must land on NDC x, y = ±1. Depth is WebGPU's
+/// [0, 1]: 0 at the near plane, and a point at infinity (w = 0) at
+/// 1 − ε with ε = `workbook::lesson_07::infinite_far::INFINITE_EPSILON`.
+/// The rectangle need not be centred on the view axis (a lens shift, a
+/// stereo eye, a screen tile).
 ///
-/// Starter: a finite far plane at 100, which clips the shadow volumes'
-/// far ends (the back caps at infinity).
-pub fn infinite_projection(fov_y_rad: f32, aspect: f32, near: f32) -> Mat4 {
-    perspective(fov_y_rad, aspect, near, 100.0)
+/// Starter: the symmetric perspective with the rectangle's size, and a
+/// finite far plane at 100: the image is centred where the rectangle is
+/// not, and the far plane clips the shadow volumes' far ends.
+pub fn infinite_frustum(left: f32, right: f32, bottom: f32, top: f32, near: f32) -> Mat4 {
+    let fov_y = 2.0 * ((top - bottom) / (2.0 * near)).atan();
+    perspective(fov_y, (right - left) / (top - bottom), near, 100.0)
 }
-// ANCHOR_END: infinite_projection
+// ANCHOR_END: infinite_frustum
 
 // ANCHOR: adaptive_near
 /// Exercise 2 (`--variant exercise_adaptive_near`): the largest near
@@ -30,7 +35,7 @@ pub fn infinite_projection(fov_y_rad: f32, aspect: f32, near: f32) -> Mat4 {
 /// depth d = (p − eye)·forward over the box, pulled a little towards the
 /// camera (d·0.99, say), or `near` when that is not larger (the camera is
 /// inside or beside the box). The exercise variant puts it into the
-/// infinite projection of exercise 1's lesson (`infinite_perspective`).
+/// lesson's infinite projection (`infinite_perspective`).
 ///
 /// Starter: the scene's own near distance, unchanged.
 pub fn adaptive_near(eye: DVec3, forward: DVec3, lo: DVec3, hi: DVec3, near: f64) -> f64 {

@@ -8,6 +8,7 @@ use common::glam::dcamera::rh::view::look_at_mat4;
 use common::glam::{DMat4, DVec4};
 use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
+use common::scene::camera::lens_shift;
 
 /// The ε of an infinite far plane: the point at infinity lands at depth
 /// 1 − ε instead of exactly 1, so f32 rounding cannot push it past w.
@@ -112,18 +113,26 @@ pub fn infinite_scene(gpu: &Gpu, scene: &SceneGpu) -> Result<SceneGpu> {
 // ANCHOR_END: infinite_camera
 
 /// A second `SceneGpu` for `scene` whose camera uses the projection
-/// `proj(fov_y_rad, aspect, near)` (origin-relative view, as the runner's).
+/// `proj(fov_y_rad, aspect, near)` (origin-relative view, as the runner's),
+/// moved by the scene's lens shift as the runner moves its own.
 pub fn projected_scene(
     gpu: &Gpu,
     scene: &SceneGpu,
     proj: impl Fn(f64, f64, f64) -> DMat4,
 ) -> Result<SceneGpu> {
+    let c = &scene.scene.camera;
+    let aspect = scene.width as f64 / scene.height as f64;
+    let proj = lens_shift(c.shift) * proj(c.fov_y_deg.to_radians(), aspect, c.near);
+    scene_with_projection(gpu, scene, proj)
+}
+
+/// A second `SceneGpu` for `scene` whose camera uses `proj` as it is
+/// (origin-relative view, as the runner's).
+pub fn scene_with_projection(gpu: &Gpu, scene: &SceneGpu, proj: DMat4) -> Result<SceneGpu> {
     let mut s = SceneGpu::new(gpu, scene.scene.clone(), scene.width, scene.height)?;
     let c = &s.scene.camera;
     let o = s.scene.origin();
     let view = look_at_mat4(c.eye - o, c.target - o, c.up);
-    let aspect = s.width as f64 / s.height as f64;
-    let proj = proj(c.fov_y_deg.to_radians(), aspect, c.near);
     s.camera.proj = proj.as_mat4();
     s.camera.view_proj = (proj * view).as_mat4();
     s.upload_uniforms(gpu);

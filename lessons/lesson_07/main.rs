@@ -61,7 +61,7 @@ enum Variant {
     /// Reversed-Z in Depth32Float, far plane at infinity.
     #[value(name = "reversed_z")]
     ReversedZ,
-    /// Exercise 1: your infinite projection (`exercises::infinite_projection`).
+    /// Exercise 1: your off-centre infinite projection (`exercises::infinite_frustum`).
     #[value(name = "exercise_infinite_projection")]
     ExerciseInfiniteProjection,
     /// Exercise 2: the infinite far plane, near fitted to the scene

@@ -17,6 +17,7 @@ use common::gpu::render::{base_pipeline, pipeline_layout_for, SceneGpu};
 use common::gpu::targets::{render_texture, FrameTargets};
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
+use common::scene::camera::lens_shift;
 
 use crate::lesson_05::extrusion::volume_shader_module;
 use crate::lesson_05::quads::QUAD_VERTEX_LAYOUT;
@@ -218,6 +219,8 @@ fn set_reversed_camera(gpu: &Gpu, s: &mut SceneGpu) {
     let view = look_at_mat4(c.eye - o, c.target - o, c.up);
     let aspect = s.width as f64 / s.height as f64;
     let proj = reversed_infinite_perspective(c.fov_y_deg.to_radians(), aspect, c.near);
+    // The scene's lens shift, after the projection as the runner applies it.
+    let proj = lens_shift(c.shift) * proj;
     s.camera.proj = proj.as_mat4();
     s.camera.view_proj = (proj * view).as_mat4();
     s.upload_uniforms(gpu);

@@ -131,6 +131,8 @@ struct DepthBounds {
 
 impl Lesson for DepthBounds {
     const NAME: &'static str = "lesson_08";
+    // The scissor rectangles read only the projection's diagonal.
+    const SUPPORTS_CAMERA_SHIFT: bool = false;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_08.toml");
     type Variant = Variant;
 

@@ -145,6 +145,8 @@ impl Lesson for Csm {
     const NAME: &'static str = "lesson_09";
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_09.toml");
     const CAMERA_PATH: bool = true;
+    // The cascades fit the view frustum made from fov_y_deg and the aspect.
+    const SUPPORTS_CAMERA_SHIFT: bool = false;
     type Variant = Variant;
 
     fn check_scene(scene: &Scene) -> Result<()> {

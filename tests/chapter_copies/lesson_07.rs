@@ -6,13 +6,15 @@ use common::glam::{DVec3, Mat4};
 
 use crate::lesson_07::infinite_far::{infinite_perspective, INFINITE_EPSILON};
 
-// ANCHOR: infinite_projection
-/// Exercise 1, copied: the chapter's `infinite_perspective` listing.
-pub fn infinite_projection(fov_y_rad: f32, aspect: f32, near: f32) -> Mat4 {
-    let (fov, aspect, near) = (fov_y_rad as f64, aspect as f64, near as f64);
-    infinite_perspective(fov, aspect, near, INFINITE_EPSILON).as_mat4() // listing `infinite_perspective`
+// ANCHOR: infinite_frustum
+/// Exercise 1, copied: the chapter's `infinite_perspective` listing, with
+/// the field of view and aspect the rectangle implies.
+pub fn infinite_frustum(left: f32, right: f32, bottom: f32, top: f32, near: f32) -> Mat4 {
+    let (w, h, n) = ((right - left) as f64, (top - bottom) as f64, near as f64);
+    let fov_y = 2.0 * (h / (2.0 * n)).atan();
+    infinite_perspective(fov_y, w / h, n, INFINITE_EPSILON).as_mat4() // listing `infinite_perspective`
 }
-// ANCHOR_END: infinite_projection
+// ANCHOR_END: infinite_frustum
 
 // ANCHOR: adaptive_near
 /// Exercise 2, copied: the chapter prints no fitted near plane; its

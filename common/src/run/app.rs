@@ -98,5 +98,12 @@ fn load_scene<L: Lesson>(args: &Args) -> Result<Scene> {
         None => Scene::builtin(&format!("{} default scene", L::NAME), L::DEFAULT_SCENE)?,
     };
     L::check_scene(&scene)?;
+    if scene.camera.shift != glam::DVec2::ZERO && !L::SUPPORTS_CAMERA_SHIFT {
+        anyhow::bail!(
+            "scene {}: camera.shift: {} fits to a centred frustum (fov_y_deg and the aspect alone) and would be wrong off-centre; lesson_07 draws a shifted camera (or set shift = [0, 0])",
+            scene.name,
+            L::NAME
+        );
+    }
     Ok(scene)
 }

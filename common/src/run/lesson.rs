@@ -36,6 +36,13 @@ pub trait Lesson: Sized {
     /// runner refuses such a scene with one line.
     const CAMERA_PATH: bool = false;
 
+    /// Whether the lesson draws a scene's `[camera] shift` (an off-centre
+    /// frustum) right. Lessons that draw with the scene's camera matrices
+    /// see it for free; one that rebuilds the frustum from `fov_y_deg` and
+    /// the aspect alone sets `false`, and the runner refuses a shifted
+    /// scene with one line.
+    const SUPPORTS_CAMERA_SHIFT: bool = true;
+
     /// Classes the pixels fall into, for an error breakdown in the report
     /// (lesson 09: the cascade each pixel samples). `view_depth[p]` is the
     /// distance along the camera's forward axis to the surface pixel `p`

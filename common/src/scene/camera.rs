@@ -3,7 +3,7 @@
 
 use glam::dcamera::rh::proj::directx as webgpu;
 use glam::dcamera::rh::view::look_at_mat4;
-use glam::{DMat4, DVec3, Mat4, Vec3};
+use glam::{DMat4, DVec2, DVec3, Mat4, Vec3};
 
 use crate::scene::{Far, LightKind, Scene};
 
@@ -26,6 +26,14 @@ pub fn perspective(fov_y_deg: f64, aspect: f64, near: f64, far: Far) -> DMat4 {
     }
 }
 
+/// The lens shift `T` of `[camera] shift`, applied after the projection
+/// (`T · P`): clip x gains `shift.x · w` and clip y `shift.y · w`, so the
+/// image moves by `shift` in NDC (half-widths, half-heights) and depth is
+/// untouched. In glam's columns that is a translation by `(sx, sy, 0)`.
+pub fn lens_shift(shift: DVec2) -> DMat4 {
+    DMat4::from_translation(shift.extend(0.0))
+}
+
 pub fn camera_matrices(scene: &Scene, width: u32, height: u32) -> CameraMatrices {
     camera_matrices_with_far(scene, width, height, scene.camera.far)
 }
@@ -41,6 +49,7 @@ pub fn camera_matrices_with_far(
     let o = scene.origin();
     let view = look_at_mat4(c.eye - o, c.target - o, c.up);
     let proj = perspective(c.fov_y_deg, width as f64 / height as f64, c.near, far);
+    let proj = lens_shift(c.shift) * proj;
     CameraMatrices {
         view: view.as_mat4(),
         proj: proj.as_mat4(),
@@ -229,6 +238,22 @@ translate = [10000.0, 0.5, -10000.0]
                 c.z / c.w
             );
         }
+    }
+
+    #[test]
+    fn lens_shift_moves_the_image_and_keeps_depth() {
+        let mut s = scene();
+        let plain = camera_matrices(&s, 320, 180);
+        s.camera.shift = DVec2::new(0.4, -0.2);
+        let shifted = camera_matrices(&s, 320, 180);
+        let p = glam::Vec4::new(0.3, -0.2, -3.0, 1.0);
+        let (a, b) = (plain.view_proj * p, shifted.view_proj * p);
+        let (a, b) = (a.truncate() / a.w, b.truncate() / b.w);
+        let moved = b - a;
+        assert!(
+            (moved.x - 0.4).abs() < 1e-5 && (moved.y + 0.2).abs() < 1e-5 && moved.z.abs() < 1e-6,
+            "moved by {moved}"
+        );
     }
 
     #[test]

@@ -37,6 +37,10 @@ pub(crate) struct CameraFile {
     pub(crate) near: f64,
     #[serde(default = "default_far", deserialize_with = "far_file")]
     pub(crate) far: FarFile,
+    /// Lens shift in NDC units: the image moves by `[sx, sy]` half-widths
+    /// and half-heights (an off-centre frustum).
+    #[serde(default, deserialize_with = "shift_file")]
+    pub(crate) shift: [f64; 2],
 }
 
 /// Written by hand, not `untagged`: serde's message for that names a Rust
@@ -197,6 +201,20 @@ pub(crate) fn far_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<FarFile
             written(&v)
         ))),
     }
+}
+
+/// `camera.shift`: two numbers; the range is checked later.
+pub(crate) fn shift_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
+    let v = toml::Value::deserialize(d)?;
+    if let toml::Value::Array(a) = &v {
+        if let [Some(x), Some(y)] = a.iter().map(number).collect::<Vec<_>>()[..] {
+            return Ok([x, y]);
+        }
+    }
+    Err(serde::de::Error::custom(format!(
+        "camera.shift: expected [sx, sy] (two numbers), got {}",
+        written(&v)
+    )))
 }
 
 /// A whole number (`camera_path.frames`); the range is checked later.

@@ -44,6 +44,11 @@ pub const MAX_REACH_OVER_NEAR: f64 = 1e6;
 /// `near` is at least this.
 pub const MIN_NEAR: f64 = 1e-6;
 
+/// `camera.shift` components lie in `[-MAX_SHIFT, MAX_SHIFT]` (NDC units:
+/// half-widths, half-heights). Past a few the view hardly overlaps the
+/// unshifted one; 10 leaves room without inviting a typo's 1e9.
+pub const MAX_SHIFT: f64 = 10.0;
+
 /// A number in short form, to 6 significant digits: `1e308` (not 309
 /// digits), `1e-300`, `0.25`, `50`, `45.5522`, `4.55522e7`.
 pub fn short(x: f64) -> String {

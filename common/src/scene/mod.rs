@@ -25,12 +25,12 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::{anyhow, bail, Context, Result};
-use glam::{DMat4, DQuat, DVec3, EulerRot, Vec3};
+use glam::{DMat4, DQuat, DVec2, DVec3, EulerRot, Vec3};
 
 use crate::scene::file::{CameraPath, FarFile, LightFile, ObjectFile, ScaleFile, SceneFile};
 use crate::scene::limits::{
     check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
-    MAX_REACH_OVER_NEAR, MAX_SCALE, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
+    MAX_REACH_OVER_NEAR, MAX_SCALE, MAX_SHIFT, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
 };
 use crate::scene::mesh::Mesh;
 
@@ -49,6 +49,10 @@ pub struct Camera {
     pub fov_y_deg: f64,
     pub near: f64,
     pub far: Far,
+    /// Lens shift in NDC units (`[camera] shift`, default 0): the image
+    /// moves by `shift.x` half-widths and `shift.y` half-heights, so the
+    /// frustum is off-centre. Applied in [`camera::camera_matrices`].
+    pub shift: DVec2,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -219,6 +223,16 @@ impl Scene {
                     bail!("camera.far: expected a number or \"infinite\", got {w:?}")
                 }
             };
+            let [sx, sy] = c.shift;
+            if !(sx.is_finite() && sy.is_finite() && sx.abs() <= MAX_SHIFT && sy.abs() <= MAX_SHIFT)
+            {
+                bail!(
+                    "camera.shift: each component must be in [-{0}, {0}], got [{1}, {2}]",
+                    short(MAX_SHIFT),
+                    short(sx),
+                    short(sy)
+                );
+            }
             Ok(Camera {
                 eye,
                 target,
@@ -226,6 +240,7 @@ impl Scene {
                 fov_y_deg: fov,
                 near,
                 far,
+                shift: DVec2::new(sx, sy),
             })
         })()
         .map_err(|e| anyhow!("{}: {e}", at(cam_span)))?;

@@ -59,6 +59,7 @@ fn scene(objects: Vec<Object>, lights: Vec<LightKind>, eye: DVec3, target: DVec3
         fov_y_deg: 50.0,
         near: 0.1,
         far: Far::Finite(100.0),
+        shift: glam::DVec2::ZERO,
     };
     let lights = lights
         .into_iter()

@@ -13,6 +13,7 @@ fn camera() -> Camera {
         fov_y_deg: 50.0,
         near: 0.1,
         far: Far::Finite(100.0),
+        shift: glam::DVec2::ZERO,
     }
 }
 

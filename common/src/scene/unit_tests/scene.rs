@@ -47,6 +47,26 @@ fn infinite_far_plane() {
 }
 
 #[test]
+fn camera_shift_defaults_to_zero_and_is_checked() {
+    let obj = "[[objects]]\nmesh = \"cube\"\n";
+    let s = parse(&format!("{HEAD}{obj}")).unwrap();
+    assert_eq!(s.camera.shift, glam::DVec2::ZERO);
+    let with = |shift: &str| {
+        let text = HEAD.replace("[camera]", &format!("[camera]\nshift = {shift}"));
+        parse(&format!("{text}{obj}"))
+    };
+    assert_eq!(
+        with("[0.4, -0.2]").unwrap().camera.shift,
+        glam::DVec2::new(0.4, -0.2)
+    );
+    for bad in ["[11.0, 0.0]", "[0.0, nan]", "[1.0]", "\"left\""] {
+        let e = format!("{:#}", with(bad).expect_err(bad));
+        assert!(e.contains("shift"), "{bad}: names the field: {e:?}");
+        assert!(!e.contains('\n'), "one line: {e:?}");
+    }
+}
+
+#[test]
 fn bad_input_names_field_and_line() {
     let cases: &[(&str, &str)] = &[
         ("[camera]\neye = [1.0, 2.0\n", "s.toml:"),
