@@ -229,3 +229,67 @@ fn hidden_scenes_are_graded() {
     }
     assert!(failures.is_empty(), "on the hidden scenes:\n{failures}");
 }
+
+/// Every exercise has a copy in `tests/chapter_copies/` (what CI grades
+/// with `--features chapter_copies` and `grade --check-copies`), and the
+/// copy names, in backticks beside its function, the chapter listing it
+/// calls or pastes: an anchor some chapter includes. A copy that names no
+/// printed listing would prove nothing when it fails.
+#[test]
+fn every_copy_names_the_listing_it_copies() {
+    let mut anchors = std::collections::BTreeSet::new();
+    for e in std::fs::read_dir(root().join("book/src")).expect("book/src").flatten() {
+        let text = std::fs::read_to_string(e.path()).unwrap_or_default();
+        for piece in text.split("{{#include ").skip(1) {
+            let Some(end) = piece.find("}}") else { continue };
+            if let Some((_, anchor)) = piece[..end].rsplit_once(':') {
+                anchors.insert(anchor.trim().to_string());
+            }
+        }
+    }
+    let mut errors = Vec::new();
+    for n in 1..=9 {
+        let lesson = format!("lesson_{n:02}");
+        for ex in &spec(&lesson).exercises {
+            // `write NAME() in FILE`: the copy of FILE holds NAME.
+            let name = ex
+                .task
+                .strip_prefix("write ")
+                .and_then(|t| t.split_once("()"))
+                .map(|(f, _)| f.to_string())
+                .unwrap_or_else(|| panic!("{lesson} {}: task {:?}", ex.variant, ex.task));
+            let ext = if ex.task.ends_with(".wgsl") { "wgsl" } else { "rs" };
+            let path = root().join(format!("tests/chapter_copies/{lesson}.{ext}"));
+            let text = std::fs::read_to_string(&path)
+                .unwrap_or_else(|_| panic!("{}: missing", path.display()));
+            let lines: Vec<&str> = text.lines().collect();
+            let Some(at) = lines.iter().position(|l| {
+                l.contains(&format!("fn {name}(")) && !l.trim_start().starts_with("//")
+            }) else {
+                errors.push(format!("{}: no fn {name}", path.display()));
+                continue;
+            };
+            // Its comments above and its body, to the next blank line or item.
+            let from = (0..at)
+                .rev()
+                .take_while(|&i| lines[i].trim_start().starts_with("//") || lines[i].trim_start().starts_with("#["))
+                .last()
+                .unwrap_or(at);
+            let to = (at..lines.len())
+                .find(|&i| i > at && lines[i].starts_with('}'))
+                .unwrap_or(lines.len() - 1);
+            let block = lines[from..=to].join("\n");
+            let named = block.split('`').skip(1).step_by(2).any(|t| {
+                let anchor = t.rsplit(':').next().unwrap_or(t);
+                anchors.contains(anchor)
+            });
+            if !named {
+                errors.push(format!(
+                    "{}: fn {name} names no listing a chapter includes (write it in backticks, `file:anchor`)",
+                    path.display()
+                ));
+            }
+        }
+    }
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
+}
