@@ -20,5 +20,5 @@ pub fn faces_touched(centre: DVec3, half: DVec3) -> [bool; 6] {
 }
 // ANCHOR_END: cull_faces
 
-/// `exercise_cube_depth(v, d, near, far)`, solved.
+/// `exercise_cube_texel(v)`, solved.
 pub const EXERCISES_WGSL: &str = include_str!("lesson_04.wgsl");

@@ -29,21 +29,40 @@ pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) ->
 // ANCHOR_END: needs_zfail
 
 // ANCHOR: volume_caps
-/// Exercise 2: the front cap is the light-facing triangles as they are;
-/// the back cap the same triangles reversed, so that at infinity they face
-/// away from the light, out of the volume.
-pub fn volume_caps(adj: &Adjacency, light: LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
-    let mut front = Vec::new();
+/// Exercise 2: the light-facing triangles, each kept in the front cap
+/// unless one plane has all three vertices outside, and in the back cap
+/// (reversed) unless one plane has all three rays away from the light
+/// outside: a ray from `p` along `p − l` stays outside the plane when `p`
+/// is outside and the ray does not turn towards it (`n · (p − l) ≤ 0`).
+pub fn volume_caps(
+    adj: &Adjacency,
+    light: LightDir,
+    view: &[(DVec3, f64)],
+) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+    let p = |i: u32| adj.positions[i as usize].as_dvec3();
+    let outside = |i: u32, (n, d): (DVec3, f64)| n.dot(p(i)) + d < 0.0;
+    let (mut front, mut back) = (Vec::new(), Vec::new());
     for (t, n) in adj.triangles.iter().zip(&adj.face_normals) {
         let facing = match light {
-            LightDir::Point(p) => n.dot(p - adj.positions[t[0] as usize]) > 0.0,
+            LightDir::Point(l) => n.dot(l - adj.positions[t[0] as usize]) > 0.0,
             LightDir::Directional(d) => n.dot(-d) > 0.0,
         };
-        if facing {
+        if !facing {
+            continue;
+        }
+        let front_out = view.iter().any(|&pl| t.iter().all(|&i| outside(i, pl)));
+        if !front_out {
             front.push(*t);
         }
+        // A directional light's back cap is never drawn.
+        if let LightDir::Point(l) = light {
+            let l = l.as_dvec3();
+            let ray_out = |i: u32, pl: (DVec3, f64)| outside(i, pl) && pl.0.dot(p(i) - l) <= 0.0;
+            if !view.iter().any(|&pl| t.iter().all(|&i| ray_out(i, pl))) {
+                back.push([t[0], t[2], t[1]]);
+            }
+        }
     }
-    let back = front.iter().map(|&[a, b, c]| [a, c, b]).collect();
     (front, back)
 }
 // ANCHOR_END: volume_caps

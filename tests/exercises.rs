@@ -111,7 +111,7 @@ exercises! {
     l03_pcf_kernel: lesson_03 exercise_pcf_kernel,
     l03_rotated_poisson: lesson_03 exercise_rotated_poisson,
     l04_cull_faces: lesson_04 exercise_cull_faces,
-    l04_cube_depth: lesson_04 exercise_cube_depth,
+    l04_cube_faces: lesson_04 exercise_cube_faces,
     l05_edges_in_view: lesson_05 exercise_edges_in_view,
     l05_skip_casters: lesson_05 exercise_skip_casters,
     l06_choose_method: lesson_06 exercise_choose_method,

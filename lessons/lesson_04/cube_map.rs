@@ -58,12 +58,15 @@ pub fn point_light(scene: &Scene, light: usize) -> Option<(DVec3, f64)> {
 }
 
 /// A cube of six square depth layers: one `D2` view per face to render
-/// into, one `Cube` view to sample.
+/// into, one view to sample: `Cube`, or for [`CubeShadowMap::new_faces`]
+/// a `D2Array` of the six layers.
 pub struct CubeShadowMap {
     pub size: u32,
     pub texture: wgpu::Texture,
     pub face_views: Vec<wgpu::TextureView>,
     pub cube_view: wgpu::TextureView,
+    /// `cube_view` is the six layers as a 2D array (the exercise's lookup).
+    pub faces: bool,
     /// Faces holding only the clear value: a skipped face needs no pass at all.
     empty: [bool; 6],
 }
@@ -88,6 +91,29 @@ impl CubeShadowMap {
             texture,
             face_views,
             cube_view,
+            faces: false,
+            empty: [false; 6],
+        }
+    }
+
+    /// The same six faces, sampled as a `D2Array` (`exercise_cube_faces`):
+    /// no cube view at all. A seventh, unused layer keeps the texture from
+    /// being cube-compatible, which GL would make a cube map texture.
+    pub fn new_faces(gpu: &Gpu, size: u32) -> CubeShadowMap {
+        let label = format!("cube shadow map {size} as a 2D array");
+        let texture = depth_texture(gpu, &label, size, 7, CUBE_FORMAT);
+        let face_views = common::gpu::targets::layer_views(&texture, 6);
+        let cube_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            array_layer_count: Some(6),
+            ..Default::default()
+        });
+        CubeShadowMap {
+            size,
+            texture,
+            face_views,
+            cube_view,
+            faces: true,
             empty: [false; 6],
         }
     }
@@ -172,8 +198,9 @@ pub enum Storage {
     Depth,
     /// Hardware depth compared with |v| instead: the naive mistake.
     DepthEuclid,
-    /// Hardware depth, the receiver converted by the chapter's exercise
-    /// (`exercise_cube_depth` in `exercises.wgsl`).
+    /// Hardware depth, read without a cube: the face and texel chosen by
+    /// the chapter's exercise (`exercise_cube_texel` in `exercises.wgsl`)
+    /// in the six layers seen as a 2D array.
     DepthExercise,
 }
 
@@ -246,10 +273,16 @@ impl LitKey {
             ("PEER", self.peer as f64),
             ("FILTERED", self.filtered as u32 as f64),
         ];
+        // The exercise's lookup has its own entry point (no cube bound).
+        let entry = if self.storage == Storage::DepthExercise as u32 {
+            "fs_lit_faces"
+        } else {
+            "fs_lit"
+        };
         scene.lit_pipeline_with_depth(
             gpu,
             module,
-            "fs_lit",
+            entry,
             &[layout],
             scene.lit_depth_state(Default::default()),
             &constants,
@@ -382,10 +415,15 @@ pub fn cube_shadow_passes(
 
 /// Bind group layout for the lit pass (group 2): the cube (binding 0), a
 /// comparison sampler (1), and the lesson's parameters (2, `params_size` bytes).
-pub fn cube_map_layout(gpu: &Gpu, params_size: u64) -> wgpu::BindGroupLayout {
+/// `faces`: the six faces as a 2D array at binding 3 instead of the cube.
+pub fn cube_map_layout(gpu: &Gpu, params_size: u64, faces: bool) -> wgpu::BindGroupLayout {
     use wgpu::{SamplerBindingType, ShaderStages, TextureSampleType, TextureViewDimension};
+    let texture = match faces {
+        false => texture_entry(0, TextureSampleType::Depth, TextureViewDimension::Cube),
+        true => texture_entry(3, TextureSampleType::Depth, TextureViewDimension::D2Array),
+    };
     let entries = [
-        texture_entry(0, TextureSampleType::Depth, TextureViewDimension::Cube),
+        texture,
         sampler_entry(1, SamplerBindingType::Comparison),
         storage_entry(2, ShaderStages::FRAGMENT, false, Some(params_size)),
     ];
@@ -411,7 +449,8 @@ pub fn cube_map_group(
     cube_group(gpu, layout, map, &sampler, &buffer)
 }
 
-/// The cube map, its sampler and a parameter buffer as bindings 0, 1, 2.
+/// The cube map, its sampler and a parameter buffer as bindings 0, 1, 2
+/// (the map's faces as a 2D array at 3 instead of 0, for a faces map).
 pub(crate) fn cube_group(
     gpu: &Gpu,
     layout: &wgpu::BindGroupLayout,
@@ -424,5 +463,17 @@ pub(crate) fn cube_group(
         wgpu::BindingResource::Sampler(sampler),
         params.as_entire_binding(),
     ];
-    bindings::group(gpu, "cube shadow map", layout, &resources)
+    if !map.faces {
+        return bindings::group(gpu, "cube shadow map", layout, &resources);
+    }
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = [3, 1, 2]
+        .into_iter()
+        .zip(resources)
+        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource })
+        .collect();
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("cube shadow map faces"),
+        layout,
+        entries: &entries,
+    })
 }

@@ -1,6 +1,6 @@
 //! Lesson 04's exercises, the starter code: a face test in Rust
 //! ([`faces_touched`], for `exercise_cull_faces`) and a WGSL function in
-//! `shaders/lesson_04/exercises.wgsl` (for `exercise_cube_depth`). The
+//! `shaders/lesson_04/exercises.wgsl` (for `exercise_cube_faces`). The
 //! lesson's own variants never call them. With `--features solutions` the
 //! build reads `solutions/lesson_04.rs` instead.
 
@@ -24,5 +24,5 @@ pub fn faces_touched(centre: DVec3, half: DVec3) -> [bool; 6] {
 }
 // ANCHOR_END: cull_faces
 
-/// `exercise_cube_depth(v, d, near, far)`, to fill in.
+/// `exercise_cube_texel(v)`, to fill in.
 pub const EXERCISES_WGSL: &str = include_str!("../../shaders/lesson_04/exercises.wgsl");

@@ -82,8 +82,8 @@ enum Variant {
     /// The chapter's exercises (`exercises.rs`, `exercises.wgsl`), run only when named.
     #[value(name = "exercise_cull_faces")]
     ExerciseCullFaces,
-    #[value(name = "exercise_cube_depth")]
-    ExerciseCubeDepth,
+    #[value(name = "exercise_cube_faces")]
+    ExerciseCubeFaces,
 }
 
 #[derive(Clone, Copy)]
@@ -153,7 +153,7 @@ impl Variant {
             Variant::BevyPoint => Settings { storage: Storage::Depth, bias_world: 0.08, peer: Peer::BevyPoint, ..PEER },
             // Graded against linear_1024 and depth_1024 (exercises.toml).
             Variant::ExerciseCullFaces => Settings { cull: Some(exercise_face_test), ..BASE },
-            Variant::ExerciseCubeDepth => Settings { storage: Storage::DepthExercise, ..BASE },
+            Variant::ExerciseCubeFaces => Settings { storage: Storage::DepthExercise, ..BASE },
         }
     }
 }
@@ -245,7 +245,8 @@ impl Lesson for CubeShadows {
         ];
         let module = shader_module_from_files(gpu, "lesson_04", &files)?;
         let params_size = std::mem::size_of::<CubeParams>() as u64;
-        let layout = cube_map::cube_map_layout(gpu, params_size);
+        let layout = cube_map::cube_map_layout(gpu, params_size, false);
+        let faces_layout = cube_map::cube_map_layout(gpu, params_size, true);
         let (mut lit_keys, mut lit_pipelines) = (Vec::<LitKey>::new(), Vec::new());
         let has_unclipped = gpu.has(wgpu::Features::DEPTH_CLIP_CONTROL);
         let tally = TallyShader::new(gpu);
@@ -257,11 +258,16 @@ impl Lesson for CubeShadows {
             Vec::new(),
         );
         for v in Variant::value_variants().iter().map(|v| v.settings()) {
+            // The exercise's lookup reads its own map, as a 2D array.
+            let faces = v.storage == Storage::DepthExercise;
             let map = maps
                 .iter()
-                .position(|m| m.size == v.size)
+                .position(|m| m.size == v.size && m.faces == faces)
                 .unwrap_or_else(|| {
-                    maps.push(CubeShadowMap::new(gpu, v.size));
+                    maps.push(match faces {
+                        false => CubeShadowMap::new(gpu, v.size),
+                        true => CubeShadowMap::new_faces(gpu, v.size),
+                    });
                     maps.len() - 1
                 });
             // Without DEPTH_CLIP_CONTROL (GL), fall back to a 1 mm near plane (reported).
@@ -292,7 +298,8 @@ impl Lesson for CubeShadows {
                 filtered: v.pcf > 0.0,
             };
             let lit = lit_keys.iter().position(|k| *k == key).unwrap_or_else(|| {
-                lit_pipelines.push(key.pipeline(gpu, scene, &module, &layout));
+                let layout = if faces { &faces_layout } else { &layout };
+                lit_pipelines.push(key.pipeline(gpu, scene, &module, layout));
                 lit_keys.push(key);
                 lit_keys.len() - 1
             });
@@ -315,7 +322,7 @@ impl Lesson for CubeShadows {
             };
             let group = cube_map::cube_map_group(
                 gpu,
-                &layout,
+                if faces { &faces_layout } else { &layout },
                 &maps[map],
                 filter,
                 bytemuck::bytes_of(&params),
@@ -421,6 +428,9 @@ impl Lesson for CubeShadows {
 
     fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
         let map = &self.maps[self.prepared[variant as usize].map];
+        if map.faces {
+            return Ok(()); // no cube view to unfold
+        }
         let path = out.join(format!("{}_cube_map.png", variant_name(variant)));
         write_cross_png(gpu, map, 128, &path)
     }

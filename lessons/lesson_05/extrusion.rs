@@ -91,7 +91,8 @@ pub fn cpu_volume_reaching(
 
 /// [`cpu_volume_reaching`], with the sides or the caps found by `parts`
 /// where it says so (an exercise's code), else by the lesson's own.
-/// `view`: the view frustum's planes in object space, for `parts.sides`.
+/// `view`: the view frustum's planes in object space, for `parts.sides`
+/// and `parts.caps`.
 pub fn cpu_volume_parts(
     adj: &Adjacency,
     light: LightDir,
@@ -125,7 +126,7 @@ pub fn cpu_volume_parts(
     // The front cap: the light-facing triangles. The back cap: the same
     // triangles at infinity, reversed.
     let (front, back) = match parts.caps {
-        Some(caps) => caps(adj, light),
+        Some(caps) => caps(adj, light, view),
         None => {
             let lit = light_facing_triangles_for(adj, &facing);
             let back = lit.iter().map(|t| [t[0], t[2], t[1]]).collect();
@@ -157,8 +158,9 @@ pub fn cpu_volume_parts(
 pub type SidesFn = fn(&Adjacency, LightDir, &[(DVec3, f64)]) -> Vec<SilhouetteEdge>;
 
 /// A cap builder: (front cap, back cap) triangles, welded ids, each wound
-/// as drawn (the back cap's vertices go to infinity).
-pub type CapsFn = fn(&Adjacency, LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>);
+/// as drawn (the back cap's vertices go to infinity), given also the view
+/// frustum's planes as for [`SidesFn`].
+pub type CapsFn = fn(&Adjacency, LightDir, &[(DVec3, f64)]) -> (Vec<[u32; 3]>, Vec<[u32; 3]>);
 
 /// Which parts of the CPU path's volume an exercise's code builds
 /// ([`cpu_volume_parts`]); `None`: the lesson's own. The default is the
@@ -182,7 +184,11 @@ mod tests {
     }
 
     /// The lesson's caps, as a [`CapsFn`] would give them.
-    fn lesson_caps(adj: &Adjacency, light: LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+    fn lesson_caps(
+        adj: &Adjacency,
+        light: LightDir,
+        _: &[(DVec3, f64)],
+    ) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
         let front = light_facing_triangles(adj, light);
         let back = front.iter().map(|t| [t[0], t[2], t[1]]).collect();
         (front, back)

@@ -260,10 +260,11 @@ impl ShadowVolumes {
         let casters = &self.casters;
         let reach = &self.reach;
         let models = &self.models;
-        // An exercise's sides also get the view frustum (object space).
-        let view = match parts.sides {
-            Some(_) => frustum_planes(scene.camera.view_proj.as_dmat4()),
-            None => Vec::new(),
+        // An exercise's sides or caps also get the view frustum (object space).
+        let view = if parts.sides.is_some() || parts.caps.is_some() {
+            frustum_planes(scene.camera.view_proj.as_dmat4())
+        } else {
+            Vec::new()
         };
         frame.cpu("silhouette", || {
             cpu.vertices.clear();

@@ -35,20 +35,31 @@ pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) ->
 // ANCHOR_END: needs_zfail
 
 // ANCHOR: volume_caps
-/// Exercise 2: the caps that close a caster's shadow volume for one light
-/// (object space): `(front, back)`, as welded vertex ids of `adj`.
+/// Exercise 2: the caps of a caster's z-fail volume for one light that the
+/// view can see (object space): `(front, back)`, as welded vertex ids of
+/// `adj`, each wound as the lesson winds it (front: the light-facing
+/// triangles as they are; back: the same triangles reversed, moved away
+/// from the light by the caller, to infinity or to the light's range).
 ///
-/// The front cap is the light-facing triangles (`adj.triangles` whose
-/// normal `adj.face_normals` points to the light: `n · (p − v0) > 0` for
-/// a point light at `p`, `n · (−d) > 0` for a directional light travelling
-/// along `d`), in their own winding: they face out of the volume, towards
-/// the light. The back cap is the same triangles moved to infinity (the
-/// caller does that), where they must face out of the volume too, away
-/// from the light.
+/// A cap triangle that lies wholly outside the view frustum draws no
+/// fragment, so leaving it out changes no pixel and saves its work. `view`
+/// holds the frustum's planes `(n, d)` in object space (`n · x + d ≥ 0`
+/// inside; `n` not of unit length; no far plane under an infinite one).
+/// A front-cap triangle is outside when its three vertices are outside one
+/// plane. A back-cap vertex can lie anywhere on the ray from the vertex
+/// `p` away from the light (`p + t (p − l)`, `t ≥ 0`, for a point light at
+/// `l`): a back-cap triangle is outside when, for one plane, all three of
+/// its rays stay outside it. For a directional light the caller draws no
+/// back cap. Keep a triangle whenever unsure: a missing cap in view leaks
+/// the count.
 ///
 /// Starter: no caps, so z-fail's count leaks.
-pub fn volume_caps(adj: &Adjacency, light: LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
-    let _ = (adj, light);
+pub fn volume_caps(
+    adj: &Adjacency,
+    light: LightDir,
+    view: &[(DVec3, f64)],
+) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+    let _ = (adj, light, view);
     (Vec::new(), Vec::new())
 }
 // ANCHOR_END: volume_caps

@@ -12,8 +12,8 @@
 //
 // What the cube stores: 0 linear distance, 1 hardware depth, 2 hardware
 // depth compared with the Euclidean distance (the naive mistake), 3
-// hardware depth from the chapter's exercise (exercise_cube_depth in
-// exercises.wgsl).
+// hardware depth read as a 2D array by the chapter's exercise
+// (fs_lit_faces, exercise_cube_texel in exercises.wgsl).
 override STORAGE: u32 = 0u;
 // A renderer's lookup instead (peers.wgsl): 0 none, 1 LearnOpenGL, 2 Bevy.
 override PEER: u32 = 0u;
@@ -44,7 +44,6 @@ struct CubeParams {
 @group(2) @binding(2) var<storage, read> params: CubeParams;
 const STORAGE_LINEAR: u32 = 0u;
 const STORAGE_DEPTH_EUCLID: u32 = 2u;
-const STORAGE_DEPTH_EXERCISE: u32 = 3u;
 
 // ANCHOR: linear_distance
 // The linear-distance shadow pass: distance / range, written as the
@@ -92,9 +91,7 @@ fn receiver_depth(v: vec3<f32>, d: f32) -> f32 {
     let far = light.color_range.w;
     let near = params.near;
     var z = d / far;
-    if STORAGE == STORAGE_DEPTH_EXERCISE {
-        z = exercise_cube_depth(v, d, near, far);
-    } else if STORAGE != STORAGE_LINEAR {
+    if STORAGE != STORAGE_LINEAR {
         // The face that holds v looks along v's major axis; its depth is a
         // function of the distance along that axis, not of |v|.
         let a = abs(v);
@@ -170,4 +167,31 @@ fn fs_lit(in: VertexOut) -> LitOut {
         return lit_output(in, bevy_point(in.world, n));
     }
     return lit_output(in, visibility(in.world, n));
+}
+
+// The chapter's exercise (variant exercise_cube_faces): the same one-tap
+// test as `visibility`, on hardware depth, but with no cube bound. The six
+// faces are layers of a 2D array, and exercise_cube_texel (exercises.wgsl)
+// picks the layer and the texel that the cube lookup would.
+@group(2) @binding(3) var cube_faces: texture_depth_2d_array;
+
+@fragment
+fn fs_lit_faces(in: VertexOut) -> LitOut {
+    var n = normalize(cross(dpdx(in.world), dpdy(in.world)));
+    if dot(n, camera.eye.xyz - in.world) < 0.0 {
+        n = -n;
+    }
+    let v = in.world - light.position_or_dir.xyz;
+    let d = length(v);
+    let cos_t = dot(n, -v / d);
+    if cos_t <= 0.0 {
+        return lit_output(in, 0.0);
+    }
+    let texel = params.texel_at_1m * d;
+    let tan_t = min(sqrt(max(1.0 - cos_t * cos_t, 0.0)) / cos_t, 10.0);
+    let bias = params.bias_world + texel * (params.bias_texels + params.slope * tan_t);
+    let z = receiver_depth(v, d - bias);
+    let st = exercise_cube_texel(v);
+    let layer = clamp(i32(round(st.z)), 0, 5);
+    return lit_output(in, textureSampleCompareLevel(cube_faces, cube_compare, st.xy, layer, z));
 }

@@ -1,18 +1,20 @@
 // lesson_04/exercises.wgsl: the chapter's shader exercise, starter code.
-// Appended to cube_map.wgsl; the lit pass calls it for the variant
-// `exercise_cube_depth` only. Grade with
-// `cargo run --release --bin grade -- lesson_04`.
+// Appended to cube_map.wgsl; the lit pass of the variant
+// `exercise_cube_faces` (fs_lit_faces) calls it, and only that variant.
+// Grade with `cargo run --release --bin grade -- lesson_04`.
 
-// ANCHOR: cube_depth
-// Exercise 2: the depth the hardware-depth cube stores for a point at
-// distance `d` from the light along the direction `v` (v: from the light to
-// the point, any length). The face that holds v looks along v's major axis,
-// so its depth is the perspective depth of the distance along that axis,
-// m = max(|v.x|, |v.y|, |v.z|) · d / |v|:
-// depth = far · (m − near) / ((far − near) · m), in [0, 1] from near to far.
-fn exercise_cube_depth(v: vec3<f32>, d: f32, near: f32, far: f32) -> f32 {
-    // Starter: the linear distance, what the other storage keeps. Against
-    // hardware depth it is far too small: nothing reads as shadowed.
-    return d / far;
+// ANCHOR: cube_texel
+// Exercise 2: the cube lookup by hand. For the direction `v` from the light
+// to the receiver (any length, not zero), return (s, t, layer): the face
+// the cube sampler would read, as its layer in wgpu's order +X, −X, +Y, −Y,
+// +Z, −Z (0 to 5, as a float), and the texel coordinates on that face,
+// s to the right and t down the rows, each in [0, 1]. The variant binds
+// the six faces as a `texture_depth_2d_array` (no cube view: a storage or
+// an adapter without cube sampling reads them this way) and compares at
+// (s, t) in that layer.
+fn exercise_cube_texel(v: vec3<f32>) -> vec3<f32> {
+    // Starter: the centre of the +X face for every direction, so every
+    // receiver reads one texel.
+    return vec3<f32>(0.5, 0.5, 0.0);
 }
-// ANCHOR_END: cube_depth
+// ANCHOR_END: cube_texel

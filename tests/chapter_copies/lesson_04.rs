@@ -10,5 +10,5 @@ pub fn faces_touched(centre: DVec3, half: DVec3) -> [bool; 6] {
     std::array::from_fn(|face| super::culling::sphere_touches_face(centre, half.length(), face))
 }
 
-/// `exercise_cube_depth(v, d, near, far)`, copied from the chapter.
+/// `exercise_cube_texel(v)`, copied from the chapter.
 pub const EXERCISES_WGSL: &str = include_str!("lesson_04.wgsl");

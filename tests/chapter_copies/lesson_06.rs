@@ -33,7 +33,11 @@ pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) ->
 }
 
 /// Exercise 2, copied: the caps `cpu_volume` builds.
-pub fn volume_caps(adj: &Adjacency, light: LightDir) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+pub fn volume_caps(
+    adj: &Adjacency,
+    light: LightDir,
+    _view: &[(DVec3, f64)],
+) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
     // Chapter 06's listing `extrusion.rs:cpu_volume` (from lesson 05), its caps.
     let lit = crate::lesson_05::silhouette::light_facing_triangles(adj, light);
     let back = lit.iter().map(|t| [t[0], t[2], t[1]]).collect();
