@@ -2,13 +2,26 @@
 // shaders/lesson_02/exercises.wgsl, with the same functions).
 
 // ANCHOR: slope_bias
-fn slope_bias(cos_t: f32) -> f32 {
-    // tan θ from cos θ; the 1e-4 keeps it finite at 90°.
-    let tan_t = sqrt(1.0 - cos_t * cos_t) / max(cos_t, 1e-4);
-    // A tenth of a texel, plus tan θ texels (twice the tan θ / 2 that a
-    // texel's depth error needs), clamped only where tan θ runs away
-    // (θ above 89°): a clamp of a few texels brings the acne back at 85°.
-    return 0.1 + min(tan_t, 64.0);
+fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let s = shadow_coords(world);
+    // One pixel's step across the screen, taken in world units and mapped:
+    // (du, dv, dz). Not dpdx(s): s comes from the light's matrix, read from
+    // a storage buffer, and on lavapipe its finite differences came out
+    // wrong (acne over whole lit faces; chapter 03 meets the same).
+    let dx = shadow_coords(world + dpdxFine(world)) - s;
+    let dy = shadow_coords(world + dpdyFine(world)) - s;
+    // g · dx.xy = dx.z and g · dy.xy = dy.z (Cramer's rule). The
+    // determinant is 0 only where the map sees the triangle edge-on.
+    let det = dx.x * dy.y - dx.y * dy.x;
+    if abs(det) < 1e-30 {
+        return s;
+    }
+    let g = vec2<f32>(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det;
+    // The texel's centre is at most half a texel away in u and in v: the
+    // plane's depth differs there by up to (|g_u| + |g_v|) / 2N. Twice
+    // that, plus a little for rounding; no clamp: g is the triangle's own.
+    let size = f32(textureDimensions(shadow_map).x);
+    return vec3<f32>(s.xy, s.z - 2e-6 - (abs(g.x) + abs(g.y)) / size);
 }
 // ANCHOR_END: slope_bias
 

@@ -2,5 +2,5 @@
 //! (`lessons/lesson_03/exercises.rs` is the starter).
 
 /// `exercise_pcf_kernel(s, radius, gradient)` and
-/// `exercise_rotated_poisson(s, pixel, radius, gradient)`, solved.
+/// `exercise_world_disk(s, world, pixel, radius_m, gradient)`, solved.
 pub const EXERCISES_WGSL: &str = include_str!("lesson_03.wgsl");

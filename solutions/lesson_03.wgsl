@@ -30,17 +30,20 @@ fn exercise_pcf_kernel(s: vec3<f32>, radius: i32, gradient: vec2<f32>) -> f32 {
 }
 // ANCHOR_END: pcf_kernel
 
-// ANCHOR: rotated_poisson
-fn exercise_rotated_poisson(s: vec3<f32>, pixel: vec2<f32>, radius: f32, gradient: vec2<f32>) -> f32 {
-    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
-    let phi = 6.2831853 * fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))));
+// ANCHOR: world_disk
+fn exercise_world_disk(s: vec3<f32>, world: vec3<f32>, pixel: vec2<f32>, radius_m: f32, gradient: vec2<f32>) -> f32 {
+    // The radius in map units along u and along v: metres / (metres per
+    // texel × texels across). Texels are not square, so neither is the disk
+    // on the map; on the light's plane it is round.
+    let size = f32(textureDimensions(shadow_map).x);
+    let r = radius_m / (shadow_texel_extent(world) * size);
+    let a = rotation_angle(pixel);
+    let rot = mat2x2<f32>(cos(a), sin(a), -sin(a), cos(a));
     var lit = 0.0;
     for (var i = 0u; i < 16u; i++) {
-        let r = radius * sqrt((f32(i) + 0.5) / 16.0);
-        let a = f32(i) * 2.39996323 + phi;
-        let o = vec2<f32>(cos(a), sin(a)) * r * texel;
+        let o = (rot * POISSON_DISK[i]) * r;
         lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
     }
     return lit / 16.0;
 }
-// ANCHOR_END: rotated_poisson
+// ANCHOR_END: world_disk

@@ -109,7 +109,7 @@ exercises! {
     l02_slope_bias: lesson_02 exercise_slope_bias,
     l02_grazing_bias: lesson_02 exercise_grazing_bias,
     l03_pcf_kernel: lesson_03 exercise_pcf_kernel,
-    l03_rotated_poisson: lesson_03 exercise_rotated_poisson,
+    l03_world_disk: lesson_03 exercise_world_disk,
     l04_cull_faces: lesson_04 exercise_cull_faces,
     l04_cube_faces: lesson_04 exercise_cube_faces,
     l05_edges_in_view: lesson_05 exercise_edges_in_view,

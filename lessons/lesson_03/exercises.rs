@@ -1,9 +1,9 @@
 //! Lesson 03's exercises, the starter code: both are WGSL functions in
 //! `shaders/lesson_03/exercises.wgsl`, appended to the lesson's shader. The
-//! variants `exercise_pcf_kernel` and `exercise_rotated_poisson` call them;
+//! variants `exercise_pcf_kernel` and `exercise_world_disk` call them;
 //! the lesson's own variants never do. With `--features solutions` the
 //! build reads `solutions/lesson_03.rs` instead.
 
 /// `exercise_pcf_kernel(s, radius, gradient)` and
-/// `exercise_rotated_poisson(s, pixel, radius, gradient)`, to fill in.
+/// `exercise_world_disk(s, world, pixel, radius_m, gradient)`, to fill in.
 pub const EXERCISES_WGSL: &str = include_str!("../../shaders/lesson_03/exercises.wgsl");

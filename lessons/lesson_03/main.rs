@@ -90,8 +90,8 @@ enum Variant {
     /// The chapter's exercises (`exercises.wgsl`), run only when named.
     #[value(name = "exercise_pcf_kernel")]
     ExercisePcfKernel,
-    #[value(name = "exercise_rotated_poisson")]
-    ExerciseRotatedPoisson,
+    #[value(name = "exercise_world_disk")]
+    ExerciseWorldDisk,
 }
 
 impl Variant {
@@ -118,7 +118,8 @@ impl Variant {
             Variant::DepthAvg3x3 => Filter::DepthAverage { n: 3 },
             // Graded against pcf_5x5 and poisson_16 (exercises.toml).
             Variant::ExercisePcfKernel => Filter::ExerciseGrid { n: 5 },
-            Variant::ExerciseRotatedPoisson => Filter::ExerciseDisk { radius: 2.5 },
+            // 2.5 cm: about poisson_16's 2.5 texels on the default scene.
+            Variant::ExerciseWorldDisk => Filter::ExerciseDisk { radius_m: 0.025 },
             Variant::LearnOpenGlPcf => Filter::Grid {
                 n: 3,
                 receiver_plane: false,

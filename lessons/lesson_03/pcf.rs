@@ -28,9 +28,9 @@ pub enum Filter {
     /// student's smooth N×N grid with the receiver plane, radius N / 2:
     /// (N + 1)² comparisons at texel centres, bilinearly weighted.
     ExerciseGrid { n: u32 },
-    /// Exercise 2 (`exercise_rotated_poisson`): the student's 16 bilinear
-    /// taps on a disk of `radius` texels, rotated per pixel.
-    ExerciseDisk { radius: f32 },
+    /// Exercise 2 (`exercise_world_disk`): the student's 16 bilinear taps
+    /// on a disk of `radius_m` metres (world units), rotated per pixel.
+    ExerciseDisk { radius_m: f32 },
     /// Bevy's default (`ShadowFilteringMethod::Gaussian`): Castaño's 5×5
     /// Gaussian from 9 bilinear comparisons (The Witness), ported from
     /// bevy_pbr/src/render/shadow_sampling.wgsl `sample_shadow_map_castano_thirteen`.
@@ -144,9 +144,10 @@ impl From<Filter> for FilterUniform {
                 receiver_plane: 1,
                 ..u
             },
-            Filter::ExerciseDisk { radius } => FilterUniform {
+            // The shader's `radius` carries metres here.
+            Filter::ExerciseDisk { radius_m } => FilterUniform {
                 taps: 16,
-                radius,
+                radius: radius_m,
                 receiver_plane: 1,
                 ..u
             },

@@ -2,16 +2,13 @@
 // Compiled after bias.wgsl and the exercises' WGSL (the student's
 // `slope_bias` and `grazing_bias`), which it plugs into the lesson's lookup.
 
-// Exercise 1: the receiver moves slope_bias(cos θ) texels towards the light.
+// Exercise 1: compare what slope_bias returns (called first: it takes
+// screen-space derivatives, which need uniform control flow).
 @fragment
 fn fs_exercise_slope_bias(in: VertexOut) -> LitOut {
-    let n = light_side_normal(in);
-    let l = to_light(in.world);
-    let cos_t = clamp(dot(n, l), 0.0, 1.0);
-    let p = in.world + shadow_texel_size(in.world, n) * slope_bias(cos_t) * l;
-    let s = shadow_coords(p);
+    let s = slope_bias(in.world, light_side_normal(in));
     var lit = 1.0;
-    if !outside_shadow_map(p, s) {
+    if !outside_shadow_map(in.world, s) {
         lit = textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z);
     }
     return lit_output(in, lit);

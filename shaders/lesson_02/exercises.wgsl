@@ -4,15 +4,20 @@
 // are there to call. Each stub runs, and is wrong: grade says how.
 
 // ANCHOR: slope_bias
-// Exercise 1: slope-scaled bias. How many shadow-map texels to move the
-// receiver towards the light, given cos θ = N·L (already clamped to [0, 1];
-// θ is the angle between the surface normal and the light). A receiver at θ
-// needs tan θ / 2 texels; grazing receivers need many, so scale with tan θ,
-// add a small constant, and clamp the result where tan θ runs away.
-// The caller moves the receiver `slope_bias(cos_t) × texel` along the light.
-fn slope_bias(cos_t: f32) -> f32 {
-    // TODO: return a constant plus a multiple of tan θ, clamped.
-    return 0.0;
+// Exercise 1 (beyond the lesson): a slope-scaled bias from the map's own
+// slope. Return the shadow-map coordinates (u, v, depth) to compare for the
+// receiver at `world`; `n` is its interpolated normal on the light's side.
+// `slope_shader` reads the slope off n (tan θ), but where a mesh's normals
+// are smoothed across its edges, n is not the plane of the triangle that
+// the map stored. Take the receiver's
+// depth gradient across the map, g = (dz/du, dz/dv), from one pixel's
+// steps across the screen, `dpdxFine(world)` and `dpdyFine(world)` (call
+// them before any branch), mapped with `shadow_coords`; then subtract from
+// the depth what the plane's depth can differ by at the texel's centre,
+// with a margin.
+fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    // TODO: map the two steps, solve them for g, and lower s.z by enough.
+    return shadow_coords(world);
 }
 // ANCHOR_END: slope_bias
 

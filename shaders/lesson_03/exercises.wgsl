@@ -23,17 +23,20 @@ fn exercise_pcf_kernel(s: vec3<f32>, radius: i32, gradient: vec2<f32>) -> f32 {
 }
 // ANCHOR_END: pcf_kernel
 
-// ANCHOR: rotated_poisson
-// Exercise 2 (beyond the lesson): 16 taps on a disk of `radius` texels that
-// you generate (no table), rotated per pixel. Tap i sits at distance
-// radius · sqrt((i + 0.5) / 16) from the centre, at angle i · 2.39996 (the
-// golden angle) plus a per-pixel angle from `pixel` (the fragment's
-// position in pixels): interleaved gradient noise,
-// 2π · fract(52.9829189 · fract(dot(pixel, vec2(0.06711056, 0.00583715)))).
-// Compare each tap at s.z + dot(gradient, o) as in exercise 1 (the sampler
-// is bilinear here: each tap blends 2×2 comparisons) and return the average.
-fn exercise_rotated_poisson(s: vec3<f32>, pixel: vec2<f32>, radius: f32, gradient: vec2<f32>) -> f32 {
+// ANCHOR: world_disk
+// Exercise 2 (beyond the lesson): a penumbra whose size is given in world
+// units. `pcf_poisson` spreads its 16 taps over `radius` texels, so its
+// penumbra grows with the texels: a bigger light frustum or a smaller map
+// widens it. Spread them over a disk of `radius_m` metres on the plane the
+// light looks through instead, centred on the receiver at `world`:
+// `shadow_texel_extent(world)` is one texel's two sides there (along u and
+// along v; they differ), and the map is `textureDimensions(shadow_map).x`
+// texels across. Rotate the disk per pixel as `pcf_poisson` does
+// (`rotation_angle(pixel)`, `POISSON_DISK`), compare each tap at
+// s.z + dot(gradient, o) (the sampler is bilinear: each tap blends 2×2
+// comparisons) and return the average.
+fn exercise_world_disk(s: vec3<f32>, world: vec3<f32>, pixel: vec2<f32>, radius_m: f32, gradient: vec2<f32>) -> f32 {
     // Starter: one bilinear comparison at the centre (a 2-texel penumbra).
     return textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z);
 }
-// ANCHOR_END: rotated_poisson
+// ANCHOR_END: world_disk

@@ -9,7 +9,7 @@
 // The filter, fixed when the pipeline is compiled (Rust: `Filter::mode` in
 // lessons/lesson_03/pcf.rs): 0: N×N grid, 1: hardware 2×2, 2: rotated
 // Poisson disk, 3: average depths; the exercises (exercises.wgsl):
-// 4: exercise_pcf_kernel, 5: exercise_rotated_poisson; 6: Bevy's Castaño
+// 4: exercise_pcf_kernel, 5: exercise_world_disk; 6: Bevy's Castaño
 // 5×5 Gaussian. An `override`, not a field of `Filter`: a switch on a value
 // read from a buffer keeps every case in the compiled shader, and a software
 // rasteriser runs them all, masked, texture reads included (on lavapipe one
@@ -216,7 +216,7 @@ fn fs_lit(in: VertexOut) -> LitOut {
             case 1u: { v = textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z); }
             case 2u: { v = pcf_poisson(s, in.clip.xy, gradient); }
             case 4u: { v = exercise_pcf_kernel(s, i32(pcf.n) / 2, gradient); }
-            case 5u: { v = exercise_rotated_poisson(s, in.clip.xy, pcf.radius, gradient); }
+            case 5u: { v = exercise_world_disk(s, in.world, in.clip.xy, pcf.radius, gradient); }
             case 6u: { v = pcf_castano13(s); }
             default: { v = depth_average(s, i32(pcf.n)); }
         }

@@ -3,6 +3,6 @@
 //! them there, then run `cargo run --release --bin grade -- lesson_02`.
 //! The reference solutions are `solutions/lesson_02.rs` (`--features solutions`).
 
-/// The WGSL of the exercises: `slope_bias(cos_t)` (exercise 1) and
+/// The WGSL of the exercises: `slope_bias(world, n)` (exercise 1) and
 /// `grazing_bias(world, n)` (exercise 2), each with a stub body.
 pub const EXERCISES_WGSL: &str = include_str!("lesson_02.wgsl");

@@ -3,10 +3,15 @@
 // shaders/lesson_02/exercises.wgsl.
 
 // ANCHOR: slope_bias
-// Copies the chapter's `slope_shader` (Slope scaling: b0 = 0.1, k = 1, b_max = 4).
-fn slope_bias(cos_t: f32) -> f32 {
+// Copies the chapter's `biased_receiver` listing with slope_shader's settings
+// (Slope scaling: b0 = 0.1, k = 1, b_max = 4).
+fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let l = to_light(world);
+    let cos_t = clamp(dot(n, l), 0.0, 1.0);
     let tan_t = sqrt(1.0 - cos_t * cos_t) / max(cos_t, 1e-4);
-    return 0.1 + min(1.0 * tan_t, 4.0);
+    let texel = shadow_texel_size(world, n);
+    let along_light = 0.1 + min(1.0 * tan_t, 4.0);
+    return shadow_coords(world + texel * along_light * l);
 }
 // ANCHOR_END: slope_bias
 

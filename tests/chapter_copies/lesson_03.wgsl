@@ -9,17 +9,18 @@ fn exercise_pcf_kernel(s: vec3<f32>, radius: i32, gradient: vec2<f32>) -> f32 {
 }
 // ANCHOR_END: pcf_kernel
 
-// ANCHOR: rotated_poisson
-// Copies the chapter's `poisson` listing (the rotated Poisson disk).
-fn exercise_rotated_poisson(s: vec3<f32>, pixel: vec2<f32>, radius: f32, gradient: vec2<f32>) -> f32 {
+// ANCHOR: world_disk
+// Copies the chapter's `poisson` listing (the rotated Poisson disk) with
+// poisson_16's radius of 2.5 texels.
+fn exercise_world_disk(s: vec3<f32>, world: vec3<f32>, pixel: vec2<f32>, radius_m: f32, gradient: vec2<f32>) -> f32 {
     let texel = 1.0 / f32(textureDimensions(shadow_map).x);
     let a = rotation_angle(pixel);
     let rot = mat2x2<f32>(cos(a), sin(a), -sin(a), cos(a));
     var lit = 0.0;
     for (var i = 0u; i < 16u; i++) {
-        let o = rot * POISSON_DISK[i] * radius * texel;
+        let o = rot * POISSON_DISK[i] * 2.5 * texel;
         lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
     }
     return lit / 16.0;
 }
-// ANCHOR_END: rotated_poisson
+// ANCHOR_END: world_disk
