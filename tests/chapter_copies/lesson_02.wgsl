@@ -3,7 +3,7 @@
 // shaders/lesson_02/exercises.wgsl.
 
 // ANCHOR: slope_bias
-// Copies the chapter's `biased_receiver` listing with slope_shader's settings
+// Copies the chapter's `bias.wgsl:shadow_bias` listing (its `biased_receiver`) with slope_shader's settings
 // (Slope scaling: b0 = 0.1, k = 1, b_max = 4).
 fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let l = to_light(world);
@@ -16,7 +16,7 @@ fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
 // ANCHOR_END: slope_bias
 
 // ANCHOR: grazing_bias
-// Copies the chapter's `biased_receiver` listing with slope_shader's settings.
+// Copies the chapter's `bias.wgsl:shadow_bias` listing (its `biased_receiver`) with slope_shader's settings.
 fn grazing_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let l = to_light(world);
     let cos_t = clamp(dot(n, l), 0.0, 1.0);
