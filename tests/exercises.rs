@@ -238,10 +238,15 @@ fn hidden_scenes_are_graded() {
 #[test]
 fn every_copy_names_the_listing_it_copies() {
     let mut anchors = std::collections::BTreeSet::new();
-    for e in std::fs::read_dir(root().join("book/src")).expect("book/src").flatten() {
+    for e in std::fs::read_dir(root().join("book/src"))
+        .expect("book/src")
+        .flatten()
+    {
         let text = std::fs::read_to_string(e.path()).unwrap_or_default();
         for piece in text.split("{{#include ").skip(1) {
-            let Some(end) = piece.find("}}") else { continue };
+            let Some(end) = piece.find("}}") else {
+                continue;
+            };
             if let Some((_, anchor)) = piece[..end].rsplit_once(':') {
                 anchors.insert(anchor.trim().to_string());
             }
@@ -258,7 +263,11 @@ fn every_copy_names_the_listing_it_copies() {
                 .and_then(|t| t.split_once("()"))
                 .map(|(f, _)| f.to_string())
                 .unwrap_or_else(|| panic!("{lesson} {}: task {:?}", ex.variant, ex.task));
-            let ext = if ex.task.ends_with(".wgsl") { "wgsl" } else { "rs" };
+            let ext = if ex.task.ends_with(".wgsl") {
+                "wgsl"
+            } else {
+                "rs"
+            };
             let path = root().join(format!("tests/chapter_copies/{lesson}.{ext}"));
             let text = std::fs::read_to_string(&path)
                 .unwrap_or_else(|_| panic!("{}: missing", path.display()));
@@ -272,7 +281,10 @@ fn every_copy_names_the_listing_it_copies() {
             // Its comments above and its body, to the next blank line or item.
             let from = (0..at)
                 .rev()
-                .take_while(|&i| lines[i].trim_start().starts_with("//") || lines[i].trim_start().starts_with("#["))
+                .take_while(|&i| {
+                    lines[i].trim_start().starts_with("//")
+                        || lines[i].trim_start().starts_with("#[")
+                })
                 .last()
                 .unwrap_or(at);
             let to = (at..lines.len())
