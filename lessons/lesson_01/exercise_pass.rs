@@ -19,6 +19,21 @@ use common::scene::{LightKind, Scene};
 use super::exercises;
 use super::shadow_map;
 
+// ANCHOR: camera_frustum
+/// The camera of exercise 1, in origin-relative world space.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraFrustum {
+    /// World → camera view space (the camera looks down −z).
+    pub view: common::glam::DMat4,
+    /// tan(fov_y / 2): at view distance d the image is 2·d·tan_half_fov_y tall.
+    pub tan_half_fov_y: f64,
+    /// Width / height of the image.
+    pub aspect: f64,
+    /// The near plane's distance. The far plane is left to you.
+    pub near: f64,
+}
+// ANCHOR_END: camera_frustum
+
 /// Light `light`'s view-projection with the box the student fits
 /// ([`exercises::fit_light_box`]) to what the camera sees: every vertex of
 /// every object, and the camera's frustum for a `width × height` image. The
@@ -45,7 +60,7 @@ pub fn tight_light_view_proj(scene: &Scene, light: usize, width: u32, height: u3
         return light_view_proj(scene, light);
     }
     let c = &scene.camera;
-    let camera = exercises::CameraFrustum {
+    let camera = CameraFrustum {
         view: look_at_mat4(c.eye - o, c.target - o, c.up),
         tan_half_fov_y: (c.fov_y_deg.to_radians() * 0.5).tan(),
         aspect: width.max(1) as f64 / height.max(1) as f64,

@@ -5,18 +5,9 @@
 use common::glam::{DMat4, DVec3};
 
 // ANCHOR: tight_frustum
-/// The camera of exercise 1, in origin-relative world space.
-#[derive(Clone, Copy, Debug)]
-pub struct CameraFrustum {
-    /// World → camera view space (the camera looks down −z).
-    pub view: DMat4,
-    /// tan(fov_y / 2): at view distance d the image is 2·d·tan_half_fov_y tall.
-    pub tan_half_fov_y: f64,
-    /// Width / height of the image.
-    pub aspect: f64,
-    /// The near plane's distance. The far plane is left to you.
-    pub near: f64,
-}
+/// The camera of exercise 1 (`exercise_pass.rs`, shared by the starter,
+/// the solution and the copy).
+pub use super::exercise_pass::CameraFrustum;
 
 /// Exercise 1: fit the directional light's orthographic box to what the
 /// camera sees.
