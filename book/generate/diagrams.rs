@@ -22,9 +22,17 @@ pub(crate) type P = (f64, f64);
 
 /// Writes the diagrams into `dir` and returns the file names written.
 pub fn write_all(root: &Path, dir: &Path) -> Result<Vec<String>> {
+    write_svgs(dir, render(root)?)
+}
+
+/// Writes `(file name, SVG text)` pairs into `dir`; returns the names.
+pub(crate) fn write_svgs(
+    dir: &Path,
+    svgs: impl IntoIterator<Item = (&'static str, String)>,
+) -> Result<Vec<String>> {
     std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
     let mut names = Vec::new();
-    for (name, svg) in render(root)? {
+    for (name, svg) in svgs {
         let path = dir.join(name);
         std::fs::write(&path, svg).with_context(|| format!("{}: cannot write", path.display()))?;
         names.push(name.to_string());

@@ -24,14 +24,7 @@ use crate::diagrams::{add, crossings, fill, inside, signed, stroke, Face, Svg, I
 
 /// Writes chapter 05's diagrams into `dir` and returns the names written.
 pub fn write_all(root: &Path, dir: &Path) -> Result<Vec<String>> {
-    std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
-    let mut names = Vec::new();
-    for (name, svg) in render(root)? {
-        let path = dir.join(name);
-        std::fs::write(&path, svg).with_context(|| format!("{}: cannot write", path.display()))?;
-        names.push(name.to_string());
-    }
-    Ok(names)
+    crate::diagrams::write_svgs(dir, render(root)?)
 }
 
 fn render(root: &Path) -> Result<[(&'static str, String); 5]> {
