@@ -4,9 +4,9 @@
 use common::glam::{DMat4, DVec3};
 
 // ANCHOR: tight_frustum
-/// The camera of exercise 1 (`exercise_pass.rs`, shared by the starter,
+/// The camera of exercise 1 (`view_frustum.rs`, shared by the starter,
 /// the solution and the copy).
-pub use super::exercise_pass::CameraFrustum;
+pub use super::view_frustum::CameraFrustum;
 
 /// Exercise 1, solved: the vertices' light-space box, cut in x and y to
 /// the light-space box of the camera's frustum, which ends at the farthest

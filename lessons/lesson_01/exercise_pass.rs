@@ -19,20 +19,7 @@ use common::scene::{LightKind, Scene};
 use super::exercises;
 use super::shadow_map;
 
-// ANCHOR: camera_frustum
-/// The camera of exercise 1, in origin-relative world space.
-#[derive(Clone, Copy, Debug)]
-pub struct CameraFrustum {
-    /// World → camera view space (the camera looks down −z).
-    pub view: common::glam::DMat4,
-    /// tan(fov_y / 2): at view distance d the image is 2·d·tan_half_fov_y tall.
-    pub tan_half_fov_y: f64,
-    /// Width / height of the image.
-    pub aspect: f64,
-    /// The near plane's distance. The far plane is left to you.
-    pub near: f64,
-}
-// ANCHOR_END: camera_frustum
+use super::view_frustum::CameraFrustum;
 
 /// Light `light`'s view-projection with the box the student fits
 /// ([`exercises::fit_light_box`]) to what the camera sees: every vertex of

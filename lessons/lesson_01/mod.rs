@@ -6,6 +6,8 @@ pub mod tally;
 
 pub mod exercise_pass;
 
+pub mod view_frustum;
+
 /// The chapter's exercises: the starter code a student fills in, or with
 /// `--features solutions`, the reference solutions (`solutions/lesson_01.rs`).
 #[cfg(not(any(feature = "solutions", feature = "chapter_copies")))]

@@ -5,9 +5,9 @@
 use common::glam::{DMat4, DVec3};
 
 // ANCHOR: tight_frustum
-/// The camera of exercise 1 (`exercise_pass.rs`, shared by the starter,
+/// The camera of exercise 1 (`view_frustum.rs`, shared by the starter,
 /// the solution and the copy).
-pub use super::exercise_pass::CameraFrustum;
+pub use super::view_frustum::CameraFrustum;
 
 /// Exercise 1: fit the directional light's orthographic box to what the
 /// camera sees.

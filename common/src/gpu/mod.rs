@@ -12,6 +12,8 @@
 //! - [`fullscreen`]: the full-screen triangle (blits, readback, markers).
 //! - [`readback`]: buffers, textures and query results back to the CPU.
 //! - [`depth_probe`]: what a depth format really stores (24-bit unorm or float).
+//! - [`wgsl`]: a WGSL module built from named files, its errors mapped back
+//!   to the file, line and column they came from.
 
 pub mod bindings;
 pub mod depth_probe;
