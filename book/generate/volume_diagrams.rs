@@ -21,6 +21,7 @@ use workbook::lesson_05::silhouette::{
 };
 
 use crate::diagrams::{add, crossings, fill, inside, signed, stroke, Face, Svg, INK, P};
+use workbook::lesson_05::stencil::segment_crosses;
 
 /// Writes chapter 05's diagrams into `dir` and returns the names written.
 pub fn write_all(root: &Path, dir: &Path) -> Result<Vec<String>> {
@@ -653,26 +654,13 @@ fn stencil_grid(scene: &Scene, light: usize) -> Result<Vec<Option<u32>>> {
                 LightDir::Directional(dir) => (-dir.normalize(), f32::INFINITY),
             };
             out.push(Some(
-                lit.iter().filter(|t| crosses(p, to, t_max, t)).count() as u32,
+                lit.iter()
+                    .filter(|t| segment_crosses(p, to, t_max, t))
+                    .count() as u32,
             ));
         }
     }
     Ok(out)
-}
-
-/// Möller–Trumbore on the segment from `o` along `d`, a small offset away
-/// from its start (the point's own triangle does not count).
-fn crosses(o: Vec3, d: Vec3, t_max: f32, t: &[Vec3; 3]) -> bool {
-    let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
-    let p = d.cross(e2);
-    let det = e1.dot(p);
-    if det.abs() < 1e-12 {
-        return false;
-    }
-    let s = o - t[0];
-    let (u, q) = (s.dot(p) / det, s.cross(e1));
-    let (v, dist) = (d.dot(q) / det, e2.dot(q) / det);
-    (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && dist > 1e-4 && dist < t_max
 }
 
 fn stencil_counts(scene: &Scene) -> Result<String> {

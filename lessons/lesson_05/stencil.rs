@@ -184,8 +184,9 @@ pub fn max_volume_overlap(scene: &SceneGpu, light: usize, cols: u32, rows: u32) 
 }
 // ANCHOR_END: max_volume_overlap
 
-/// Möller–Trumbore, a small offset away from the start point.
-fn segment_crosses(o: Vec3, d: Vec3, t_max: f32, t: &[Vec3; 3]) -> bool {
+/// Möller–Trumbore, a small offset away from the start point (the start's
+/// own triangle does not count). Chapter 05's stencil diagram uses it too.
+pub fn segment_crosses(o: Vec3, d: Vec3, t_max: f32, t: &[Vec3; 3]) -> bool {
     let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
     let p = d.cross(e2);
     let det = e1.dot(p);
