@@ -39,6 +39,10 @@ pub struct VariantReport {
     pub timing_samples_ms: BTreeMap<String, Vec<f64>>,
     pub timing_source: TimingSource,
     pub counters: BTreeMap<String, u64>,
+    /// The values of the variant's knobs it ran with (`--knob`; absent for
+    /// a variant with none).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub knobs: BTreeMap<String, f64>,
     /// The scene's `[camera_path]` measured (absent without one).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera_path: Option<CameraPathReport>,

@@ -23,6 +23,11 @@ pub struct Args {
     /// Run only this variant (repeatable). Default: all of the lesson's variants.
     #[arg(long = "variant", value_name = "NAME")]
     pub variants: Vec<String>,
+    /// Set a knob of the technique, NAME=VALUE (repeatable): every variant
+    /// run that has the knob uses the value. The window's `K` key prints
+    /// the knobs it shows in this form.
+    #[arg(long = "knob", value_name = "NAME=VALUE", value_parser = crate::run::knobs::parse_knob)]
+    pub knobs: Vec<(String, f64)>,
     /// Print the lesson's variants and exit.
     #[arg(long)]
     pub list_variants: bool,

@@ -17,6 +17,7 @@ use crate::measure::timing::{median_times, samples, spread_times, Timer};
 use crate::reference::metrics::{self, pixel_states, PixelState, ReferenceStates};
 use crate::reference::try_render_reference;
 use crate::run::cli::Args;
+use crate::run::knobs::{apply_cli_knobs, knob_values};
 use crate::run::lesson::{variant_name, Lesson};
 use crate::scene::camera_path::{check_path, path_cameras, CameraPath, Shimmer};
 use crate::scene::Scene;
@@ -84,6 +85,7 @@ pub fn run_headless<L: Lesson>(
     if runnable.is_empty() {
         anyhow::bail!("this adapter can render none of the variants (the notes above say why)");
     }
+    apply_cli_knobs(&mut lesson, &gpu, &sg, &runnable, &args.knobs)?;
 
     // 1. Time every variant first, back to back and interleaved with the
     //    no-shadow baseline, before any CPU-only work lets the GPU idle
@@ -184,6 +186,7 @@ pub fn run_headless<L: Lesson>(
             timing_samples_ms: samples(times),
             timing_source: timer.source(),
             counters,
+            knobs: knob_values(&lesson, variant),
             camera_path,
             classes,
             timing_check: Some(check.clone()),

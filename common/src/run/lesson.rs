@@ -13,6 +13,7 @@ use crate::gpu::render::SceneGpu;
 use crate::gpu::targets::FrameTargets;
 use crate::gpu::Gpu;
 use crate::measure::timing::Frame;
+use crate::run::knobs::Knob;
 use crate::scene::Scene;
 
 /// What a lesson provides. The runners do the rest.
@@ -82,6 +83,40 @@ pub trait Lesson: Sized {
         BTreeMap::new()
     }
 
+    /// The knobs `variant` exposes ([`crate::run::knobs`]), with the values
+    /// it runs with now: the parameters its chapter discusses. None by
+    /// default.
+    fn knobs(&self, _variant: Self::Variant) -> Vec<Knob> {
+        Vec::new()
+    }
+
+    /// Sets a knob of `variant` that [`Lesson::knobs`] lists, to a value in
+    /// its range (call [`crate::run::knobs::apply_knob`], which checks both).
+    /// The next [`Lesson::render`] of `variant` uses it.
+    fn set_knob(
+        &mut self,
+        _gpu: &Gpu,
+        _scene: &SceneGpu,
+        variant: Self::Variant,
+        name: &str,
+        _value: f64,
+    ) -> Result<()> {
+        anyhow::bail!("--knob {name}: {} has no knobs", variant_name(variant))
+    }
+
+    /// The lesson's own buffer for the window's "buffer" view (lessons
+    /// 01–03: the shadow map; 04: the cube map's cross; 05–08: the stencil
+    /// count; 09: the cascade each pixel samples), as the last
+    /// [`Lesson::render`] of `variant` left it, or `None`.
+    fn buffer_view(
+        &self,
+        _gpu: &Gpu,
+        _scene: &SceneGpu,
+        _variant: Self::Variant,
+    ) -> Result<Option<BufferView>> {
+        Ok(None)
+    }
+
     /// Extra debug images (the depth map, ...), written after the last frame.
     fn write_extras(
         &self,
@@ -92,6 +127,21 @@ pub trait Lesson: Sized {
     ) -> Result<()> {
         Ok(())
     }
+}
+
+/// A lesson's own buffer as an image, for the window's "buffer" view.
+pub struct BufferView {
+    /// What the image shows, in one line ("shadow map, light 0: depth, near
+    /// dark").
+    pub title: String,
+    pub image: image::RgbaImage,
+}
+
+/// A variant's one-line doc comment (its `///` in the lesson), or "".
+pub fn variant_doc<V: ValueEnum>(v: V) -> String {
+    let help = v.to_possible_value().and_then(|p| p.get_help().map(|h| h.to_string()));
+    let help = help.unwrap_or_default();
+    help.lines().next().unwrap_or("").to_string()
 }
 
 /// A variant's name, as `--variant` and the report spell it.

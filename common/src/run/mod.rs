@@ -3,11 +3,13 @@
 //! - [`app`]: a lesson's `main`: the command line, then headless or the window.
 //! - [`cli`]: the command line every lesson shares (INTERFACES.md).
 //! - [`lesson`]: the [`lesson::Lesson`] trait and its typed variants.
+//! - [`knobs`]: a technique's parameters, set by the window's widgets and `--knob`.
 //! - [`headless`]: the headless runner that writes the outputs of INTERFACES.md.
 //! - [`window`]: the interactive window (winit).
 
 pub mod app;
 pub mod cli;
 pub mod headless;
+pub mod knobs;
 pub mod lesson;
 pub mod window;
