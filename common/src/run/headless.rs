@@ -148,6 +148,9 @@ pub fn run_headless<L: Lesson>(
             per_light.push(cmp.stats);
         }
         lesson.write_extras(&gpu, &sg, variant, &out_dir)?;
+        if let Some(b) = lesson.buffer_view(&gpu, &sg, variant)? {
+            save(&b.image, &out_dir.join(format!("{v}_buffer.png")))?;
+        }
         let states = light_states(&reference_states, &images);
         let classes = match lesson.pixel_classes(&sg, variant, &view_depth) {
             Some((names, class_of)) => Some(metrics::class_errors(&names, &class_of, &states)?),
