@@ -71,7 +71,7 @@ impl FrameTargets {
                     w,
                     h,
                     VISIBILITY_FORMAT,
-                    wgpu::TextureUsages::empty(),
+                    tb, // the window's visibility view reads it
                 )
             })
             .collect();

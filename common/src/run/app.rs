@@ -69,6 +69,14 @@ fn run<L: Lesson>(args: &Args) -> Result<()> {
     }
     let variants = select_variants::<L>(&args.variants)?;
     let scene = load_scene::<L>(args)?;
+    let window_only = args.window_flags();
+    if let (false, Some(flag)) = (display_available() && !args.headless, window_only.first()) {
+        anyhow::bail!(
+            "{flag}: is for the window, and {}; run under a display (Linux without one: xvfb-run -a cargo run --release --bin {} -- {flag} ...)",
+            if args.headless { "--headless was given" } else { "there is no display (DISPLAY and WAYLAND_DISPLAY are unset)" },
+            L::NAME
+        );
+    }
     if args.headless || !display_available() {
         let result = run_headless::<L>(args, scene, &variants)?;
         if let Some(w) = result.report.coverage_warning() {

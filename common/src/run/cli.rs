@@ -53,6 +53,31 @@ pub struct Args {
     /// name. WORKBOOK_ADAPTER is honoured too.
     #[arg(long, value_name = "any|software|NAME")]
     pub adapter: Option<String>,
+    /// Window: save the window's own picture, overlay included, to this PNG
+    /// after `--capture-after` frames, then quit.
+    #[arg(long, value_name = "FILE.png")]
+    pub capture: Option<PathBuf>,
+    /// Window: the frames drawn before `--capture` (default 30), or before
+    /// quitting without it.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub capture_after: Option<u32>,
+    /// Window: the view it opens with.
+    #[arg(long, value_enum, value_name = "VIEW")]
+    pub view: Option<crate::run::window::views::View>,
+    /// Window: turn the camera around its target at this many degrees per
+    /// second, as a steady drag would (-3600 to 3600).
+    #[arg(long, value_name = "DEG_PER_S", allow_negative_numbers = true, value_parser = parse_orbit)]
+    pub orbit: Option<f64>,
+    /// Window: quit after this many seconds (0.1 to 86400).
+    #[arg(long, value_name = "S", value_parser = parse_seconds)]
+    pub window_seconds: Option<f64>,
+    /// Window: write one JSON line per frame (its time, its cost, the error
+    /// figure shown and the view it was computed for): for tests.
+    #[arg(long, value_name = "FILE.jsonl")]
+    pub window_log: Option<PathBuf>,
+    /// Window: no live reference (no error figure, no diff view).
+    #[arg(long)]
+    pub no_live_reference: bool,
     /// The scene's depth-stencil format: auto (the default: Depth32FloatStencil8
     /// where the adapter has it, else Depth24PlusStencil8) | depth24plus-stencil8
     /// | depth32float-stencil8. WORKBOOK_DEPTH_FORMAT is honoured too.
@@ -68,6 +93,38 @@ fn parse_warm_up_ms(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(x) if (0.0..=MAX_WARM_UP_MS).contains(&x) => Ok(x),
         _ => Err(format!("expected milliseconds from 0 to {MAX_WARM_UP_MS}")),
+    }
+}
+
+/// `--orbit`: degrees per second from -3600 to 3600.
+fn parse_orbit(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if (-3600.0..=3600.0).contains(&x) => Ok(x),
+        _ => Err("expected degrees per second from -3600 to 3600".to_string()),
+    }
+}
+
+/// `--window-seconds`: from 0.1 to a day.
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if (0.1..=86_400.0).contains(&x) => Ok(x),
+        _ => Err("expected seconds from 0.1 to 86400".to_string()),
+    }
+}
+
+impl Args {
+    /// The window-only flags given, as the command line spells them.
+    pub fn window_flags(&self) -> Vec<&'static str> {
+        let given = [
+            ("--capture", self.capture.is_some()),
+            ("--capture-after", self.capture_after.is_some()),
+            ("--view", self.view.is_some()),
+            ("--orbit", self.orbit.is_some()),
+            ("--window-seconds", self.window_seconds.is_some()),
+            ("--window-log", self.window_log.is_some()),
+            ("--no-live-reference", self.no_live_reference),
+        ];
+        given.into_iter().filter(|g| g.1).map(|g| g.0).collect()
     }
 }
 

@@ -1,0 +1,264 @@
+//! One frame of the window: render the variant, feed and read the live
+//! reference, build the overlay, put the picture on screen, and capture or
+//! log it when asked.
+
+use std::io::Write;
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, Result};
+use winit::event_loop::ActiveEventLoop;
+
+use super::live::{Job, Level};
+use super::overlay::{self, Panel, ShownError};
+use super::present::Overlay;
+use super::views::{self, View};
+use super::{App, DEFAULT_CAPTURE_AFTER};
+use crate::run::knobs::apply_knob;
+use crate::run::lesson::{variant_doc, Lesson};
+
+/// How often the buffer view reads the lesson's buffer back.
+const BUFFER_EVERY: Duration = Duration::from_millis(500);
+
+impl<L: Lesson> App<L> {
+    pub(super) fn redraw(&mut self, el: &ActiveEventLoop) -> Result<()> {
+        if self.running.is_none() {
+            return Ok(());
+        }
+        let now = Instant::now();
+        let dt = self.last_frame.map_or(0.0, |t| (now - t).as_secs_f64());
+        self.last_frame = Some(now);
+        if let Some(deg_per_s) = self.args.orbit {
+            // A steady drag: 0.01 radian per pixel.
+            self.orbit(deg_per_s.to_radians() * dt / 0.01, 0.0);
+        }
+        let variant = self.variants[self.state.current];
+        let r = self.running.as_mut().expect("checked above");
+        let s = &mut self.state;
+
+        // 1. The variant's frame, timed as the headless runner times it.
+        let mut frame = r.timer.frame(&r.gpu);
+        r.lesson.render(&mut frame, &r.scene, &r.targets, variant)?;
+        s.cost.ms = frame.finish()?.ms;
+        s.frame_times.push_back(now);
+        while s
+            .frame_times
+            .front()
+            .is_some_and(|&t| now - t > Duration::from_secs(1))
+        {
+            s.frame_times.pop_front();
+        }
+        s.cost.fps = s.frame_times.len() as f64;
+
+        // 2. The live reference: read what it answered, send the next job.
+        let ctx = r.egui.egui_ctx().clone();
+        if let Some(live) = r.live.as_mut() {
+            live.note_view(s.stamp.scene_gen);
+            for a in live.answers()? {
+                let current = a.stamp == s.stamp;
+                s.answer_latency = current.then(|| (Instant::now() - s.view_since).as_secs_f64());
+                views::upload(
+                    &ctx,
+                    &mut s.diff,
+                    "diff",
+                    &a.diff,
+                    diff_title(&a),
+                    (a.stamp.scene_gen, a.stamp.image_gen),
+                );
+                s.answer = Some(a);
+            }
+            if !live.busy() && s.sent != Some(s.stamp) {
+                let frame = r.targets.read(&r.gpu)?;
+                live.send(Job {
+                    stamp: s.stamp,
+                    scene: r.scene.scene.clone(),
+                    view_proj: r.scene.camera.view_proj,
+                    frame,
+                });
+                s.sent = Some(s.stamp);
+            }
+        }
+
+        // 3. The buffer view, a few times a second while it is shown.
+        if s.view == View::Buffer && s.buffer_at.is_none_or(|t| now - t > BUFFER_EVERY) {
+            s.buffer_at = Some(now);
+            match r.lesson.buffer_view(&r.gpu, &r.scene, variant)? {
+                Some(b) => {
+                    let stamp = (s.stamp.scene_gen, s.stamp.image_gen);
+                    views::upload(&ctx, &mut s.buffer, "buffer", &b.image, b.title, stamp);
+                    s.buffer_note = None;
+                }
+                None => {
+                    s.buffer = None;
+                    s.buffer_note = Some(format!("{} has no buffer to show", L::NAME));
+                }
+            }
+        }
+
+        // 4. The overlay.
+        let input = r.egui.take_egui_input(&r.window);
+        let knobs = r.lesson.knobs(variant);
+        let shown = s.answer.as_ref().map(|a| ShownError {
+            error: a.error.clone(),
+            level: a.level,
+            stale: a.stamp != s.stamp,
+            latency_s: s.answer_latency,
+        });
+        let picture = match s.view {
+            View::Diff => s.diff.as_ref(),
+            View::Buffer => s.buffer.as_ref(),
+            _ => None,
+        };
+        let view_note = match (s.view, picture) {
+            (View::Frame, _) => None,
+            (View::Visibility, _) => Some("white lit, black shadowed (light 0)".to_string()),
+            (View::Diff, None) if r.live.is_none() => {
+                Some("no diff: the live reference is off".to_string())
+            }
+            (View::Buffer, None) => s.buffer_note.clone(),
+            (_, None) => Some("computing…".to_string()),
+            (_, Some(p)) => Some(match p.stamp == (s.stamp.scene_gen, s.stamp.image_gen) {
+                true => p.title.clone(),
+                false => format!("{} (of an earlier view; updating)", p.title),
+            }),
+        };
+        let doc = variant_doc(variant);
+        let adapter = format!("{} ({})", r.gpu.adapter_name(), r.gpu.backend_name());
+        let mut actions = overlay::Actions::default();
+        let out = ctx.run_ui(input, |ui| {
+            let ctx = ui.ctx().clone();
+            if let Some(p) = picture {
+                views::paint_behind(&ctx, p, ctx.content_rect());
+            }
+            if s.show_overlay {
+                let panel = Panel {
+                    lesson: L::NAME,
+                    adapter: &adapter,
+                    variants: &s.variants,
+                    current: s.current,
+                    doc: &doc,
+                    cost: &s.cost,
+                    error: shown.as_ref(),
+                    no_reference: r.live.is_none(),
+                    view: s.view,
+                    view_note: view_note.as_deref(),
+                    knobs: &knobs,
+                    settings_line: s.settings_line.as_deref(),
+                    lights: r.scene.scene.lights.len(),
+                };
+                actions = overlay::show(&ctx, &panel);
+            }
+        });
+        r.egui
+            .handle_platform_output(&r.window, out.platform_output);
+        let primitives = ctx.tessellate(out.shapes, out.pixels_per_point);
+        let overlay = Overlay {
+            primitives,
+            textures: out.textures_delta,
+            pixels_per_point: out.pixels_per_point,
+        };
+
+        // 5. On screen.
+        let surface_tex = match r.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
+            _ => {
+                r.surface.configure(&r.gpu.device, &r.config);
+                return Ok(());
+            }
+        };
+        let view = surface_tex.texture.create_view(&Default::default());
+        r.present.draw(&r.gpu, s.view, overlay, &view);
+        r.gpu.queue.present(surface_tex);
+        self.frames += 1;
+        self.write_log(&shown)?;
+
+        // 6. What the overlay asked for, for the next frame.
+        if let Some(i) = actions.variant {
+            self.select_variant(i);
+        }
+        if let Some(v) = actions.view {
+            self.state.view = v;
+        }
+        for (name, value) in actions.knobs {
+            let r = self.running.as_mut().expect("checked above");
+            apply_knob(&mut r.lesson, &r.gpu, &r.scene, variant, name, value)?;
+            self.state.buffer_at = None;
+            self.state.image_changed();
+        }
+        if actions.print_settings {
+            self.print_settings()?;
+        }
+        self.finish_if_done(el)
+    }
+
+    /// `--capture` after `--capture-after` frames, `--window-seconds`.
+    fn finish_if_done(&mut self, el: &ActiveEventLoop) -> Result<()> {
+        let after = self.args.capture_after.unwrap_or(DEFAULT_CAPTURE_AFTER) as u64;
+        let frames_done = (self.args.capture.is_some() || self.args.capture_after.is_some())
+            && self.frames >= after;
+        let time_done = self
+            .args
+            .window_seconds
+            .is_some_and(|s| self.started.elapsed().as_secs_f64() >= s);
+        if !(frames_done || time_done) {
+            return Ok(());
+        }
+        if let (Some(path), Some(r)) = (&self.args.capture, &self.running) {
+            let picture = r.present.read_picture(&r.gpu)?;
+            picture
+                .save(path)
+                .with_context(|| format!("--capture: cannot write {}", path.display()))?;
+        }
+        el.exit();
+        Ok(())
+    }
+
+    /// One `--window-log` line: the frame's time and cost, the view it
+    /// shows, and the error figure with the view it was computed for.
+    fn write_log(&mut self, shown: &Option<ShownError>) -> Result<()> {
+        let Some(log) = self.log.as_mut() else {
+            return Ok(());
+        };
+        let s = &self.state;
+        let answer = s.answer.as_ref().map(|a| {
+            serde_json::json!({
+                "scene_gen": a.stamp.scene_gen,
+                "image_gen": a.stamp.image_gen,
+                "level": match a.level { Level::Coarse => "coarse", Level::Full => "full" },
+                "worker_ms": a.ms,
+                "misclassified_pct": a.error.misclassified_pct,
+                "false_shadow_pct": a.error.false_shadow_pct,
+                "false_lit_pct": a.error.false_lit_pct,
+            })
+        });
+        let line = serde_json::json!({
+            "frame": self.frames,
+            "t_s": self.started.elapsed().as_secs_f64(),
+            "variant": s.variants[s.current],
+            "scene_gen": s.stamp.scene_gen,
+            "image_gen": s.stamp.image_gen,
+            "cost_ms": s.cost.ms,
+            "fps": s.cost.fps,
+            "error": answer,
+            "error_current": shown.as_ref().is_some_and(|e| !e.stale),
+            "rss_kb": rss_kb(),
+        });
+        writeln!(log, "{line}").context("--window-log: cannot write")
+    }
+}
+
+/// What the diff image shows, in one line.
+fn diff_title(a: &super::live::Answer) -> String {
+    let level = match a.level {
+        Level::Coarse => "coarse estimate",
+        Level::Full => "every pixel",
+    };
+    format!("diff against the exact reference, light 0 ({level}): red false shadow, green false lit, gray agree, blue not a receiver")
+}
+
+/// This process's resident memory (Linux), for the log.
+fn rss_kb() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find_map(|l| l.strip_prefix("VmRSS:"))?;
+    line.trim().trim_end_matches("kB").trim().parse().ok()
+}

@@ -1,0 +1,296 @@
+//! The window's error figure, live: the exact reference follows the camera
+//! and the light, recomputed on worker threads so that the window never
+//! waits for it.
+//!
+//! The window sends a [`Job`] (the scene as it is now, and the variant's
+//! frame read back at that moment) whenever the view, the light, the
+//! variant or a knob changed and the worker is idle. A new view is ray cast
+//! twice: coarse first (a quarter of the width and height, so 1/16 of the
+//! rays, compared with the frame's matching pixels) and then at full size.
+//! A job whose view has moved on by the end of its coarse pass stops there:
+//! while the camera moves, the figure is coarse and follows it; once it
+//! stops, the full one comes. The
+//! worker threads run at the lowest priority the system gives (`nice` 19
+//! on Linux), so that they take what the renderer leaves idle rather than
+//! slow it down.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{channel, Receiver, Sender, TryRecvError};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::Instant;
+
+use anyhow::Result;
+use image::RgbaImage;
+
+use crate::gpu::targets::FrameImages;
+use crate::measure::report::combine;
+use crate::reference::metrics::{compare, ErrorStats};
+use crate::reference::{try_render_reference, Reference};
+use crate::scene::Scene;
+
+/// The coarse pass's step: one ray per `COARSE × COARSE` pixels.
+pub const COARSE: u32 = 4;
+
+/// What a figure was computed for: the view and light (`scene_gen` counts
+/// their changes), the variant and its knobs (`image_gen` counts changes
+/// of either, and of the view).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Stamp {
+    pub scene_gen: u64,
+    pub image_gen: u64,
+}
+
+/// One request: the scene and the variant's frame, both as they were at `stamp`.
+pub struct Job {
+    pub stamp: Stamp,
+    pub scene: Scene,
+    pub view_proj: glam::Mat4,
+    pub frame: FrameImages,
+}
+
+/// How many rays an answer rests on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Level {
+    /// One ray per [`COARSE`]² pixels, against the frame's matching pixels.
+    Coarse,
+    /// Every pixel: the figure the headless report gives.
+    Full,
+}
+
+/// An error figure against the exact reference.
+pub struct Answer {
+    pub stamp: Stamp,
+    pub level: Level,
+    /// All lights together, as the report's `error`.
+    pub error: ErrorStats,
+    /// The difference image of light 0 (red false shadow, green false lit).
+    pub diff: RgbaImage,
+    /// Milliseconds from the job's start to this answer.
+    pub ms: f64,
+    /// Whether this ends the job (the worker is idle after it).
+    pub last: bool,
+}
+
+/// The worker thread and its channels.
+pub struct LiveReference {
+    jobs: Option<Sender<Job>>,
+    answers: Receiver<Result<Answer, String>>,
+    worker: Option<JoinHandle<()>>,
+    busy: bool,
+    /// The window's view now (its `scene_gen`), read by the worker.
+    latest: Arc<AtomicU64>,
+}
+
+impl LiveReference {
+    /// Starts the worker (a thread that owns a low-priority thread pool).
+    pub fn start() -> Result<Self> {
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .thread_name(|i| format!("reference-{i}"))
+            .start_handler(|_| lower_priority())
+            .build()?;
+        let (job_tx, job_rx) = channel::<Job>();
+        let (ans_tx, answers) = channel();
+        let latest = Arc::new(AtomicU64::new(0));
+        let now = latest.clone();
+        let worker = std::thread::Builder::new()
+            .name("reference".into())
+            .spawn(move || {
+                lower_priority();
+                serve(&pool, &job_rx, &ans_tx, &now);
+            })?;
+        Ok(LiveReference {
+            jobs: Some(job_tx),
+            answers,
+            worker: Some(worker),
+            busy: false,
+            latest,
+        })
+    }
+
+    /// Whether a job is under way (the window sends the next one only when not).
+    pub fn busy(&self) -> bool {
+        self.busy
+    }
+
+    /// Tells the worker which view the window shows now.
+    pub fn note_view(&self, scene_gen: u64) {
+        self.latest.store(scene_gen, Ordering::Relaxed);
+    }
+
+    /// Sends a job (only when not [`LiveReference::busy`]).
+    pub fn send(&mut self, job: Job) {
+        if let Some(tx) = &self.jobs {
+            self.busy = tx.send(job).is_ok();
+        }
+    }
+
+    /// The answers that arrived since the last call, oldest first.
+    pub fn answers(&mut self) -> Result<Vec<Answer>> {
+        let mut out = Vec::new();
+        loop {
+            match self.answers.try_recv() {
+                Ok(Ok(a)) => {
+                    if a.last {
+                        self.busy = false;
+                    }
+                    out.push(a);
+                }
+                Ok(Err(e)) => anyhow::bail!("the live reference failed: {e}"),
+                Err(TryRecvError::Empty) => return Ok(out),
+                Err(TryRecvError::Disconnected) => {
+                    anyhow::bail!("the live reference's worker stopped")
+                }
+            }
+        }
+    }
+}
+
+impl Drop for LiveReference {
+    fn drop(&mut self) {
+        self.jobs = None; // the worker's loop ends when the channel closes
+        if let Some(w) = self.worker.take() {
+            let _ = w.join();
+        }
+    }
+}
+
+/// The worker's loop: one job at a time; the reference of the last view is
+/// kept, so that a new variant or knob on the same view costs a comparison.
+fn serve(
+    pool: &rayon::ThreadPool,
+    jobs: &Receiver<Job>,
+    answers: &Sender<Result<Answer, String>>,
+    latest: &AtomicU64,
+) {
+    let mut cached: Option<(u64, Reference)> = None;
+    while let Ok(job) = jobs.recv() {
+        let start = Instant::now();
+        let ms = || start.elapsed().as_secs_f64() * 1e3;
+        let (w, h) = (job.frame.width, job.frame.height);
+        let fresh = cached
+            .as_ref()
+            .is_none_or(|(g, _)| *g != job.stamp.scene_gen);
+        let result = pool.install(|| -> Result<Option<Answer>> {
+            if fresh {
+                let (cw, ch) = ((w / COARSE).max(1), (h / COARSE).max(1));
+                let coarse = try_render_reference(&job.scene, job.view_proj, cw, ch)?;
+                let frame = subsample(&job.frame, cw, ch);
+                let (error, diff) = measure(&coarse, &frame);
+                let overtaken = latest.load(Ordering::Relaxed) != job.stamp.scene_gen;
+                let a = Answer {
+                    stamp: job.stamp,
+                    level: Level::Coarse,
+                    error,
+                    diff,
+                    ms: ms(),
+                    last: overtaken,
+                };
+                if answers.send(Ok(a)).is_err() || overtaken {
+                    return Ok(None);
+                }
+                let full = try_render_reference(&job.scene, job.view_proj, w, h)?;
+                cached = Some((job.stamp.scene_gen, full));
+            }
+            let (_, reference) = cached.as_ref().expect("a reference was made above");
+            let (error, diff) = measure(reference, &job.frame);
+            Ok(Some(Answer {
+                stamp: job.stamp,
+                level: Level::Full,
+                error,
+                diff,
+                ms: ms(),
+                last: true,
+            }))
+        });
+        match result {
+            Ok(Some(a)) => {
+                if answers.send(Ok(a)).is_err() {
+                    return;
+                }
+            }
+            Ok(None) => {}
+            Err(e) => {
+                let _ = answers.send(Err(format!("{e:#}")));
+                return;
+            }
+        }
+    }
+}
+
+/// Every light's figure (combined) and light 0's difference image.
+fn measure(reference: &Reference, frame: &FrameImages) -> (ErrorStats, RgbaImage) {
+    let mut per_light = Vec::new();
+    let mut diff = None;
+    for (k, vis) in frame.visibility.iter().enumerate() {
+        let c = compare(reference, k, &frame.id, vis);
+        per_light.push(c.stats);
+        diff.get_or_insert(c.diff);
+    }
+    let diff = diff.unwrap_or_else(|| RgbaImage::new(frame.width, frame.height));
+    (combine(&per_light), diff)
+}
+
+/// The frame's pixels nearest the centres of a `cw × ch` grid over it: what
+/// a reference of that size compares with.
+pub fn subsample(frame: &FrameImages, cw: u32, ch: u32) -> FrameImages {
+    let (w, h) = (frame.width as usize, frame.height as usize);
+    let index = |i: u32, j: u32| {
+        let x = ((i as f64 + 0.5) * w as f64 / cw as f64) as usize;
+        let y = ((j as f64 + 0.5) * h as f64 / ch as f64) as usize;
+        y.min(h - 1) * w + x.min(w - 1)
+    };
+    let pick = |i: u32, j: u32| index(i, j);
+    let cells = (0..ch).flat_map(|j| (0..cw).map(move |i| (i, j)));
+    let idx: Vec<usize> = cells.map(|(i, j)| pick(i, j)).collect();
+    FrameImages {
+        width: cw,
+        height: ch,
+        color: idx
+            .iter()
+            .flat_map(|&p| frame.color[4 * p..4 * p + 4].iter().copied())
+            .collect(),
+        id: idx.iter().map(|&p| frame.id[p]).collect(),
+        visibility: frame
+            .visibility
+            .iter()
+            .map(|v| idx.iter().map(|&p| v[p]).collect())
+            .collect(),
+    }
+}
+
+/// Lowers the calling thread's priority to the least (Linux: `nice` 19 for
+/// this thread alone). Elsewhere the threads keep the normal priority.
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: plain system calls on the calling thread's own id.
+        unsafe {
+            let tid = libc::syscall(libc::SYS_gettid) as libc::id_t;
+            libc::setpriority(libc::PRIO_PROCESS, tid, 19);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subsample_takes_the_pixels_under_the_coarse_centres() {
+        let (w, h) = (8u32, 4u32);
+        let frame = FrameImages {
+            width: w,
+            height: h,
+            color: vec![0; (w * h * 4) as usize],
+            id: (0..w * h).collect(),
+            visibility: vec![(0..w * h).map(|p| p as f32).collect()],
+        };
+        let s = subsample(&frame, 2, 1);
+        // Centres at x = 2 and 6 of row 2.
+        assert_eq!(s.id, vec![2 * 8 + 2, 2 * 8 + 6]);
+        assert_eq!(s.visibility[0], vec![18.0, 22.0]);
+    }
+}

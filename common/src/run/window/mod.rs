@@ -1,0 +1,368 @@
+//! The interactive window (winit), a workbench: it renders with the same
+//! `Lesson::render` as the headless runner, shows which variant runs, what
+//! it costs and how wrong it is against the exact reference, live, and
+//! lets the reader turn the technique's knobs.
+//!
+//! - [`controls`]: the camera, the light, the keys, and the command line
+//!   that reproduces what the window shows.
+//! - [`frame`]: one frame: render, measure, overlay, present, capture.
+//! - [`live`]: the exact reference on low-priority worker threads.
+//! - [`overlay`]: the egui overlay (and [`overlay::KEYS`], every key).
+//! - [`present`]: the window's picture (view + overlay) and its capture.
+//! - [`views`]: frame, visibility, diff, buffer.
+
+pub mod controls;
+pub mod frame;
+pub mod live;
+pub mod overlay;
+pub mod present;
+pub mod views;
+
+use std::io::Write;
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{anyhow, Context, Result};
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::window::{Window, WindowId};
+
+use crate::gpu::render::SceneGpu;
+use crate::gpu::targets::FrameTargets;
+use crate::gpu::Gpu;
+use crate::measure::timing::Timer;
+use crate::run::cli::Args;
+use crate::run::knobs::apply_cli_knobs;
+use crate::run::lesson::Lesson;
+use crate::scene::Scene;
+
+use live::{Answer, LiveReference, Stamp};
+use overlay::Cost;
+use present::Present;
+use views::{Picture, View};
+
+/// Frames drawn before `--capture` when `--capture-after` is not given.
+pub const DEFAULT_CAPTURE_AFTER: u32 = 30;
+
+/// The window and what draws into it.
+struct Running<L: Lesson> {
+    window: Arc<Window>,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    gpu: Gpu,
+    scene: SceneGpu,
+    targets: FrameTargets,
+    lesson: L,
+    timer: Timer,
+    present: Present,
+    egui: egui_winit::State,
+    live: Option<LiveReference>,
+}
+
+/// What the overlay shows and the user changed.
+struct State {
+    variants: Vec<String>,
+    current: usize,
+    view: View,
+    show_overlay: bool,
+    /// Camera or light changes (the reference's key) and changes of what
+    /// the variant draws on the same view (variant, knobs, resize).
+    stamp: Stamp,
+    /// When the current `scene_gen` began.
+    view_since: Instant,
+    /// The last stamp sent to the live reference.
+    sent: Option<Stamp>,
+    answer: Option<Answer>,
+    /// Seconds from the view change to the answer, when it is for the current view.
+    answer_latency: Option<f64>,
+    diff: Option<Picture>,
+    buffer: Option<Picture>,
+    buffer_note: Option<String>,
+    buffer_at: Option<Instant>,
+    cost: Cost,
+    frame_times: std::collections::VecDeque<Instant>,
+    settings_line: Option<String>,
+}
+
+struct App<L: Lesson> {
+    args: Args,
+    scene: Option<Scene>,
+    variants: Vec<L::Variant>,
+    running: Option<Running<L>>,
+    state: State,
+    error: Option<anyhow::Error>,
+    dragging: bool,
+    last_cursor: Option<(f64, f64)>,
+    frames: u64,
+    started: Instant,
+    last_frame: Option<Instant>,
+    log: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant>) -> Result<()> {
+    let event_loop =
+        EventLoop::new().map_err(|e| anyhow!("cannot open a window ({e}); use --headless"))?;
+    let log = match &args.window_log {
+        Some(p) => Some(std::io::BufWriter::new(
+            std::fs::File::create(p)
+                .with_context(|| format!("--window-log: cannot create {}", p.display()))?,
+        )),
+        None => None,
+    };
+    if let Some(p) = &args.capture {
+        check_capture_path(p)?;
+    }
+    let names = variants
+        .iter()
+        .map(|&v| crate::run::lesson::variant_name(v));
+    let now = Instant::now();
+    let mut app: App<L> = App {
+        args: args.clone(),
+        scene: Some(scene),
+        state: State {
+            variants: names.collect(),
+            current: 0,
+            view: args.view.unwrap_or(View::Frame),
+            show_overlay: true,
+            stamp: Stamp {
+                scene_gen: 1,
+                image_gen: 1,
+            },
+            view_since: now,
+            sent: None,
+            answer: None,
+            answer_latency: None,
+            diff: None,
+            buffer: None,
+            buffer_note: None,
+            buffer_at: None,
+            cost: Cost::default(),
+            frame_times: Default::default(),
+            settings_line: None,
+        },
+        variants,
+        running: None,
+        error: None,
+        dragging: false,
+        last_cursor: None,
+        frames: 0,
+        started: now,
+        last_frame: None,
+        log,
+    };
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| anyhow!("window event loop: {e}"))?;
+    if let Some(log) = &mut app.log {
+        log.flush().context("--window-log: cannot write")?;
+    }
+    match app.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// `--capture`: a `.png` in a folder that exists (checked before the window opens).
+fn check_capture_path(p: &std::path::Path) -> Result<()> {
+    let png = p.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !png {
+        anyhow::bail!("--capture {}: the file must end in .png", p.display());
+    }
+    let dir = p.parent().filter(|d| !d.as_os_str().is_empty());
+    if let Some(d) = dir.filter(|d| !d.is_dir()) {
+        anyhow::bail!(
+            "--capture {}: the folder {} does not exist",
+            p.display(),
+            d.display()
+        );
+    }
+    Ok(())
+}
+
+impl<L: Lesson> App<L> {
+    fn start(&mut self, el: &ActiveEventLoop) -> Result<()> {
+        let scene = self.scene.take().ok_or_else(|| anyhow!("no scene"))?;
+        let attrs = Window::default_attributes()
+            .with_title(L::NAME)
+            .with_inner_size(winit::dpi::PhysicalSize::new(
+                self.args.width,
+                self.args.height,
+            ));
+        let window = Arc::new(
+            el.create_window(attrs)
+                .map_err(|e| anyhow!("cannot create a window: {e}"))?,
+        );
+        let gpu = Gpu::open(
+            self.args.backend.as_deref(),
+            self.args.adapter.as_deref(),
+            self.args.depth_format.as_deref(),
+            None,
+        )?;
+        let surface = gpu
+            .instance
+            .create_surface(window.clone())
+            .map_err(|e| anyhow!("cannot create a surface: {e}"))?;
+        let size = window.inner_size();
+        let mut config = surface
+            .get_default_config(&gpu.adapter, size.width.max(1), size.height.max(1))
+            .ok_or_else(|| {
+                anyhow!(
+                    "the adapter {} cannot present to this window",
+                    gpu.info.name
+                )
+            })?;
+        let caps = surface.get_capabilities(&gpu.adapter);
+        if let Some(f) = caps.formats.iter().find(|f| f.is_srgb()) {
+            config.format = *f;
+        }
+        surface.configure(&gpu.device, &config);
+        let scene = SceneGpu::new(&gpu, scene, config.width, config.height)?;
+        let targets = scene.frame_targets(&gpu);
+        let mut lesson = L::new(&gpu, &scene)?;
+        apply_cli_knobs(&mut lesson, &gpu, &scene, &self.variants, &self.args.knobs)?;
+        let timer = Timer::new(&gpu);
+        let present = Present::new(&gpu, config.format, &targets);
+        let ctx = egui::Context::default();
+        let egui = egui_winit::State::new(
+            ctx,
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(gpu.device.limits().max_texture_dimension_2d as usize),
+        );
+        let live = match self.args.no_live_reference {
+            true => None,
+            false => Some(LiveReference::start()?),
+        };
+        self.running = Some(Running {
+            window,
+            surface,
+            config,
+            gpu,
+            scene,
+            targets,
+            lesson,
+            timer,
+            present,
+            egui,
+            live,
+        });
+        Ok(())
+    }
+
+    fn resize(&mut self, w: u32, h: u32) -> Result<()> {
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
+        if w == 0 || h == 0 || (w == r.config.width && h == r.config.height) {
+            return Ok(());
+        }
+        r.config.width = w;
+        r.config.height = h;
+        r.surface.configure(&r.gpu.device, &r.config);
+        let scene = r.scene.scene.clone();
+        r.scene = SceneGpu::new(&r.gpu, scene, w, h)?;
+        r.targets = r.scene.frame_targets(&r.gpu);
+        // The lesson's knobs live in the lesson: carry them over.
+        let mut knobs = Vec::new();
+        for &v in &self.variants {
+            for k in r.lesson.knobs(v) {
+                knobs.push((v, k.name, k.value));
+            }
+        }
+        r.lesson = L::new(&r.gpu, &r.scene)?;
+        for (v, name, value) in knobs {
+            crate::run::knobs::apply_knob(&mut r.lesson, &r.gpu, &r.scene, v, name, value)?;
+        }
+        r.present.resize(&r.gpu, &r.targets);
+        self.state.view_changed();
+        Ok(())
+    }
+
+    fn fail(&mut self, el: &ActiveEventLoop, e: anyhow::Error) {
+        self.error = Some(e);
+        el.exit();
+    }
+}
+
+impl State {
+    /// The camera or a light moved (or the window changed size).
+    fn view_changed(&mut self) {
+        self.stamp.scene_gen += 1;
+        self.stamp.image_gen += 1;
+        self.view_since = Instant::now();
+    }
+
+    /// The variant draws differently on the same view (variant, knob).
+    fn image_changed(&mut self) {
+        self.stamp.image_gen += 1;
+        self.view_since = Instant::now();
+    }
+}
+
+impl<L: Lesson> ApplicationHandler for App<L> {
+    fn resumed(&mut self, el: &ActiveEventLoop) {
+        if self.running.is_none() {
+            if let Err(e) = self.start(el) {
+                self.fail(el, e);
+            }
+        }
+    }
+
+    fn window_event(&mut self, el: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        // The overlay sees every event first; what it uses, the scene does not.
+        let used = match self.running.as_mut() {
+            Some(r) if self.state.show_overlay => {
+                r.egui.on_window_event(&r.window, &event).consumed
+            }
+            _ => false,
+        };
+        let result = match event {
+            WindowEvent::CloseRequested => {
+                el.exit();
+                Ok(())
+            }
+            WindowEvent::Resized(s) => self.resize(s.width, s.height),
+            WindowEvent::RedrawRequested => self.redraw(el),
+            _ if used => Ok(()),
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
+                self.dragging = state == ElementState::Pressed;
+                Ok(())
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                if let (true, Some((x, y))) = (self.dragging, self.last_cursor) {
+                    self.orbit(position.x - x, position.y - y);
+                }
+                self.last_cursor = Some((position.x, position.y));
+                Ok(())
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                let a = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y as f64,
+                    MouseScrollDelta::PixelDelta(p) => p.y / 50.0,
+                };
+                self.zoom(a);
+                Ok(())
+            }
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                self.key(el, &event.logical_key)
+            }
+            _ => Ok(()),
+        };
+        if let Err(e) = result {
+            self.fail(el, e);
+        }
+    }
+
+    fn about_to_wait(&mut self, _el: &ActiveEventLoop) {
+        if let Some(r) = &self.running {
+            r.window.request_redraw();
+        }
+    }
+}
