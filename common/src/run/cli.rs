@@ -54,7 +54,8 @@ pub struct Args {
     #[arg(long, value_name = "any|software|NAME")]
     pub adapter: Option<String>,
     /// Window: save the window's own picture, overlay included, to this PNG
-    /// after `--capture-after` frames, then quit.
+    /// after `--capture-after` frames and once the live reference's full
+    /// figure for that view has come (at most a minute more), then quit.
     #[arg(long, value_name = "FILE.png")]
     pub capture: Option<PathBuf>,
     /// Window: the frames drawn before `--capture` (default 30), or before
@@ -68,6 +69,9 @@ pub struct Args {
     /// second, as a steady drag would (-3600 to 3600).
     #[arg(long, value_name = "DEG_PER_S", allow_negative_numbers = true, value_parser = parse_orbit)]
     pub orbit: Option<f64>,
+    /// Window: stop `--orbit` after this many seconds (0.1 to 86400).
+    #[arg(long, value_name = "S", value_parser = parse_seconds)]
+    pub orbit_seconds: Option<f64>,
     /// Window: quit after this many seconds (0.1 to 86400).
     #[arg(long, value_name = "S", value_parser = parse_seconds)]
     pub window_seconds: Option<f64>,
@@ -120,6 +124,7 @@ impl Args {
             ("--capture-after", self.capture_after.is_some()),
             ("--view", self.view.is_some()),
             ("--orbit", self.orbit.is_some()),
+            ("--orbit-seconds", self.orbit_seconds.is_some()),
             ("--window-seconds", self.window_seconds.is_some()),
             ("--window-log", self.window_log.is_some()),
             ("--no-live-reference", self.no_live_reference),

@@ -5,10 +5,12 @@
 //! - [`lesson`]: the [`lesson::Lesson`] trait and its typed variants.
 //! - [`knobs`]: a technique's parameters, set by the window's widgets and `--knob`.
 //! - [`headless`]: the headless runner that writes the outputs of INTERFACES.md.
-//! - [`window`]: the interactive window (winit).
+//! - [`window`]: the interactive window (winit), a workbench.
+//! - [`display`]: a private Xvfb for the window's tests and screenshots.
 
 pub mod app;
 pub mod cli;
+pub mod display;
 pub mod headless;
 pub mod knobs;
 pub mod lesson;

@@ -16,6 +16,9 @@ use super::{App, DEFAULT_CAPTURE_AFTER};
 use crate::run::knobs::apply_knob;
 use crate::run::lesson::{variant_doc, Lesson};
 
+/// The longest `--capture` waits for the live reference's full figure.
+const CAPTURE_WAIT: Duration = Duration::from_secs(60);
+
 /// How often the buffer view reads the lesson's buffer back.
 const BUFFER_EVERY: Duration = Duration::from_millis(500);
 
@@ -27,7 +30,11 @@ impl<L: Lesson> App<L> {
         let now = Instant::now();
         let dt = self.last_frame.map_or(0.0, |t| (now - t).as_secs_f64());
         self.last_frame = Some(now);
-        if let Some(deg_per_s) = self.args.orbit {
+        let orbiting = self
+            .args
+            .orbit_seconds
+            .is_none_or(|s| self.started.elapsed().as_secs_f64() < s);
+        if let (Some(deg_per_s), true) = (self.args.orbit, orbiting) {
             // A steady drag: 0.01 radian per pixel.
             self.orbit(deg_per_s.to_radians() * dt / 0.01, 0.0);
         }
@@ -39,6 +46,7 @@ impl<L: Lesson> App<L> {
         let mut frame = r.timer.frame(&r.gpu);
         r.lesson.render(&mut frame, &r.scene, &r.targets, variant)?;
         s.cost.ms = frame.finish()?.ms;
+        s.variant_frames += 1;
         s.frame_times.push_back(now);
         while s
             .frame_times
@@ -66,7 +74,7 @@ impl<L: Lesson> App<L> {
                 );
                 s.answer = Some(a);
             }
-            if !live.busy() && s.sent != Some(s.stamp) {
+            if !live.busy() && s.sent != Some(s.stamp) && s.variant_frames >= 2 {
                 let frame = r.targets.read(&r.gpu)?;
                 live.send(Job {
                     stamp: s.stamp,
@@ -191,11 +199,28 @@ impl<L: Lesson> App<L> {
         self.finish_if_done(el)
     }
 
-    /// `--capture` after `--capture-after` frames, `--window-seconds`.
+    /// `--capture` after `--capture-after` frames (and the full figure of
+    /// the view, when the live reference runs), `--window-seconds`.
     fn finish_if_done(&mut self, el: &ActiveEventLoop) -> Result<()> {
         let after = self.args.capture_after.unwrap_or(DEFAULT_CAPTURE_AFTER) as u64;
+        let s = &self.state;
+        let full = s
+            .answer
+            .as_ref()
+            .is_some_and(|a| a.stamp == s.stamp && a.level == Level::Full);
+        let live = self.running.as_ref().is_some_and(|r| r.live.is_some());
         let frames_done = (self.args.capture.is_some() || self.args.capture_after.is_some())
             && self.frames >= after;
+        if frames_done && live && !full && self.args.capture.is_some() {
+            let waited = self.capture_wait.get_or_insert_with(Instant::now);
+            if waited.elapsed() < CAPTURE_WAIT {
+                return Ok(());
+            }
+            anyhow::bail!(
+                "--capture: the live reference gave no full figure for the view within {} s of frame {after}; capture with --no-live-reference, or keep the camera still (--orbit-seconds)",
+                CAPTURE_WAIT.as_secs()
+            );
+        }
         let time_done = self
             .args
             .window_seconds

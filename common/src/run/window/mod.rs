@@ -71,6 +71,10 @@ struct State {
     stamp: Stamp,
     /// When the current `scene_gen` began.
     view_since: Instant,
+    /// Frames drawn since the variant or a knob last changed: the live
+    /// reference reads the second on (some lessons set a variant up on its
+    /// first frame, as the headless runner knows).
+    variant_frames: u32,
     /// The last stamp sent to the live reference.
     sent: Option<Stamp>,
     answer: Option<Answer>,
@@ -97,6 +101,8 @@ struct App<L: Lesson> {
     frames: u64,
     started: Instant,
     last_frame: Option<Instant>,
+    /// When `--capture` began to wait for the full figure.
+    capture_wait: Option<Instant>,
     log: Option<std::io::BufWriter<std::fs::File>>,
 }
 
@@ -130,6 +136,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
                 image_gen: 1,
             },
             view_since: now,
+            variant_frames: 0,
             sent: None,
             answer: None,
             answer_latency: None,
@@ -149,6 +156,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
         frames: 0,
         started: now,
         last_frame: None,
+        capture_wait: None,
         log,
     };
     event_loop
@@ -298,6 +306,7 @@ impl State {
     /// The variant draws differently on the same view (variant, knob).
     fn image_changed(&mut self) {
         self.stamp.image_gen += 1;
+        self.variant_frames = 0;
         self.view_since = Instant::now();
     }
 }
