@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 pub mod tolerance;
+pub mod window;
 
 /// Called when a lesson found no adapter. A GPU test without a GPU proves
 /// nothing, so by default the test FAILS here, with the line that says

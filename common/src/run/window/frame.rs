@@ -64,14 +64,8 @@ impl<L: Lesson> App<L> {
             for a in live.answers()? {
                 let current = a.stamp == s.stamp;
                 s.answer_latency = current.then(|| (Instant::now() - s.view_since).as_secs_f64());
-                views::upload(
-                    &ctx,
-                    &mut s.diff,
-                    "diff",
-                    &a.diff,
-                    diff_title(&a),
-                    (a.stamp.scene_gen, a.stamp.image_gen),
-                );
+                r.present.set_diff(&r.gpu, &a.diff);
+                s.diff = Some((diff_title(&a), (a.stamp.scene_gen, a.stamp.image_gen)));
                 s.answer = Some(a);
             }
             if !live.busy() && s.sent != Some(s.stamp) && s.variant_frames >= 2 {
@@ -112,22 +106,28 @@ impl<L: Lesson> App<L> {
             latency_s: s.answer_latency,
         });
         let picture = match s.view {
-            View::Diff => s.diff.as_ref(),
             View::Buffer => s.buffer.as_ref(),
             _ => None,
         };
-        let view_note = match (s.view, picture) {
-            (View::Frame, _) => None,
-            (View::Visibility, _) => Some("white lit, black shadowed (light 0)".to_string()),
-            (View::Diff, None) if r.live.is_none() => {
+        let now_stamp = (s.stamp.scene_gen, s.stamp.image_gen);
+        let titled = |title: &str, stamp| match stamp == now_stamp {
+            true => title.to_string(),
+            false => format!("{title} (of an earlier view; updating)"),
+        };
+        let view_note = match s.view {
+            View::Frame => None,
+            View::Visibility => Some("white lit, black shadowed (light 0)".to_string()),
+            View::Diff if r.live.is_none() => {
                 Some("no diff: the live reference is off".to_string())
             }
-            (View::Buffer, None) => s.buffer_note.clone(),
-            (_, None) => Some("computing…".to_string()),
-            (_, Some(p)) => Some(match p.stamp == (s.stamp.scene_gen, s.stamp.image_gen) {
-                true => p.title.clone(),
-                false => format!("{} (of an earlier view; updating)", p.title),
+            View::Diff => Some(match &s.diff {
+                Some((title, stamp)) => titled(title, *stamp),
+                None => "computing…".to_string(),
             }),
+            View::Buffer => match picture {
+                Some(p) => Some(titled(&p.title, p.stamp)),
+                None => s.buffer_note.clone().or(Some("computing…".to_string())),
+            },
         };
         let doc = variant_doc(variant);
         let adapter = format!("{} ({})", r.gpu.adapter_name(), r.gpu.backend_name());
@@ -158,6 +158,7 @@ impl<L: Lesson> App<L> {
         });
         r.egui
             .handle_platform_output(&r.window, out.platform_output);
+        let out_ppp = out.pixels_per_point;
         let primitives = ctx.tessellate(out.shapes, out.pixels_per_point);
         let overlay = Overlay {
             primitives,
@@ -178,7 +179,11 @@ impl<L: Lesson> App<L> {
         r.present.draw(&r.gpu, s.view, overlay, &view);
         r.gpu.queue.present(surface_tex);
         self.frames += 1;
-        self.write_log(&shown)?;
+        let rect = actions.rect.map(|r| {
+            let ppp = out_ppp;
+            [r.min.x * ppp, r.min.y * ppp, r.max.x * ppp, r.max.y * ppp]
+        });
+        self.write_log(&shown, rect)?;
 
         // 6. What the overlay asked for, for the next frame.
         if let Some(i) = actions.variant {
@@ -240,7 +245,7 @@ impl<L: Lesson> App<L> {
 
     /// One `--window-log` line: the frame's time and cost, the view it
     /// shows, and the error figure with the view it was computed for.
-    fn write_log(&mut self, shown: &Option<ShownError>) -> Result<()> {
+    fn write_log(&mut self, shown: &Option<ShownError>, overlay: Option<[f32; 4]>) -> Result<()> {
         let Some(log) = self.log.as_mut() else {
             return Ok(());
         };
@@ -267,6 +272,7 @@ impl<L: Lesson> App<L> {
             "error": answer,
             "error_current": shown.as_ref().is_some_and(|e| !e.stale),
             "rss_kb": rss_kb(),
+            "overlay_px": overlay,
         });
         writeln!(log, "{line}").context("--window-log: cannot write")
     }

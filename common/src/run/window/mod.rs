@@ -80,7 +80,9 @@ struct State {
     answer: Option<Answer>,
     /// Seconds from the view change to the answer, when it is for the current view.
     answer_latency: Option<f64>,
-    diff: Option<Picture>,
+    /// The diff view's title and the stamp it was computed for (its image
+    /// is in [`Present`]).
+    diff: Option<(String, (u64, u64))>,
     buffer: Option<Picture>,
     buffer_note: Option<String>,
     buffer_at: Option<Instant>,

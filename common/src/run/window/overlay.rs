@@ -72,13 +72,15 @@ pub struct Actions {
     pub view: Option<View>,
     pub knobs: Vec<(&'static str, f64)>,
     pub print_settings: bool,
+    /// Where the overlay's panel is, in points.
+    pub rect: Option<egui::Rect>,
 }
 
 /// Builds the overlay for this frame.
 pub fn show(ctx: &egui::Context, p: &Panel) -> Actions {
     let mut act = Actions::default();
     let frame = egui::Frame::window(&ctx.global_style()).fill(Color32::from_black_alpha(200));
-    egui::Window::new(p.lesson)
+    let shown = egui::Window::new(p.lesson)
         .frame(frame)
         .anchor(egui::Align2::LEFT_TOP, [8.0, 8.0])
         .resizable(false)
@@ -111,6 +113,7 @@ pub fn show(ctx: &egui::Context, p: &Panel) -> Actions {
                     });
                 });
         });
+    act.rect = shown.map(|r| r.response.rect);
     act
 }
 

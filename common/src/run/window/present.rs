@@ -45,6 +45,9 @@ pub struct Present {
     frame_group: wgpu::BindGroup,
     visibility_group: wgpu::BindGroup,
     picture_group: wgpu::BindGroup,
+    /// The diff view's image, pixel for pixel (the frame's size).
+    diff: wgpu::Texture,
+    diff_group: wgpu::BindGroup,
     egui: egui_wgpu::Renderer,
 }
 
@@ -57,8 +60,8 @@ impl Present {
         };
         let (blit, blit_gray) = (pipeline("fs"), pipeline("fs_gray"));
         let egui = egui_wgpu::Renderer::new(&gpu.device, format, Default::default());
-        let (picture, picture_view, groups) = sized(gpu, format, &layout, targets);
-        let [frame_group, visibility_group, picture_group] = groups;
+        let (picture, picture_view, groups, diff) = sized(gpu, format, &layout, targets);
+        let [frame_group, visibility_group, picture_group, diff_group] = groups;
         Present {
             format,
             picture,
@@ -69,14 +72,18 @@ impl Present {
             frame_group,
             visibility_group,
             picture_group,
+            diff,
+            diff_group,
             egui,
         }
     }
 
     /// After the targets changed size.
     pub fn resize(&mut self, gpu: &Gpu, targets: &FrameTargets) {
-        let (picture, picture_view, groups) = sized(gpu, self.format, &self.layout, targets);
-        let [frame_group, visibility_group, picture_group] = groups;
+        let (picture, picture_view, groups, diff) = sized(gpu, self.format, &self.layout, targets);
+        let [frame_group, visibility_group, picture_group, diff_group] = groups;
+        self.diff = diff;
+        self.diff_group = diff_group;
         self.picture = picture;
         self.picture_view = picture_view;
         self.frame_group = frame_group;
@@ -99,8 +106,11 @@ impl Present {
                 &self.blit_gray,
                 &self.visibility_group,
             ),
-            // The overlay paints these images over a dark background.
-            View::Diff | View::Buffer => clear(&mut enc, &self.picture_view),
+            View::Diff => {
+                draw_fullscreen(&mut enc, &self.picture_view, &self.blit, &self.diff_group)
+            }
+            // The overlay paints the buffer over a dark background.
+            View::Buffer => clear(&mut enc, &self.picture_view),
         }
         let screen = egui_wgpu::ScreenDescriptor {
             size_in_pixels: [w, h],
@@ -144,6 +154,30 @@ impl Present {
         }
     }
 
+    /// The diff view's image: the frame's size, or smaller (a coarse
+    /// answer), then each of its pixels covers a block.
+    pub fn set_diff(&self, gpu: &Gpu, image: &image::RgbaImage) {
+        let (w, h) = (self.diff.width(), self.diff.height());
+        let full;
+        let image = if image.dimensions() == (w, h) {
+            image
+        } else {
+            let nearest = image::imageops::FilterType::Nearest;
+            full = image::imageops::resize(image, w, h, nearest);
+            &full
+        };
+        gpu.queue.write_texture(
+            self.diff.as_image_copy(),
+            image.as_raw(),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * w),
+                rows_per_image: Some(h),
+            },
+            self.diff.size(),
+        );
+    }
+
     /// The window's picture as it was last drawn, in RGBA.
     pub fn read_picture(&self, gpu: &Gpu) -> Result<image::RgbaImage> {
         let mut bytes = read_texture(gpu, &self.picture, 4)?;
@@ -160,14 +194,19 @@ impl Present {
     }
 }
 
-/// The picture of the targets' size, and the bind groups that read the
-/// frame, light 0's visibility and the picture.
+/// The picture and the diff image of the targets' size, and the bind
+/// groups that read the frame, light 0's visibility, the picture and the diff.
 fn sized(
     gpu: &Gpu,
     format: wgpu::TextureFormat,
     layout: &wgpu::BindGroupLayout,
     t: &FrameTargets,
-) -> (wgpu::Texture, wgpu::TextureView, [wgpu::BindGroup; 3]) {
+) -> (
+    wgpu::Texture,
+    wgpu::TextureView,
+    [wgpu::BindGroup; 4],
+    wgpu::Texture,
+) {
     let usage = wgpu::TextureUsages::TEXTURE_BINDING;
     let picture = render_texture(gpu, "window picture", t.width, t.height, format, usage);
     let picture_view = picture.create_view(&Default::default());
@@ -181,12 +220,28 @@ fn sized(
     };
     // A scene with no light has no visibility image: show the frame.
     let visibility = t.visibility_views.first().unwrap_or(&t.color_view);
+    let diff = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("window diff"),
+        size: wgpu::Extent3d {
+            width: t.width,
+            height: t.height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let diff_view = diff.create_view(&Default::default());
     let groups = [
         group(&t.color_view),
         group(visibility),
         group(&picture_view),
+        group(&diff_view),
     ];
-    (picture, picture_view, groups)
+    (picture, picture_view, groups, diff)
 }
 
 /// Clears `view` to the overlay's dark background.
