@@ -30,6 +30,7 @@ mod summary;
 mod table;
 mod volume_diagrams;
 mod volumes_gpu;
+mod window_shots;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -81,6 +82,14 @@ enum Command {
         #[arg(long)]
         write: bool,
     },
+    /// Capture each lesson's window (on a private Xvfb on Linux) for its
+    /// chapter: `figures/window/` and `generated/window/`.
+    WindowShots {
+        #[arg(long, default_value = manifest::BACKEND)]
+        backend: String,
+        #[arg(long, default_value = manifest::ADAPTER)]
+        adapter: String,
+    },
     /// Time `grade --adapter software` once per chapter and write the
     /// coursework page's table (`generated/coursework/grade_times.md`).
     GradeTimes,
@@ -119,6 +128,18 @@ fn run(cli: Cli) -> Result<()> {
                 .join("book/src/generated")
                 .join(stability::REPEATABILITY);
             return stability::compare(&a, &b, write.then_some(out.as_path()));
+        }
+        Command::WindowShots { backend, adapter } => {
+            let root = root();
+            window_shots::write_all(
+                &runner_or_build()?,
+                &root.join("book/src/figures"),
+                &root.join("book/src/generated"),
+                &backend,
+                &adapter,
+            )?;
+            println!("window screenshots written");
+            return Ok(());
         }
         Command::GradeTimes => {
             return grade_times::run(&root(), &root().join("book/src/generated"));
@@ -198,6 +219,7 @@ fn run(cli: Cli) -> Result<()> {
     }
     if only.is_none() {
         scaling::run(&runner, &root, &work, &backend, &bar)?;
+        window_shots::write_all(&runner, &figures, &generated, &backend, &adapter)?;
     }
     bar.finish_with_message("runs done");
     copy_outputs(&work, &figures, &generated, only.as_deref())?;

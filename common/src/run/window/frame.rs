@@ -69,7 +69,7 @@ impl<L: Lesson> App<L> {
                 s.answer = Some(a);
             }
             if !live.busy() && s.sent != Some(s.stamp) && s.variant_frames >= 2 {
-                let frame = r.targets.read(&r.gpu)?;
+                let frame = r.targets.read_measured(&r.gpu)?;
                 live.send(Job {
                     stamp: s.stamp,
                     scene: r.scene.scene.clone(),

@@ -248,10 +248,13 @@ pub fn subsample(frame: &FrameImages, cw: u32, ch: u32) -> FrameImages {
     FrameImages {
         width: cw,
         height: ch,
-        color: idx
-            .iter()
-            .flat_map(|&p| frame.color[4 * p..4 * p + 4].iter().copied())
-            .collect(),
+        color: match frame.color.is_empty() {
+            true => Vec::new(),
+            false => idx
+                .iter()
+                .flat_map(|&p| frame.color[4 * p..4 * p + 4].iter().copied())
+                .collect(),
+        },
         id: idx.iter().map(|&p| frame.id[p]).collect(),
         visibility: frame
             .visibility

@@ -1,0 +1,118 @@
+//! One screenshot of each lesson's window for its chapter: the window's
+//! own picture (`--capture`, overlay included), taken on a private Xvfb
+//! (`common::run::display`) once the live reference's full figure for the
+//! view has come. Each chapter includes `generated/window/lesson_NN.md`,
+//! the figure with a caption written from the window's own log.
+
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+use common::run::display::Display;
+
+use crate::runner::Runner;
+
+/// The picture's size (the window's, in pixels).
+pub const SIZE: (u32, u32) = (960, 540);
+/// Frames before the capture (then it waits for the full figure).
+const FRAMES: u32 = 5;
+
+/// One chapter's shot: the lesson, the variant, the view, and what the
+/// caption says the view shows.
+struct Shot {
+    lesson: &'static str,
+    variant: &'static str,
+    view: &'static str,
+    shows: &'static str,
+}
+
+const SHOTS: [Shot; 9] = [
+    Shot { lesson: "lesson_01", variant: "res_1024", view: "diff", shows: "the difference against the exact reference: red false shadow, green false lit" },
+    Shot { lesson: "lesson_02", variant: "bias_1tx", view: "diff", shows: "the difference against the exact reference: red false shadow (acne), green false lit (Peter Panning)" },
+    Shot { lesson: "lesson_03", variant: "pcf_3x3", view: "diff", shows: "the difference against the exact reference along the filtered edges" },
+    Shot { lesson: "lesson_04", variant: "depth_1024", view: "buffer", shows: "the lesson's buffer: the cube map unfolded as a cross" },
+    Shot { lesson: "lesson_05", variant: "zpass_quads", view: "diff", shows: "the difference against the exact reference" },
+    Shot { lesson: "lesson_06", variant: "zfail_quads", view: "diff", shows: "the difference against the exact reference" },
+    Shot { lesson: "lesson_07", variant: "reversed_z", view: "frame", shows: "the frame" },
+    Shot { lesson: "lesson_08", variant: "bounds_scissor", view: "buffer", shows: "the lesson's buffer: the stencil count per pixel" },
+    Shot { lesson: "lesson_09", variant: "k4", view: "buffer", shows: "the lesson's buffer: the cascade each pixel samples" },
+];
+
+/// Takes every chapter's shot into `figures/window/` and writes its
+/// figure into `generated/window/`.
+pub fn write_all(
+    runner: &Runner,
+    figures: &Path,
+    generated: &Path,
+    backend: &str,
+    adapter: &str,
+) -> Result<()> {
+    let display = Display::open()?;
+    let (pics, texts) = (figures.join("window"), generated.join("window"));
+    for d in [&pics, &texts] {
+        std::fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
+    }
+    let work = std::env::temp_dir().join(format!("workbook-window-shots-{}", std::process::id()));
+    std::fs::create_dir_all(&work)?;
+    for shot in &SHOTS {
+        let png = pics.join(format!("{}.png", shot.lesson));
+        let log = work.join(format!("{}.jsonl", shot.lesson));
+        let mut cmd = std::process::Command::new(runner.binary(shot.lesson));
+        display.apply(&mut cmd);
+        let (w, h) = (SIZE.0.to_string(), SIZE.1.to_string());
+        cmd.args(["--width", &w, "--height", &h, "--variant", shot.variant])
+            .args([
+                "--view",
+                shot.view,
+                "--backend",
+                backend,
+                "--adapter",
+                adapter,
+            ])
+            .args(["--capture-after", &FRAMES.to_string()])
+            .arg("--capture")
+            .arg(&png)
+            .arg("--window-log")
+            .arg(&log)
+            .arg("--out")
+            .arg(&work);
+        let out = cmd
+            .output()
+            .with_context(|| format!("cannot run {}", shot.lesson))?;
+        if !out.status.success() {
+            let err = String::from_utf8_lossy(&out.stderr);
+            bail!("{}'s window: {}", shot.lesson, err.trim());
+        }
+        let text = std::fs::read_to_string(&log).context("the window's log")?;
+        let last: serde_json::Value =
+            serde_json::from_str(text.lines().last().context("the window drew no frame")?)?;
+        let figure = caption(shot, &last, adapter, backend)?;
+        let md = texts.join(format!("{}.md", shot.lesson));
+        std::fs::write(&md, figure).with_context(|| format!("cannot write {}", md.display()))?;
+    }
+    let _ = std::fs::remove_dir_all(&work);
+    Ok(())
+}
+
+/// The chapter's figure: the picture and a caption from the window's log.
+fn caption(shot: &Shot, last: &serde_json::Value, adapter: &str, backend: &str) -> Result<String> {
+    let e = &last["error"];
+    let pct = |k: &str| e[k].as_f64().context("the log's error figure");
+    if last["error_current"] != true || e["level"] != "full" {
+        bail!(
+            "{}: the capture came before the full figure of its view",
+            shot.lesson
+        );
+    }
+    let (w, h) = SIZE;
+    Ok(format!(
+        "<figure>\n<img src=\"../figures/window/{lesson}.png\" alt=\"The {lesson} window: variant {variant}, {view} view, with the overlay\" width=\"{w}\">\n<figcaption>The window of <code>cargo run --release --bin {lesson} -- --variant {variant} --view {view}</code> ({w}×{h}, adapter {adapter} on {backend}, captured with <code>--capture</code> after {frames} frames): the overlay at the top left, and {shows}. The overlay's figure, against the exact reference: misclassified {m:.3} %, false shadow {fs:.3} %, false lit {fl:.3} %, the same as the headless report's at this size.</figcaption>\n</figure>\n",
+        lesson = shot.lesson,
+        variant = shot.variant,
+        view = shot.view,
+        frames = FRAMES,
+        shows = shot.shows,
+        m = pct("misclassified_pct")?,
+        fs = pct("false_shadow_pct")?,
+        fl = pct("false_lit_pct")?,
+    ))
+}
