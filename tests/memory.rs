@@ -88,3 +88,53 @@ memory_test!(lesson_05_memory_does_not_grow_with_frames, "lesson_05");
 memory_test!(lesson_06_memory_does_not_grow_with_frames, "lesson_06");
 memory_test!(lesson_07_memory_does_not_grow_with_frames, "lesson_07");
 memory_test!(lesson_08_memory_does_not_grow_with_frames, "lesson_08");
+
+/// The window's memory over two minutes of camera motion, with the live
+/// reference recomputing all along (`--orbit`): each view's reference,
+/// frame read-back and diff image are freed when the next replaces them.
+/// The growth from the first 20 s (once the window and the worker's pools
+/// are up) to the peak of the last 20 s must stay under 20 MB.
+#[test]
+fn window_memory_is_flat_over_two_minutes_of_motion() {
+    const RUN_S: f64 = 120.0;
+    const ALLOWED_MB: f64 = 20.0;
+    let bin = env!("CARGO_BIN_EXE_lesson_02");
+    let args = [
+        "--variant",
+        "slope_hw",
+        "--orbit",
+        "30",
+        "--view",
+        "diff",
+        "--window-seconds",
+        "120",
+    ];
+    let Some(run) = support::window::run_window(bin, "window_memory", &args, false) else {
+        return;
+    };
+    let rss = |from: f64, to: f64| {
+        let samples = run.log.iter().filter(|l| {
+            let t = l["t_s"].as_f64().expect("t_s");
+            (from..to).contains(&t)
+        });
+        let kb = samples.map(|l| l["rss_kb"].as_u64().expect("rss_kb"));
+        kb.max().expect("frames in the interval") as f64 / 1024.0
+    };
+    let (early, late) = (rss(0.0, 20.0), rss(RUN_S - 20.0, RUN_S + 1.0));
+    let answers = run
+        .log
+        .iter()
+        .filter_map(|l| l["error"]["scene_gen"].as_u64())
+        .collect::<std::collections::BTreeSet<_>>()
+        .len();
+    eprintln!("window RSS: {early:.1} MB in the first 20 s, {late:.1} MB in the last 20 s; {answers} views measured");
+    assert!(
+        answers > 20,
+        "the live reference measured only {answers} views"
+    );
+    assert!(
+        late - early < ALLOWED_MB,
+        "the window's memory grew by {:.1} MB over {RUN_S} s of motion ({early:.1} → {late:.1} MB)",
+        late - early
+    );
+}
