@@ -109,7 +109,9 @@ pub fn parse_knob(s: &str) -> Result<(String, f64), String> {
         .ok_or_else(|| format!("expected NAME=VALUE, got {s:?}"))?;
     let name = name.trim();
     if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-        return Err(format!("expected a knob name of letters, digits and _, got {name:?}"));
+        return Err(format!(
+            "expected a knob name of letters, digits and _, got {name:?}"
+        ));
     }
     let value: f64 = match value.trim() {
         "on" | "true" => 1.0,
@@ -165,7 +167,10 @@ mod tests {
 
     #[test]
     fn knob_lines_parse_and_bad_ones_are_named() {
-        assert_eq!(parse_knob("bias_texels=1.5"), Ok(("bias_texels".into(), 1.5)));
+        assert_eq!(
+            parse_knob("bias_texels=1.5"),
+            Ok(("bias_texels".into(), 1.5))
+        );
         assert_eq!(parse_knob("scissor=off"), Ok(("scissor".into(), 0.0)));
         assert!(parse_knob("bias").unwrap_err().contains("NAME=VALUE"));
         assert!(parse_knob("bias=x").unwrap_err().contains("bias"));

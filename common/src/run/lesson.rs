@@ -139,7 +139,9 @@ pub struct BufferView {
 
 /// A variant's one-line doc comment (its `///` in the lesson), or "".
 pub fn variant_doc<V: ValueEnum>(v: V) -> String {
-    let help = v.to_possible_value().and_then(|p| p.get_help().map(|h| h.to_string()));
+    let help = v
+        .to_possible_value()
+        .and_then(|p| p.get_help().map(|h| h.to_string()));
     let help = help.unwrap_or_default();
     help.lines().next().unwrap_or("").to_string()
 }
