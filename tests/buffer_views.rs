@@ -192,7 +192,8 @@ fn agreement_with_reference(img: &RgbaImage, out: &Path, light: usize) -> [f64; 
             continue; // no surface
         }
         n += 1;
-        agree += usize::from((vis[i] < 0.5) == !count_is_zero(p));
+        let shadowed = vis[i] < 0.5;
+        agree += usize::from(shadowed != count_is_zero(p));
         if !count_is_zero(p) {
             counted += 1;
             ones += usize::from(p.0 == COUNT_1);
