@@ -21,7 +21,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::Lesson;
+use common::run::lesson::{BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::exercise_pass;
@@ -103,6 +103,14 @@ impl Lesson for DepthMap {
 
     fn check_scene(scene: &Scene) -> Result<()> {
         shadow_map::refuse_point_lights(scene, Self::NAME)
+    }
+
+    /// The variant's shadow map, as its last shadow pass left it.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
+        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
+            return Ok(None); // no light: no shadow pass
+        };
+        self.maps[v as usize].0.buffer_view(gpu, last).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {

@@ -13,6 +13,7 @@ use common::gpu::render::{
 use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
 use common::run::headless::save;
+use common::run::lesson::BufferView;
 use common::scene::{LightKind, Scene};
 
 use super::tally::Tally;
@@ -60,20 +61,52 @@ impl ShadowMap {
     /// Writes the depth map as a picture: near = dark, far = light, the
     /// range stretched over what the map holds so the casters stand out.
     pub fn write_png(&self, gpu: &Gpu, path: &Path) -> Result<()> {
-        let d = self.read_depths(gpu)?;
-        let lo = d.iter().copied().fold(f32::INFINITY, f32::min);
-        let hi = d.iter().copied().filter(|&x| x < 1.0).fold(lo, f32::max);
-        let span = (hi - lo).max(1e-12);
+        let (shades, _) = depth_shades(&self.read_depths(gpu)?);
         let img = image::GrayImage::from_fn(self.size, self.size, |x, y| {
-            let v = d[(y * self.size + x) as usize];
-            image::Luma([if v >= 1.0 {
-                255
-            } else {
-                (((v - lo) / span) * 235.0).round() as u8
-            }])
+            image::Luma([shades[(y * self.size + x) as usize].unwrap_or(255)])
         });
         save(&img, path)
     }
+
+    /// The map as the "buffer" view shows it: [`ShadowMap::write_png`]'s
+    /// picture, with the texels no caster wrote in blue. `light`: the light
+    /// whose depths it holds (the last one drawn: the lessons draw every
+    /// light into the same map, one after the other).
+    pub fn buffer_view(&self, gpu: &Gpu, light: usize) -> Result<BufferView> {
+        let (shades, range) = depth_shades(&self.read_depths(gpu)?);
+        let image = image::RgbaImage::from_fn(self.size, self.size, |x, y| {
+            match shades[(y * self.size + x) as usize] {
+                Some(v) => image::Rgba([v, v, v, 255]),
+                None => image::Rgba(UNWRITTEN),
+            }
+        });
+        let stored = match range {
+            Some((lo, hi)) => format!("depths {lo:.4} to {hi:.4}"),
+            None => "no depth stored".to_string(),
+        };
+        let n = self.size;
+        let title = format!(
+            "shadow map of light {light} (the last light drawn into it), {n}x{n}: depth, near black, far light grey, stretched over the {stored}; blue: never written (cleared to 1)"
+        );
+        Ok(BufferView { title, image })
+    }
+}
+
+/// The colour of a texel no caster wrote, in [`ShadowMap::buffer_view`].
+const UNWRITTEN: [u8; 4] = [40, 70, 170, 255];
+
+/// Stored depths `d` as grey levels: near 0, far 235, stretched over the
+/// depths the map holds; `None` where nothing was written (the clear
+/// value, 1). Also that stretch's range, when something was written.
+fn depth_shades(d: &[f32]) -> (Vec<Option<u8>>, Option<(f32, f32)>) {
+    let lo = d.iter().copied().fold(f32::INFINITY, f32::min);
+    let hi = d.iter().copied().filter(|&x| x < 1.0).fold(lo, f32::max);
+    let span = (hi - lo).max(1e-12);
+    let shades = d
+        .iter()
+        .map(|&v| (v < 1.0).then(|| (((v - lo) / span) * 235.0).round() as u8))
+        .collect();
+    (shades, (lo < 1.0).then_some((lo, hi)))
 }
 
 /// How the shadow pass rasterises: which faces it culls and what depth bias

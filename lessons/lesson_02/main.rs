@@ -22,7 +22,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::{variant_name, Lesson};
+use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
@@ -203,6 +203,14 @@ impl Lesson for Bias {
 
     fn check_scene(scene: &Scene) -> Result<()> {
         shadow_map::refuse_point_lights(scene, Self::NAME)
+    }
+
+    /// The shadow map, as the variant's last shadow pass left it.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
+            return Ok(None); // no light: no shadow pass
+        };
+        self.map.buffer_view(gpu, last).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {

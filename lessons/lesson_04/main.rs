@@ -24,12 +24,12 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::{variant_name, Lesson};
+use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::{LightKind, Scene};
 use common::Result;
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_04::costs::{self, PCF3D_TAPS};
-use workbook::lesson_04::cross::write_cross_png;
+use workbook::lesson_04::cross::{cross_view, write_cross_png};
 use workbook::lesson_04::cube_map::{
     self, CubeParams, CubeShadowMap, CubeStats, FaceUniforms, LitKey, Storage,
 };
@@ -227,6 +227,15 @@ impl Lesson for CubeShadows {
             anyhow::bail!("lights[{k}]: lesson_04 shadows point (and spot) lights; directional lights are lessons lesson_01-lesson_03");
         }
         Ok(())
+    }
+
+    /// The variant's cube map, as a cross ([`cross_view`]).
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
+        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
+            return Ok(None); // no light: no face passes
+        };
+        let map = &self.maps[self.prepared[v as usize].map];
+        cross_view(gpu, map, last).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {

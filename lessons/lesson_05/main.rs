@@ -24,8 +24,9 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::{variant_name, Lesson};
+use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::Result;
+use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::cull::kept_draws;
 use workbook::lesson_05::exercises;
 use workbook::lesson_05::extrusion::{CpuParts, Extrusion};
@@ -98,12 +99,23 @@ struct ZPass {
     frames: [u32; VARIANTS],
     casters_drawn: u64,
     base_draws: u64,
+    /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
+    depth_stencil: Option<wgpu::Texture>,
 }
 
 impl Lesson for ZPass {
     const NAME: &'static str = "lesson_05";
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_05.toml");
     type Variant = Variant;
+
+    /// The stencil: light N's z-pass count, N the last light.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+        let (Some(ds), Some(last)) = (&self.depth_stencil, scene.scene.lights.len().checked_sub(1))
+        else {
+            return Ok(None);
+        };
+        count_view(gpu, ds, last, 0xff, "z-pass count").map(Some)
+    }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let volumes = ShadowVolumes::new(gpu, scene, &Counting::zpass())?;
@@ -119,6 +131,7 @@ impl Lesson for ZPass {
             frames: [0; VARIANTS],
             casters_drawn: 0,
             base_draws: base_and_lit_draws(scene),
+            depth_stencil: None,
         })
     }
 
@@ -161,6 +174,8 @@ impl Lesson for ZPass {
                 .light_passes(frame, scene, targets, volumes, &self.lit_pipeline);
         }
         self.casters_drawn = drawn as u64;
+        // What the "buffer" view reads: this frame's stencil.
+        self.depth_stencil = Some(targets.depth.clone());
         // The second call finds the first frame's depth in place: count
         // then, once, in submits of their own (untimed).
         let n = &mut self.frames[variant as usize];

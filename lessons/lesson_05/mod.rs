@@ -1,8 +1,10 @@
 //! Lesson 05, z-pass stencil shadow volumes: silhouettes, their extrusion
-//! to infinity, and counting the volumes in the stencil.
+//! to infinity, and counting the volumes in the stencil; [`count_view`]
+//! shows that count as a picture.
 
 pub mod adjacency;
 pub mod compute;
+pub mod count_view;
 pub mod cull;
 pub mod extrusion;
 pub mod fit;

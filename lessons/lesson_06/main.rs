@@ -31,9 +31,10 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::{variant_name, Lesson};
+use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::{Far, LightKind};
 use common::Result;
+use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::extrusion::{world_light, CpuParts, Extrusion};
 use workbook::lesson_05::stencil::{self, Counting, Method};
 use workbook::lesson_05::volumes::{
@@ -156,6 +157,8 @@ struct ZFail {
     base_draws: u64,
     /// The camera and lights the reach and plans were made for.
     view: Vec<f64>,
+    /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
+    depth_stencil: Option<wgpu::Texture>,
 }
 
 /// Every variant's draws for every light, in variant order.
@@ -207,6 +210,16 @@ impl Lesson for ZFail {
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_06.toml");
     type Variant = Variant;
 
+    /// The stencil: light N's count, N the last light.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+        let (Some(ds), Some(last)) = (&self.depth_stencil, scene.scene.lights.len().checked_sub(1))
+        else {
+            return Ok(None);
+        };
+        let what = "volume count (z-pass and z-fail leave the same)";
+        count_view(gpu, ds, last, 0xff, what).map(Some)
+    }
+
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         // ANCHOR: reach
         // Each caster's volume gets a reach: infinity under far = "infinite",
@@ -229,6 +242,7 @@ impl Lesson for ZFail {
             frames: vec![0; Variant::value_variants().len()],
             base_draws: base_and_lit_draws(scene),
             view: view_key(scene),
+            depth_stencil: None,
         })
     }
 
@@ -269,6 +283,8 @@ impl Lesson for ZFail {
             self.volumes
                 .light_passes(frame, scene, targets, volumes, &self.lit_pipeline);
         }
+        // What the "buffer" view reads: this frame's stencil.
+        self.depth_stencil = Some(targets.depth.clone());
         // The second call finds the first frame's depth in place: count
         // then, once, in submits of their own (untimed).
         let (v, gpu) = (variant as usize, frame.gpu);

@@ -32,9 +32,10 @@ use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
 use common::run::headless::save;
-use common::run::lesson::{is_exercise, Lesson};
+use common::run::lesson::{is_exercise, BufferView, Lesson};
 use common::scene::{Far, Scene};
 use common::{anyhow, Result};
+use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::extrusion::Extrusion;
 use workbook::lesson_05::stencil::{self, Counting};
 use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes};
@@ -139,6 +140,9 @@ struct DepthClamp {
     pending: Vec<bool>,
     /// The exercises' cameras and volumes, made when first drawn.
     exercises: [Option<(SceneGpu, Route)>; 2],
+    /// The last frame's depth-stencil texture (the runner's), for
+    /// [`Lesson::buffer_view`]; `reversed_z` draws into its own.
+    depth_stencil: Option<wgpu::Texture>,
 }
 
 /// Relative gap in parts per billion; 10⁹ means "not even Δd = d resolves".
@@ -156,6 +160,18 @@ impl Lesson for DepthClamp {
             anyhow::bail!("camera.far: lesson_07 compares a finite far plane with clamping and an infinite one; give a finite far");
         }
         Ok(())
+    }
+
+    /// The stencil: light N's z-fail count, N the last light.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
+        let ds = match (v, &self.reversed) {
+            (Variant::ReversedZ, Ok(r)) => Some(r.depth_stencil()),
+            _ => self.depth_stencil.as_ref(),
+        };
+        let (Some(ds), Some(last)) = (ds, scene.scene.lights.len().checked_sub(1)) else {
+            return Ok(None);
+        };
+        count_view(gpu, ds, last, 0xff, "z-fail count").map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -210,6 +226,7 @@ impl Lesson for DepthClamp {
             study_written: Cell::new(false),
             pending: vec![false; Variant::value_variants().len()],
             exercises: [None, None],
+            depth_stencil: None,
         })
     }
 
@@ -229,6 +246,8 @@ impl Lesson for DepthClamp {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        // What the "buffer" view reads: this frame's stencil.
+        self.depth_stencil = Some(targets.depth.clone());
         if variant == Variant::ReversedZ {
             let r = self.reversed.as_mut().map_err(|e| anyhow::anyhow!("{e}"))?;
             r.render(frame, scene, targets, &self.infinite.volumes);

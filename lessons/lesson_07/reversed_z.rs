@@ -82,6 +82,11 @@ pub struct ReversedZ {
 }
 
 impl ReversedZ {
+    /// Its depth-stencil texture, as the last frame left it.
+    pub fn depth_stencil(&self) -> &wgpu::Texture {
+        &self.depth
+    }
+
     /// Fails with one line where the adapter lacks `Depth32FloatStencil8`.
     pub fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<ReversedZ> {
         if !gpu.has(wgpu::Features::DEPTH32FLOAT_STENCIL8) {

@@ -37,13 +37,16 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::Lesson;
+use common::run::lesson::{BufferView, Lesson};
 use common::scene::{Far, LightKind};
 use common::Result;
+use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::extrusion::{volume_shader_module, Extrusion};
 use workbook::lesson_05::volumes::{base_and_lit_draws, ShadowVolumes};
 use workbook::lesson_06::caps::zfail_counting;
-use workbook::lesson_08::bounds_test::{bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits};
+use workbook::lesson_08::bounds_test::{
+    bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits, COUNT_BITS,
+};
 use workbook::lesson_08::costs::VolumeTally;
 use workbook::lesson_08::count_bits;
 use workbook::lesson_08::exercise_bounds::{exercise_bounds, Student};
@@ -127,6 +130,8 @@ struct DepthBounds {
     /// Per variant, in variant order: the counters, and frames rendered.
     counters: Vec<BTreeMap<String, u64>>,
     frames: Vec<u32>,
+    /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
+    depth_stencil: Option<wgpu::Texture>,
 }
 
 impl Lesson for DepthBounds {
@@ -135,6 +140,16 @@ impl Lesson for DepthBounds {
     const SUPPORTS_CAMERA_SHIFT: bool = false;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_08.toml");
     type Variant = Variant;
+
+    /// The stencil's bits 0–6: light N's z-fail count, N the last light.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+        let (Some(ds), Some(last)) = (&self.depth_stencil, scene.scene.lights.len().checked_sub(1))
+        else {
+            return Ok(None);
+        };
+        let what = "z-fail count in bits 0-6 (bit 7, the bounds mark, left out)";
+        count_view(gpu, ds, last, COUNT_BITS as u8, what).map(Some)
+    }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let volumes = ShadowVolumes::new(gpu, scene, &zfail_counting())?;
@@ -165,6 +180,7 @@ impl Lesson for DepthBounds {
             volumes,
             counters: vec![BTreeMap::new(); Variant::value_variants().len()],
             frames: vec![0; Variant::value_variants().len()],
+            depth_stencil: None,
         })
     }
 
@@ -207,6 +223,8 @@ impl Lesson for DepthBounds {
             });
         }
         self.bounds = bounds;
+        // What the "buffer" view reads: this frame's stencil.
+        self.depth_stencil = Some(targets.depth.clone());
         // The second call finds the first frame's depth in place: count then.
         let n = &mut self.frames[variant as usize];
         *n += 1;

@@ -1,5 +1,6 @@
 //! Lesson 09's debug pictures: the frame tinted by the cascade each pixel
-//! samples (`<variant>_cascades.png`), and each cascade's depth layer.
+//! samples (`<variant>_cascades.png`, and the "buffer" view), and each
+//! cascade's depth layer.
 
 use std::path::Path;
 
@@ -9,6 +10,7 @@ use common::gpu::render::{pipeline_layout_for, vertex_state, SceneGpu};
 use common::gpu::targets::render_texture;
 use common::gpu::Gpu;
 use common::run::headless::save;
+use common::run::lesson::BufferView;
 
 use super::csm::CascadeMaps;
 
@@ -67,6 +69,45 @@ pub fn write_cascade_png(
     group: &wgpu::BindGroup,
     path: &Path,
 ) -> Result<()> {
+    save(&cascade_image(gpu, scene, pipeline, group)?, path)
+}
+
+/// The colours of `CASCADE_TINTS` (`csm.wgsl`), cascade 0 first.
+const TINT_NAMES: [&str; 4] = ["red", "green", "blue", "yellow"];
+
+/// The "buffer" view: [`cascade_image`] of `count` cascades, its legend
+/// in the title.
+pub fn cascade_view(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    pipeline: &wgpu::RenderPipeline,
+    group: &wgpu::BindGroup,
+    count: usize,
+) -> Result<BufferView> {
+    let legend: Vec<String> = TINT_NAMES
+        .iter()
+        .take(count)
+        .enumerate()
+        .map(|(i, name)| format!("{name} {i}"))
+        .collect();
+    let title = format!(
+        "the cascade each pixel samples for light 0 ({count} cascade{}): {}; shaded by light 0 and its shadow; black: no surface",
+        if count == 1 { "" } else { "s" },
+        legend.join(", ")
+    );
+    let image = cascade_image(gpu, scene, pipeline, group)?;
+    Ok(BufferView { title, image })
+}
+
+/// Light 0's cascade picture: the frame, each pixel tinted by the cascade
+/// it samples (`fs_cascade_tint`), drawn with `group` (the variant's maps
+/// and parameters, as its last frame left them).
+pub fn cascade_image(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    pipeline: &wgpu::RenderPipeline,
+    group: &wgpu::BindGroup,
+) -> Result<image::RgbaImage> {
     let (w, h) = (scene.width, scene.height);
     let color = render_texture(
         gpu,
@@ -120,9 +161,8 @@ pub fn write_cascade_png(
     }
     gpu.queue.submit([enc.finish()]);
     let bytes = read_texture(gpu, &color, 4)?;
-    let img = image::RgbaImage::from_raw(w, h, bytes)
-        .ok_or_else(|| anyhow::anyhow!("cascade picture: readback size"))?;
-    save(&img, path)
+    image::RgbaImage::from_raw(w, h, bytes)
+        .ok_or_else(|| anyhow::anyhow!("cascade picture: readback size"))
 }
 
 /// Saves each cascade's depth layer as `<stem>_cascade_<i>_depth.png`.

@@ -26,7 +26,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
-use common::run::lesson::{variant_name, Lesson};
+use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowPassState};
@@ -151,6 +151,19 @@ impl Lesson for Csm {
 
     fn check_scene(scene: &Scene) -> Result<()> {
         setup::refuse_non_directional(scene, Self::NAME)
+    }
+
+    /// The cascade each pixel samples ([`extras::cascade_view`]), light 0.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
+        let setup = v.setup();
+        let Some(m) = self.find_maps(setup.resolution, setup.count) else {
+            return Ok(None); // not drawn yet
+        };
+        let Some(group) = self.maps[m].1.first() else {
+            return Ok(None); // no light: no cascades
+        };
+        let tint = &self.tint_pipeline;
+        extras::cascade_view(gpu, scene, tint, group, setup.count).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {

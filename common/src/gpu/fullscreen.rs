@@ -1,6 +1,6 @@
 //! One triangle that covers the target (`shaders/fullscreen.wgsl`): the
-//! window's blit, depth-texture readback, debug pictures, and any pass
-//! that marks every pixel.
+//! window's blit, depth- and stencil-texture readback, debug pictures, and
+//! any pass that marks every pixel.
 
 use anyhow::Result;
 
@@ -47,6 +47,15 @@ impl Fullscreen<'_> {
     }
 
     pub fn pipeline(&self, gpu: &Gpu) -> wgpu::RenderPipeline {
+        self.build(gpu, None)
+    }
+
+    /// [`Fullscreen::pipeline`], its colour target blended with `blend`.
+    pub fn pipeline_blended(&self, gpu: &Gpu, blend: wgpu::BlendState) -> wgpu::RenderPipeline {
+        self.build(gpu, Some(blend))
+    }
+
+    fn build(&self, gpu: &Gpu, blend: Option<wgpu::BlendState>) -> wgpu::RenderPipeline {
         let module = gpu
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -64,7 +73,13 @@ impl Fullscreen<'_> {
                 bind_group_layouts: &groups,
                 immediate_size: 0,
             });
-        let targets = self.fragment.map(|(_, format)| [Some(format.into())]);
+        let targets = self.fragment.map(|(_, format)| {
+            [Some(wgpu::ColorTargetState {
+                format,
+                blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })]
+        });
         gpu.device
             .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(self.label),
@@ -152,3 +167,99 @@ pub fn read_floats(
 
 /// The target format [`read_floats`] draws into: give it to the pipeline.
 pub const FLOAT_BYTES_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// The target [`read_stencil`] adds the stencil's bits into.
+const STENCIL_BITS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
+
+/// Reads the stencil of the depth-stencil texture `texture` back to the
+/// CPU, one byte per pixel, row by row. Drawn, not copied (GL cannot copy
+/// a stencil aspect to a buffer): eight full-screen draws, one per bit,
+/// each passing the stencil test only where its bit is set (`Equal` on
+/// that bit alone) and adding the bit's value into an R8 target. The
+/// attachment is read-only: the stencil and depth are left as they were.
+pub fn read_stencil(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<u8>> {
+    let format = texture.format();
+    if !format.has_stencil_aspect() {
+        anyhow::bail!("read_stencil: {format:?} has no stencil");
+    }
+    let (w, h) = (texture.width(), texture.height());
+    let usage = wgpu::TextureUsages::empty();
+    let target = render_texture(gpu, "stencil bits", w, h, STENCIL_BITS_FORMAT, usage);
+    let add = wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    };
+    let blend = wgpu::BlendState {
+        color: add,
+        alpha: add,
+    };
+    let pipelines: Vec<wgpu::RenderPipeline> = (0..8)
+        .map(|bit| {
+            let face = wgpu::StencilFaceState {
+                compare: wgpu::CompareFunction::Equal,
+                ..Default::default()
+            };
+            let stencil = wgpu::StencilState {
+                front: face,
+                back: face,
+                read_mask: 1 << bit,
+                write_mask: 0,
+            };
+            // The bit's value, exact in an 8-bit unorm target.
+            let wgsl = format!(
+                "@fragment fn fs() -> @location(0) vec4<f32> {{ return vec4<f32>({}.0 / 255.0); }}",
+                1u32 << bit
+            );
+            Fullscreen {
+                label: "stencil bit",
+                wgsl: &wgsl,
+                vs_entry: "vs_fullscreen",
+                fragment: Some(("fs", STENCIL_BITS_FORMAT)),
+                groups: &[],
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format,
+                    depth_write_enabled: Some(false),
+                    depth_compare: Some(wgpu::CompareFunction::Always),
+                    stencil,
+                    bias: Default::default(),
+                }),
+            }
+            .pipeline_blended(gpu, blend)
+        })
+        .collect();
+    let view = target.create_view(&Default::default());
+    let stencil_view = texture.create_view(&Default::default());
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("stencil readback"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            // Read-only: no depth or stencil operations at all.
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &stencil_view,
+                depth_ops: None,
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        // Each draw passes where (stencil & its bit) == (0xff & its bit).
+        pass.set_stencil_reference(0xff);
+        for p in &pipelines {
+            pass.set_pipeline(p);
+            pass.draw(0..3, 0..1);
+        }
+    }
+    gpu.queue.submit([enc.finish()]);
+    read_texture(gpu, &target, 1)
+}
