@@ -10,8 +10,10 @@ mod support;
 
 use support::LessonRun;
 
+const L01: &str = env!("CARGO_BIN_EXE_lesson_01");
 const L02: &str = env!("CARGO_BIN_EXE_lesson_02");
 const L03: &str = env!("CARGO_BIN_EXE_lesson_03");
+const L08: &str = env!("CARGO_BIN_EXE_lesson_08");
 const L09: &str = env!("CARGO_BIN_EXE_lesson_09");
 
 /// `bin` headless at 320×180, one frame, on `scene` (the default: `None`),
@@ -34,6 +36,42 @@ fn knob(run: &LessonRun, variant: &str, knob: &str) -> f64 {
 
 fn err(run: &LessonRun, variant: &str, key: &str) -> f64 {
     support::error(&run.report, variant, key)
+}
+
+/// Chapter 01: "Resolution does not cure acne" (false shadow "stays near
+/// half of the receivers at every size"); the texel "halves with each
+/// doubling of N"; false lit "falls as the map grows"; the shadow pass's
+/// fragments "grow with the map's texels". `res_256` with `map_size_log2`
+/// at 12 must be `res_4096` in all of that.
+#[test]
+fn knobs_lesson_01_map_size_shrinks_the_texel_not_the_acne() {
+    let Some(small) = run(L01, "knobs_01_256", None, &["--variant", "res_256"]) else {
+        return;
+    };
+    let args = ["--variant", "res_256", "--knob", "map_size_log2=12"];
+    let Some(big) = run(L01, "knobs_01_4096", None, &args) else {
+        return;
+    };
+    assert_eq!(knob(&small, "res_256", "map_size_log2"), 8.0);
+    assert_eq!(knob(&big, "res_256", "map_size_log2"), 12.0);
+    let c = |r: &LessonRun, k| support::counter(&r.report, "res_256", k) as f64;
+    let texel = c(&small, "texel_um_u") / c(&big, "texel_um_u");
+    let fragments = c(&big, "shadow_fragments") / c(&small, "shadow_fragments");
+    let (fs, fl) = (
+        [&small, &big].map(|r| err(r, "res_256", "false_shadow_pct")),
+        [&small, &big].map(|r| err(r, "res_256", "false_lit_pct")),
+    );
+    eprintln!("256² -> 4096²: texel / {texel:.2}, shadow fragments × {fragments:.1}, false shadow {fs:.3?} %, false lit {fl:.3?} %");
+    assert!(
+        (texel - 16.0).abs() < 0.1,
+        "the texel must shrink 16 times: {texel}"
+    );
+    assert!(
+        fragments > 128.0,
+        "the shadow pass's fragments must grow with the texels: × {fragments}"
+    );
+    assert!(fs.iter().all(|&f| f > 40.0), "acne at every size: {fs:?}");
+    assert!(fl[1] < 0.5 * fl[0], "false lit must fall: {fl:?}");
 }
 
 /// Chapter 02, "The trade-off: a sweep of constant biases": "False shadow
@@ -297,6 +335,74 @@ fn knobs_lesson_09_cascades_and_lambda() {
     assert!(
         by_lambda.iter().all(|&m| base_mis < 0.7 * m),
         "the practical split must beat both ends: {base_mis:.3} against {by_lambda:?}"
+    );
+}
+
+/// Chapter 08: the limits cut work, not pixels ("The pixels are the same
+/// in all six; the counters say how many volume triangles each one draws,
+/// and how many fragments it rasterises and lets through to the stencil",
+/// lessons/lesson_08/main.rs). `unbounded` with the three toggles on must
+/// count what `cull_bounds_scissor` counts, and `cull_bounds_scissor` with
+/// them off what `unbounded` does, with the same error throughout.
+#[test]
+fn knobs_lesson_08_toggles_cut_work_not_pixels() {
+    let both = ["--variant", "unbounded", "--variant", "cull_bounds_scissor"];
+    let Some(named) = run(L08, "knobs_08_named", None, &both) else {
+        return;
+    };
+    let on = ["scissor=on", "depth_bounds=on", "cull=on"];
+    let off = ["scissor=off", "depth_bounds=off", "cull=off"];
+    let knobs = |v: &'static str, ks: [&'static str; 3]| {
+        let mut a = vec!["--variant", v];
+        for k in ks {
+            a.extend(["--knob", k]);
+        }
+        a
+    };
+    let Some(all_on) = run(L08, "knobs_08_on", None, &knobs("unbounded", on)) else {
+        return;
+    };
+    let Some(all_off) = run(
+        L08,
+        "knobs_08_off",
+        None,
+        &knobs("cull_bounds_scissor", off),
+    ) else {
+        return;
+    };
+    assert_eq!(knob(&all_on, "unbounded", "scissor"), 1.0);
+    assert_eq!(knob(&all_off, "cull_bounds_scissor", "depth_bounds"), 0.0);
+    let keys = [
+        "volume_triangles",
+        "volume_fragments",
+        "stencil_fragments",
+        "scissor_pixels",
+    ];
+    for (run, v, like) in [
+        (&all_on, "unbounded", "cull_bounds_scissor"),
+        (&all_off, "cull_bounds_scissor", "unbounded"),
+    ] {
+        for k in keys {
+            let (a, b) = (
+                support::counter(&run.report, v, k),
+                support::counter(&named.report, like, k),
+            );
+            eprintln!("{v} toggled like {like}: {k} {a} (named: {b})");
+            assert_eq!(a, b, "{v} toggled like {like}: {k}");
+        }
+        let (a, b) = (
+            err(run, v, "misclassified_pct"),
+            err(&named, v, "misclassified_pct"),
+        );
+        assert!(
+            (a - b).abs() < 1e-9,
+            "{v}: the pixels must not change: {a} != {b}"
+        );
+    }
+    let frags = |v| support::counter(&named.report, v, "volume_fragments");
+    assert!(
+        frags("cull_bounds_scissor") * 2 < frags("unbounded"),
+        "the limits must cut the fragments"
     );
 }
 
