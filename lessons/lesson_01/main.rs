@@ -6,7 +6,8 @@
 //! report measures the acne that lesson 02 fixes.
 //!
 //! The technique is in [`shadow_map`] (the map, the shadow pass, how the lit
-//! pass samples it) and `shaders/lesson_01/`.
+//! pass samples it) and `shaders/lesson_01/`. The map's size is a knob of
+//! the `res_*` variants (`map_size_log2`).
 //!
 //! Run: `cargo run --release --bin lesson_01 -- --headless`
 //! Book: chapter "01 depth map" (`book/src/lesson_01.md`).
@@ -21,6 +22,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
+use common::run::knobs::{Knob, KnobRange};
 use common::run::lesson::{BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
@@ -177,10 +179,12 @@ impl Lesson for DepthMap {
         self.exercise_setup(frame.gpu, scene, variant)?;
         if self.texels_written[variant as usize].is_none() {
             // Once per variant, its own submit: untimed.
-            let n =
-                shadow_map::count_shadow_texels(frame.gpu, scene, variant.resolution(), |_| {
-                    &self.tally_pipeline
-                })?;
+            let n = shadow_map::count_shadow_texels(
+                frame.gpu,
+                scene,
+                self.resolution(variant),
+                |_| &self.tally_pipeline,
+            )?;
             self.texels_written[variant as usize] = Some(n);
         }
         let (map, group) = &self.maps[variant as usize];
@@ -225,11 +229,49 @@ impl Lesson for DepthMap {
             _ => self.texel_at_1,
         };
         if let Some((u, v)) = texel {
-            let um = |x: f64| (x * 1e6 / variant.resolution() as f64).round() as u64;
+            let um = |x: f64| (x * 1e6 / self.resolution(variant) as f64).round() as u64;
             c.insert("texel_um_u".into(), um(u));
             c.insert("texel_um_v".into(), um(v));
         }
         c
+    }
+
+    /// The `res_*` variants: the map's size, 2^`map_size_log2` texels on a
+    /// side, 256 to 4096 (the sweep's range); the exercises keep 1024².
+    fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        if matches!(
+            variant,
+            Variant::ExerciseTightFrustum | Variant::ExerciseDepthCompare
+        ) {
+            return Vec::new();
+        }
+        vec![Knob {
+            name: "map_size_log2",
+            doc: "the shadow map is 2^map_size_log2 texels on a side (8: 256², 12: 4096²)",
+            range: KnobRange::Int { min: 8, max: 12 },
+            value: self.resolution(variant).ilog2() as f64,
+        }]
+    }
+
+    /// A new map of the new size replaces the variant's (the old one is
+    /// dropped); its texels are counted again on its next frame.
+    fn set_knob(
+        &mut self,
+        gpu: &Gpu,
+        _scene: &SceneGpu,
+        variant: Variant,
+        name: &str,
+        value: f64,
+    ) -> Result<()> {
+        if name != "map_size_log2" {
+            anyhow::bail!("--knob {name}: lesson_01 has only map_size_log2");
+        }
+        let map = ShadowMap::new(gpu, 1 << value as u32);
+        let (layout, nearest) = (&self.map_layout, wgpu::FilterMode::Nearest);
+        let group = shadow_map::shadow_map_group(gpu, layout, &map, nearest);
+        self.maps[variant as usize] = (map, group);
+        self.texels_written[variant as usize] = None;
+        Ok(())
     }
 
     fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
@@ -240,6 +282,12 @@ impl Lesson for DepthMap {
 }
 
 impl DepthMap {
+    /// The side of `variant`'s map now: [`Variant::resolution`], or the
+    /// `map_size_log2` knob's.
+    fn resolution(&self, variant: Variant) -> u32 {
+        self.maps[variant as usize].0.size
+    }
+
     /// Before an exercise runs: its light matrix into the light buffer
     /// (`exercise_tight_frustum`; the others put the lesson's back) and its
     /// lit pipeline (`exercise_depth_compare`).

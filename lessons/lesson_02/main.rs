@@ -7,7 +7,9 @@
 //! magic number, and a sweep of sizes), the rasteriser's slope-scaled depth
 //! bias, a slope-scaled and a normal-offset bias in the shader, and drawing
 //! only back faces into the map; then the defaults of renderers people use
-//! (LearnOpenGL, the wgpu example, Bevy), on the same map.
+//! (LearnOpenGL, the wgpu example, Bevy), on the same map. Each variant's
+//! bias sizes are knobs (`--knob`, the window's widgets): which ones, in
+//! [`workbook::lesson_02::knobs`].
 //!
 //! Run: `cargo run --release --bin lesson_02 -- --headless`
 //! Book: chapter "02 Bias" (`book/src/lesson_02.md`).
@@ -22,6 +24,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
+use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
@@ -29,6 +32,7 @@ use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{ShadowBias, SlopeScaledBias};
 use workbook::lesson_02::exercise_pass::{self, Exercise};
+use workbook::lesson_02::knobs;
 
 /// One map size for every variant: the variants differ only in the bias.
 const MAP_SIZE: u32 = 1024;
@@ -194,6 +198,13 @@ struct Bias {
     /// Per variant: the shadow pass's depth writes and fragments, counted once.
     texels_written: Vec<Option<(u64, u64)>>,
     draws: u64,
+    /// Per variant, its fix with the knobs' values: what `bias_groups` and
+    /// `slope_shadow` hold (`Variant::fix` when no knob was set).
+    fixes: Vec<Fix>,
+    /// The shadow pipelines' shader and the counting one, to rebuild a
+    /// hardware bias's pipelines when a knob changes it.
+    module: wgpu::ShaderModule,
+    tally: TallyShader,
 }
 
 impl Lesson for Bias {
@@ -288,6 +299,9 @@ impl Lesson for Bias {
             tally_slope,
             texels_written: vec![None; Variant::value_variants().len()],
             draws: shadow_map::shadow_map_draws(scene),
+            fixes: Variant::value_variants().iter().map(|v| v.fix()).collect(),
+            module: module.clone(),
+            tally,
         })
     }
 
@@ -368,6 +382,52 @@ impl Lesson for Bias {
             c.insert("shadow_fragments".into(), fragments);
         }
         c
+    }
+
+    fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        match (variant.fix(), self.fixes[variant as usize]) {
+            (Fix::Receiver(named), Fix::Receiver(now)) => knobs::receiver_knobs(named, now),
+            (_, Fix::Hardware(now, _)) => knobs::hardware_knobs(now),
+            _ => Vec::new(),
+        }
+    }
+
+    /// A receiver bias: a new uniform for the variant. A hardware bias: its
+    /// shadow pipelines (one per light) and their counting copies, rebuilt;
+    /// its texels are counted again on its next frame.
+    fn set_knob(
+        &mut self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        variant: Variant,
+        name: &str,
+        value: f64,
+    ) -> Result<()> {
+        let i = variant as usize;
+        match &mut self.fixes[i] {
+            Fix::Receiver(b) => {
+                knobs::set_receiver(b, name, value)?;
+                let (layout, bytes) = (&self.layouts[1], bytemuck::bytes_of(b));
+                self.bias_groups[i] = params_group(gpu, layout, &variant_name(variant), bytes);
+            }
+            Fix::Hardware(slope, cull) => {
+                knobs::set_hardware(slope, name, value)?;
+                let states: Vec<ShadowPassState> = (0..scene.scene.lights.len())
+                    .map(|k| ShadowPassState {
+                        cull: *cull,
+                        ..slope.pass_state(gpu, &scene.scene, k, MAP_SIZE)
+                    })
+                    .collect();
+                let (module, tally) = (&self.module, &self.tally);
+                let pass = |&s| shadow_map::shadow_pipeline(gpu, scene, module, s);
+                let count = |&s| shadow_map::shadow_tally_pipelines(gpu, scene, module, s, tally);
+                self.slope_shadow[i] = Some(states.iter().map(pass).collect());
+                self.tally_slope[i] = Some(states.iter().map(count).collect());
+                self.texels_written[i] = None;
+            }
+            _ => anyhow::bail!("--knob {name}: {} has no knobs", variant_name(variant)),
+        }
+        Ok(())
     }
 }
 

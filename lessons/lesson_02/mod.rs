@@ -1,7 +1,10 @@
 //! Lesson 02, bias: receiver-side bias in the lit pass, slope-scaled bias
-//! in the shadow pass.
+//! in the shadow pass; [`knobs`]: their sizes, as the window's widgets and
+//! `--knob`.
 
 pub mod bias;
+
+pub mod knobs;
 
 pub mod exercise_pass;
 

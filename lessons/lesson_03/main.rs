@@ -10,7 +10,8 @@
 //! renderers people use, each with its own bias (LearnOpenGL, the wgpu
 //! example, Bevy), on the same map.
 //!
-//! The filters are in [`pcf`] and `shaders/lesson_03/pcf.wgsl`.
+//! The filters are in [`pcf`] and `shaders/lesson_03/pcf.wgsl`; their
+//! kernels' sizes are knobs ([`knobs`]).
 //!
 //! Run: `cargo run --release --bin lesson_03 -- --headless`
 //! Book: chapter "03 PCF" (`book/src/lesson_03.md`).
@@ -25,6 +26,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
+use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
@@ -33,6 +35,7 @@ use workbook::lesson_01::shadow_map::{self, ShadowMap};
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{ShadowBias, SlopeScaledBias};
 use workbook::lesson_03::exercises;
+use workbook::lesson_03::knobs;
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
 /// Lesson 02's map size: the filters differ, the map does not.
@@ -180,6 +183,11 @@ struct Pcf {
     /// Per shadow pass, its depth writes and fragments, counted once.
     texels_written: [Option<(u64, u64)>; 3],
     draws: u64,
+    /// Per variant, its filter with the knobs' values: what `filter_groups`
+    /// holds (`Variant::filter` when no knob was set).
+    filters: Vec<Filter>,
+    /// The layout of `filter_groups`, to make a variant's again.
+    filter_layout: wgpu::BindGroupLayout,
 }
 
 impl Lesson for Pcf {
@@ -288,6 +296,11 @@ impl Lesson for Pcf {
             tally_pipelines,
             texels_written: [None; 3],
             draws: shadow_map::shadow_map_draws(scene),
+            filters: Variant::value_variants()
+                .iter()
+                .map(|v| v.filter())
+                .collect(),
+            filter_layout,
         })
     }
 
@@ -335,7 +348,7 @@ impl Lesson for Pcf {
     // ANCHOR_END: render
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let (taps, texels) = variant.filter().taps();
+        let (taps, texels) = self.filters[variant as usize].taps();
         let mut c = BTreeMap::from([
             ("taps".into(), taps),
             ("filter_taps_per_pixel".into(), taps),
@@ -348,6 +361,39 @@ impl Lesson for Pcf {
             c.insert("shadow_fragments".into(), fragments);
         }
         c
+    }
+
+    /// The lesson's own filters have their kernel's size: the grids and the
+    /// depth average `kernel_radius`, the disk `disk_radius_texels`. The
+    /// renderers' defaults and the exercises keep theirs.
+    fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        match variant {
+            Variant::LearnOpenGlPcf
+            | Variant::WgpuExampleHw2x2
+            | Variant::Bevy
+            | Variant::ExercisePcfKernel
+            | Variant::ExerciseWorldDisk => Vec::new(),
+            _ => knobs::filter_knobs(self.filters[variant as usize]),
+        }
+    }
+
+    /// A new filter uniform for the variant: the kernel's size is read by
+    /// the shader's loop, so the pipeline stays.
+    fn set_knob(
+        &mut self,
+        gpu: &Gpu,
+        _scene: &SceneGpu,
+        variant: Variant,
+        name: &str,
+        value: f64,
+    ) -> Result<()> {
+        let filter = &mut self.filters[variant as usize];
+        knobs::set_filter_knob(filter, name, value)?;
+        let params = FilterUniform::new(*filter, variant.receiver_bias());
+        let bytes = bytemuck::bytes_of(&params);
+        let group = params_group(gpu, &self.filter_layout, &variant_name(variant), bytes);
+        self.filter_groups[variant as usize] = group;
+        Ok(())
     }
 }
 

@@ -1,7 +1,10 @@
 //! Lesson 03, PCF: filters that turn the shadow map into a fractional
-//! visibility.
+//! visibility; [`knobs`]: their kernels' sizes, as the window's widgets and
+//! `--knob`.
 
 pub mod pcf;
+
+pub mod knobs;
 
 /// The chapter's exercises: the starter code a student fills in, or with
 /// `--features solutions`, the reference solutions (`solutions/lesson_03.rs`).

@@ -19,7 +19,9 @@
 //! `cull`, `cull_bounds_scissor`. The pixels are the same in all six; the
 //! counters say how many volume triangles each one draws, and how many
 //! fragments it rasterises and lets through to the stencil. The scissor
-//! cuts the lit pass as well.
+//! cuts the lit pass as well. Each of the six takes the three limits as
+//! toggles (knobs `scissor`, `depth_bounds`, `cull`): it starts as its name
+//! says.
 //!
 //! A finite far plane is clamped, not clipped, as in lesson 07's `clamp`
 //! (needs DEPTH_CLIP_CONTROL). Bit 7 holds the bounds mark, so the count
@@ -37,6 +39,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
+use common::run::knobs::{Knob, KnobRange};
 use common::run::lesson::{BufferView, Lesson};
 use common::scene::{Far, LightKind};
 use common::Result;
@@ -132,6 +135,9 @@ struct DepthBounds {
     frames: Vec<u32>,
     /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
     depth_stencil: Option<wgpu::Texture>,
+    /// Per variant, its limits with the knobs' values ([`Variant::limits`]
+    /// when no knob was set).
+    limits: Vec<Limits>,
 }
 
 impl Lesson for DepthBounds {
@@ -181,6 +187,10 @@ impl Lesson for DepthBounds {
             counters: vec![BTreeMap::new(); Variant::value_variants().len()],
             frames: vec![0; Variant::value_variants().len()],
             depth_stencil: None,
+            limits: Variant::value_variants()
+                .iter()
+                .map(|v| v.limits())
+                .collect(),
         })
     }
 
@@ -200,7 +210,7 @@ impl Lesson for DepthBounds {
             }
         }
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        for b in bounded_lights(&bounds, variant.limits()) {
+        for b in bounded_lights(&bounds, self.limits[variant as usize]) {
             frame.pass("volume", |enc, ts| {
                 self.bounded
                     .volume_pass(enc, scene, targets, b, ts.render())
@@ -240,6 +250,64 @@ impl Lesson for DepthBounds {
         c.extend(self.counters[variant as usize].clone());
         c
     }
+
+    /// The three limits as toggles, on each of the six variants; the
+    /// exercises keep theirs (the student's bounds are what they measure).
+    fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        if matches!(
+            variant,
+            Variant::ExerciseScissorRect | Variant::ExerciseDepthBounds
+        ) {
+            return Vec::new();
+        }
+        let l = self.limits[variant as usize];
+        let toggle = |name, doc, on: bool| Knob {
+            name,
+            doc,
+            range: KnobRange::Toggle,
+            value: on as u8 as f64,
+        };
+        vec![
+            toggle(
+                "scissor",
+                "volumes (and the light) drawn only inside the range sphere's screen rectangle",
+                l.scissor,
+            ),
+            toggle(
+                "depth_bounds",
+                "volume fragments count only over stored depths inside the sphere's depth interval",
+                l.depth_bounds,
+            ),
+            toggle(
+                "cull",
+                "only casters whose bounding sphere reaches into the range cast volumes",
+                l.cull,
+            ),
+        ]
+    }
+
+    /// The next frames use the new limits; the counters are taken again on
+    /// the variant's second frame from now.
+    fn set_knob(
+        &mut self,
+        _gpu: &Gpu,
+        _scene: &SceneGpu,
+        variant: Variant,
+        name: &str,
+        value: f64,
+    ) -> Result<()> {
+        let l = &mut self.limits[variant as usize];
+        let on = value != 0.0;
+        match name {
+            "scissor" => l.scissor = on,
+            "depth_bounds" => l.depth_bounds = on,
+            "cull" => l.cull = on,
+            _ => anyhow::bail!("--knob {name}: lesson_08 has scissor, depth_bounds and cull"),
+        }
+        self.frames[variant as usize] = 0;
+        self.counters[variant as usize].clear();
+        Ok(())
+    }
 }
 
 impl DepthBounds {
@@ -255,7 +323,7 @@ impl DepthBounds {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        let lim = variant.limits();
+        let lim = self.limits[variant as usize];
         let lights = bounded_lights(&self.bounds, lim);
         let mut c = BTreeMap::new();
         let costs = self

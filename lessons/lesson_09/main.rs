@@ -11,7 +11,8 @@
 //! every frame, from the camera as it is then (`[camera_path]`).
 //!
 //! The math is in [`cascades`], the GPU side in [`csm`] and
-//! `shaders/lesson_09/csm.wgsl`.
+//! `shaders/lesson_09/csm.wgsl`; the cascade count and the split's λ are
+//! knobs ([`knobs`]).
 //!
 //! Run: `cargo run --release --bin lesson_09 -- --headless`
 //! Book: chapter "09 cascaded shadow maps" (`book/src/lesson_09.md`).
@@ -26,6 +27,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::app;
+use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
@@ -33,7 +35,7 @@ use workbook::lesson_01::shadow_map::{self, ShadowPassState};
 use workbook::lesson_01::tally::{Tally, TallyShader};
 use workbook::lesson_09::cascades::{self, Cascade, Fit, FitOptions, SplitScheme};
 use workbook::lesson_09::csm::{self, CascadeLights, CascadeMaps};
-use workbook::lesson_09::{extras, setup};
+use workbook::lesson_09::{extras, knobs, setup};
 
 // ANCHOR: variants
 /// Every variant spends about 2048² texels: K maps of 2048 / √K.
@@ -139,6 +141,8 @@ struct Csm {
     /// The scene's objects and shadow casters (for `draws`).
     objects: u64,
     casters: u64,
+    /// Per variant, its setup with the knobs' values ([`Csm::setup`]).
+    setups: Vec<setup::Setup>,
 }
 
 impl Lesson for Csm {
@@ -201,6 +205,10 @@ impl Lesson for Csm {
             casters: (0..scene.meshes.len())
                 .filter(|&i| scene.casts_shadow(i))
                 .count() as u64,
+            setups: Variant::value_variants()
+                .iter()
+                .map(|v| v.setup())
+                .collect(),
         })
     }
 
@@ -212,7 +220,7 @@ impl Lesson for Csm {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        let setup = variant.setup();
+        let setup = self.setup(variant);
         let m = self.maps_for(frame.gpu, setup.resolution, setup.count);
         // Fitted again every frame: the camera may have moved.
         for light in 0..scene.scene.lights.len() {
@@ -258,7 +266,7 @@ impl Lesson for Csm {
         variant: Variant,
         view_depth: &[f32],
     ) -> Option<(Vec<String>, Vec<u8>)> {
-        let setup = variant.setup();
+        let setup = self.setup(variant);
         let fit = setup.fit(&scene.scene, scene.width, scene.height, 0).ok()?;
         let names = (0..fit.len()).map(|i| format!("cascade {i}")).collect();
         let classes = view_depth
@@ -269,7 +277,7 @@ impl Lesson for Csm {
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let setup = variant.setup();
+        let setup = self.setup(variant);
         let draws = self.draws(variant);
         let mut c = BTreeMap::from([
             ("cascades".into(), setup.count as u64),
@@ -306,6 +314,27 @@ impl Lesson for Csm {
         c
     }
 
+    fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        knobs::setup_knobs(variant.setup(), self.setup(variant))
+    }
+
+    /// The next frame fits the new cascades (every frame does), into an
+    /// array of the new shape (made once per shape); the shadow pass's
+    /// texels are counted again.
+    fn set_knob(
+        &mut self,
+        _gpu: &Gpu,
+        _scene: &SceneGpu,
+        variant: Variant,
+        name: &str,
+        value: f64,
+    ) -> Result<()> {
+        knobs::set_setup_knob(&mut self.setups[variant as usize], name, value)?;
+        self.fitted[variant as usize] = None;
+        self.texels_written[variant as usize] = None;
+        Ok(())
+    }
+
     fn write_extras(
         &self,
         gpu: &Gpu,
@@ -313,7 +342,7 @@ impl Lesson for Csm {
         variant: Variant,
         out: &Path,
     ) -> Result<()> {
-        let setup = variant.setup();
+        let setup = self.setup(variant);
         let Some(m) = self.find_maps(setup.resolution, setup.count) else {
             return Ok(());
         };
@@ -329,6 +358,12 @@ impl Lesson for Csm {
 }
 
 impl Csm {
+    /// `variant`'s cascades as it runs now: [`Variant::setup`] with the
+    /// knobs' values.
+    fn setup(&self, variant: Variant) -> setup::Setup {
+        self.setups[variant as usize]
+    }
+
     fn find_maps(&self, size: u32, count: usize) -> Option<usize> {
         self.maps
             .iter()
@@ -354,7 +389,7 @@ impl Csm {
     /// Draw calls of a frame: the base pass, then per light K shadow passes
     /// (every caster) and the lit pass (every object).
     fn draws(&self, variant: Variant) -> u64 {
-        let k = variant.setup().count as u64;
+        let k = self.setup(variant).count as u64;
         let lights = self.lights.len() as u64;
         self.objects + lights * (k * self.casters + self.objects)
     }

@@ -1,11 +1,15 @@
 //! Lesson 09, cascaded shadow maps: the view frustum split by depth, one
-//! fitted, snapped map per slice, all in one depth texture array.
+//! fitted, snapped map per slice, all in one depth texture array;
+//! [`knobs`]: the cascade count and the split's λ, as the window's widgets
+//! and `--knob`.
 
 pub mod cascades;
 
 pub mod csm;
 
 pub mod extras;
+
+pub mod knobs;
 
 pub mod setup;
 
