@@ -148,9 +148,12 @@ fn module_name(path: &Path, src: &Path, lessons: bool) -> Option<String> {
         .collect();
     match (lessons, parts.as_slice()) {
         (false, [m]) if m != "lib" => Some(m.clone()),
-        // A folder of `common/src/` is a module whose `mod.rs` is its root.
-        (false, [g, m]) if g != "bin" && m == "mod" => Some(g.clone()),
-        (false, [g, m]) if g != "bin" => Some(format!("{g}::{m}")),
+        // A folder of `common/src/` (at any depth) is a module whose
+        // `mod.rs` is its root.
+        (false, [g, .., m]) if g != "bin" && m == "mod" => {
+            Some(parts[..parts.len() - 1].join("::"))
+        }
+        (false, [g, ..]) if g != "bin" => Some(parts.join("::")),
         (true, [l, m]) if l.starts_with("lesson_") && m != "mod" && m != "main" => {
             Some(format!("{l}::{m}"))
         }
@@ -344,12 +347,19 @@ fn common_lib_lists_every_module() {
     let mut declared = BTreeSet::new();
     let lib = read(&src.join("lib.rs"));
     let mut roots = vec![(String::new(), src.join("lib.rs"), lib)];
-    for g in declared_modules(&roots[0].2) {
-        let root = src.join(&g).join("mod.rs");
-        if root.exists() {
-            let text = read(&root);
-            roots.push((format!("{g}::"), root, text));
+    // Folders within folders: each declared module with a `mod.rs`.
+    let mut i = 0;
+    while i < roots.len() {
+        let (prefix, _, text) = roots[i].clone();
+        let dir = src.join(prefix.trim_end_matches("::").replace("::", "/"));
+        for g in declared_modules(&text) {
+            let root = dir.join(&g).join("mod.rs");
+            if root.exists() {
+                let text = read(&root);
+                roots.push((format!("{prefix}{g}::"), root, text));
+            }
         }
+        i += 1;
     }
     for (prefix, path, text) in &roots {
         for m in declared_modules(text) {

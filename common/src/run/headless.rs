@@ -17,7 +17,7 @@ use crate::measure::timing::{median_times, samples, spread_times, Timer};
 use crate::reference::metrics::{self, pixel_states, PixelState, ReferenceStates};
 use crate::reference::try_render_reference;
 use crate::run::cli::Args;
-use crate::run::knobs::{apply_cli_knobs, knob_values};
+use crate::run::lesson::{apply_cli_knobs, knob_values};
 use crate::run::lesson::{variant_name, Lesson};
 use crate::scene::camera_path::{check_path, path_cameras, CameraPath, Shimmer};
 use crate::scene::Scene;

@@ -1,16 +1,8 @@
 //! A technique's knobs: the parameters its chapter discusses (a bias in
 //! texels, a kernel's size, a cascade count), on top of its named variants.
 //! The window shows them as widgets; `--knob NAME=VALUE` sets them headless.
-//! Both go through [`apply_knob`], so a test that sets a knob headless
-//! exercises the code a widget calls.
-
-use std::collections::BTreeMap;
-
-use anyhow::{bail, Result};
-
-use crate::gpu::render::SceneGpu;
-use crate::gpu::Gpu;
-use crate::run::lesson::{variant_name, Lesson};
+//! Both go through [`crate::run::lesson::apply_knob`], so a test that sets
+//! a knob headless exercises the code a widget calls.
 
 /// What values a knob takes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -66,42 +58,6 @@ impl Knob {
     }
 }
 
-/// Sets knob `name` of `variant` to `value`, after checking that the
-/// variant has that knob and that the value is in its range. The window's
-/// widgets and `--knob` both call this.
-pub fn apply_knob<L: Lesson>(
-    lesson: &mut L,
-    gpu: &Gpu,
-    scene: &SceneGpu,
-    variant: L::Variant,
-    name: &str,
-    value: f64,
-) -> Result<()> {
-    let knobs = lesson.knobs(variant);
-    let Some(knob) = knobs.iter().find(|k| k.name == name) else {
-        let names: Vec<&str> = knobs.iter().map(|k| k.name).collect();
-        bail!(
-            "--knob {name}: {} has no such knob ({})",
-            variant_name(variant),
-            if names.is_empty() {
-                "it has none".to_string()
-            } else {
-                format!("its knobs: {}", names.join(", "))
-            }
-        );
-    };
-    if let Some(why) = knob.reject(value) {
-        bail!("--knob {name}={value}: {why}");
-    }
-    lesson.set_knob(gpu, scene, variant, name, value)
-}
-
-/// The current values of `variant`'s knobs, by name (the report's `knobs`).
-pub fn knob_values<L: Lesson>(lesson: &L, variant: L::Variant) -> BTreeMap<String, f64> {
-    let knobs = lesson.knobs(variant).into_iter();
-    knobs.map(|k| (k.name.to_string(), k.value)).collect()
-}
-
 /// One `--knob NAME=VALUE`, parsed.
 pub fn parse_knob(s: &str) -> Result<(String, f64), String> {
     let (name, value) = s
@@ -121,44 +77,6 @@ pub fn parse_knob(s: &str) -> Result<(String, f64), String> {
             .map_err(|_| format!("{name}: expected a number, on or off, got {v:?}"))?,
     };
     Ok((name.to_string(), value))
-}
-
-/// Applies every `--knob` to each of `variants` that has it; a knob that
-/// none of them has is an error naming the flag.
-pub fn apply_cli_knobs<L: Lesson>(
-    lesson: &mut L,
-    gpu: &Gpu,
-    scene: &SceneGpu,
-    variants: &[L::Variant],
-    knobs: &[(String, f64)],
-) -> Result<()> {
-    for (name, value) in knobs {
-        let mut used = false;
-        for &v in variants {
-            if lesson.knobs(v).iter().any(|k| k.name == name) {
-                apply_knob(lesson, gpu, scene, v, name, *value)?;
-                used = true;
-            }
-        }
-        if !used {
-            let mut all: Vec<&str> = variants
-                .iter()
-                .flat_map(|&v| lesson.knobs(v))
-                .map(|k| k.name)
-                .collect();
-            all.sort();
-            all.dedup();
-            bail!(
-                "--knob {name}: none of the variants run has it (their knobs: {})",
-                if all.is_empty() {
-                    "none".to_string()
-                } else {
-                    all.join(", ")
-                }
-            );
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]

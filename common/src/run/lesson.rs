@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::ValueEnum;
 
 use crate::gpu::render::SceneGpu;
@@ -91,7 +91,7 @@ pub trait Lesson: Sized {
     }
 
     /// Sets a knob of `variant` that [`Lesson::knobs`] lists, to a value in
-    /// its range (call [`crate::run::knobs::apply_knob`], which checks both).
+    /// its range (call [`apply_knob`], which checks both).
     /// The next [`Lesson::render`] of `variant` uses it.
     fn set_knob(
         &mut self,
@@ -196,4 +196,78 @@ pub fn select_variants<L: Lesson>(asked: &[String]) -> Result<Vec<L::Variant>> {
             })
         })
         .collect()
+}
+
+/// Sets knob `name` of `variant` to `value`, after checking that the
+/// variant has that knob and that the value is in its range. The window's
+/// widgets and `--knob` both call this.
+pub fn apply_knob<L: Lesson>(
+    lesson: &mut L,
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    variant: L::Variant,
+    name: &str,
+    value: f64,
+) -> Result<()> {
+    let knobs = lesson.knobs(variant);
+    let Some(knob) = knobs.iter().find(|k| k.name == name) else {
+        let names: Vec<&str> = knobs.iter().map(|k| k.name).collect();
+        bail!(
+            "--knob {name}: {} has no such knob ({})",
+            variant_name(variant),
+            if names.is_empty() {
+                "it has none".to_string()
+            } else {
+                format!("its knobs: {}", names.join(", "))
+            }
+        );
+    };
+    if let Some(why) = knob.reject(value) {
+        bail!("--knob {name}={value}: {why}");
+    }
+    lesson.set_knob(gpu, scene, variant, name, value)
+}
+
+/// The current values of `variant`'s knobs, by name (the report's `knobs`).
+pub fn knob_values<L: Lesson>(lesson: &L, variant: L::Variant) -> BTreeMap<String, f64> {
+    let knobs = lesson.knobs(variant).into_iter();
+    knobs.map(|k| (k.name.to_string(), k.value)).collect()
+}
+
+/// Applies every `--knob` to each of `variants` that has it; a knob that
+/// none of them has is an error naming the flag.
+pub fn apply_cli_knobs<L: Lesson>(
+    lesson: &mut L,
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    variants: &[L::Variant],
+    knobs: &[(String, f64)],
+) -> Result<()> {
+    for (name, value) in knobs {
+        let mut used = false;
+        for &v in variants {
+            if lesson.knobs(v).iter().any(|k| k.name == name) {
+                apply_knob(lesson, gpu, scene, v, name, *value)?;
+                used = true;
+            }
+        }
+        if !used {
+            let mut all: Vec<&str> = variants
+                .iter()
+                .flat_map(|&v| lesson.knobs(v))
+                .map(|k| k.name)
+                .collect();
+            all.sort();
+            all.dedup();
+            bail!(
+                "--knob {name}: none of the variants run has it (their knobs: {})",
+                if all.is_empty() {
+                    "none".to_string()
+                } else {
+                    all.join(", ")
+                }
+            );
+        }
+    }
+    Ok(())
 }

@@ -13,7 +13,7 @@ use super::overlay::{self, Panel, ShownError};
 use super::present::Overlay;
 use super::views::{self, View};
 use super::{App, DEFAULT_CAPTURE_AFTER};
-use crate::run::knobs::apply_knob;
+use crate::run::lesson::apply_knob;
 use crate::run::lesson::{variant_doc, Lesson};
 
 /// The longest `--capture` waits for the live reference's full figure.
@@ -284,7 +284,7 @@ fn diff_title(a: &super::live::Answer) -> String {
         Level::Coarse => "coarse estimate",
         Level::Full => "every pixel",
     };
-    format!("diff against the exact reference, light 0 ({level}): red false shadow, green false lit, gray agree, blue not a receiver")
+    format!("diff against the exact reference, light 0 ({level}): red false shadow, green false lit, gray agree, near black not a receiver")
 }
 
 /// This process's resident memory (Linux), for the log.

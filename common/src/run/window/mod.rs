@@ -33,7 +33,7 @@ use crate::gpu::targets::FrameTargets;
 use crate::gpu::Gpu;
 use crate::measure::timing::Timer;
 use crate::run::cli::Args;
-use crate::run::knobs::apply_cli_knobs;
+use crate::run::lesson::apply_cli_knobs;
 use crate::run::lesson::Lesson;
 use crate::scene::Scene;
 
@@ -284,7 +284,7 @@ impl<L: Lesson> App<L> {
         }
         r.lesson = L::new(&r.gpu, &r.scene)?;
         for (v, name, value) in knobs {
-            crate::run::knobs::apply_knob(&mut r.lesson, &r.gpu, &r.scene, v, name, value)?;
+            crate::run::lesson::apply_knob(&mut r.lesson, &r.gpu, &r.scene, v, name, value)?;
         }
         r.present.resize(&r.gpu, &r.targets);
         self.state.view_changed();

@@ -11,7 +11,7 @@ pub enum View {
     /// The variant's visibility of light 0: white lit, black shadowed.
     Visibility,
     /// Against the exact reference (light 0): red false shadow, green false
-    /// lit, gray where both agree (lighter lit), blue not a receiver.
+    /// lit, gray where both agree (lighter lit), near black not a receiver.
     Diff,
     /// The lesson's own buffer: the shadow map, the cube map's cross, the
     /// stencil count or the cascades.
