@@ -153,7 +153,11 @@ fn module_name(path: &Path, src: &Path, lessons: bool) -> Option<String> {
         (false, [g, .., m]) if g != "bin" && m == "mod" => {
             Some(parts[..parts.len() - 1].join("::"))
         }
-        (false, [g, ..]) if g != "bin" => Some(parts.join("::")),
+        // A file in a folder that has a `mod.rs` (not a `#[path]` folder
+        // of unit tests).
+        (false, [g, _, ..]) if g != "bin" && path.with_file_name("mod.rs").exists() => {
+            Some(parts.join("::"))
+        }
         (true, [l, m]) if l.starts_with("lesson_") && m != "mod" && m != "main" => {
             Some(format!("{l}::{m}"))
         }

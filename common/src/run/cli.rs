@@ -64,7 +64,7 @@ pub struct Args {
     pub capture_after: Option<u32>,
     /// Window: the view it opens with.
     #[arg(long, value_enum, value_name = "VIEW")]
-    pub view: Option<crate::run::window::views::View>,
+    pub view: Option<crate::run::view::View>,
     /// Window: turn the camera around its target at this many degrees per
     /// second, as a steady drag would (-3600 to 3600).
     #[arg(long, value_name = "DEG_PER_S", allow_negative_numbers = true, value_parser = parse_orbit)]

@@ -9,9 +9,9 @@ use glam::{DQuat, DVec3};
 use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{Key, NamedKey};
 
-use super::views::View;
 use super::App;
 use crate::run::lesson::Lesson;
+use crate::run::view::View;
 use crate::scene::LightKind;
 
 impl<L: Lesson> App<L> {

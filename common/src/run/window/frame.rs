@@ -11,10 +11,11 @@ use winit::event_loop::ActiveEventLoop;
 use super::live::{Job, Level};
 use super::overlay::{self, Panel, ShownError};
 use super::present::Overlay;
-use super::views::{self, View};
+use super::views;
 use super::{App, DEFAULT_CAPTURE_AFTER};
 use crate::run::lesson::apply_knob;
 use crate::run::lesson::{variant_doc, Lesson};
+use crate::run::view::View;
 
 /// The longest `--capture` waits for the live reference's full figure.
 const CAPTURE_WAIT: Duration = Duration::from_secs(60);

@@ -9,7 +9,7 @@
 //! - [`live`]: the exact reference on low-priority worker threads.
 //! - [`overlay`]: the egui overlay (and [`overlay::KEYS`], every key).
 //! - [`present`]: the window's picture (view + overlay) and its capture.
-//! - [`views`]: frame, visibility, diff, buffer.
+//! - [`views`]: the diff and buffer views' pictures.
 
 pub mod controls;
 pub mod frame;
@@ -37,10 +37,11 @@ use crate::run::lesson::apply_cli_knobs;
 use crate::run::lesson::Lesson;
 use crate::scene::Scene;
 
+use crate::run::view::View;
 use live::{Answer, LiveReference, Stamp};
 use overlay::Cost;
 use present::Present;
-use views::{Picture, View};
+use views::Picture;
 
 /// Frames drawn before `--capture` when `--capture-after` is not given.
 pub const DEFAULT_CAPTURE_AFTER: u32 = 30;

@@ -8,8 +8,8 @@ use egui::{Color32, RichText};
 
 use crate::reference::metrics::ErrorStats;
 use crate::run::knobs::{Knob, KnobRange};
+use crate::run::view::View;
 use crate::run::window::live::{Level, COARSE};
-use crate::run::window::views::View;
 
 /// Every key, drag and view of the window, as the overlay's help lists them.
 pub const KEYS: &[(&str, &str)] = &[

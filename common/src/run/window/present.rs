@@ -9,7 +9,7 @@ use crate::gpu::fullscreen::{draw_fullscreen, Fullscreen};
 use crate::gpu::readback::read_texture;
 use crate::gpu::targets::{render_texture, FrameTargets};
 use crate::gpu::Gpu;
-use crate::run::window::views::View;
+use crate::run::view::View;
 
 const BLIT_WGSL: &str = r#"
 @group(0) @binding(0) var src: texture_2d<f32>;
