@@ -9,13 +9,13 @@ use support::window::run_window;
 
 /// Seconds of camera motion, and of the run, in the camera test.
 const MOVING_S: f64 = 4.0;
-const RUN_S: f64 = 14.0;
+const RUN_S: f64 = 9.0;
 /// The longest a figure may take, from its view to the overlay, while the
-/// camera moves (measured on lavapipe at 1280×720 on 2 cores: 1.3 s at most).
+/// camera moves (measured on lavapipe at 1280×720 on 2 cores: under 1 s).
 const MAX_MOVING_LATENCY_S: f64 = 3.0;
 /// The longest from the camera's stop to the full figure of its last view
 /// (measured: about 1 s).
-const MAX_SETTLE_S: f64 = 8.0;
+const MAX_SETTLE_S: f64 = 4.5;
 
 /// Frames per second over `[from, to)` seconds of a log.
 fn fps(log: &[Value], from: f64, to: f64) -> f64 {
@@ -49,14 +49,27 @@ fn the_error_figure_follows_the_camera() {
         "--window-seconds",
         &run,
     ];
-    let Some(live) = run_window(bin, "window_follows_live", &args, false) else {
-        return;
-    };
     let mut without = args.to_vec();
     without.push("--no-live-reference");
-    let Some(off) = run_window(bin, "window_follows_off", &without, false) else {
-        return;
+    // Alternately with and without, so that a drift of the machine's speed
+    // falls on both.
+    let mut runs = Vec::new();
+    for (i, live) in [true, false, false, true, true, false]
+        .into_iter()
+        .enumerate()
+    {
+        let a = if live { &args[..] } else { &without[..] };
+        let Some(run) = run_window(bin, &format!("window_follows_{i}"), a, false) else {
+            return;
+        };
+        runs.push((live, run));
+    }
+    let mean_fps = |live: bool| -> f64 {
+        let f = runs.iter().filter(|r| r.0 == live);
+        f.map(|r| fps(&r.1.log, 1.0, MOVING_S)).sum::<f64>() / 3.0
     };
+    let (a, b) = (mean_fps(true), mean_fps(false));
+    let live = &runs[0].1;
 
     // When each view was first drawn, and when each figure first showed.
     let mut first_seen = std::collections::BTreeMap::new();
@@ -103,8 +116,9 @@ fn the_error_figure_follows_the_camera() {
         "the full figure came {settled:.2} s after the stop"
     );
 
-    let (a, b) = (fps(&live.log, 1.0, MOVING_S), fps(&off.log, 1.0, MOVING_S));
-    eprintln!("fps while moving: {a:.2} with the live reference, {b:.2} without");
+    eprintln!(
+        "fps while moving (mean of 3 runs each): {a:.2} with the live reference, {b:.2} without"
+    );
     assert!(
         a >= 0.8 * b,
         "the live reference slowed the window from {b:.2} to {a:.2} fps"

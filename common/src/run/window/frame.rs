@@ -20,6 +20,12 @@ use crate::run::view::View;
 /// The longest `--capture` waits for the live reference's full figure.
 const CAPTURE_WAIT: Duration = Duration::from_secs(60);
 
+/// The least time between two jobs of the live reference: while the
+/// camera moves, each job reads the frame back and keeps the worker busy,
+/// and more than a few figures a second cost the window frames for
+/// nothing a reader sees.
+const JOB_EVERY: Duration = Duration::from_millis(300);
+
 /// How often the buffer view reads the lesson's buffer back.
 const BUFFER_EVERY: Duration = Duration::from_millis(500);
 
@@ -69,7 +75,9 @@ impl<L: Lesson> App<L> {
                 s.diff = Some((diff_title(&a), (a.stamp.scene_gen, a.stamp.image_gen)));
                 s.answer = Some(a);
             }
-            if !live.busy() && s.sent != Some(s.stamp) && s.variant_frames >= 2 {
+            let due = s.sent_at.is_none_or(|t| now - t >= JOB_EVERY);
+            if !live.busy() && s.sent != Some(s.stamp) && s.variant_frames >= 2 && due {
+                s.sent_at = Some(now);
                 let frame = r.targets.read_measured(&r.gpu)?;
                 live.send(Job {
                     stamp: s.stamp,

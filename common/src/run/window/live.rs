@@ -85,7 +85,10 @@ pub struct LiveReference {
 impl LiveReference {
     /// Starts the worker (a thread that owns a low-priority thread pool).
     pub fn start() -> Result<Self> {
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        // One core is left to the window (and, on a software rasteriser,
+        // to its GPU).
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let threads = cores.saturating_sub(1).max(1);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .thread_name(|i| format!("reference-{i}"))

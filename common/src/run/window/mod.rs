@@ -76,6 +76,8 @@ struct State {
     /// reference reads the second on (some lessons set a variant up on its
     /// first frame, as the headless runner knows).
     variant_frames: u32,
+    /// When the last job went to the live reference.
+    sent_at: Option<Instant>,
     /// The last stamp sent to the live reference.
     sent: Option<Stamp>,
     answer: Option<Answer>,
@@ -140,6 +142,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
             },
             view_since: now,
             variant_frames: 0,
+            sent_at: None,
             sent: None,
             answer: None,
             answer_latency: None,
