@@ -211,7 +211,8 @@ impl<L: Lesson> App<L> {
             self.args.backend.as_deref(),
             self.args.adapter.as_deref(),
             self.args.depth_format.as_deref(),
-            None,
+            // GL (EGL) draws to a window only through the display it was opened on.
+            Some(Box::new(el.owned_display_handle())),
         )?;
         let surface = gpu
             .instance
