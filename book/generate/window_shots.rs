@@ -1,8 +1,9 @@
 //! One screenshot of each lesson's window for its chapter: the window's
 //! own picture (`--capture`, overlay included), taken on a private Xvfb
 //! (`common::run::display`) once the live reference's full figure for the
-//! view has come. Each chapter includes `generated/window/lesson_NN.md`,
-//! the figure with a caption written from the window's own log.
+//! view has come. Each chapter shows `figures/window/lesson_NN.png` with
+//! `generated/window/lesson_NN.md` as its caption, written from the
+//! window's own log.
 
 use std::path::Path;
 
@@ -33,7 +34,7 @@ const SHOTS: [Shot; 9] = [
     Shot { lesson: "lesson_05", variant: "zpass_quads", view: "diff", shows: "the difference against the exact reference" },
     Shot { lesson: "lesson_06", variant: "zfail_quads", view: "diff", shows: "the difference against the exact reference" },
     Shot { lesson: "lesson_07", variant: "reversed_z", view: "frame", shows: "the frame" },
-    Shot { lesson: "lesson_08", variant: "bounds_scissor", view: "buffer", shows: "the lesson's buffer: the stencil count per pixel" },
+    Shot { lesson: "lesson_08", variant: "bounds_scissor", view: "frame", shows: "the frame, with the knobs that switch the scissor, the depth bounds and the culling" },
     Shot { lesson: "lesson_09", variant: "k4", view: "buffer", shows: "the lesson's buffer: the cascade each pixel samples" },
 ];
 
@@ -85,7 +86,7 @@ pub fn write_all(
         let text = std::fs::read_to_string(&log).context("the window's log")?;
         let last: serde_json::Value =
             serde_json::from_str(text.lines().last().context("the window drew no frame")?)?;
-        let figure = caption(shot, &last, adapter, backend)?;
+        let figure = caption(shot, &last)?;
         let md = texts.join(format!("{}.md", shot.lesson));
         std::fs::write(&md, figure).with_context(|| format!("cannot write {}", md.display()))?;
     }
@@ -93,8 +94,9 @@ pub fn write_all(
     Ok(())
 }
 
-/// The chapter's figure: the picture and a caption from the window's log.
-fn caption(shot: &Shot, last: &serde_json::Value, adapter: &str, backend: &str) -> Result<String> {
+/// The chapter's caption, from the window's log.
+fn caption(shot: &Shot, last: &serde_json::Value) -> Result<String> {
+    let adapter = last["adapter"].as_str().context("the log's adapter")?;
     let e = &last["error"];
     let pct = |k: &str| e[k].as_f64().context("the log's error figure");
     if last["error_current"] != true || e["level"] != "full" {
@@ -105,7 +107,7 @@ fn caption(shot: &Shot, last: &serde_json::Value, adapter: &str, backend: &str) 
     }
     let (w, h) = SIZE;
     Ok(format!(
-        "<figure>\n<img src=\"../figures/window/{lesson}.png\" alt=\"The {lesson} window: variant {variant}, {view} view, with the overlay\" width=\"{w}\">\n<figcaption>The window of <code>cargo run --release --bin {lesson} -- --variant {variant} --view {view}</code> ({w}×{h}, adapter {adapter} on {backend}, captured with <code>--capture</code> after {frames} frames): the overlay at the top left, and {shows}. The overlay's figure, against the exact reference: misclassified {m:.3} %, false shadow {fs:.3} %, false lit {fl:.3} %, the same as the headless report's at this size.</figcaption>\n</figure>\n",
+        "The window of <code>cargo run --release --bin {lesson} -- --variant {variant} --view {view}</code> ({w}×{h}, on {adapter}, captured with <code>--capture</code> after {frames} frames, once the full figure had come): the overlay at the top left, and {shows}. The overlay's figure, against the exact reference: misclassified {m:.3} %, false shadow {fs:.3} %, false lit {fl:.3} % (the headless report's figures for the same variant and size; <code>tests/window.rs</code> checks that the two agree).\n",
         lesson = shot.lesson,
         variant = shot.variant,
         view = shot.view,

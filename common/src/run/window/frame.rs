@@ -140,6 +140,9 @@ impl<L: Lesson> App<L> {
         };
         let doc = variant_doc(variant);
         let adapter = format!("{} ({})", r.gpu.adapter_name(), r.gpu.backend_name());
+        if self.adapter_line.is_empty() {
+            self.adapter_line = adapter.clone();
+        }
         let mut actions = overlay::Actions::default();
         let out = ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
@@ -280,6 +283,7 @@ impl<L: Lesson> App<L> {
             "fps": s.cost.fps,
             "error": answer,
             "error_current": shown.as_ref().is_some_and(|e| !e.stale),
+            "adapter": self.adapter_line,
             "rss_kb": rss_kb(),
             "overlay_px": overlay,
         });

@@ -106,6 +106,8 @@ struct App<L: Lesson> {
     frames: u64,
     started: Instant,
     last_frame: Option<Instant>,
+    /// The adapter and backend, for the log.
+    adapter_line: String,
     /// When `--capture` began to wait for the full figure.
     capture_wait: Option<Instant>,
     log: Option<std::io::BufWriter<std::fs::File>>,
@@ -163,6 +165,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
         started: now,
         last_frame: None,
         capture_wait: None,
+        adapter_line: String::new(),
         log,
     };
     event_loop

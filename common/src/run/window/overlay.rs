@@ -79,7 +79,7 @@ pub struct Actions {
 /// Builds the overlay for this frame.
 pub fn show(ctx: &egui::Context, p: &Panel) -> Actions {
     let mut act = Actions::default();
-    let frame = egui::Frame::window(&ctx.global_style()).fill(Color32::from_black_alpha(200));
+    let frame = egui::Frame::window(&ctx.global_style()).fill(Color32::from_black_alpha(235));
     let shown = egui::Window::new(p.lesson)
         .frame(frame)
         .anchor(egui::Align2::LEFT_TOP, [8.0, 8.0])
