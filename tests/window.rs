@@ -160,3 +160,35 @@ fn window_flags_without_a_window_are_refused() {
     );
     assert!(!Path::new(&bad).exists());
 }
+
+/// The window is documented in one place: the introduction's key table
+/// and the README's are the overlay's own list (`overlay::KEYS`), row for
+/// row, so that a key added to the window and not to the book fails here.
+#[test]
+fn the_book_and_the_readme_list_the_windows_keys() {
+    use common::run::window::overlay::KEYS;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for file in ["book/src/introduction.md", "README.md"] {
+        let text = std::fs::read_to_string(root.join(file)).expect("read");
+        let start = text
+            .find("| key | what it does |")
+            .unwrap_or_else(|| panic!("{file}: no table of the window's keys"));
+        let rows: Vec<(String, String)> = text[start..]
+            .lines()
+            .skip(2)
+            .take_while(|l| l.starts_with('|'))
+            .map(|l| {
+                let cells: Vec<&str> = l.trim_matches('|').split('|').map(str::trim).collect();
+                (cells[0].to_string(), cells[1].to_string())
+            })
+            .collect();
+        let keys: Vec<(String, String)> = KEYS
+            .iter()
+            .map(|(k, w)| (k.to_string(), w.to_string()))
+            .collect();
+        assert_eq!(
+            rows, keys,
+            "{file}: the key table is not the overlay's KEYS"
+        );
+    }
+}
