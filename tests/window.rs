@@ -192,3 +192,48 @@ fn the_book_and_the_readme_list_the_windows_keys() {
         );
     }
 }
+
+/// A knob set for the window (`--knob`, through the same `apply_knob` as
+/// its widgets) is measured live like a variant: the window's figure for
+/// `bias_1tx` at 4 texels is the headless report's at 4 texels, and not
+/// the one at 1 texel.
+#[test]
+fn a_knob_is_measured_live_like_a_variant() {
+    let bin = env!("CARGO_BIN_EXE_lesson_02");
+    let (w, h) = (W.to_string(), H.to_string());
+    let base = [
+        "--width",
+        w.as_str(),
+        "--height",
+        h.as_str(),
+        "--variant",
+        "bias_0.25tx",
+    ];
+    let mut args = base.to_vec();
+    args.extend(["--knob", "bias_texels=4", "--capture-after", "3"]);
+    let Some(win) = run_window(bin, "window_knob", &args, true) else {
+        return;
+    };
+    let last = win.log.last().expect("frames");
+    assert_eq!(last["error"]["level"], "full", "{last}");
+    let shown = last["error"]["false_shadow_pct"].as_f64().expect("figure");
+    let headless = |name: &str, extra: &[&'static str]| {
+        let mut a = base.to_vec();
+        a.extend(["--frames", "1"]);
+        a.extend(extra);
+        // `None` only where no GPU is found and none is required.
+        let run = support::run_lesson(bin, name, &a)?;
+        let pct = run.report["variants"][0]["error"]["false_shadow_pct"].as_f64();
+        Some(pct.expect("the report's false shadow"))
+    };
+    let (Some(at_4), Some(named)) = (
+        headless("window_knob_4", &["--knob", "bias_texels=4"]),
+        headless("window_knob_named", &[]),
+    ) else {
+        return;
+    };
+    assert!(
+        (shown - at_4).abs() < 0.01 && (shown - named).abs() > 1.0,
+        "the window shows false shadow {shown:.3} %; headless at 4 texels {at_4:.3} %, as named (0.25 texels) {named:.3} %"
+    );
+}
