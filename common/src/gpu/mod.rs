@@ -281,7 +281,11 @@ impl Gpu {
             let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
             desc.backends = tier;
             desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
-            desc.display = display.take();
+            // The window's display handle is for GL (EGL presents only on
+            // the display it was opened on); Vulkan and the others need none.
+            if tier.contains(wgpu::Backends::GL) {
+                desc.display = display.take();
+            }
             let instance = wgpu::Instance::new(desc);
             let adapter = if choice == AdapterChoice::Any {
                 let options = wgpu::RequestAdapterOptions {
