@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::measure::timing::{TimingSource, CPU_TOTAL, FRAME, TOTAL};
-use crate::reference::metrics::{ClassError, ErrorStats, COVERAGE_WARN_PCT};
+use crate::reference::metrics::{ClassError, ErrorStats, SoftError, COVERAGE_WARN_PCT};
 
 #[derive(Serialize, Deserialize, Clone, Debug)]
 pub struct AdapterReport {
@@ -195,7 +195,29 @@ pub fn combine(per_light: &[ErrorStats]) -> ErrorStats {
                 .sum::<f64>()
                 / interior as f64
         },
+        soft: combine_soft(per_light),
     }
+}
+
+/// The soft figures of the lights that have them, pooled like [`combine`]'s
+/// (penumbra by penumbra pixels, umbra by umbra pixels).
+fn combine_soft(per_light: &[ErrorStats]) -> Option<SoftError> {
+    let soft: Vec<&SoftError> = per_light.iter().filter_map(|s| s.soft.as_ref()).collect();
+    if soft.is_empty() {
+        return None;
+    }
+    let penumbra: u64 = soft.iter().map(|s| s.penumbra_pixels).sum();
+    let umbra: u64 = soft.iter().map(|s| s.umbra_pixels).sum();
+    let mean = |f: fn(&SoftError) -> f64, by: fn(&SoftError) -> u64, n: u64| {
+        soft.iter().map(|s| f(s) * by(s) as f64).sum::<f64>() / n.max(1) as f64
+    };
+    Some(SoftError {
+        penumbra_pixels: penumbra,
+        penumbra_mean_abs: mean(|s| s.penumbra_mean_abs, |s| s.penumbra_pixels, penumbra),
+        umbra_pixels: umbra,
+        umbra_misclassified_pct: mean(|s| s.umbra_misclassified_pct, |s| s.umbra_pixels, umbra),
+        light_bleeding_pct: mean(|s| s.light_bleeding_pct, |s| s.umbra_pixels, umbra),
+    })
 }
 
 impl Report {

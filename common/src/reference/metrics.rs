@@ -53,7 +53,32 @@ pub struct ErrorStats {
     /// Misclassified % of the interior receivers: the error that is not
     /// a matter of edge pixels (the pass criteria "away from silhouettes").
     pub interior_misclassified_pct: f64,
+    /// A light with a size (lesson 10): the soft shadow's own figures.
+    #[serde(flatten, default, skip_serializing_if = "Option::is_none")]
+    pub soft: Option<SoftError>,
 }
+
+// ANCHOR: soft_error
+/// The error of a soft shadow (an area light), beside [`ErrorStats`]'
+/// figures over all receivers.
+#[derive(Serialize, serde::Deserialize, Clone, Debug, PartialEq)]
+pub struct SoftError {
+    /// Receivers in the reference's penumbra: 0 < V < 1.
+    pub penumbra_pixels: u64,
+    /// Mean |GPU − reference| visibility over those.
+    pub penumbra_mean_abs: f64,
+    /// Receivers in the reference's umbra: V = 0, the emitter wholly hidden.
+    pub umbra_pixels: u64,
+    /// Of the umbra, the share (%) the technique calls lit (V > 0.5).
+    pub umbra_misclassified_pct: f64,
+    /// Of the umbra, the share (%) the technique lights by more than
+    /// [`BLEEDING_THRESHOLD`]: light bleeding (variance maps).
+    pub light_bleeding_pct: f64,
+}
+
+/// Light in the reference's umbra above this visibility is bleeding.
+pub const BLEEDING_THRESHOLD: f32 = 0.1;
+// ANCHOR_END: soft_error
 
 /// How far (pixels, in x and y) an interior receiver is from every edge.
 pub const EDGE_MARGIN_PX: i64 = 2;
@@ -112,6 +137,10 @@ pub fn compare(
     let (mut receivers, mut false_shadow, mut false_lit) = (0u64, 0u64, 0u64);
     let (mut covered, mut mismatched) = (0u64, 0u64);
     let mut abs_sum = 0.0f64;
+    // Soft: (penumbra receivers, their |ΔV| sum, umbra receivers, umbra
+    // called lit, umbra lit above the bleeding threshold).
+    let (mut penumbra, mut penumbra_sum) = (0u64, 0.0f64);
+    let (mut umbra, mut umbra_lit, mut bleeding) = (0u64, 0u64, 0u64);
     for p in 0..n {
         let hit = reference.hits[p];
         let same_surface = hit.is_some_and(|hit| gpu_object_id[p] == hit.object + 1);
@@ -123,6 +152,14 @@ pub fn compare(
             receivers += 1;
             let (gpu, exact) = (gpu_visibility[p], ref_vis[p]);
             abs_sum += (gpu - exact).abs() as f64;
+            if exact > 0.0 && exact < 1.0 {
+                penumbra += 1;
+                penumbra_sum += (gpu - exact).abs() as f64;
+            } else if exact == 0.0 {
+                umbra += 1;
+                umbra_lit += u64::from(gpu > LIT_THRESHOLD);
+                bleeding += u64::from(gpu > BLEEDING_THRESHOLD);
+            }
             match (exact >= LIT_THRESHOLD, gpu >= LIT_THRESHOLD) {
                 (true, false) => {
                     false_shadow += 1;
@@ -183,6 +220,13 @@ pub fn compare(
         coverage_mismatch_pct: 100.0 * mismatched as f64 / covered.max(1) as f64,
         interior_receiver_pixels: interior,
         interior_misclassified_pct: 100.0 * interior_wrong as f64 / interior.max(1) as f64,
+        soft: reference.area_light[light].then(|| SoftError {
+            penumbra_pixels: penumbra,
+            penumbra_mean_abs: penumbra_sum / penumbra.max(1) as f64,
+            umbra_pixels: umbra,
+            umbra_misclassified_pct: 100.0 * umbra_lit as f64 / umbra.max(1) as f64,
+            light_bleeding_pct: 100.0 * bleeding as f64 / umbra.max(1) as f64,
+        }),
     };
     Comparison { stats, diff }
 }

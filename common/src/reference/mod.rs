@@ -11,10 +11,15 @@
 //! - A surface whose camera-facing normal points away from a light
 //!   (N·L <= 0) is in its own shadow: visibility 0, no ray is cast.
 //!
+//! A light with a size (lesson 10) gets a fractional visibility: the share
+//! of its emitter the point sees, by stratified rays ([`area`]).
+//!
 //! Beside the reference:
+//! - [`area`]: the soft shadow of an area light, by stratified rays.
 //! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
 //! - [`metrics`]: error of a GPU visibility image against the reference.
 
+pub mod area;
 pub mod bvh;
 pub mod metrics;
 
@@ -23,6 +28,7 @@ use std::time::Instant;
 use glam::{DMat4, DVec3, DVec4, Mat4, Vec3};
 use rayon::prelude::*;
 
+use crate::reference::area::{AreaSampling, Emitter, LightAt, Query};
 use crate::reference::bvh::Bvh;
 use crate::scene::{LightKind, Scene};
 
@@ -52,13 +58,19 @@ pub struct Reference {
     pub height: u32,
     pub hits: Vec<Option<PixelHit>>,
     /// `visibility[k][pixel]`: 1.0 where light `k` is unoccluded, else 0.0
-    /// (also 0.0 where nothing was hit or the surface faces away from it).
+    /// (also 0.0 where nothing was hit or the surface faces away from it);
+    /// for a light with a size, the fraction of its emitter the point sees.
     pub visibility: Vec<Vec<f32>>,
     /// `lit_by[k][pixel]`: geometric N·L (clamped at 0) where the pixel is
     /// inside light `k`'s influence (range, and cone for a spot), else 0.0.
     pub lit_by: Vec<Vec<f32>>,
+    /// `area_light[k]`: whether light `k` has a size (a soft shadow).
+    pub area_light: Vec<bool>,
     /// Wall-clock time of [`render_reference`], BVH builds included.
     pub ms: f64,
+    /// Shadow rays cast, all lights: one per receiver and hard light, a
+    /// pilot and maybe a full pattern per receiver and area light.
+    pub shadow_rays: u64,
 }
 
 // ANCHOR: primary_ray
@@ -160,6 +172,14 @@ impl LightRel {
         }
     }
 
+    /// Where an area light's rays aim: its position, or toward it.
+    fn at(&self) -> LightAt {
+        match *self {
+            LightRel::Directional { to_light } => LightAt::Direction(to_light),
+            LightRel::Local { position, .. } => LightAt::Position(position),
+        }
+    }
+
     /// A shadow ray from `from`: unit direction and length. A local light's
     /// ray stops `margin` short of it.
     fn shadow_ray(&self, from: Vec3, margin: f32) -> (Vec3, f32) {
@@ -226,13 +246,25 @@ pub fn render_reference(scene: &Scene, view_proj: Mat4, width: u32, height: u32)
     try_render_reference(scene, view_proj, width, height).unwrap_or_else(|e| panic!("{e:#}"))
 }
 
-/// [`render_reference`], with the BVH's refusal of out-of-range vertices
-/// as an error (see [`Bvh::try_build`]).
+/// [`try_render_reference_with`] the default rays for area lights.
 pub fn try_render_reference(
     scene: &Scene,
     view_proj: Mat4,
     width: u32,
     height: u32,
+) -> anyhow::Result<Reference> {
+    try_render_reference_with(scene, view_proj, width, height, AreaSampling::DEFAULT)
+}
+
+/// [`render_reference`], with the BVH's refusal of out-of-range vertices
+/// as an error (see [`Bvh::try_build`]), and `sampling`'s rays for each
+/// pixel and area light.
+pub fn try_render_reference_with(
+    scene: &Scene,
+    view_proj: Mat4,
+    width: u32,
+    height: u32,
+    sampling: AreaSampling,
 ) -> anyhow::Result<Reference> {
     let start = Instant::now();
     let tris = scene.world_triangles();
@@ -279,27 +311,46 @@ pub fn try_render_reference(
     let origin = scene.origin();
     let mut visibility = Vec::with_capacity(scene.lights.len());
     let mut lit_by = Vec::with_capacity(scene.lights.len());
-    for light in &scene.lights {
-        let light = LightRel::new(&light.kind, origin);
-        let (vis, lit): (Vec<f32>, Vec<f32>) = hits
+    let mut shadow_rays = 0u64;
+    for scene_light in &scene.lights {
+        let light = LightRel::new(&scene_light.kind, origin);
+        let emitter = Emitter::of(scene_light.size);
+        let per_pixel: Vec<(f32, f32, u64)> = hits
             .par_iter()
+            .enumerate()
             .with_min_len(256)
-            .map(|hit| {
-                let Some(h) = hit else { return (0.0, 0.0) };
+            .map(|(pixel, hit)| {
+                let Some(h) = hit else { return (0.0, 0.0, 0) };
                 let (n_dot_l, inside) = light.n_dot_l(h.position, h.normal);
                 if n_dot_l.is_nan() || n_dot_l <= 0.0 {
-                    return (0.0, 0.0); // faces away from the light: its own shadow
+                    return (0.0, 0.0, 0); // faces away from the light: its own shadow
                 }
                 // Off the surface on the camera's side, then straight at the light.
                 let from = h.position + h.normal * offset;
-                let (dir, t_max) = light.shadow_ray(from, offset);
-                let blocked = t_max > 0.0 && occluders.blocked(&bvh, from, dir, t_max, h.triangle);
-                let v = if blocked { 0.0 } else { 1.0 };
-                (v, if inside { n_dot_l } else { 0.0 })
+                let blocked =
+                    |dir: Vec3, t_max: f32| occluders.blocked(&bvh, from, dir, t_max, h.triangle);
+                let (v, rays) = match emitter {
+                    None => {
+                        let (dir, t_max) = light.shadow_ray(from, offset);
+                        let v = !(t_max > 0.0 && blocked(dir, t_max));
+                        (if v { 1.0 } else { 0.0 }, 1)
+                    }
+                    Some(emitter) => {
+                        let q = Query {
+                            from,
+                            normal: h.normal,
+                            pixel: pixel as u32,
+                            light: light.at(),
+                        };
+                        area::visibility(emitter, &q, sampling, offset, blocked)
+                    }
+                };
+                (v, if inside { n_dot_l } else { 0.0 }, rays)
             })
-            .unzip();
-        visibility.push(vis);
-        lit_by.push(lit);
+            .collect();
+        shadow_rays += per_pixel.iter().map(|p| p.2).sum::<u64>();
+        visibility.push(per_pixel.iter().map(|p| p.0).collect());
+        lit_by.push(per_pixel.iter().map(|p| p.1).collect());
     }
 
     let ms = start.elapsed().as_secs_f64() * 1e3;
@@ -309,7 +360,9 @@ pub fn try_render_reference(
         hits,
         visibility,
         lit_by,
+        area_light: scene.lights.iter().map(|l| l.size.is_area()).collect(),
         ms,
+        shadow_rays,
     })
 }
 // ANCHOR_END: render_reference

@@ -104,6 +104,26 @@ fn print_stdout(text: &str) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("cannot write to stdout: {e}"))
 }
 
+/// A light with a size in a lesson that casts hard shadows: one line that
+/// names lesson 10, which renders it.
+pub fn refuse_area_lights<L: Lesson>(scene: &Scene) -> Result<()> {
+    if L::AREA_LIGHTS {
+        return Ok(());
+    }
+    let Some((k, light)) = (scene.lights.iter().enumerate()).find(|(_, l)| l.size.is_area()) else {
+        return Ok(());
+    };
+    let field = match light.size {
+        crate::scene::LightSize::Radius(_) => "radius",
+        crate::scene::LightSize::AngularRadiusDeg(_) => "angular_radius_deg",
+    };
+    anyhow::bail!(
+        "scene {}: lights[{k}].{field}: {} casts hard shadows from a point or a single direction; the soft shadows of a light with a size are lesson_10 (or set {field} = 0)",
+        scene.name,
+        L::NAME
+    )
+}
+
 /// The `--scene` file, or the lesson's default scene.
 fn load_scene<L: Lesson>(args: &Args) -> Result<Scene> {
     let scene = match &args.scene {
@@ -111,6 +131,7 @@ fn load_scene<L: Lesson>(args: &Args) -> Result<Scene> {
         None => Scene::builtin(&format!("{} default scene", L::NAME), L::DEFAULT_SCENE)?,
     };
     L::check_scene(&scene)?;
+    refuse_area_lights::<L>(&scene)?;
     if scene.camera.shift != glam::DVec2::ZERO && !L::SUPPORTS_CAMERA_SHIFT {
         anyhow::bail!(
             "scene {}: camera.shift: {} fits to a centred frustum (fov_y_deg and the aspect alone) and would be wrong off-centre; lesson_07 draws a shifted camera (or set shift = [0, 0])",

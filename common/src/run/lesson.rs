@@ -31,6 +31,11 @@ pub trait Lesson: Sized {
         Ok(())
     }
 
+    /// Whether the lesson renders lights with a size (`radius`,
+    /// `angular_radius_deg`): soft shadows, lesson 10. The runner refuses
+    /// such a scene with one line for the lessons that keep `false`.
+    const AREA_LIGHTS: bool = false;
+
     /// Whether the lesson re-reads the camera on every [`Lesson::render`], so
     /// that a scene's `[camera_path]` (shimmer, chapter 09) is measured right.
     /// A lesson that caches camera-dependent state keeps `false`, and the

@@ -65,6 +65,10 @@ pub(crate) struct LightFile {
     pub(crate) position: Option<[f64; 3]>,
     pub(crate) range: Option<f64>,
     pub(crate) spot_angle_deg: Option<f64>,
+    /// Point and spot: the emitter's radius (lesson 10).
+    pub(crate) radius: Option<f64>,
+    /// Directional: the cone's half-angle in degrees (lesson 10).
+    pub(crate) angular_radius_deg: Option<f64>,
     #[serde(default = "default_white")]
     pub(crate) color: [f32; 3],
 }

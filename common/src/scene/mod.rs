@@ -11,11 +11,13 @@
 //! - [`mesh_dense`]: the dense built-ins (`holed_sphere`, `dense_knot`).
 //! - [`obj`]: OBJ files, read through tobj and written for `gen_assets`.
 //! - [`camera`]: camera and light matrices.
+//! - [`lights`]: the `[[lights]]` tables, their kinds and sizes.
 //! - [`camera_path`]: a scene's `[camera_path]` (pan, dolly) and its shimmer.
 
 pub mod camera;
 pub mod camera_path;
 pub mod file;
+pub mod lights;
 pub mod limits;
 pub mod mesh;
 pub mod mesh_dense;
@@ -27,7 +29,8 @@ use std::sync::Arc;
 use anyhow::{anyhow, bail, Context, Result};
 use glam::{DMat4, DQuat, DVec2, DVec3, EulerRot, Vec3};
 
-use crate::scene::file::{CameraPath, FarFile, LightFile, ObjectFile, ScaleFile, SceneFile};
+use crate::scene::file::{CameraPath, FarFile, ObjectFile, ScaleFile, SceneFile};
+use crate::scene::lights::parse_light;
 use crate::scene::limits::{
     check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
     MAX_REACH_OVER_NEAR, MAX_SCALE, MAX_SHIFT, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
@@ -77,6 +80,32 @@ pub enum LightKind {
 pub struct Light {
     pub kind: LightKind,
     pub color: Vec3,
+    /// The emitter's size (lesson 10): a sphere of this radius, scene
+    /// units, for point and spot lights (`radius`), or a cone of this
+    /// half-angle for directional ones (`angular_radius_deg`). 0: a hard
+    /// light, a point or one direction.
+    pub size: LightSize,
+}
+
+/// How big a light's emitter is; [`LightSize::HARD`] for a point or a
+/// single direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightSize {
+    /// Point and spot lights: the radius of the spherical emitter.
+    Radius(f64),
+    /// Directional lights: the half-angle of the cone of directions, degrees.
+    AngularRadiusDeg(f64),
+}
+
+impl LightSize {
+    pub const HARD: LightSize = LightSize::Radius(0.0);
+
+    /// Whether the emitter has a size (a soft shadow's light).
+    pub fn is_area(self) -> bool {
+        match self {
+            LightSize::Radius(r) | LightSize::AngularRadiusDeg(r) => r > 0.0,
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -114,7 +143,7 @@ fn finite3(v: [f64; 3], what: &str) -> Result<DVec3> {
     Ok(DVec3::from(v))
 }
 
-fn color3(v: [f32; 3], what: &str) -> Result<Vec3> {
+pub(crate) fn color3(v: [f32; 3], what: &str) -> Result<Vec3> {
     if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > 1e6) {
         bail!(
             "{what}: colour components must be in [0, 1e6], got {}",
@@ -125,7 +154,7 @@ fn color3(v: [f32; 3], what: &str) -> Result<Vec3> {
 }
 
 /// A positive number up to `max`.
-fn positive(x: f64, max: f64, what: &str) -> Result<f64> {
+pub(crate) fn positive(x: f64, max: f64, what: &str) -> Result<f64> {
     if !(x.is_finite() && x > 0.0 && x <= max) {
         bail!("{what}: must be in (0, {}], got {}", short(max), short(x));
     }
@@ -395,44 +424,6 @@ impl Scene {
         }
         out
     }
-}
-
-fn parse_light(l: LightFile, i: usize) -> Result<Light> {
-    let p = format!("lights[{i}]");
-    let color = color3(l.color, &format!("{p}.color"))?;
-    let need = |v: Option<[f64; 3]>, f: &str| -> Result<[f64; 3]> {
-        v.ok_or_else(|| anyhow!("{p}.{f}: required for a {} light", l.kind))
-    };
-    let range = |r: Option<f64>| -> Result<f64> {
-        positive(
-            r.ok_or_else(|| anyhow!("{p}.range: required for a {} light", l.kind))?,
-            2.0 * MAX_COORD,
-            &format!("{p}.range"),
-        )
-    };
-    let kind = match l.kind.as_str() {
-        "directional" => LightKind::Directional {
-            direction: check_direction(need(l.direction, "direction")?, &format!("{p}.direction"))?,
-        },
-        "point" => LightKind::Point {
-            position: check_coord(need(l.position, "position")?, &format!("{p}.position"))?,
-            range: range(l.range)?,
-        },
-        "spot" => {
-            let a = l.spot_angle_deg.ok_or_else(|| anyhow!("{p}.spot_angle_deg: required for a spot light"))?;
-            if !(a.is_finite() && a > 0.0 && a < 179.0) {
-                bail!("{p}.spot_angle_deg: must be in (0, 179), got {}", short(a));
-            }
-            LightKind::Spot {
-                position: check_coord(need(l.position, "position")?, &format!("{p}.position"))?,
-                direction: check_direction(need(l.direction, "direction")?, &format!("{p}.direction"))?,
-                range: range(l.range)?,
-                spot_angle_deg: a,
-            }
-        }
-        other => bail!("{p}.type: unknown light type {other:?} (expected \"directional\", \"point\" or \"spot\")"),
-    };
-    Ok(Light { kind, color })
 }
 
 fn parse_object(

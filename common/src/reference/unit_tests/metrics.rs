@@ -17,7 +17,9 @@ fn reference(w: u32, h: u32, pixels: &[(Option<u32>, f32, f32)]) -> Reference {
         hits: pixels.iter().map(|&(o, _, _)| o.map(hit)).collect(),
         visibility: vec![pixels.iter().map(|&(_, v, _)| v).collect()],
         lit_by: vec![pixels.iter().map(|&(_, _, l)| l).collect()],
+        area_light: vec![false],
         ms: 0.0,
+        shadow_rays: 0,
     }
 }
 
@@ -112,6 +114,7 @@ fn no_receivers_gives_zeros() {
             coverage_mismatch_pct: 50.0,
             interior_receiver_pixels: 0,
             interior_misclassified_pct: 0.0,
+            soft: None,
         }
     );
 }

@@ -6,7 +6,7 @@ use glam::dcamera::rh::{proj::directx, view::look_at_mat4};
 
 use super::*;
 use crate::scene::mesh::Mesh;
-use crate::scene::{Camera, Far, Light, Object};
+use crate::scene::{Camera, Far, Light, LightSize, Object};
 
 /// A quad in XZ facing +Y, side 1, centred at the origin.
 fn plane() -> Mesh {
@@ -66,6 +66,7 @@ fn scene(objects: Vec<Object>, lights: Vec<LightKind>, eye: DVec3, target: DVec3
         .map(|kind| Light {
             kind,
             color: Vec3::ONE,
+            size: LightSize::HARD,
         })
         .collect();
     Scene {
