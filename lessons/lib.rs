@@ -17,6 +17,7 @@ pub mod lesson_06;
 pub mod lesson_07;
 pub mod lesson_08;
 pub mod lesson_09;
+pub mod lesson_10;
 
 /// The file that a chapter's `exercises::EXERCISES_WGSL` is read from in
 /// this build (the starter, the solution, or CI's chapter copy): a WGSL

@@ -1,0 +1,9 @@
+//! Lesson 10's exercises, the starter code: both are WGSL functions in
+//! `shaders/lesson_10/exercises.wgsl`, appended to the lesson's shader. The
+//! variants `exercise_blocker_search` and `exercise_penumbra` run PCSS with
+//! one of them in place of the lesson's own. With `--features solutions`
+//! the build reads `solutions/lesson_10.rs` instead.
+
+/// `exercise_blocker_search(s, radius, angle, gradient)` and
+/// `exercise_filter_radius(d_r, d_b)`, to fill in.
+pub const EXERCISES_WGSL: &str = include_str!("../../shaders/lesson_10/exercises.wgsl");

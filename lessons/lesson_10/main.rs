@@ -1,0 +1,454 @@
+//! # Lesson 10: soft shadows from area lights
+//!
+//! A light with a size (`radius` on a spot, `angular_radius_deg` on a
+//! directional light) lights a point by the fraction of its emitter the
+//! point sees; the exact reference casts rays to the emitter
+//! (`common::reference::area`). Each variant estimates that fraction from
+//! one shadow map: lesson 03's hard-edged PCF, fixed wide PCF disks,
+//! percentage-closer soft shadows (PCSS: blocker search, penumbra width,
+//! PCF of that width), variance maps plain, with a light-bleeding cut and
+//! exponential; then the soft defaults of renderers people use, each
+//! citing what it copies.
+//!
+//! The techniques are in [`soft`] and `shaders/lesson_10/soft.wgsl`, the
+//! variance map's passes in [`moments`], the knobs in [`knobs`].
+//!
+//! Run: `cargo run --release --bin lesson_10 -- --headless`
+//! Book: chapter "10 Soft shadows" (`book/src/lesson_10.md`).
+
+use std::collections::BTreeMap;
+
+use clap::ValueEnum;
+use common::gpu::bindings::{self, float_texture_entry, storage_entry};
+use common::gpu::lit::LitPass;
+use common::gpu::render::SceneGpu;
+use common::gpu::targets::FrameTargets;
+use common::gpu::Gpu;
+use common::measure::timing::Frame;
+use common::run::app;
+use common::run::knobs::Knob;
+use common::run::lesson::{BufferView, Lesson};
+use common::scene::Scene;
+use common::Result;
+use workbook::lesson_01::shadow_map::ShadowPassState;
+use workbook::lesson_01::shadow_map::{self, comparison_sampler, shadow_map_entries, ShadowMap};
+use workbook::lesson_02::bias::SlopeScaledBias;
+use workbook::lesson_03::pcf::{Filter, FilterUniform};
+use workbook::lesson_10::knobs;
+use workbook::lesson_10::moments::{MomentsMap, MomentsPasses};
+use workbook::lesson_10::soft::{
+    LightGeometry, Pcss, Penumbra, Search, SoftUniform, Technique, Variance,
+};
+
+/// Lesson 03's map size: the techniques differ, the map does not.
+const MAP_SIZE: u32 = 1024;
+
+// ANCHOR: variants
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Variant {
+    /// Lesson 03's rotated 16-tap Poisson disk (2.5 texels): the hard
+    /// shadow's edge, filtered; no light size.
+    #[value(name = "hard_pcf")]
+    HardPcf,
+    /// 16 bilinear taps on a fixed disk (8 texels): PCSS's filter taps,
+    /// one width everywhere.
+    #[value(name = "pcf_wide_16")]
+    PcfWide16,
+    /// 32 taps on the same disk: as many as PCSS's search and filter.
+    #[value(name = "pcf_wide_32")]
+    PcfWide32,
+    /// Percentage-closer soft shadows (Fernando 2005): 16 search taps, the
+    /// penumbra from the light's geometry, 16 filter taps, each compared
+    /// with the receiver's plane.
+    #[value(name = "pcss")]
+    Pcss,
+    /// A variance map (Donnelly and Lauritzen 2006), blurred 9×9 texels.
+    #[value(name = "vsm")]
+    Vsm,
+    /// The same with Lauritzen's light-bleeding cut, linstep(0.3, 1, p).
+    #[value(name = "vsm_bleed_cut")]
+    VsmBleedCut,
+    /// Exponential variance map (Lauritzen and McCool 2008): the moments
+    /// of exp(40 (2 z̃ − 1)), blurred 9×9.
+    #[value(name = "evsm")]
+    Evsm,
+    /// Filament's PCSS (google/filament, shaders/src/surface_shadowing.fs
+    /// at f366ac3, `ShadowSample_PCSS`): 16 search and 16 filter taps,
+    /// receiver-plane bias, searching the bulb's size at the receiver,
+    /// penumbra ratio (d_r − d_b) / d_b; its `shadowBulbRadius` is the
+    /// spot's radius, or its default 0.02 m for a directional light
+    /// (LightManager.java at c35a608). Our Vogel disk, not its 64-point
+    /// Poisson disk.
+    #[value(name = "filament_pcss")]
+    FilamentPcss,
+    /// Filament's VSM, an EVSM (surface_shadowing.fs at f366ac3; exponent
+    /// 5.54 for its default 16-bit moments, PerViewUniforms.cpp at
+    /// cb91a23; `lightBleedReduction` 0.15, `minVarianceScale` 0.5,
+    /// `blurWidth` 0: Options.h at 2fac13e, LightManager.java at c35a608).
+    #[value(name = "filament_evsm")]
+    FilamentEvsm,
+    /// Bevy's PCSS (bevyengine/bevy, crates/bevy_pbr/src/render/
+    /// shadow_sampling.wgsl at 00ef04e, `sample_shadow_map_pcss`): 8 search
+    /// and 8 filter taps, searching the light's size, penumbra (z_b − z) /
+    /// z in reversed Z, at least 0.5 texel. Bevy turns soft shadows off
+    /// for a directional light by default (`soft_shadow_size: None`); on
+    /// one it runs our hard_pcf.
+    #[value(name = "bevy_pcss")]
+    BevyPcss,
+    /// Godot's default "Soft Low" (godotengine/godot, servers/rendering/
+    /// renderer_rd/shaders/scene_forward_lights_inc.glsl at 8bae2a4, and
+    /// renderer_scene_render_rd.cpp at 238862b): 8 Vogel taps to search
+    /// and the same 8 to filter, penumbra (b − z) / (1 − b) in reversed
+    /// depth, no receiver-plane bias.
+    #[value(name = "godot_soft_low")]
+    GodotSoftLow,
+    /// three.js's `PCFSoftShadowMap` (mrdoob/three.js, src/renderers/
+    /// shaders/ShaderChunk/shadowmap_pars_fragment.glsl.js at 99e4d38): a
+    /// fixed 3×3-texel box, bilinearly smoothed; it has no light size.
+    #[value(name = "threejs_pcf_soft")]
+    ThreejsPcfSoft,
+    /// three.js's `VSMShadowMap` (the same file; vsm.glsl.js at 1b7857e):
+    /// moments box-blurred over its `radius` 1, bleeding cut
+    /// linstep(0.3, 0.95, p).
+    #[value(name = "threejs_vsm")]
+    ThreejsVsm,
+    /// The chapter's exercises (`exercises.wgsl`), run only when named.
+    #[value(name = "exercise_blocker_search")]
+    ExerciseBlockerSearch,
+    #[value(name = "exercise_penumbra")]
+    ExercisePenumbra,
+}
+
+impl Variant {
+    /// The variant's technique, for a light of geometry `g`.
+    fn technique(self, g: &LightGeometry) -> Technique {
+        let disk = |taps| Technique::FixedDisk {
+            taps,
+            radius_texels: 8.0,
+        };
+        let ours = Technique::PCSS;
+        let variance = |blur, exponent, min_variance, bleed| {
+            Technique::Variance(Variance {
+                blur,
+                exponent,
+                min_variance,
+                bleed,
+            })
+        };
+        match self {
+            Variant::HardPcf => Technique::HardPcf,
+            Variant::PcfWide16 => disk(16),
+            Variant::PcfWide32 => disk(32),
+            Variant::Pcss => Technique::Pcss(ours),
+            Variant::Vsm => variance(4, None, 1e-6, (0.0, 1.0)),
+            Variant::VsmBleedCut => variance(4, None, 1e-6, (0.3, 1.0)),
+            Variant::Evsm => variance(4, Some(40.0), 1e-4, (0.0, 1.0)),
+            Variant::FilamentPcss => Technique::Pcss(Pcss {
+                search: Search::LightSizeAtReceiver,
+                penumbra: Penumbra::DepthRatio,
+                renderer_size: (!g.perspective).then_some(0.02),
+                ..ours
+            }),
+            // minVariance = (minVarianceScale · 0.01 · depth)²: relative.
+            Variant::FilamentEvsm => variance(0, Some(5.54), 2.5e-5, (0.15, 1.0)),
+            Variant::BevyPcss if !g.perspective => Technique::HardPcf,
+            Variant::BevyPcss => Technique::Pcss(Pcss {
+                search_taps: 8,
+                filter_taps: 8,
+                receiver_plane: false,
+                search: Search::LightSizeAtReceiver,
+                penumbra: Penumbra::BevyRatio,
+                min_filter_texels: 0.5,
+                ..ours
+            }),
+            Variant::GodotSoftLow => Technique::Pcss(Pcss {
+                search_taps: 8,
+                filter_taps: 8,
+                receiver_plane: false,
+                search: Search::NearPlane,
+                penumbra: Penumbra::DepthRatio,
+                ..ours
+            }),
+            Variant::ThreejsPcfSoft => Technique::ThreePcfSoft,
+            Variant::ThreejsVsm => variance(1, None, 1e-7, (0.3, 0.95)),
+            Variant::ExerciseBlockerSearch => Technique::Pcss(Pcss { student: 1, ..ours }),
+            Variant::ExercisePenumbra => Technique::Pcss(Pcss { student: 2, ..ours }),
+        }
+    }
+
+    /// The lesson's own techniques have knobs; the renderers' defaults and
+    /// the exercises keep theirs.
+    fn has_knobs(self) -> bool {
+        matches!(
+            self,
+            Variant::PcfWide16
+                | Variant::PcfWide32
+                | Variant::Pcss
+                | Variant::Vsm
+                | Variant::VsmBleedCut
+                | Variant::Evsm
+        )
+    }
+}
+// ANCHOR_END: variants
+
+/// One variant's state for one light: its technique, its parameters'
+/// group, and the variance map's passes if it has one.
+struct PerLight {
+    technique: Technique,
+    group: wgpu::BindGroup,
+    moments: Option<MomentsPasses>,
+}
+
+struct Soft {
+    map: ShadowMap,
+    moments: MomentsMap,
+    geometry: Vec<LightGeometry>,
+    /// Group 2 with nearest and with linear comparisons.
+    nearest: wgpu::BindGroup,
+    linear: wgpu::BindGroup,
+    params_layout: wgpu::BindGroupLayout,
+    /// Lesson 03's filter uniform (its Poisson disk), for the hard baseline.
+    filter: wgpu::Buffer,
+    lit_pipeline: wgpu::RenderPipeline,
+    /// One pipeline per light: lesson 02's recommended bias.
+    shadow_pipelines: Vec<wgpu::RenderPipeline>,
+    /// `per_light[variant][light]`.
+    per_light: Vec<Vec<PerLight>>,
+    draws: u64,
+}
+
+impl Soft {
+    fn per_light(&self, gpu: &Gpu, v: Variant, k: usize, t: Technique) -> PerLight {
+        let g = &self.geometry[k];
+        let u = SoftUniform::new(t, g);
+        let soft = bindings::params_buffer(gpu, "soft", bytemuck::bytes_of(&u));
+        let resources = [self.filter.as_entire_binding(), soft.as_entire_binding()];
+        let name = format!("{v:?} light {k}");
+        PerLight {
+            technique: t,
+            group: bindings::group(gpu, &name, &self.params_layout, &resources),
+            moments: match t {
+                Technique::Variance(var) => Some(self.moments.passes(gpu, &self.map, &var, g)),
+                _ => None,
+            },
+        }
+    }
+}
+
+/// Lesson 03's map bindings (group 2) and binding 3, the variance map.
+fn map_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    map: &ShadowMap,
+    moments: &MomentsMap,
+    filter: wgpu::FilterMode,
+) -> wgpu::BindGroup {
+    let sampler = comparison_sampler(gpu, filter);
+    let view = wgpu::BindingResource::TextureView(&map.view);
+    let resources = [
+        view.clone(),
+        wgpu::BindingResource::Sampler(&sampler),
+        view,
+        wgpu::BindingResource::TextureView(&moments.view),
+    ];
+    bindings::group(gpu, "soft shadow map", layout, &resources)
+}
+
+impl Lesson for Soft {
+    const NAME: &'static str = "lesson_10";
+    const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_10.toml");
+    const AREA_LIGHTS: bool = true;
+    type Variant = Variant;
+
+    fn check_scene(scene: &Scene) -> Result<()> {
+        shadow_map::refuse_point_lights(scene, Self::NAME)
+    }
+
+    /// The shadow map, as the last light's shadow pass left it.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
+            return Ok(None);
+        };
+        self.map.buffer_view(gpu, last).map(Some)
+    }
+
+    fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
+        let lesson_03 = workbook::exercises_wgsl_path("lesson_03");
+        let exercises = workbook::exercises_wgsl_path("lesson_10");
+        let files = [
+            (
+                lesson_03.as_str(),
+                workbook::lesson_03::exercises::EXERCISES_WGSL,
+            ),
+            (
+                "shaders/lesson_03/pcf.wgsl",
+                include_str!("../../shaders/lesson_03/pcf.wgsl"),
+            ),
+            (
+                "shaders/lesson_10/soft.wgsl",
+                include_str!("../../shaders/lesson_10/soft.wgsl"),
+            ),
+            (
+                exercises.as_str(),
+                workbook::lesson_10::exercises::EXERCISES_WGSL,
+            ),
+        ];
+        let module = shadow_map::shader_module_from_files(gpu, "lesson_10", &files)?;
+        let mut entries = shadow_map_entries();
+        entries.push(float_texture_entry(2));
+        entries.push(float_texture_entry(3));
+        let map_layout = bindings::layout(gpu, "soft shadow map", &entries);
+        let stage = wgpu::ShaderStages::FRAGMENT;
+        let params_layout = bindings::layout(
+            gpu,
+            "soft params",
+            &[
+                storage_entry(0, stage, false, None),
+                storage_entry(1, stage, false, None),
+            ],
+        );
+        // Lesson 03's Poisson disk, as its poisson_16 variant runs it.
+        let poisson = Filter::Poisson {
+            taps: 16,
+            radius: 2.5,
+        };
+        let filter = bindings::params_buffer(
+            gpu,
+            "lesson 03 filter",
+            bytemuck::bytes_of(&FilterUniform::from(poisson)),
+        );
+        let lit_pipeline = scene.lit_pipeline_with_depth(
+            gpu,
+            &module,
+            "fs_soft",
+            &[&map_layout, &params_layout],
+            scene.lit_depth_state(Default::default()),
+            &[("MODE", 2.0)],
+        );
+        let map = ShadowMap::new(gpu, MAP_SIZE);
+        let moments = MomentsMap::new(gpu, MAP_SIZE);
+        let shadow_pipelines = (0..scene.scene.lights.len())
+            .map(|k| {
+                let b = SlopeScaledBias::RECOMMENDED;
+                let state = ShadowPassState {
+                    cull: None,
+                    ..b.pass_state(gpu, &scene.scene, k, MAP_SIZE)
+                };
+                shadow_map::shadow_pipeline(gpu, scene, &module, state)
+            })
+            .collect();
+        let geometry = (0..scene.scene.lights.len())
+            .map(|k| {
+                LightGeometry::new(&scene.scene, k)
+                    .ok_or_else(|| anyhow::anyhow!("light {k}: lesson_10 has no point lights"))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let nearest = map_group(gpu, &map_layout, &map, &moments, wgpu::FilterMode::Nearest);
+        let linear = map_group(gpu, &map_layout, &map, &moments, wgpu::FilterMode::Linear);
+        let mut soft = Soft {
+            map,
+            moments,
+            geometry,
+            nearest,
+            linear,
+            params_layout,
+            filter,
+            lit_pipeline,
+            shadow_pipelines,
+            per_light: Vec::new(),
+            draws: shadow_map::shadow_map_draws(scene),
+        };
+        soft.per_light = Variant::value_variants()
+            .iter()
+            .map(|&v| {
+                (0..soft.geometry.len())
+                    .map(|k| soft.per_light(gpu, v, k, v.technique(&soft.geometry[k])))
+                    .collect()
+            })
+            .collect();
+        Ok(soft)
+    }
+
+    // ANCHOR: render
+    fn render(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Result<()> {
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        for light in 0..scene.scene.lights.len() {
+            let state = &self.per_light[variant as usize][light];
+            let shadow = &self.shadow_pipelines[light];
+            frame.pass("shadow", |enc, ts| {
+                shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render())
+            });
+            if let Some(passes) = &state.moments {
+                frame.pass("moments", |enc, ts| {
+                    self.moments.record(enc, passes, false, ts.render())
+                });
+                frame.pass("blur", |enc, ts| {
+                    self.moments.record(enc, passes, true, ts.render())
+                });
+            }
+            let map_group = match state.technique.sampler() {
+                wgpu::FilterMode::Nearest => &self.nearest,
+                _ => &self.linear,
+            };
+            frame.pass("lighting", |enc, ts| {
+                let groups = [map_group, &state.group];
+                let pass = LitPass::new(light, &self.lit_pipeline, &groups);
+                scene.lit_pass(enc, targets, pass, ts.render())
+            });
+        }
+        Ok(())
+    }
+    // ANCHOR_END: render
+
+    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        // The most over the lights (the same technique on each).
+        let (mut search, mut filter, mut texels) = (0, 0, 0);
+        for s in &self.per_light[variant as usize] {
+            let (a, b, c) = s.technique.taps();
+            (search, filter, texels) = (search.max(a), filter.max(b), texels.max(c));
+        }
+        BTreeMap::from([
+            ("blocker_search_taps".into(), search),
+            ("filter_taps_per_pixel".into(), filter),
+            ("texels_read".into(), texels),
+            ("shadow_map_size".into(), MAP_SIZE as u64),
+            ("draws".into(), self.draws),
+        ])
+    }
+
+    fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        match self.per_light[variant as usize].first() {
+            Some(s) if variant.has_knobs() => knobs::technique_knobs(s.technique),
+            _ => Vec::new(),
+        }
+    }
+
+    /// New parameters (and variance-map passes) for the variant on every
+    /// light: the pipeline reads them, so it stays.
+    fn set_knob(
+        &mut self,
+        gpu: &Gpu,
+        _scene: &SceneGpu,
+        variant: Variant,
+        name: &str,
+        value: f64,
+    ) -> Result<()> {
+        for k in 0..self.geometry.len() {
+            let mut t = self.per_light[variant as usize][k].technique;
+            knobs::set_technique_knob(&mut t, name, value)?;
+            self.per_light[variant as usize][k] = self.per_light(gpu, variant, k, t);
+        }
+        Ok(())
+    }
+}
+
+fn main() -> std::process::ExitCode {
+    app::main::<Soft>()
+}

@@ -1,0 +1,325 @@
+//! Soft shadows from one shadow map (lesson 10): how a variant turns the
+//! map into the visible fraction of an area light, the light's geometry as
+//! the shader needs it, and the parameters as `shaders/lesson_10/soft.wgsl`
+//! reads them.
+
+use common::scene::camera::light_view_proj;
+use common::scene::{LightKind, LightSize, Scene};
+use glam::{Mat4, Vec3, Vec4Swizzles};
+
+// ANCHOR: technique
+/// How a variant turns the shadow map into a visibility.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Technique {
+    /// Lesson 03's rotated 16-tap Poisson disk of 2.5 texels: a hard
+    /// shadow's edge, filtered.
+    HardPcf,
+    /// `taps` bilinear comparisons on a disk of a fixed `radius_texels`.
+    FixedDisk { taps: u32, radius_texels: f32 },
+    /// Percentage-closer soft shadows: a blocker search, the penumbra's
+    /// width from the blockers' distance, a PCF that wide.
+    Pcss(Pcss),
+    /// A variance map blurred over `(2 blur + 1)²` texels.
+    Variance(Variance),
+    /// three.js's `PCFSoftShadowMap`: a fixed 3×3-texel smoothed box.
+    ThreePcfSoft,
+}
+
+/// A PCSS's choices: its taps, where it searches, how it estimates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pcss {
+    pub search_taps: u32,
+    pub filter_taps: u32,
+    pub receiver_plane: bool,
+    pub search: Search,
+    pub penumbra: Penumbra,
+    /// The least filter radius, texels (Bevy: 0.5).
+    pub min_filter_texels: f32,
+    /// A renderer's own light size (Filament's bulb radius for a
+    /// directional light), world units; `None`: the scene's.
+    pub renderer_size: Option<f32>,
+    /// The chapter's exercises: 1 the student's blocker search, 2 the
+    /// student's penumbra estimate, 0 neither.
+    pub student: u32,
+}
+
+/// Where the blocker search looks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Search {
+    /// Every blocker that can hide part of the emitter: the emitter seen
+    /// from the receiver, on the plane of the nearest caster (ours).
+    NearestCaster,
+    /// The light's size at the receiver (Filament, Bevy, Godot's spot).
+    LightSizeAtReceiver,
+    /// A directional light's cone from the light's near plane (Godot);
+    /// a spot's size at the receiver.
+    NearPlane,
+}
+
+/// How the penumbra's width follows from the blockers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Penumbra {
+    /// Similar triangles with the light's true geometry (ours).
+    Geometry,
+    /// Fernando's `(d_r − d_b) / d_b` times the search radius: on
+    /// distances for a spot, on the map's depths for a directional light
+    /// (Filament's, Godot's).
+    DepthRatio,
+    /// `(z_r − z_b) / (1 − z_r)` (Bevy's `(z_b − z) / z` in reversed Z).
+    BevyRatio,
+}
+
+/// A variance map's choices.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Variance {
+    /// The box blur's radius, texels (0: the moments, bilinearly).
+    pub blur: u32,
+    /// `Some(c)`: exponential moments of `exp(c (2 z̃ − 1))`.
+    pub exponent: Option<f32>,
+    /// The least variance (plain), or the least variance over the warped
+    /// receiver depth squared (exponential).
+    pub min_variance: f32,
+    /// The light-bleeding cut: `linstep(lo, hi, p)`; `(0, 1)` is none.
+    pub bleed: (f32, f32),
+}
+// ANCHOR_END: technique
+
+impl Technique {
+    /// Our PCSS: 16 search and 16 filter taps, the light's geometry.
+    pub const PCSS: Pcss = Pcss {
+        search_taps: 16,
+        filter_taps: 16,
+        receiver_plane: true,
+        search: Search::NearestCaster,
+        penumbra: Penumbra::Geometry,
+        min_filter_texels: 0.0,
+        renderer_size: None,
+        student: 0,
+    };
+
+    /// Depth comparisons per pixel and light (blocker-search taps and
+    /// filter taps) and the texels they read: the counters. A PCSS that
+    /// finds no blocker stops after its search; these are the most.
+    pub fn taps(self) -> (u64, u64, u64) {
+        match self {
+            Technique::HardPcf => (0, 16, 64),
+            Technique::FixedDisk { taps, .. } => (0, taps as u64, 4 * taps as u64),
+            Technique::Pcss(p) => (
+                p.search_taps as u64,
+                p.filter_taps as u64,
+                (p.search_taps + 4 * p.filter_taps) as u64,
+            ),
+            // Four texels of the blurred moments; the blur reads its own.
+            Technique::Variance(_) => (0, 1, 4),
+            Technique::ThreePcfSoft => (0, 16, 16),
+        }
+    }
+
+    /// The shader's `mode`.
+    pub fn mode(self) -> u32 {
+        match self {
+            Technique::HardPcf => 0,
+            Technique::FixedDisk { .. } => 1,
+            Technique::Pcss(p) if p.student == 1 => 4,
+            Technique::Pcss(p) if p.student == 2 => 6,
+            Technique::Pcss(_) => 2,
+            Technique::Variance(_) => 3,
+            Technique::ThreePcfSoft => 5,
+        }
+    }
+
+    /// Nearest comparisons (three.js's point taps) or bilinear ones.
+    pub fn sampler(self) -> wgpu::FilterMode {
+        match self {
+            Technique::ThreePcfSoft => wgpu::FilterMode::Nearest,
+            _ => wgpu::FilterMode::Linear,
+        }
+    }
+}
+
+// ANCHOR: light_geometry
+/// What the shader needs of a light to turn its size into map units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightGeometry {
+    pub perspective: bool,
+    /// Orthographic: 0 and the depth range's length, world units;
+    /// perspective: the near and far planes.
+    pub near: f32,
+    pub far: f32,
+    /// tan(angular radius), or the emitter's radius.
+    pub size: f32,
+    /// The nearest caster's distance from the light, as `near`, `far`.
+    pub nearest_caster: f32,
+    /// Map units per world unit (orthographic, u and v) or per radian.
+    pub uv_per: [f32; 2],
+}
+
+impl LightGeometry {
+    /// Light `k`'s geometry (a directional or spot light; the lesson
+    /// refuses point lights).
+    pub fn new(scene: &Scene, k: usize) -> Option<LightGeometry> {
+        let m = light_view_proj(scene, k)?;
+        let light = &scene.lights[k];
+        let row = |i: usize| m.row(i).xyz();
+        // The casters' vertices that the light's frustum holds, in its clip
+        // space: the nearest of them bounds the blocker search (a floor's
+        // corners out of the light's view would pull it to the light).
+        let inside = |c: &glam::Vec4| {
+            c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w && (0.0..=c.w).contains(&c.z)
+        };
+        let clip: Vec<glam::Vec4> = (scene.world_triangles().into_iter())
+            .filter(|(_, o)| scene.objects[*o as usize].casts_shadow)
+            .flat_map(|(t, _)| t)
+            .map(|p| m * p.extend(1.0))
+            .filter(inside)
+            .collect();
+        let size = match light.size {
+            LightSize::Radius(r) => r as f32,
+            LightSize::AngularRadiusDeg(a) => a.to_radians().tan() as f32,
+        };
+        match light.kind {
+            LightKind::Directional { .. } => {
+                // z = row 2 · p + m₂₃: one unit of depth is 1 / |row 2| long.
+                let far = 1.0 / row(2).length();
+                let nearest = clip
+                    .iter()
+                    .map(|c| c.z / c.w)
+                    .fold(1.0f32, f32::min)
+                    .max(0.0);
+                Some(LightGeometry {
+                    perspective: false,
+                    near: 0.0,
+                    far,
+                    size,
+                    nearest_caster: nearest * far,
+                    uv_per: [0.5 * row(0).length(), 0.5 * row(1).length()],
+                })
+            }
+            LightKind::Spot { spot_angle_deg, .. } => {
+                let (near, far) = perspective_planes(m);
+                // clip.w is the distance along the light's axis.
+                let nearest = clip.iter().map(|c| c.w).fold(far, f32::min).max(near);
+                let per = 0.5 / (0.5 * spot_angle_deg).to_radians().tan() as f32;
+                Some(LightGeometry {
+                    perspective: true,
+                    near,
+                    far,
+                    size,
+                    nearest_caster: nearest,
+                    uv_per: [per, per],
+                })
+            }
+            LightKind::Point { .. } => None,
+        }
+    }
+}
+
+/// The near and far planes of webgpu's perspective `m` (depth
+/// z = A − B / d of the distance d along the axis): from two points on the
+/// axis, `n = B / A`, `f = B / (A − 1)`.
+fn perspective_planes(m: Mat4) -> (f32, f32) {
+    let inv = m.inverse();
+    // Two depths on the axis, their distances: the clip w.
+    let at = |z: f32| {
+        let p = inv * glam::Vec4::new(0.0, 0.0, z, 1.0);
+        let p: Vec3 = p.xyz() / p.w;
+        (m * p.extend(1.0)).w
+    };
+    let (z1, z2) = (0.25f32, 0.75f32);
+    let (d1, d2) = (at(z1) as f64, at(z2) as f64);
+    // z = A − B / d at both: B = (z2 − z1) / (1/d1 − 1/d2), A = z1 + B / d1.
+    let b = (z2 - z1) as f64 / (1.0 / d1 - 1.0 / d2);
+    let a = z1 as f64 + b / d1;
+    ((b / a) as f32, (b / (a - 1.0)) as f32)
+}
+// ANCHOR_END: light_geometry
+
+/// `Soft` in `soft.wgsl`: a variant's technique with one light's geometry.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct SoftUniform {
+    mode: u32,
+    search_taps: u32,
+    filter_taps: u32,
+    receiver_plane: u32,
+    perspective: u32,
+    search_model: u32,
+    penumbra_model: u32,
+    exponential: u32,
+    near: f32,
+    far: f32,
+    size: f32,
+    nearest_caster: f32,
+    uv_per: [f32; 2],
+    fixed_radius_texels: f32,
+    min_filter_texels: f32,
+    min_variance: f32,
+    bleed_lo: f32,
+    bleed_hi: f32,
+    exponent: f32,
+    renderer_size: f32,
+    _pad: [f32; 3],
+}
+
+impl SoftUniform {
+    pub fn new(t: Technique, g: &LightGeometry) -> SoftUniform {
+        let mut u = SoftUniform {
+            mode: t.mode(),
+            search_taps: 0,
+            filter_taps: 0,
+            receiver_plane: 0,
+            perspective: g.perspective as u32,
+            search_model: 0,
+            penumbra_model: 0,
+            exponential: 0,
+            near: g.near,
+            far: g.far,
+            size: g.size,
+            nearest_caster: g.nearest_caster,
+            uv_per: g.uv_per,
+            fixed_radius_texels: 0.0,
+            min_filter_texels: 0.0,
+            min_variance: 0.0,
+            bleed_lo: 0.0,
+            bleed_hi: 1.0,
+            exponent: 0.0,
+            renderer_size: 0.0,
+            _pad: [0.0; 3],
+        };
+        match t {
+            Technique::HardPcf | Technique::ThreePcfSoft => u.receiver_plane = 1,
+            Technique::FixedDisk {
+                taps,
+                radius_texels,
+            } => {
+                u.filter_taps = taps;
+                u.fixed_radius_texels = radius_texels;
+                u.receiver_plane = 1;
+            }
+            Technique::Pcss(p) => {
+                u.search_taps = p.search_taps;
+                u.filter_taps = p.filter_taps;
+                u.receiver_plane = p.receiver_plane as u32;
+                u.search_model = match p.search {
+                    Search::NearestCaster => 0,
+                    Search::LightSizeAtReceiver => 1,
+                    Search::NearPlane => 2,
+                };
+                u.penumbra_model = match p.penumbra {
+                    Penumbra::Geometry => 0,
+                    Penumbra::DepthRatio => 1,
+                    Penumbra::BevyRatio => 2,
+                };
+                u.min_filter_texels = p.min_filter_texels;
+                u.renderer_size = p.renderer_size.unwrap_or(0.0);
+            }
+            Technique::Variance(v) => {
+                u.exponential = v.exponent.is_some() as u32;
+                u.exponent = v.exponent.unwrap_or(0.0);
+                u.min_variance = v.min_variance;
+                (u.bleed_lo, u.bleed_hi) = v.bleed;
+            }
+        }
+        u
+    }
+}

@@ -1,0 +1,319 @@
+// lesson_10/soft.wgsl: soft shadows from one shadow map. Compiled after
+// common.wgsl, shadow_map.wgsl, lesson 03's exercises.wgsl and pcf.wgsl
+// (its receiver_plane_gradient, rotation_angle and pcf_poisson), then this
+// lesson's exercises.wgsl. Group 2: the map (lesson 03's bindings) and
+// binding 3, the blurred moments of the filterable maps (moments.wgsl).
+// Group 3: lesson 03's `pcf` filter at binding 0 and `soft` at binding 1.
+
+@group(2) @binding(3) var moments: texture_2d<f32>;
+
+// Rust: lessons/lesson_10/soft.rs `SoftUniform`, one per variant and light.
+struct Soft {
+    // 0: lesson 03's Poisson PCF; 1: a fixed disk; 2: PCSS; 3: variance
+    // map; 4: PCSS with exercise 1's blocker search; 5: three.js's
+    // PCFSoftShadowMap; 6: PCSS with exercise 2's penumbra.
+    mode: u32,
+    search_taps: u32,
+    filter_taps: u32,
+    // 1: each tap compares with the receiver's plane there.
+    receiver_plane: u32,
+    // The light: 0 orthographic (directional), 1 perspective (spot).
+    perspective: u32,
+    // How far the blocker search looks: 0: every blocker between the
+    // nearest caster and the receiver (ours); 1: the light's size at the
+    // receiver (Filament, Bevy); 2: a directional light's cone from its
+    // near plane (Godot), a spot's as 1.
+    search_model: u32,
+    // The penumbra: 0: the light's geometry, similar triangles (ours);
+    // 1: Fernando's ratio (d_r − d_b) / d_b times the search radius, on
+    // distances for a spot and on the map's depths for a directional light
+    // (Filament, Godot); 2: (z_r − z_b) / (1 − z_r) (Bevy).
+    penumbra_model: u32,
+    // Variance maps: 0 plain; 1 exponential (the moments of exp(c·z̃)).
+    exponential: u32,
+    // Orthographic: world distance from the light's plane at depth 0 and 1.
+    // Perspective: the near and far planes.
+    near: f32,
+    far: f32,
+    // Orthographic: tan(angular radius); perspective: the emitter's radius.
+    size: f32,
+    // The nearest caster's distance from the light (depth-plane units).
+    nearest_caster: f32,
+    // Map units per world unit across the light (orthographic, u and v),
+    // or per radian of angle from the axis (perspective: 1 / (2 tan(fov/2))).
+    uv_per: vec2<f32>,
+    // A fixed disk's radius, in texels; the least filter radius, in texels.
+    fixed_radius_texels: f32,
+    min_filter_texels: f32,
+    // Variance maps: the least variance, the light-bleeding cut
+    // linstep(bleed_lo, bleed_hi, p), the exponent c.
+    min_variance: f32,
+    bleed_lo: f32,
+    bleed_hi: f32,
+    exponent: f32,
+    // A renderer's stand-in light size (Filament's bulb radius), world
+    // units; 0: the scene's.
+    renderer_size: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+};
+@group(3) @binding(1) var<storage, read> soft: Soft;
+
+// ANCHOR: distance
+// The distance from the light of a point at map depth z: linear for an
+// orthographic map; for webgpu's perspective, z = f (d − n) / (d (f − n)).
+fn light_distance(z: f32) -> f32 {
+    if soft.perspective == 0u {
+        return soft.near + z * (soft.far - soft.near);
+    }
+    return soft.far * soft.near / (soft.far - z * (soft.far - soft.near));
+}
+// ANCHOR_END: distance
+
+// ANCHOR: penumbra
+// The filter's radius in map units for a receiver at distance d_r and a
+// blocker at d_b (parallel planes, Fernando 2005). The blocker's footprint
+// that hides part of the emitter from the receiver: a disk of world radius
+// (d_r − d_b) tan α (directional, cone α), or R (d_r − d_b) / d_r at
+// distance d_b, which the map sees under the angle R (d_r − d_b) / (d_r d_b)
+// (a spot's disk of radius R).
+fn filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
+    let h = max(d_r - d_b, 0.0);
+    if soft.perspective == 0u {
+        return h * soft.size * soft.uv_per;
+    }
+    return soft.size * h / (d_r * max(d_b, 1e-6)) * soft.uv_per;
+}
+// ANCHOR_END: penumbra
+
+// ANCHOR: vogel
+// Point i of an n-point disk: Vogel's golden-angle spiral, turned by
+// `angle`. Equal areas per point, no two close: a Poisson-like disk for
+// any n (Godot's kernels are the same spiral).
+fn vogel(i: u32, n: u32, angle: f32) -> vec2<f32> {
+    let r = sqrt((f32(i) + 0.5) / f32(n));
+    let t = f32(i) * 2.39996323 + angle;
+    return r * vec2<f32>(cos(t), sin(t));
+}
+// ANCHOR_END: vogel
+
+// A blocker search's result: the mean blocker distance, and how many taps
+// found one.
+struct Blockers {
+    distance: f32,
+    count: u32,
+};
+
+// ANCHOR: blocker_search
+// The taps of a disk of `radius` (map units) that see something in front of
+// the receiver's plane, and their mean distance from the light.
+fn blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
+    let size = vec2<f32>(textureDimensions(shadow_depths));
+    var sum = 0.0;
+    var count = 0u;
+    for (var i = 0u; i < soft.search_taps; i++) {
+        let o = vogel(i, soft.search_taps, angle) * radius;
+        let t = clamp(vec2<i32>(floor((s.xy + o) * size)), vec2<i32>(0), vec2<i32>(size) - 1);
+        let z = textureLoad(shadow_depths, t, 0).r;
+        if z < s.z + dot(gradient, o) {
+            sum += light_distance(z);
+            count += 1u;
+        }
+    }
+    return Blockers(sum / max(f32(count), 1.0), count);
+}
+// ANCHOR_END: blocker_search
+
+// ANCHOR: disk_pcf
+// `taps` bilinear comparisons on a disk of `radius` (map units): the
+// fraction of the taps the receiver's plane is not behind.
+fn disk_pcf(s: vec3<f32>, radius: vec2<f32>, taps: u32, angle: f32, gradient: vec2<f32>) -> f32 {
+    var lit = 0.0;
+    for (var i = 0u; i < taps; i++) {
+        let o = vogel(i, taps, angle) * radius;
+        lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
+    }
+    return lit / f32(taps);
+}
+// ANCHOR_END: disk_pcf
+
+// ANCHOR: pcss
+// Percentage-closer soft shadows: find the blockers, estimate the
+// penumbra from their mean distance, filter that wide.
+// `student`: 1 searches with exercise_blocker_search, 2 estimates with
+// exercise_filter_radius (exercises.wgsl), 0 neither.
+fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>, student: u32) -> f32 {
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let d_r = light_distance(s.z);
+    // 1. Where blockers can be: the emitter seen through the receiver.
+    var search = filter_radius(d_r, min(soft.nearest_caster, d_r));
+    var size = soft.size;
+    if soft.renderer_size > 0.0 {
+        size = soft.renderer_size;
+    }
+    if soft.search_model == 1u || (soft.search_model == 2u && soft.perspective == 1u) {
+        // The light's size at the receiver (Filament's `penumbraLs`).
+        search = size * soft.uv_per;
+        if soft.perspective == 1u {
+            search = search / d_r;
+        }
+    } else if soft.search_model == 2u {
+        // The cone's spread from the light's near plane (Godot's
+        // directional search).
+        search = filter_radius(d_r, soft.near);
+    }
+    var b = blocker_search(s, search, angle, gradient);
+    if student == 1u {
+        b = exercise_blocker_search(s, search, angle, gradient);
+    }
+    if b.count == 0u {
+        return 1.0;
+    }
+    // 2. How wide the penumbra is.
+    var radius = filter_radius(d_r, b.distance);
+    if student == 2u {
+        radius = exercise_filter_radius(d_r, b.distance);
+    }
+    if soft.penumbra_model != 0u {
+        let z_b = blocker_depth(b.distance);
+        // Fernando's (d_r − d_b) / d_b: distances for a spot, map depths
+        // for a directional light, as Filament and Godot compute it.
+        var ratio = (s.z - z_b) / max(z_b, 1e-6);
+        if soft.perspective == 1u {
+            ratio = (d_r - b.distance) / max(b.distance, 1e-6);
+        }
+        if soft.penumbra_model == 2u {
+            ratio = (s.z - z_b) / max(1.0 - s.z, 1e-6);
+        }
+        radius = search * max(ratio, 0.0);
+    }
+    radius = max(radius, vec2<f32>(soft.min_filter_texels * texel));
+    // 3. A PCF that wide.
+    return disk_pcf(s, radius, soft.filter_taps, angle + 1.0, gradient);
+}
+
+// The map depth of a point at distance d from the light (light_distance's
+// inverse): the renderers' penumbra ratios use depths.
+fn blocker_depth(d: f32) -> f32 {
+    if soft.perspective == 0u {
+        return (d - soft.near) / (soft.far - soft.near);
+    }
+    return soft.far * (d - soft.near) / (d * (soft.far - soft.near));
+}
+// ANCHOR_END: pcss
+
+// ANCHOR: chebyshev
+// Variance shadow maps (Donnelly and Lauritzen 2006): the blurred map holds
+// the mean μ and the mean square of the depths around the texel; the
+// one-tailed Chebyshev inequality bounds the share of them at or behind t:
+// P(z ≥ t) ≤ σ² / (σ² + (t − μ)²) for t > μ. Exact for one planar blocker
+// over a planar receiver; over two blockers at different depths the bound
+// is loose, and light bleeds through.
+fn chebyshev(m: vec2<f32>, t: f32, min_variance: f32) -> f32 {
+    if t <= m.x {
+        return 1.0;
+    }
+    let variance = max(m.y - m.x * m.x, min_variance);
+    let d = t - m.x;
+    return variance / (variance + d * d);
+}
+
+// The moments at s.xy, bilinearly (the map is 32-bit float: loaded, not
+// sampled, which needs no filterable-float feature).
+fn moments_at(uv: vec2<f32>) -> vec2<f32> {
+    let size = vec2<i32>(textureDimensions(moments));
+    let p = uv * vec2<f32>(size) - 0.5;
+    let f = fract(p);
+    let i = vec2<i32>(floor(p));
+    let t00 = textureLoad(moments, clamp(i, vec2<i32>(0), size - 1), 0).xy;
+    let t10 = textureLoad(moments, clamp(i + vec2<i32>(1, 0), vec2<i32>(0), size - 1), 0).xy;
+    let t01 = textureLoad(moments, clamp(i + vec2<i32>(0, 1), vec2<i32>(0), size - 1), 0).xy;
+    let t11 = textureLoad(moments, clamp(i + vec2<i32>(1, 1), vec2<i32>(0), size - 1), 0).xy;
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
+}
+
+// Lauritzen's light-bleeding reduction: the tail of p below `lo` is cut,
+// the rest stretched to [0, 1] (three.js: lo 0.3, hi 0.95).
+fn linstep(lo: f32, hi: f32, p: f32) -> f32 {
+    return clamp((p - lo) / (hi - lo), 0.0, 1.0);
+}
+
+fn variance_map(s: vec3<f32>) -> f32 {
+    // The linear depth z̃ in [0, 1], as the moments hold it (moments.wgsl).
+    var t = linear_depth(s.z);
+    var min_variance = soft.min_variance;
+    if soft.exponential == 1u {
+        // exp(c (2 z̃ − 1)); the least variance scales with it.
+        t = exp(soft.exponent * (2.0 * t - 1.0));
+        min_variance = soft.min_variance * t * t;
+    }
+    let p = chebyshev(moments_at(s.xy), t, min_variance);
+    return linstep(soft.bleed_lo, soft.bleed_hi, p);
+}
+
+// The depth as a fraction of the light's near-to-far distance.
+fn linear_depth(z: f32) -> f32 {
+    return (light_distance(z) - soft.near) / (soft.far - soft.near);
+}
+// ANCHOR_END: chebyshev
+
+// ANCHOR: three_pcf_soft
+// three.js's PCFSoftShadowMap (shadowmap_pars_fragment.glsl.js at
+// 99e4d38, SHADOWMAP_TYPE_PCF_SOFT): 16 nearest comparisons on the 4×4
+// texel block around the point (the lesson binds the nearest-filtering
+// comparison sampler for it), the outer rows and columns weighted by
+// the point's fraction f within its texel: a 3×3-texel box, bilinearly
+// smoothed, divided by 9. It has no light size: a fixed kernel.
+// Each tap compares with the receiver's plane there (three.js leaves that
+// to its `bias`, 0 by default: without it the outer taps acne).
+fn three_pcf_soft(s: vec3<f32>, gradient: vec2<f32>) -> f32 {
+    let size = vec2<f32>(textureDimensions(shadow_map));
+    let texel = 1.0 / size;
+    let f = fract(s.xy * size + 0.5);
+    let uv = s.xy - f * texel;
+    var sum = 0.0;
+    for (var j = 0; j < 4; j++) {
+        for (var i = 0; i < 4; i++) {
+            let o = (vec2<f32>(f32(i), f32(j)) - 1.0) * texel;
+            var w = 1.0;
+            if i == 0 { w *= 1.0 - f.x; }
+            if i == 3 { w *= f.x; }
+            if j == 0 { w *= 1.0 - f.y; }
+            if j == 3 { w *= f.y; }
+            let at = uv + o;
+            sum += w * textureSampleCompareLevel(shadow_map, shadow_compare, at, s.z + dot(gradient, at - s.xy));
+        }
+    }
+    return sum / 9.0;
+}
+// ANCHOR_END: three_pcf_soft
+
+// ANCHOR: fs_soft
+@fragment
+fn fs_soft(in: VertexOut) -> LitOut {
+    let s = shadow_coords(in.world);
+    // Derivatives before any branch: they need all four pixels of the quad.
+    var gradient = receiver_plane_gradient(in.world);
+    if soft.receiver_plane == 0u {
+        gradient = vec2<f32>(0.0);
+    }
+    let angle = rotation_angle(in.clip.xy);
+    var v = 1.0;
+    if !outside_shadow_map(in.world, s) {
+        switch soft.mode {
+            case 0u: { v = pcf_poisson(s, in.clip.xy, gradient); }
+            case 1u: {
+                let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+                v = disk_pcf(s, vec2<f32>(soft.fixed_radius_texels * texel), soft.filter_taps, angle, gradient);
+            }
+            case 2u: { v = pcss(s, angle, gradient, 0u); }
+            case 3u: { v = variance_map(s); }
+            case 4u: { v = pcss(s, angle, gradient, 1u); }
+            case 6u: { v = pcss(s, angle, gradient, 2u); }
+            default: { v = three_pcf_soft(s, gradient); }
+        }
+    }
+    return lit_output(in, v);
+}
+// ANCHOR_END: fs_soft

@@ -1,0 +1,24 @@
+// lesson_10 exercises answered with the chapter's own code (grade
+// --check-copies must see every one fail). Appended to soft.wgsl in place
+// of shaders/lesson_10/exercises.wgsl.
+
+// ANCHOR: blocker_search
+// Copies the chapter's `disk_pcf` listing: the share of taps that see no
+// blocker, not where the blockers are; called a distance.
+fn exercise_blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
+    let lit = disk_pcf(s, radius, soft.search_taps, angle, gradient);
+    let d_r = light_distance(s.z);
+    if lit >= 1.0 {
+        return Blockers(0.0, 0u);
+    }
+    return Blockers(d_r * lit, 1u);
+}
+// ANCHOR_END: blocker_search
+
+// ANCHOR: filter_radius
+// Copies the chapter's Fernando formula, w = (d_r − d_b) w_light / d_b, as
+// the map's radius.
+fn exercise_filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
+    return (d_r - d_b) * soft.size / max(d_b, 1e-6) * soft.uv_per;
+}
+// ANCHOR_END: filter_radius
