@@ -6,7 +6,7 @@
 use anyhow::{bail, Result};
 use common::run::knobs::{Knob, KnobRange};
 
-use super::soft::Technique;
+use super::soft::{Search, Technique};
 
 /// The most taps a search or a filter may take.
 pub const MAX_TAPS: u32 = 64;
@@ -36,6 +36,22 @@ pub fn technique_knobs(t: Technique) -> Vec<Knob> {
         Technique::Pcss(p) => vec![
             taps("search_taps", "blocker-search taps: fewer miss thin blockers", p.search_taps),
             taps("filter_taps", "filter taps: fewer give a noisier penumbra", p.filter_taps),
+            Knob {
+                name: "min_filter_texels",
+                doc: "the least filter radius, in texels: above 0 the contact shadow blurs open",
+                range: KnobRange::Float {
+                    min: 0.0,
+                    max: 16.0,
+                    log: false,
+                },
+                value: p.min_filter_texels as f64,
+            },
+            Knob {
+                name: "search_at_receiver",
+                doc: "search only the light's size at the receiver (Filament's), not every blocker up to the nearest caster",
+                range: KnobRange::Toggle,
+                value: (p.search == Search::LightSizeAtReceiver) as u32 as f64,
+            },
             Knob {
                 name: "receiver_plane",
                 doc: "compare each tap with the receiver's plane there (off: acne under wide kernels at grazing light)",
@@ -74,6 +90,13 @@ pub fn set_technique_knob(t: &mut Technique, name: &str, value: f64) -> Result<(
         (Technique::Pcss(p), "search_taps") => p.search_taps = value as u32,
         (Technique::Pcss(p), "filter_taps") => p.filter_taps = value as u32,
         (Technique::Pcss(p), "receiver_plane") => p.receiver_plane = value != 0.0,
+        (Technique::Pcss(p), "min_filter_texels") => p.min_filter_texels = value as f32,
+        (Technique::Pcss(p), "search_at_receiver") => {
+            p.search = match value != 0.0 {
+                true => Search::LightSizeAtReceiver,
+                false => Search::NearestCaster,
+            }
+        }
         (Technique::Variance(v), "blur_texels") => v.blur = value as u32,
         (Technique::Variance(v), "bleed_cut") => v.bleed.0 = value as f32,
         (t, _) => bail!("--knob {name}: the technique {t:?} has no such knob"),

@@ -69,7 +69,8 @@ enum Variant {
     #[value(name = "vsm_bleed_cut")]
     VsmBleedCut,
     /// Exponential variance map (Lauritzen and McCool 2008): the moments
-    /// of exp(40 (2 z̃ − 1)), blurred 9×9.
+    /// of exp(40 (2 z̃ − 1)) and of −exp(−5 (2 z̃ − 1)), blurred 9×9, the
+    /// lower bound of the two (EVSM4).
     #[value(name = "evsm")]
     Evsm,
     /// Filament's PCSS (google/filament, shaders/src/surface_shadowing.fs
@@ -131,6 +132,7 @@ impl Variant {
             Technique::Variance(Variance {
                 blur,
                 exponent,
+                negative: None,
                 min_variance,
                 bleed,
             })
@@ -142,7 +144,13 @@ impl Variant {
             Variant::Pcss => Technique::Pcss(ours),
             Variant::Vsm => variance(4, None, 1e-6, (0.0, 1.0)),
             Variant::VsmBleedCut => variance(4, None, 1e-6, (0.3, 1.0)),
-            Variant::Evsm => variance(4, Some(40.0), 1e-4, (0.0, 1.0)),
+            Variant::Evsm => Technique::Variance(Variance {
+                blur: 4,
+                exponent: Some(40.0),
+                negative: Some(5.0),
+                min_variance: 1e-4,
+                bleed: (0.0, 1.0),
+            }),
             Variant::FilamentPcss => Technique::Pcss(Pcss {
                 search: Search::LightSizeAtReceiver,
                 penumbra: Penumbra::DepthRatio,
@@ -250,7 +258,7 @@ fn map_group(
         view.clone(),
         wgpu::BindingResource::Sampler(&sampler),
         view,
-        wgpu::BindingResource::TextureView(&moments.view),
+        moments.buffer.as_entire_binding(),
     ];
     bindings::group(gpu, "soft shadow map", layout, &resources)
 }
@@ -297,7 +305,7 @@ impl Lesson for Soft {
         let module = shadow_map::shader_module_from_files(gpu, "lesson_10", &files)?;
         let mut entries = shadow_map_entries();
         entries.push(float_texture_entry(2));
-        entries.push(float_texture_entry(3));
+        entries.push(storage_entry(3, wgpu::ShaderStages::FRAGMENT, false, None));
         let map_layout = bindings::layout(gpu, "soft shadow map", &entries);
         let stage = wgpu::ShaderStages::FRAGMENT;
         let params_layout = bindings::layout(
@@ -387,10 +395,10 @@ impl Lesson for Soft {
             });
             if let Some(passes) = &state.moments {
                 frame.pass("moments", |enc, ts| {
-                    self.moments.record(enc, passes, false, ts.render())
+                    self.moments.record(enc, passes, false, ts.compute())
                 });
                 frame.pass("blur", |enc, ts| {
-                    self.moments.record(enc, passes, true, ts.render())
+                    self.moments.record(enc, passes, true, ts.compute())
                 });
             }
             let map_group = match state.technique.sampler() {

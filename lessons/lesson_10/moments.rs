@@ -1,19 +1,13 @@
 //! Filterable shadow maps (lesson 10): the variance map made from the
-//! shadow map by two full-screen passes (`shaders/lesson_10/moments.wgsl`),
-//! its depth moments box-blurred along x, then along y. The lit pass reads
-//! it with `soft.wgsl`'s Chebyshev bound.
+//! shadow map by two compute passes (`shaders/lesson_10/moments.wgsl`), its
+//! depth moments box-blurred along x, then along y, into a storage buffer.
+//! The lit pass reads it with `soft.wgsl`'s Chebyshev bound.
 
-use common::gpu::bindings::{self, float_texture_entry, storage_entry};
-use common::gpu::fullscreen::Fullscreen;
-use common::gpu::targets::render_texture;
+use common::gpu::bindings::{self, storage_entry, texture_entry};
 use common::gpu::Gpu;
 
 use crate::lesson_01::shadow_map::ShadowMap;
 use crate::lesson_10::soft::{LightGeometry, Variance};
-
-/// The moments' format: 32-bit floats, read with `textureLoad` (filtering
-/// 32-bit floats is an optional feature; the shader blends by hand).
-pub const MOMENTS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
 /// `Blur` in `moments.wgsl`.
 #[repr(C)]
@@ -26,16 +20,18 @@ pub struct BlurUniform {
     exponent: f32,
     near: f32,
     far: f32,
-    _pad: f32,
+    negative: f32,
 }
 
 /// The variance map and the passes that make it.
 pub struct MomentsMap {
-    /// The blurred moments, bound at group 2 binding 3 of the lit pass.
-    pub view: wgpu::TextureView,
+    /// The blurred moments, four 32-bit floats per texel, row by row: bound
+    /// at group 2 binding 3 of the lit pass.
+    pub buffer: wgpu::Buffer,
     /// The first pass's output (blurred along x).
-    first: wgpu::TextureView,
-    pipeline: wgpu::RenderPipeline,
+    first: wgpu::Buffer,
+    size: u32,
+    pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
 }
 
@@ -47,24 +43,60 @@ pub struct MomentsPasses {
 
 impl MomentsMap {
     pub fn new(gpu: &Gpu, size: u32) -> MomentsMap {
-        let usage = wgpu::TextureUsages::TEXTURE_BINDING;
-        let texture = |label| {
-            render_texture(gpu, label, size, size, MOMENTS_FORMAT, usage)
-                .create_view(&Default::default())
+        let buffer = |label| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64 * size as u64 * 16,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            })
         };
-        let stage = wgpu::ShaderStages::FRAGMENT;
+        let stage = wgpu::ShaderStages::COMPUTE;
+        let depth = wgpu::TextureSampleType::Float { filterable: false };
+        let mut depth_entry = texture_entry(0, depth, wgpu::TextureViewDimension::D2);
+        depth_entry.visibility = stage;
+        let mut out = storage_entry(3, stage, false, None);
+        out.ty = wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
         let entries = [
-            float_texture_entry(0),
-            float_texture_entry(1),
+            depth_entry,
+            storage_entry(1, stage, false, None),
             storage_entry(2, stage, false, None),
+            out,
         ];
         let layout = bindings::layout(gpu, "moments", &entries);
-        let wgsl = include_str!("../../shaders/lesson_10/moments.wgsl");
-        let pipeline =
-            Fullscreen::image("moments", wgsl, "fs_blur", &[&layout], MOMENTS_FORMAT).pipeline(gpu);
+        let module = gpu
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("shaders/lesson_10/moments.wgsl"),
+                source: wgpu::ShaderSource::Wgsl(
+                    include_str!("../../shaders/lesson_10/moments.wgsl").into(),
+                ),
+            });
+        let pipeline_layout = gpu
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("moments"),
+                bind_group_layouts: &[Some(&layout)],
+                immediate_size: 0,
+            });
+        let pipeline = gpu
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("moments"),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some("cs_blur"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
         MomentsMap {
-            view: texture("moments"),
-            first: texture("moments along x"),
+            buffer: buffer("moments"),
+            first: buffer("moments along x"),
+            size,
             pipeline,
             layout,
         }
@@ -88,16 +120,20 @@ impl MomentsMap {
                 exponent: v.exponent.unwrap_or(0.0),
                 near: g.near,
                 far: g.far,
-                _pad: 0.0,
+                negative: v.negative.unwrap_or(0.0),
             };
-            let buffer = bindings::params_buffer(gpu, "blur", bytemuck::bytes_of(&u));
-            // The pass along x reads the depths; along y, the first pass.
-            // Each binds the texture it does not write as the other input.
-            let other = if vertical { &self.first } else { &self.view };
+            let params = bindings::params_buffer(gpu, "blur", bytemuck::bytes_of(&u));
+            // Along x: the depths into `first` (reading the map's buffer,
+            // unused); along y: `first` into the map's buffer.
+            let (input, output) = match vertical {
+                false => (&self.buffer, &self.first),
+                true => (&self.first, &self.buffer),
+            };
             let resources = [
                 wgpu::BindingResource::TextureView(&map.view),
-                wgpu::BindingResource::TextureView(other),
-                buffer.as_entire_binding(),
+                input.as_entire_binding(),
+                params.as_entire_binding(),
+                output.as_entire_binding(),
             ];
             bindings::group(gpu, "moments", &self.layout, &resources)
         };
@@ -108,39 +144,28 @@ impl MomentsMap {
     }
 
     // ANCHOR: record
-    /// Records the two passes: the moments blurred along x into the first
-    /// texture, then along y into the map.
+    /// Records one of the two passes: the moments blurred along x, or
+    /// those blurred again along y.
     pub fn record(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         passes: &MomentsPasses,
         vertical: bool,
-        ts: Option<wgpu::RenderPassTimestampWrites>,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites>,
     ) {
-        let (target, group) = if vertical {
-            (&self.view, &passes.along_y)
+        let group = if vertical {
+            &passes.along_y
         } else {
-            (&self.first, &passes.along_x)
+            &passes.along_x
         };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("moments"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: ts,
-            occlusion_query_set: None,
-            multiview_mask: None,
+            timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, group, &[]);
-        pass.draw(0..3, 0..1);
+        let groups = self.size.div_ceil(8);
+        pass.dispatch_workgroups(groups, groups, 1);
     }
     // ANCHOR_END: record
 }

@@ -76,6 +76,9 @@ pub struct Variance {
     pub blur: u32,
     /// `Some(c)`: exponential moments of `exp(c (2 z̃ − 1))`.
     pub exponent: Option<f32>,
+    /// `Some(c⁻)`: also those of `−exp(−c⁻ (2 z̃ − 1))`, the bound the
+    /// lower of the two (EVSM4); `None`: the positive warp alone (EVSM2).
+    pub negative: Option<f32>,
     /// The least variance (plain), or the least variance over the warped
     /// receiver depth squared (exponential).
     pub min_variance: f32,
@@ -257,8 +260,9 @@ pub struct SoftUniform {
     bleed_lo: f32,
     bleed_hi: f32,
     exponent: f32,
+    negative: f32,
     renderer_size: f32,
-    _pad: [f32; 3],
+    _pad: [f32; 2],
 }
 
 impl SoftUniform {
@@ -283,8 +287,9 @@ impl SoftUniform {
             bleed_lo: 0.0,
             bleed_hi: 1.0,
             exponent: 0.0,
+            negative: 0.0,
             renderer_size: 0.0,
-            _pad: [0.0; 3],
+            _pad: [0.0; 2],
         };
         match t {
             Technique::HardPcf | Technique::ThreePcfSoft => u.receiver_plane = 1,
@@ -316,6 +321,7 @@ impl SoftUniform {
             Technique::Variance(v) => {
                 u.exponential = v.exponent.is_some() as u32;
                 u.exponent = v.exponent.unwrap_or(0.0);
+                u.negative = v.negative.unwrap_or(0.0);
                 u.min_variance = v.min_variance;
                 (u.bleed_lo, u.bleed_hi) = v.bleed;
             }

@@ -1,8 +1,10 @@
 // lesson_10/moments.wgsl: a variance map from the shadow map, in two
-// full-screen passes over the map (appended to fullscreen.wgsl). The first
-// turns each depth into the moments (z̃, z̃²) of its linear depth z̃, or those of exp(c (2 z̃ − 1))
-// for an exponential map, and averages 2r + 1 of them along x; the second
-// averages the first's along y: a (2r + 1)² box filter, separable.
+// compute passes over the map, into storage buffers of 32-bit floats (a
+// 32-bit float colour target is not renderable everywhere: wgpu's GL). The
+// first turns each depth into the moments (z̃, z̃²) of its linear depth z̃,
+// or those of exp(c (2 z̃ − 1)) for an exponential map, and averages 2r + 1
+// of them along x; the second averages the first's along y: a (2r + 1)²
+// box filter, separable.
 
 // Rust: lessons/lesson_10/moments.rs `BlurUniform`.
 struct Blur {
@@ -14,44 +16,53 @@ struct Blur {
     exponent: f32,
     near: f32,
     far: f32,
-    _pad: f32,
+    // The negative warp's exponent (EVSM4); 0: none.
+    negative: f32,
 };
 @group(0) @binding(0) var depth: texture_2d<f32>;
-@group(0) @binding(1) var first: texture_2d<f32>;
+@group(0) @binding(1) var<storage, read> first: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> blur: Blur;
+@group(0) @binding(3) var<storage, read_write> out: array<vec4<f32>>;
 
 // ANCHOR: moments
 // A depth's moments, of the linear depth z̃ in [0, 1] (a perspective map's
 // depths crowd near 1, where a variance of their squares is lost to
 // rounding). An exponential map stores those of exp(c (2 z̃ − 1))
 // (Filament's warp): the warp makes a receiver's test sharper, and the
-// bound tighter, where blockers overlap.
-fn depth_moments(z: f32) -> vec2<f32> {
+// bound tighter, where blockers overlap; and with a negative exponent c⁻
+// also those of −exp(−c⁻ (2 z̃ − 1)) in .zw (EVSM4), whose bound is tight
+// where the positive one's mean is dragged by far texels.
+fn depth_moments(z: f32) -> vec4<f32> {
     var d = blur.near + z * (blur.far - blur.near);
     if blur.perspective == 1u {
         d = blur.far * blur.near / (blur.far - z * (blur.far - blur.near));
     }
-    var x = (d - blur.near) / (blur.far - blur.near);
-    if blur.exponential == 1u {
-        x = exp(blur.exponent * (2.0 * x - 1.0));
+    let lin = (d - blur.near) / (blur.far - blur.near);
+    if blur.exponential == 0u {
+        return vec4<f32>(lin, lin * lin, 0.0, 0.0);
     }
-    return vec2<f32>(x, x * x);
+    let x = exp(blur.exponent * (2.0 * lin - 1.0));
+    let y = -exp(-blur.negative * (2.0 * lin - 1.0));
+    return vec4<f32>(x, x * x, y, y * y);
 }
 // ANCHOR_END: moments
 
-@fragment
-fn fs_blur(in: FullscreenOut) -> @location(0) vec4<f32> {
+@compute @workgroup_size(8, 8)
+fn cs_blur(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = vec2<i32>(textureDimensions(depth));
-    let p = vec2<i32>(in.pos.xy);
-    var sum = vec2<f32>(0.0);
+    let p = vec2<i32>(id.xy);
+    if any(p >= size) {
+        return;
+    }
+    var sum = vec4<f32>(0.0);
     for (var k = -blur.radius; k <= blur.radius; k++) {
         if blur.vertical == 0u {
             let t = clamp(p + vec2<i32>(k, 0), vec2<i32>(0), size - 1);
             sum += depth_moments(textureLoad(depth, t, 0).r);
         } else {
             let t = clamp(p + vec2<i32>(0, k), vec2<i32>(0), size - 1);
-            sum += textureLoad(first, t, 0).xy;
+            sum += first[t.y * size.x + t.x];
         }
     }
-    return vec4<f32>(sum / f32(2 * blur.radius + 1), 0.0, 1.0);
+    out[p.y * size.x + p.x] = sum / f32(2 * blur.radius + 1);
 }

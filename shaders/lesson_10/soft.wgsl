@@ -5,7 +5,7 @@
 // binding 3, the blurred moments of the filterable maps (moments.wgsl).
 // Group 3: lesson 03's `pcf` filter at binding 0 and `soft` at binding 1.
 
-@group(2) @binding(3) var moments: texture_2d<f32>;
+@group(2) @binding(3) var<storage, read> moments: array<vec4<f32>>;
 
 // Rust: lessons/lesson_10/soft.rs `SoftUniform`, one per variant and light.
 struct Soft {
@@ -51,10 +51,11 @@ struct Soft {
     bleed_lo: f32,
     bleed_hi: f32,
     exponent: f32,
+    // The negative warp's exponent c⁻ (EVSM4); 0: the positive warp alone.
+    negative: f32,
     // A renderer's stand-in light size (Filament's bulb radius), world
     // units; 0: the scene's.
     renderer_size: f32,
-    _pad0: f32,
     _pad1: f32,
     _pad2: f32,
 };
@@ -219,17 +220,24 @@ fn chebyshev(m: vec2<f32>, t: f32, min_variance: f32) -> f32 {
     return variance / (variance + d * d);
 }
 
-// The moments at s.xy, bilinearly (the map is 32-bit float: loaded, not
-// sampled, which needs no filterable-float feature).
-fn moments_at(uv: vec2<f32>) -> vec2<f32> {
-    let size = vec2<i32>(textureDimensions(moments));
-    let p = uv * vec2<f32>(size) - 0.5;
+// The moments of texel t (clamped to the map), from the blurred buffer.
+fn moments_texel(t: vec2<i32>) -> vec4<f32> {
+    let size = vec2<i32>(textureDimensions(shadow_depths));
+    let c = clamp(t, vec2<i32>(0), size - 1);
+    return moments[c.y * size.x + c.x];
+}
+
+// The moments at uv, blended bilinearly by hand (32-bit floats in a
+// storage buffer: no filtering sampler reads them).
+fn moments_at(uv: vec2<f32>) -> vec4<f32> {
+    let size = vec2<f32>(textureDimensions(shadow_depths));
+    let p = uv * size - 0.5;
     let f = fract(p);
     let i = vec2<i32>(floor(p));
-    let t00 = textureLoad(moments, clamp(i, vec2<i32>(0), size - 1), 0).xy;
-    let t10 = textureLoad(moments, clamp(i + vec2<i32>(1, 0), vec2<i32>(0), size - 1), 0).xy;
-    let t01 = textureLoad(moments, clamp(i + vec2<i32>(0, 1), vec2<i32>(0), size - 1), 0).xy;
-    let t11 = textureLoad(moments, clamp(i + vec2<i32>(1, 1), vec2<i32>(0), size - 1), 0).xy;
+    let t00 = moments_texel(i);
+    let t10 = moments_texel(i + vec2<i32>(1, 0));
+    let t01 = moments_texel(i + vec2<i32>(0, 1));
+    let t11 = moments_texel(i + vec2<i32>(1, 1));
     return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
 }
 
@@ -241,14 +249,20 @@ fn linstep(lo: f32, hi: f32, p: f32) -> f32 {
 
 fn variance_map(s: vec3<f32>) -> f32 {
     // The linear depth z̃ in [0, 1], as the moments hold it (moments.wgsl).
-    var t = linear_depth(s.z);
-    var min_variance = soft.min_variance;
-    if soft.exponential == 1u {
+    let lin = linear_depth(s.z);
+    let m = moments_at(s.xy);
+    var p = 1.0;
+    if soft.exponential == 0u {
+        p = chebyshev(m.xy, lin, soft.min_variance);
+    } else {
         // exp(c (2 z̃ − 1)); the least variance scales with it.
-        t = exp(soft.exponent * (2.0 * t - 1.0));
-        min_variance = soft.min_variance * t * t;
+        let t = exp(soft.exponent * (2.0 * lin - 1.0));
+        p = chebyshev(m.xy, t, soft.min_variance * t * t);
+        if soft.negative > 0.0 {
+            let u = -exp(-soft.negative * (2.0 * lin - 1.0));
+            p = min(p, chebyshev(m.zw, u, soft.min_variance * u * u));
+        }
     }
-    let p = chebyshev(moments_at(s.xy), t, min_variance);
     return linstep(soft.bleed_lo, soft.bleed_hi, p);
 }
 

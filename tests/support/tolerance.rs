@@ -112,6 +112,8 @@ pub const KEYS: &[(&str, Class)] = &[
     ("false shadow", Class::Figure),
     ("false lit", Class::Figure),
     ("mean |dV|", Class::Figure),
+    ("penumbra |dV|", Class::Figure),
+    ("bleeding", Class::Figure),
     ("shimmer", Class::Figure),
     ("volume_fragments", Class::Fragments),
     ("stencil_fragments", Class::Fragments),

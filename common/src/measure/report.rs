@@ -315,10 +315,17 @@ impl Report {
             .max(21);
         // A shimmer column only when some variant walked a camera path.
         let shimmer = self.variants.iter().any(|v| v.camera_path.is_some());
-        let (head, rule) = match shimmer {
-            true => (" | shimmer %", "-|----------"),
-            false => ("", ""),
+        let (mut head, mut rule) = match shimmer {
+            true => (" | shimmer %".to_string(), "-|----------".to_string()),
+            false => (String::new(), String::new()),
         };
+        // Soft shadows (an area light): mean |ΔV|, in the penumbra, and
+        // light bleeding.
+        let soft = self.variants.iter().any(|v| v.error.soft.is_some());
+        if soft {
+            head += " | mean |dV| | penumbra |dV| | bleeding %";
+            rule += "-|-----------|---------------|-----------";
+        }
         s += &format!(
             "{:<w$} | misclassified % | false shadow | false lit | frame ms |   GPU ms |   CPU ms{head}\n",
             "variant"
@@ -351,6 +358,9 @@ impl Report {
             if shimmer {
                 s += &format!(" | {:>9}", "-");
             }
+            if soft {
+                s += &format!(" | {:>9} | {:>13} | {:>9}", "-", "-", "-");
+            }
             s += "\n";
         }
         for v in &self.variants {
@@ -366,6 +376,17 @@ impl Report {
                 match &v.camera_path {
                     Some(p) => s += &format!(" | {:>9.3}", p.shimmer_pct),
                     None => s += &format!(" | {:>9}", "-"),
+                }
+            }
+            if soft {
+                match &v.error.soft {
+                    Some(e) => {
+                        s += &format!(
+                            " | {:>9.4} | {:>13.4} | {:>9.3}",
+                            v.error.mean_abs, e.penumbra_mean_abs, e.light_bleeding_pct
+                        )
+                    }
+                    None => s += &format!(" | {:>9} | {:>13} | {:>9}", "-", "-", "-"),
                 }
             }
             s += "\n";
