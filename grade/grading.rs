@@ -233,6 +233,15 @@ fn snapshot_part(ex: &Exercise, label: &str, report: &Value, out: &Path) -> Resu
         f("false_lit_pct"),
         100.0 * f("mean_abs"),
     );
+    // An area light's soft shadow: its penumbra and its umbra.
+    if metric(report, &ex.variant, "penumbra_mean_abs").is_some() {
+        text += &format!(
+            "penumbra |dV| {:.2} %  umbra misclassified {:.2} %  bleeding {:.2} %\n",
+            100.0 * f("penumbra_mean_abs"),
+            f("umbra_misclassified_pct"),
+            f("light_bleeding_pct"),
+        );
+    }
     for c in &ex.snapshot_counters {
         let v = metric(report, &ex.variant, &format!("counters.{c}"));
         text += &format!("{c} {}\n", v.map_or("missing".into(), fmt));

@@ -61,6 +61,8 @@ pub struct Check {
     /// `"default"` (the lesson's own scene) or a file in `scenes/`.
     pub scene: String,
     /// `misclassified_pct`, `false_shadow_pct`, `false_lit_pct`, `mean_abs`,
+    /// (an area light's) `penumbra_mean_abs`, `umbra_misclassified_pct`,
+    /// `light_bleeding_pct`,
     /// `coverage_mismatch_pct` (an error figure of report.json),
     /// `counters.<name>` or `camera_path.<name>` (e.g. `camera_path.shimmer_pct`).
     pub metric: String,
@@ -172,12 +174,16 @@ impl Hint {
 }
 
 /// The error figures a metric may name, besides `counters.<name>`.
-const ERROR_METRICS: [&str; 5] = [
+const ERROR_METRICS: [&str; 8] = [
     "misclassified_pct",
     "false_shadow_pct",
     "false_lit_pct",
     "mean_abs",
     "coverage_mismatch_pct",
+    // Soft shadows (lesson 10): an area light's.
+    "penumbra_mean_abs",
+    "umbra_misclassified_pct",
+    "light_bleeding_pct",
 ];
 
 /// Whether `metric` is an error figure, `counters.<name>` or
