@@ -122,6 +122,14 @@ fn lesson_03_buffer_is_a_shadow_map() {
 }
 
 #[test]
+fn lesson_10_buffer_is_a_shadow_map() {
+    let test = "buffer_10";
+    if let Some((img, _)) = buffer_of(env!("CARGO_BIN_EXE_lesson_10"), test, "pcss") {
+        check_shadow_map(&img, 1024, test);
+    }
+}
+
+#[test]
 fn lesson_04_buffer_is_the_cube_map_as_a_cross() {
     let test = "buffer_view_04";
     let Some((img, run)) = buffer_of(env!("CARGO_BIN_EXE_lesson_04"), test, "linear_1024") else {

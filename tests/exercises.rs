@@ -122,13 +122,15 @@ exercises! {
     l08_depth_bounds: lesson_08 exercise_depth_bounds,
     l09_practical_splits: lesson_09 exercise_practical_splits,
     l09_snap_tight_box: lesson_09 exercise_snap_tight_box,
+    l10_blocker_search: lesson_10 exercise_blocker_search,
+    l10_penumbra: lesson_10 exercise_penumbra,
 }
 
 /// Every exercise of every chapter's spec has its test above, and every
 /// chapter has at least two.
 #[test]
 fn every_exercise_is_graded() {
-    for n in 1..=9 {
+    for n in 1..=10 {
         let lesson = format!("lesson_{n:02}");
         let spec = spec(&lesson);
         assert!(
@@ -208,7 +210,7 @@ fn slug_matches_mdbook() {
 fn hidden_scenes_are_graded() {
     let dir = root().join("tests/hidden_scenes");
     let mut failures = String::new();
-    for n in 1..=9 {
+    for n in 1..=10 {
         let lesson = format!("lesson_{n:02}");
         let results = grading::grade_lesson(&runner(), &options(Some(dir.clone())), &lesson, None)
             .unwrap_or_else(|e| panic!("{lesson}: {e:#}"));
@@ -253,7 +255,7 @@ fn every_copy_names_the_listing_it_copies() {
         }
     }
     let mut errors = Vec::new();
-    for n in 1..=9 {
+    for n in 1..=10 {
         let lesson = format!("lesson_{n:02}");
         for ex in &spec(&lesson).exercises {
             // `write NAME() in FILE`: the copy of FILE holds NAME.

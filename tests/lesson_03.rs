@@ -8,7 +8,6 @@
 mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_03");
-const SIZE: [&str; 4] = ["--width", "640", "--height", "360"];
 /// The variant with the fewest misclassified pixels on the default scene.
 const BEST: &str = "poisson_16";
 /// Every variant that filters the right way (comparisons, then average).
@@ -22,12 +21,7 @@ const SOUND: [&str; 6] = [
 ];
 
 fn run(name: &str, scene: Option<&str>, extra: &[&str]) -> Option<support::LessonRun> {
-    let scene = scene.map(|s| support::scene_path(s).display().to_string());
-    let mut args: Vec<&str> = [&SIZE[..], &["--frames", "1"], extra].concat();
-    if let Some(s) = &scene {
-        args.extend(["--scene", s.as_str()]);
-    }
-    support::run_lesson(BIN, name, &args)
+    support::run_small(BIN, name, scene, extra)
 }
 
 /// Pixels of a visibility PNG that are neither 0 nor 1: a penumbra.

@@ -10,15 +10,9 @@
 mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_10");
-const SIZE: [&str; 4] = ["--width", "640", "--height", "360"];
 
 fn run(name: &str, scene: Option<&str>, extra: &[&str]) -> Option<support::LessonRun> {
-    let scene = scene.map(|s| support::scene_path(s).display().to_string());
-    let mut args: Vec<&str> = [&SIZE[..], &["--frames", "1"], extra].concat();
-    if let Some(s) = &scene {
-        args.extend(["--scene", s.as_str()]);
-    }
-    support::run_lesson(BIN, name, &args)
+    support::run_small(BIN, name, scene, extra)
 }
 
 /// Mean |ΔV| in the reference's penumbra.

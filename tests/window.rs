@@ -134,6 +134,7 @@ window_test!(lesson_06_window_capture, "lesson_06");
 window_test!(lesson_07_window_capture, "lesson_07");
 window_test!(lesson_08_window_capture, "lesson_08");
 window_test!(lesson_09_window_capture, "lesson_09");
+window_test!(lesson_10_window_capture, "lesson_10");
 
 /// Bad window flags: one line naming the flag, non-zero, before any window.
 #[test]

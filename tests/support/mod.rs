@@ -198,6 +198,23 @@ pub fn scene_path(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// One untimed frame of `bin` at 640×360, on `scene` (a file in
+/// `scenes/`) or the lesson's own, with `extra` arguments.
+pub fn run_small(
+    bin: &str,
+    name: &str,
+    scene: Option<&str>,
+    extra: &[&str],
+) -> Option<LessonRun> {
+    let scene = scene.map(|s| scene_path(s).display().to_string());
+    let size = ["--width", "640", "--height", "360", "--frames", "1"];
+    let mut args: Vec<&str> = [&size[..], extra].concat();
+    if let Some(s) = &scene {
+        args.extend(["--scene", s.as_str()]);
+    }
+    run_lesson(bin, name, &args)
+}
+
 /// A variant's misclassified %, the figure most pass criteria use.
 pub fn misclassified(run: &LessonRun, variant_name: &str) -> f64 {
     error(&run.report, variant_name, "misclassified_pct")
