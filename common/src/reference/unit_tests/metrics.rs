@@ -271,3 +271,31 @@ fn view_depth_is_the_distance_along_the_forward_axis() {
     assert_eq!(d[0], 6.0);
     assert!(d[1].is_nan());
 }
+
+#[test]
+fn soft_figures_count_the_penumbra_and_the_umbra_apart() {
+    // Six receivers of an area light: two in the umbra (V = 0), two in the
+    // penumbra (0 < V < 1), two lit; one pixel that is not a receiver.
+    let px = [
+        (Some(0), 0.0, 1.0),
+        (Some(0), 0.0, 1.0),
+        (Some(0), 0.25, 1.0),
+        (Some(0), 0.75, 1.0),
+        (Some(0), 1.0, 1.0),
+        (Some(0), 1.0, 1.0),
+        (Some(0), 0.5, 0.01),
+    ];
+    let mut r = reference(7, 1, &px);
+    r.area_light = vec![true];
+    // The umbra lit 0.6 (misclassified and bleeding) and 0.05 (neither);
+    // the penumbra off by 0.25 and 0.05; the lit pixels right.
+    let gpu = [0.6, 0.05, 0.5, 0.7, 1.0, 1.0, 0.0];
+    let soft = compare(&r, 0, &[1; 7], &gpu).stats.soft.expect("an area light");
+    assert_eq!((soft.penumbra_pixels, soft.umbra_pixels), (2, 2));
+    assert!((soft.penumbra_mean_abs - 0.15).abs() < 1e-6, "{soft:?}");
+    assert_eq!(soft.umbra_misclassified_pct, 50.0);
+    assert_eq!(soft.light_bleeding_pct, 50.0);
+    // A hard light has none of these.
+    r.area_light = vec![false];
+    assert!(compare(&r, 0, &[1; 7], &gpu).stats.soft.is_none());
+}
