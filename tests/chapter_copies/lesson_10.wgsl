@@ -16,9 +16,10 @@ fn exercise_blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient
 // ANCHOR_END: blocker_search
 
 // ANCHOR: filter_radius
-// Copies the chapter's Fernando formula, w = (d_r − d_b) w_light / d_b, as
-// the map's radius.
+// Copies the ratio of the chapter's `pcss` listing (Fernando's
+// (d_r − d_b) / d_b, the renderers' branch) times the light's size, as the
+// map's radius: the floor's penumbra, not the blockers' footprint.
 fn exercise_filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
-    return (d_r - d_b) * soft.size / max(d_b, 1e-6) * soft.uv_per;
+    return (d_r - d_b) / max(d_b, 1e-6) * soft.size * soft.uv_per;
 }
 // ANCHOR_END: filter_radius
