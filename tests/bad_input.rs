@@ -201,6 +201,54 @@ fn point_light_is_refused_by_lesson_01() {
     assert!(e.contains("lights[0]") && e.contains("lesson_04"), "{e}");
 }
 
+/// A light's size: each bad value is one line naming the field; a good one
+/// is refused by the hard-shadow lessons in one line naming lesson 10.
+#[test]
+fn bad_light_sizes_name_the_field() {
+    let light = |extra: &str, kind: &str| {
+        let place = match kind {
+            "directional" => "direction = [-0.4, -1.0, -0.3]",
+            _ => "position = [0.0, 3.0, 0.0]\ndirection = [0.0, -1.0, 0.0]\nrange = 10.0\nspot_angle_deg = 60.0",
+        };
+        format!("[camera]\neye = [4.0, 3.0, 6.0]\ntarget = [0.0, 0.5, 0.0]\n[[lights]]\ntype = \"{kind}\"\n{place}\n{extra}\n[[objects]]\nmesh = \"cube\"\n")
+    };
+    let cases = [
+        ("radius = -0.1", "spot", "lights[0].radius"),
+        ("radius = 6.0", "spot", "lights[0].radius"),
+        (
+            "angular_radius_deg = 2.0",
+            "spot",
+            "lights[0].angular_radius_deg",
+        ),
+        ("radius = 0.1", "directional", "lights[0].radius"),
+        (
+            "angular_radius_deg = 90.0",
+            "directional",
+            "lights[0].angular_radius_deg",
+        ),
+        (
+            "angular_radius_deg = nan",
+            "directional",
+            "lights[0].angular_radius_deg",
+        ),
+    ];
+    for (i, (extra, kind, field)) in cases.into_iter().enumerate() {
+        let p = scene_file(&format!("size_{i}.toml"), &light(extra, kind));
+        let e = fails(&["--scene", &p]);
+        assert!(e.contains(field), "{extra} on a {kind} light: {e}");
+    }
+    // A valid size: lesson 01 refuses it, naming lesson 10.
+    let p = scene_file(
+        "size_ok.toml",
+        &light("angular_radius_deg = 0.27", "directional"),
+    );
+    let e = fails(&["--scene", &p]);
+    assert!(
+        e.contains("angular_radius_deg") && e.contains("lesson_10"),
+        "{e}"
+    );
+}
+
 #[test]
 fn no_adapter_says_what_to_install() {
     // No Metal on Linux: the same path a machine without any driver takes.
