@@ -11,7 +11,10 @@
 //!   record (the code changed and the book was not regenerated): every run
 //!   of the manifest, on the backend the records were made on, one frame
 //!   (times are not compared);
-//! - a table a lesson writes itself (`manifest::TEXTS`) differs from a re-run's.
+//! - a table a lesson writes itself (`manifest::TEXTS`) differs from a re-run's;
+//! - chapter 10's convergence of the reference (`lesson_10/convergence.md`)
+//!   differs from its record, or the reference rendered again gives other
+//!   figures (all but its times).
 //!
 //! The message names the file, the variant and the cell, and says how to
 //! regenerate.
@@ -28,6 +31,9 @@ mod legend;
 #[path = "../book/generate/lesson09.rs"]
 #[allow(dead_code)]
 mod lesson09;
+#[path = "../book/generate/lesson10.rs"]
+#[allow(dead_code)]
+mod lesson10;
 #[path = "../book/generate/manifest.rs"]
 #[allow(dead_code)]
 mod manifest;
@@ -158,16 +164,21 @@ fn the_readme_block_is_the_one_the_records_make() {
     );
 }
 
-/// The closing chapter's tables and chapter 09's own are what the records make.
+/// The closing chapter's tables and chapters 09's and 10's own are what
+/// the records make.
 #[test]
 fn derived_tables_are_the_tables_their_records_make() {
     let records: Vec<Record> = manifest::RUNS.iter().map(record).collect();
+    let convergence = convergence_record();
     let mut expected = vec![
         (
             "choosing/families.md".to_string(),
             choosing::families(&records),
         ),
-        ("choosing/peers.md".to_string(), choosing::peers(&records)),
+        (
+            "choosing/peers.md".to_string(),
+            choosing::peers(&records, Some(convergence.reference_error())),
+        ),
         (
             "choosing/volumes_build.md".to_string(),
             choosing::volumes_build(&records),
@@ -186,6 +197,13 @@ fn derived_tables_are_the_tables_their_records_make() {
         expected.push(("lesson_09/cascades.md".into(), lesson09::cascades_table(r)));
         expected.push(("lesson_09/aliasing.md".into(), lesson09::aliasing_table(r)));
     }
+    let results = records
+        .iter()
+        .find(|r| r.lesson == "lesson_10" && r.run == "results");
+    expected.push((
+        format!("lesson_10/{}", lesson10::TABLE),
+        lesson10::table(&convergence, results),
+    ));
     for (file, want) in expected {
         let got = read(&generated().join(&file));
         assert!(
@@ -194,6 +212,55 @@ fn derived_tables_are_the_tables_their_records_make() {
             first_difference(&got, &want)
         );
     }
+}
+
+/// Chapter 10's convergence record (`lesson_10/convergence.json`).
+fn convergence_record() -> lesson10::Convergence {
+    let path = generated().join("lesson_10").join(lesson10::RECORD);
+    serde_json::from_str(&read(&path))
+        .unwrap_or_else(|e| panic!("{}: not a convergence record: {e}", path.display()))
+}
+
+/// The reference rendered again at N and 4N rays gives the committed
+/// convergence table, every figure but the times (CPU only, seconds).
+fn convergence_reproduces() {
+    let committed = convergence_record();
+    let now = lesson10::measure_all(&root(), committed.width, committed.height)
+        .expect("the convergence's references");
+    assert_eq!(
+        now.rows.len(),
+        committed.rows.len(),
+        "lesson_10/{}: other scenes now; {REGENERATE}",
+        lesson10::RECORD
+    );
+    // The times are the committed ones: only the figures are compared.
+    let now = lesson10::Convergence {
+        rows: now
+            .rows
+            .iter()
+            .zip(&committed.rows)
+            .map(|(n, c)| lesson10::Row {
+                ms_n: c.ms_n,
+                ms_4n: c.ms_4n,
+                ..n.clone()
+            })
+            .collect(),
+        ..committed.clone()
+    };
+    let results = manifest::RUNS
+        .iter()
+        .find(|r| r.lesson == "lesson_10" && r.name == "results")
+        .map(record);
+    let (a, b) = (
+        lesson10::table(&committed, results.as_ref()),
+        lesson10::table(&now, results.as_ref()),
+    );
+    assert!(
+        a == b,
+        "book/src/generated/lesson_10/{} differs from the references rendered again ({}); {REGENERATE}",
+        lesson10::TABLE,
+        first_difference(&a, &b)
+    );
 }
 
 /// The checker itself: an edited cell must be found.
@@ -240,6 +307,7 @@ fn fresh_record(id: &str, rec: &Record, report: &common::measure::report::Report
                     timing: None,
                     camera_path: now.camera_path.clone(),
                     classes: record::ClassRecord::of(now),
+                    soft: now.error.soft.clone(),
                 }
             })
             .collect(),
@@ -271,6 +339,13 @@ fn tolerant_text(r: &Record) -> String {
         }
         if let Some(p) = &v.camera_path {
             s += &format!("  shimmer {:.4}", p.shimmer_pct);
+        }
+        if let Some(e) = &v.soft {
+            s += &format!(
+                "  penumbra |dV| {:.4} bleeding {:.4}",
+                100.0 * e.penumbra_mean_abs,
+                e.light_bleeding_pct
+            );
         }
         for c in &v.classes {
             s += &format!(
@@ -436,13 +511,17 @@ fn reproduce(lesson: &str) {
             );
         }
     }
+    if lesson == "lesson_10" {
+        convergence_reproduces();
+    }
 }
 
 /// The comparison a student's GPU gets, on the H100's reports of every
 /// lesson's default scene at the records' 640×360
 /// (`tests/snapshot_replay/h100_reports/`, from
 /// `../shared/measurements/h100-2026-11-24/book-protocol/640x360/*/r0/`):
-/// within tolerance of the lavapipe records, while each differs.
+/// within tolerance of the lavapipe records, while each differs. Lesson
+/// 10 came after that commit: it has no H100 report.
 #[test]
 fn h100_default_scenes_are_within_tolerance_of_the_records() {
     let dir = root().join("tests/snapshot_replay/h100_reports");
@@ -504,4 +583,5 @@ drift_tests! {
     lesson_07_tables_reproduce: "lesson_07",
     lesson_08_tables_reproduce: "lesson_08",
     lesson_09_tables_reproduce: "lesson_09",
+    lesson_10_tables_reproduce: "lesson_10",
 }

@@ -1,7 +1,8 @@
 //! The closing chapter's tables ("Choosing a technique"), made from the
 //! committed records of every run: each family's best variant and its worst
 //! extreme case, the peers' defaults beside ours, and the three ways to
-//! build shadow volumes.
+//! build shadow volumes. A soft shadow (lesson 10) is judged by the mean
+//! |ΔV| over the reference's penumbra, a hard one by misclassified %.
 
 use std::path::Path;
 
@@ -12,12 +13,14 @@ use crate::record::{Record, VariantRecord};
 use crate::table::{count, pct, row, stat, time_cells};
 
 /// Writes `generated/choosing/{families,peers,volumes_build}.md`.
-pub fn write_all(generated: &Path, records: &[Record]) -> Result<()> {
+/// `reference_error`: the soft reference's own sampling error, in % of V
+/// (chapter 10's convergence), under which two soft errors do not differ.
+pub fn write_all(generated: &Path, records: &[Record], reference_error: Option<f64>) -> Result<()> {
     let dir = generated.join("choosing");
     std::fs::create_dir_all(&dir)?;
     let files = [
         ("families.md", families(records)),
-        ("peers.md", peers(records)),
+        ("peers.md", peers(records, reference_error)),
         ("volumes_build.md", volumes_build(records)),
     ];
     for (name, text) in files {
@@ -55,49 +58,66 @@ fn caption(records: &[Record], what: &str) -> String {
     }
 }
 
-/// Per lesson: the variant with the lowest error on its default scene, its
+/// A soft shadow's error (lesson 10), in %: its penumbra's mean |ΔV|.
+fn penumbra_pct(v: &VariantRecord) -> Option<f64> {
+    v.soft.as_ref().map(|s| 100.0 * s.penumbra_mean_abs)
+}
+
+/// Per lesson: the variant with the lowest error on its default scene
+/// (misclassified %, or for a soft shadow its penumbra's mean |ΔV|), its
 /// frame time, and the worst of the lesson's extreme cases for it.
 pub fn families(records: &[Record]) -> String {
     let mut s = caption(
         records,
-        "each lesson's most accurate variant on its default scene; frame cost: median [spread] of the default run",
+        "each lesson's most accurate variant on its default scene (a soft shadow's: by the mean |ΔV| over the penumbra); frame cost: median [spread] of the default run",
     );
     let head = [
         "family".to_string(),
         "lesson".into(),
         "most accurate variant".into(),
         "misclassified %".into(),
+        "penumbra \\|ΔV\\| %".into(),
         "frame ms".into(),
         "no shadows ms".into(),
         "its worst extreme case".into(),
         "misclassified % there".into(),
+        "penumbra \\|ΔV\\| % there".into(),
     ];
     s += &row(&head);
     s += &row(&vec!["---".to_string(); head.len()]);
+    let opt = |x: Option<f64>| x.map_or("—".into(), pct);
     for (family, lessons) in FAMILIES {
         for lesson in *lessons {
             let Some(d) = default_of(records, lesson) else {
                 continue;
             };
+            // The lesson's own error: a hard shadow's misclassified %, a
+            // soft shadow's penumbra |ΔV|.
+            let error = |v: &VariantRecord| v.error_pct();
             let Some(best) = d
                 .variants
                 .iter()
-                .min_by(|a, b| a.misclassified_pct.total_cmp(&b.misclassified_pct))
+                .min_by(|a, b| error(a).total_cmp(&error(b)))
             else {
                 continue;
             };
             let worst = cases_of(records, lesson)
                 .filter_map(|c| variant(c, &best.name).map(|v| (c, v)))
-                .max_by(|a, b| a.1.misclassified_pct.total_cmp(&b.1.misclassified_pct));
-            let (case, case_pct) = match worst {
-                Some((c, v)) => (c.title.clone(), pct(v.misclassified_pct)),
-                None => ("—".into(), "—".into()),
+                .max_by(|a, b| error(a.1).total_cmp(&error(b.1)));
+            let (case, case_pct, case_penumbra) = match worst {
+                Some((c, v)) => (
+                    c.title.clone(),
+                    pct(v.misclassified_pct),
+                    opt(penumbra_pct(v)),
+                ),
+                None => ("—".into(), "—".into(), "—".into()),
             };
             s += &row(&[
                 family.to_string(),
                 format!("[{}]({}.md)", lesson.replace("lesson_", ""), lesson),
                 format!("`{}`", best.name),
                 pct(best.misclassified_pct),
+                opt(penumbra_pct(best)),
                 best.timing
                     .as_ref()
                     .map_or("—".into(), |t| time_cells(t)[0].clone()),
@@ -106,6 +126,7 @@ pub fn families(records: &[Record]) -> String {
                     .map_or("—".into(), |b| time_cells(b)[0].clone()),
                 case,
                 case_pct,
+                case_penumbra,
             ]);
         }
     }
@@ -115,26 +136,31 @@ pub fn families(records: &[Record]) -> String {
 
 /// The families table's own columns.
 const FAMILIES_LEGEND: &[(&str, &str)] = &[
-    ("family", "the family of techniques the lesson belongs to: shadow maps (lessons 01–04), shadow volumes (05–08), cascaded shadow maps (09)"),
+    ("family", "the family of techniques the lesson belongs to: shadow maps (lessons 01–04), shadow volumes (05–08), cascaded shadow maps (09), soft shadows from area lights (10)"),
     ("lesson", "the lesson, linked to its chapter"),
-    ("most accurate variant", "the lesson's variant with the lowest misclassified % on the lesson's default scene (the first in the lesson's order on a tie)"),
+    ("most accurate variant", "the lesson's variant with the lowest error on the lesson's default scene: misclassified %, or for a soft shadow the mean |ΔV| over the penumbra (the first in the lesson's order on a tie)"),
     ("misclassified %", "that variant's misclassified % on the default scene: receiver pixels classified differently from the exact reference, in % of the receiver pixels of every light"),
+    ("penumbra \\|ΔV\\| %", "a soft shadow's (a light with a size): that variant's mean |V − V_ref| over the receiver pixels in the exact reference's penumbra (0 < V_ref < 1) on the default scene, in %; — for a hard shadow"),
     ("frame ms", "that variant's frame cost in the default run, wall clock from the start of recording to the GPU's completion: median [spread], ms; `unstable` where the protocol's check failed; — where the run is untimed"),
     ("no shadows ms", "the frame cost of the same run's no-shadow baseline (the scene drawn without shadows): median [spread], ms; — where the run has none"),
-    ("its worst extreme case", "of the lesson's other runs (its extreme cases: other scenes, sizes), the one where that variant's misclassified % is highest; — where the lesson has none"),
+    ("its worst extreme case", "of the lesson's other runs (its extreme cases: other scenes, sizes), the one where that variant's error (as for the most accurate variant) is highest; — where the lesson has none"),
     ("misclassified % there", "that variant's misclassified % in that extreme case"),
+    ("penumbra \\|ΔV\\| % there", "a soft shadow's: that variant's mean |ΔV| over the penumbra in that extreme case, in %; — for a hard shadow"),
 ];
 
-/// Each peer's default beside ours, on every scene of its lesson.
-pub fn peers(records: &[Record]) -> String {
+/// Each peer's default beside ours, on every scene of its lesson. A soft
+/// shadow's difference below `reference_error` (the exact reference's own
+/// sampling error, % of V) names no better one.
+pub fn peers(records: &[Record], reference_error: Option<f64>) -> String {
     let mut s = caption(
         records,
-        "misclassified % of receiver pixels on each scene of the lesson; difference in percentage points (peer − ours)",
+        "each scene of the lesson, in the row's measure: misclassified % of receiver pixels, or for a soft shadow the mean |ΔV| over the reference's penumbra, in %; difference in percentage points (peer − ours)",
     );
     let head = [
         "peer default (variant)".to_string(),
         "ours".into(),
         "scene".into(),
+        "measure".into(),
         "peer %".into(),
         "ours %".into(),
         "peer − ours".into(),
@@ -150,39 +176,64 @@ pub fn peers(records: &[Record]) -> String {
             let (Some(theirs), Some(ours)) = (variant(r, p.variant), variant(r, p.ours)) else {
                 continue;
             };
-            s += &row(&peer_cells(p, r, theirs, ours));
+            s += &row(&peer_cells(p, r, theirs, ours, reference_error));
         }
     }
-    s += &crate::legend::legend_own(&head, PEERS_LEGEND);
+    let better = match reference_error {
+        Some(e) => format!(
+            "{}; for a soft shadow, `within the reference's error` where the two differ by less than the exact reference's own sampling error, {} % of V (the largest mean \\|V_N − V_4N\\| of chapter 10's convergence table, its default and contact scenes)",
+            BETTER,
+            pct(e)
+        ),
+        None => BETTER.to_string(),
+    };
+    let own: Vec<(&str, &str)> = PEERS_LEGEND
+        .iter()
+        .copied()
+        .chain([("better", better.as_str())])
+        .collect();
+    s += &crate::legend::legend_own(&head, &own);
     s
 }
+
+/// The peers table's "better" column.
+const BETTER: &str = "which has the smaller error, and how many times smaller (the larger % over the smaller; ∞ where ours is 0); `equal` where the two differ by less than 0.0005 points, under the tables' three decimals";
 
 /// The peers table's own columns.
 const PEERS_LEGEND: &[(&str, &str)] = &[
     ("peer default (variant)", "a published renderer's or tutorial's documented default, and the lesson's variant that reproduces it"),
     ("ours", "the lesson's variant the book recommends in its place"),
     ("scene", "the run: the lesson's default scene, or the title of one of its extreme cases"),
-    ("peer %", "the peer's variant's misclassified % on that scene: receiver pixels classified differently from the exact reference, in % of the receiver pixels"),
-    ("ours %", "our variant's misclassified % on that scene"),
-    ("peer − ours", "peer % − ours %, in percentage points: positive where ours misclassifies fewer pixels"),
-    ("better", "which misclassifies fewer pixels, and how many times fewer (the larger % over the smaller; ∞ where ours is 0); `equal` where the two differ by less than 0.0005 points, under the tables' three decimals"),
+    ("measure", "the error compared: `misclassified %` (receiver pixels classified differently from the exact reference, in % of the receiver pixels) for a hard shadow; `penumbra |ΔV| %` (the mean |V − V_ref| over the receivers in the exact reference's penumbra, 0 < V_ref < 1, in %) for a soft shadow"),
+    ("peer %", "the peer's variant's error on that scene, in the row's measure"),
+    ("ours %", "our variant's error on that scene, in the row's measure"),
+    ("peer − ours", "peer % − ours %, in percentage points: positive where ours is nearer the exact reference"),
 ];
 
-fn peer_cells(p: &Peer, r: &Record, theirs: &VariantRecord, ours: &VariantRecord) -> Vec<String> {
-    let d = theirs.misclassified_pct - ours.misclassified_pct;
+fn peer_cells(
+    p: &Peer,
+    r: &Record,
+    theirs: &VariantRecord,
+    ours: &VariantRecord,
+    reference_error: Option<f64>,
+) -> Vec<String> {
+    let (a, b) = (theirs.error_pct(), ours.error_pct());
+    let d = a - b;
+    let soft = ours.soft.is_some();
     // The tables print three decimals: a smaller difference is no difference.
     let better = if d.abs() < 0.0005 {
         "equal".to_string()
+    } else if soft && reference_error.is_some_and(|e| d.abs() < e) {
+        // The soft reference's own sampling could make a difference this size.
+        "within the reference's error".to_string()
     } else if d > 0.0 {
-        format!(
-            "ours, ×{}",
-            ratio(theirs.misclassified_pct, ours.misclassified_pct)
-        )
+        format!("ours, ×{}", ratio(a, b))
     } else {
-        format!(
-            "peer, ×{}",
-            ratio(ours.misclassified_pct, theirs.misclassified_pct)
-        )
+        format!("peer, ×{}", ratio(b, a))
+    };
+    let measure = match soft {
+        true => "penumbra \\|ΔV\\| %",
+        false => "misclassified %",
     };
     vec![
         format!("{} (`{}`)", p.who, p.variant),
@@ -192,8 +243,9 @@ fn peer_cells(p: &Peer, r: &Record, theirs: &VariantRecord, ours: &VariantRecord
         } else {
             r.title.clone()
         },
-        pct(theirs.misclassified_pct),
-        pct(ours.misclassified_pct),
+        measure.into(),
+        pct(a),
+        pct(b),
         format!("{d:+.3}"),
         better,
     ]

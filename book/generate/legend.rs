@@ -18,6 +18,8 @@ const STANDARD: &[(&str, &str)] = &[
     ("false shadow %", "the receiver pixels shadowed here but lit in the reference (acne, over-long shadows), in % of the receiver pixels"),
     ("false lit %", "the receiver pixels lit here but shadowed in the reference (light leaks, Peter Panning), in % of the receiver pixels"),
     ("mean \\|ΔV\\| %", "the mean of |V − V_ref| over the receiver pixels, in %: it sees partial visibility (a penumbra, a blend) that misclassified % rounds away"),
+    ("penumbra \\|ΔV\\| %", "a light with a size (a soft shadow): the mean of |V − V_ref| over the receiver pixels in the exact reference's penumbra (0 < V_ref < 1), in %: how far the penumbra's shade is from the visible fraction of the emitter; — where the variant reports none"),
+    ("bleeding %", "a light with a size: of the receiver pixels in the exact reference's umbra (V_ref = 0, the emitter wholly hidden), the share the variant lights above V = 0.1, in % (light bleeding, the variance maps' failure); 0 where the scene has no umbra"),
     ("frame ms", "the frame's wall-clock cost, from the start of recording to the GPU's completion: median [spread]"),
     ("GPU ms", "the GPU's time for the whole frame, from its timestamps: median [spread]"),
     ("CPU ms", "the CPU's time to record and submit the frame, waits for the GPU left out: median [spread]"),
@@ -46,6 +48,7 @@ pub const COUNTERS: &[(&str, &str)] = &[
     ("shadow_fragments", "fragments the shadow pass rasterised, every map, face and cascade"),
     ("shadow_texels_written", "shadow-map texels that pass's fragments wrote (depth test passed)"),
     ("taps", "depth comparisons per shadow lookup"),
+    ("blocker_search_taps", "the blocker search's depth reads per pixel and light, one texel each, before the filter (PCSS's first step; a pixel whose search finds no blocker stops there); 0 for a fixed filter or a variance map"),
     ("filter_taps_per_pixel", "depth comparisons the lit pass makes per pixel and light"),
     ("texels_read", "shadow-map texels one lookup reads (a bilinear comparison reads 2×2)"),
     // Shadow volumes: the casters, their meshes and silhouettes.
@@ -93,6 +96,14 @@ pub const PASSES: &[(&str, &str)] = &[
     (
         "volume",
         "the shadow-volume pass into the stencil (and the bounds marks)",
+    ),
+    (
+        "moments",
+        "the compute pass that turns the depth map into moments (a variance map) and blurs them along x",
+    ),
+    (
+        "blur",
+        "the compute pass that blurs the moments again, along y",
     ),
     ("lighting", "the lit passes, one per light"),
     (

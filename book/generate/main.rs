@@ -18,6 +18,7 @@ mod gpu_costs;
 mod grade_times;
 mod legend;
 mod lesson09;
+mod lesson10;
 mod manifest;
 mod plots;
 mod prose;
@@ -85,6 +86,9 @@ enum Command {
     /// Capture each lesson's window (on a private Xvfb on Linux) for its
     /// chapter: `figures/window/` and `generated/window/`.
     WindowShots {
+        /// Only this lesson's shot (`lesson_10`).
+        #[arg(long, value_name = "LESSON")]
+        only: Option<String>,
         #[arg(long, default_value = manifest::BACKEND)]
         backend: String,
         #[arg(long, default_value = manifest::ADAPTER)]
@@ -129,7 +133,11 @@ fn run(cli: Cli) -> Result<()> {
                 .join(stability::REPEATABILITY);
             return stability::compare(&a, &b, write.then_some(out.as_path()));
         }
-        Command::WindowShots { backend, adapter } => {
+        Command::WindowShots {
+            only,
+            backend,
+            adapter,
+        } => {
             let root = root();
             window_shots::write_all(
                 &runner_or_build()?,
@@ -137,6 +145,7 @@ fn run(cli: Cli) -> Result<()> {
                 &root.join("book/src/generated"),
                 &backend,
                 &adapter,
+                only.as_deref(),
             )?;
             println!("window screenshots written");
             return Ok(());
@@ -147,7 +156,8 @@ fn run(cli: Cli) -> Result<()> {
     };
     if let Some(l) = &only {
         if !RUNS.iter().any(|r| r.lesson == l) {
-            bail!("--only: no lesson {l:?} in the manifest (lesson_01 to lesson_09)");
+            let last = RUNS.last().map_or("", |r| r.lesson);
+            bail!("--only: no lesson {l:?} in the manifest (lesson_01 to {last})");
         }
     }
     let start = std::time::Instant::now();
@@ -219,7 +229,7 @@ fn run(cli: Cli) -> Result<()> {
     }
     if only.is_none() {
         scaling::run(&runner, &root, &work, &backend, &bar)?;
-        window_shots::write_all(&runner, &figures, &generated, &backend, &adapter)?;
+        window_shots::write_all(&runner, &figures, &generated, &backend, &adapter, None)?;
     }
     bar.finish_with_message("runs done");
     copy_outputs(&work, &figures, &generated, only.as_deref())?;
@@ -230,14 +240,18 @@ fn run(cli: Cli) -> Result<()> {
 
 /// Everything made from the committed records: the scenes' tables, the
 /// closing chapter's, chapter 09's, the adapters' comparison, the plots
-/// and the README's results block.
+/// and the README's results block; and chapter 10's convergence of the
+/// reference, rendered again on the CPU (seconds).
 fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     let records = load_records(generated)?;
     for (run, record) in RUNS.iter().zip(&records) {
         write_run_tables(&generated.join(run.lesson), run, record)?;
     }
     write_scenes_tables(generated, &records)?;
-    choosing::write_all(generated, &records)?;
+    // Chapter 10's convergence first: the peers table reads its figure.
+    let convergence =
+        lesson10::write_all(root, generated, &records, manifest::WIDTH, manifest::HEIGHT)?;
+    choosing::write_all(generated, &records, Some(convergence.reference_error()))?;
     volumes_gpu::write(root, generated)?;
     gpu_costs::write(root, generated)?;
     scaling::write_tables(root)?;
@@ -393,6 +407,7 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
                 timing: if run.timed { timing } else { None },
                 camera_path: v.camera_path.clone(),
                 classes: record::ClassRecord::of(v),
+                soft: v.error.soft.clone(),
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -488,11 +503,13 @@ fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
     for r in defaults {
         let series = summary::series(r);
         let title = format!(
-            "{}: error against time ({}, {}×{})",
+            "{}: error against time ({}, {}×{}, {} runs × {} frames)",
             r.lesson.replace('_', " "),
             r.adapter,
             r.width,
-            r.height
+            r.height,
+            r.repeats,
+            r.frames
         );
         let path = figures.join(&r.lesson).join("error_vs_time.svg");
         std::fs::create_dir_all(path.parent().context("plot path")?)?;
@@ -507,10 +524,12 @@ fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
     let dir = figures.join("workbook");
     std::fs::create_dir_all(&dir)?;
     let title = format!(
-        "Every lesson's variants: error against time ({}, {}×{})",
+        "Every lesson's variants: error against time ({}, {}×{}, {} runs × {} frames)",
         defaults.first().map_or("", |r| r.adapter.as_str()),
         manifest::WIDTH,
-        manifest::HEIGHT
+        manifest::HEIGHT,
+        manifest::REPEATS,
+        manifest::FRAMES
     );
     plots::workbook_plot(
         &dir.join("error_vs_time.svg"),
@@ -530,10 +549,19 @@ fn write_scenes_tables(generated: &Path, records: &[Record]) -> Result<()> {
             // The extreme cases: not the default scene, at either size.
             .filter(|r| r.lesson == l && r.run != "results" && r.run != manifest::HD)
             .collect();
-        if !cases.is_empty() {
+        if cases.is_empty() {
+            continue;
+        }
+        let error = table::Cell::error_of(&cases);
+        write(
+            &generated.join(l).join("scenes.md"),
+            &table::scenes_table(&cases, error)?,
+        )?;
+        // A soft shadow's other failure: light in the umbra.
+        if error == table::Cell::Penumbra {
             write(
-                &generated.join(l).join("scenes.md"),
-                &table::scenes_table(&cases)?,
+                &generated.join(l).join("scenes_bleeding.md"),
+                &table::scenes_table(&cases, table::Cell::Bleeding)?,
             )?;
         }
     }

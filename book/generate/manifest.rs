@@ -22,7 +22,7 @@ pub const BACKEND: &str = "vulkan";
 pub const ADAPTER: &str = "software";
 
 /// Lessons whose tables show the mean |ΔV| (fractional visibility).
-pub const MEAN_ABS_LESSONS: &[&str] = &["lesson_03", "lesson_09"];
+pub const MEAN_ABS_LESSONS: &[&str] = &["lesson_03", "lesson_09", "lesson_10"];
 
 /// One run of one lesson.
 #[derive(Clone, Copy, Debug)]
@@ -202,6 +202,13 @@ pub const RUNS: &[Run] = &[
     case("lesson_09", "far_10km", "scenes/lesson_09_far_10km.toml", "far plane at 10 km"),
     case("lesson_09", "offscreen_caster", "scenes/lesson_09_offscreen_caster.toml", "a caster outside the view shadows what is inside it"),
     case("lesson_09", "contact_boundary", "scenes/lesson_09_contact_boundary.toml", "a cascade boundary across a contact shadow"),
+    default("lesson_10"),
+    interactive("lesson_10", &["pcss", "filament_pcss"]),
+    case("lesson_10", "contact", "scenes/lesson_10_contact.toml", "cube and sphere resting on the floor, a 2° sun"),
+    case("lesson_10", "large_light", "scenes/lesson_10_large_light.toml", "a spot light of 1 m radius"),
+    case("lesson_10", "overlap", "scenes/lesson_10_overlap.toml", "blockers at two heights side by side"),
+    case("lesson_10", "thin", "scenes/lesson_10_thin.toml", "a thin sheet over a box"),
+    case("lesson_10", "grazing", "scenes/lesson_10_grazing.toml", "a 1° sun 80° from the floor's normal"),
 ];
 
 /// A figure the book shows: `file` of run `run` (its id), copied to
@@ -279,6 +286,17 @@ pub const FIGURES: &[Figure] = &[
     fig("lesson_09/results", "k4_diff_l0.png", "lesson_09/k4_diff.png"),
     fig("lesson_09/results", "k4_shimmer_over.png", "lesson_09/k4_shimmer.png"),
     fig("lesson_09/results", "k4_aabb_nosnap_shimmer_over.png", "lesson_09/k4_aabb_nosnap_shimmer.png"),
+    fig("lesson_10/results", "reference_visibility_l0.png", "lesson_10/reference_visibility_l0.png"),
+    fig("lesson_10/results", "pcss_visibility_l0.png", "lesson_10/pcss_visibility_l0.png"),
+    fig("lesson_10/results", "pcf_wide_16_visibility_l0.png", "lesson_10/pcf_wide_16_visibility_l0.png"),
+    fig("lesson_10/results", "vsm_visibility_l0.png", "lesson_10/vsm_visibility_l0.png"),
+    fig("lesson_10/results", "evsm_visibility_l0.png", "lesson_10/evsm_visibility_l0.png"),
+    fig("lesson_10/results", "pcss_diff_l0.png", "lesson_10/pcss_diff_l0.png"),
+    fig("lesson_10/thin", "vsm_visibility_l0.png", "lesson_10/thin_vsm.png"),
+    fig("lesson_10/thin", "vsm_bleed_cut_visibility_l0.png", "lesson_10/thin_vsm_bleed_cut.png"),
+    fig("lesson_10/contact", "pcss_visibility_l0.png", "lesson_10/contact_pcss_visibility_l0.png"),
+    fig("lesson_10/contact", "pcf_wide_16_visibility_l0.png", "lesson_10/contact_pcf_wide_16_visibility_l0.png"),
+    fig("lesson_10/contact", "reference_visibility_l0.png", "lesson_10/contact_reference_visibility_l0.png"),
 ];
 
 /// Text files a run writes that the book includes as they are (measured
@@ -301,6 +319,7 @@ pub const FAMILIES: &[(&str, &[&str])] = &[
         &["lesson_05", "lesson_06", "lesson_07", "lesson_08"],
     ),
     ("cascaded shadow maps", &["lesson_09"]),
+    ("soft shadows", &["lesson_10"]),
 ];
 
 /// A renderer's documented default, measured as a variant of our lesson,
@@ -341,6 +360,12 @@ pub const PEERS: &[Peer] = &[
     peer("lesson_04", "learnopengl_1tap", "pcf3d_1024", "LearnOpenGL's point shadow, one tap"),
     peer("lesson_04", "learnopengl_pcf20", "pcf3d_1024", "LearnOpenGL's 20-tap point kernel"),
     peer("lesson_04", "bevy_point", "pcf3d_1024", "Bevy's point-light biases"),
+    peer("lesson_10", "filament_pcss", "pcss", "Filament's PCSS"),
+    peer("lesson_10", "filament_evsm", "pcss", "Filament's VSM (an EVSM)"),
+    peer("lesson_10", "bevy_pcss", "pcss", "Bevy's PCSS"),
+    peer("lesson_10", "godot_soft_low", "pcss", "Godot's Soft Low"),
+    peer("lesson_10", "threejs_pcf_soft", "pcss", "three.js's PCFSoftShadowMap"),
+    peer("lesson_10", "threejs_vsm", "pcss", "three.js's VSMShadowMap"),
 ];
 
 /// The runs and variants of the volume-building table: (run id, [(variant,

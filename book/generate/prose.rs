@@ -14,6 +14,9 @@
 //!
 //! - `misclassified_pct`, `false_shadow_pct`, `false_lit_pct`: `1.889 %`;
 //! - `mean_abs`: mean |ΔV| as the tables print it, `0.123 %`;
+//! - a soft shadow's (lesson 10) `penumbra_mean_abs` (as the tables print
+//!   it, `3.210 %`), `light_bleeding_pct`, `umbra_misclassified_pct`,
+//!   `penumbra_pixels`, `umbra_pixels`;
 //! - a counter's name: `37 390`;
 //! - `frame`, `cpu_total` or a pass (`lighting`, `volume`, ...): its median,
 //!   `12.4 ms`;
@@ -131,6 +134,22 @@ pub fn value(record: &Record, variant: &str, field: &str) -> Result<String> {
         "false_shadow_pct" => format!("{} %", pct(v.false_shadow_pct)),
         "false_lit_pct" => format!("{} %", pct(v.false_lit_pct)),
         "mean_abs" => format!("{} %", pct(100.0 * v.mean_abs)),
+        "penumbra_mean_abs"
+        | "light_bleeding_pct"
+        | "umbra_misclassified_pct"
+        | "penumbra_pixels"
+        | "umbra_pixels" => {
+            let Some(e) = &v.soft else {
+                bail!("`{variant}` has no soft-shadow figures (its light has no size)");
+            };
+            match field {
+                "penumbra_mean_abs" => format!("{} %", pct(100.0 * e.penumbra_mean_abs)),
+                "light_bleeding_pct" => format!("{} %", pct(e.light_bleeding_pct)),
+                "umbra_misclassified_pct" => format!("{} %", pct(e.umbra_misclassified_pct)),
+                "penumbra_pixels" => count(e.penumbra_pixels),
+                _ => count(e.umbra_pixels),
+            }
+        }
         counter => match v.counters.get(counter) {
             Some(&n) => count(n),
             None => bail!("`{variant}` has no field or counter `{counter}`"),

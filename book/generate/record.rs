@@ -109,7 +109,16 @@ pub struct VariantRecord {
     /// lesson gives classes.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub classes: Vec<ClassRecord>,
+    /// The soft shadow's own figures (lesson 10: a light with a size),
+    /// when the scene's light has one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub soft: Option<SoftRecord>,
 }
+
+/// A soft shadow's error (lesson 10): the penumbra's mean |ΔV|, the
+/// umbra's misclassified % and light bleeding, as the report gives them
+/// (see `common::reference::metrics::SoftError`).
+pub type SoftRecord = common::reference::metrics::SoftError;
 
 /// Shimmer over a camera path (lesson 09): the report's own figures,
 /// kept as they are (see `common::scene::camera_path`).
@@ -207,6 +216,23 @@ impl Record {
     /// `lesson_05/results`: the manifest's run id.
     pub fn id(&self) -> String {
         format!("{}/{}", self.lesson, self.run)
+    }
+
+    /// Whether the run's light has a size (lesson 10): its variants carry
+    /// the soft shadow's figures, and its error is the penumbra's |ΔV|.
+    pub fn soft(&self) -> bool {
+        self.variants.iter().any(|v| v.soft.is_some())
+    }
+}
+
+impl VariantRecord {
+    /// The error a run is judged by, in %: the mean |ΔV| over the
+    /// reference's penumbra for a soft shadow, else misclassified %.
+    pub fn error_pct(&self) -> f64 {
+        match &self.soft {
+            Some(s) => 100.0 * s.penumbra_mean_abs,
+            None => self.misclassified_pct,
+        }
     }
 }
 

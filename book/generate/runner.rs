@@ -44,7 +44,7 @@ impl Runner {
             .context("the generator's own path has no folder")?
             .to_path_buf();
         let runner = Runner { bin_dir };
-        for n in 1..=8 {
+        for n in 1..=10 {
             let bin = runner.binary(&format!("lesson_{n:02}"));
             if !bin.exists() {
                 bail!(

@@ -1,7 +1,7 @@
 //! The README's results table and the plots' points, from the records of
 //! the lessons' default runs: what each lesson's Pareto front is.
 
-use crate::plots::{pareto_front, Point, Series};
+use crate::plots::{pareto_front, Metric, Point, Series};
 use crate::record::Record;
 use crate::table::{pct, row, stat};
 
@@ -12,10 +12,15 @@ pub const END: &str = "<!-- results:end -->";
 
 /// One lesson's default run as plot points: the variants with stable
 /// times, at their frame cost (`frame`: what a user waits per frame,
-/// CPU work included).
+/// CPU work included), and their error: misclassified %, or for a soft
+/// shadow the penumbra's mean |ΔV| % ([`crate::record::VariantRecord::error_pct`]).
 pub fn series(r: &Record) -> Series {
     Series {
         name: r.lesson.clone(),
+        metric: match r.soft() {
+            true => Metric::PenumbraMeanAbs,
+            false => Metric::Misclassified,
+        },
         points: r
             .variants
             .iter()
@@ -27,7 +32,7 @@ pub fn series(r: &Record) -> Series {
                     ms: f.median,
                     ms_low: f.q25,
                     ms_high: f.q75,
-                    error_pct: v.misclassified_pct,
+                    error_pct: v.error_pct(),
                 })
             })
             .collect(),
@@ -48,9 +53,15 @@ pub fn readme_block(defaults: &[&Record]) -> String {
             "each lesson's default scene",
         )
     );
+    // A soft shadow's error is its penumbra's mean |ΔV|: the header says
+    // so when a lesson has one, and so does each of its cells.
+    let soft = defaults.iter().any(|r| r.soft());
     s += &row(&[
         "lesson".into(),
-        "Pareto-optimal variants: misclassified %, frame cost ms [spread]".into(),
+        match soft {
+            false => "Pareto-optimal variants: misclassified %, frame cost ms [spread]".into(),
+            true => "Pareto-optimal variants: misclassified % (soft shadows: mean \\|ΔV\\| % over the penumbra), frame cost ms [spread]".into(),
+        },
         "no shadows, frame ms".into(),
         "chapter".into(),
     ]);
@@ -66,8 +77,12 @@ pub fn readme_block(defaults: &[&Record]) -> String {
                     .iter()
                     .find(|v| v.name == p.label)
                     .expect("point of a variant");
+                let what = match ser.metric {
+                    Metric::Misclassified => "",
+                    Metric::PenumbraMeanAbs => "penumbra \\|ΔV\\| ",
+                };
                 format!(
-                    "`{}`: {} %, {}",
+                    "`{}`: {what}{} %, {}",
                     p.label,
                     pct(p.error_pct),
                     stat(v.timing.as_ref().expect("timed").frame())

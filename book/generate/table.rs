@@ -9,6 +9,10 @@ use anyhow::Result;
 use crate::legend::legend;
 use crate::record::{Record, Stat, Timing, VariantRecord};
 
+/// The soft-shadow columns (lesson 10), defined in [`crate::legend`].
+pub const PENUMBRA: &str = "penumbra \\|ΔV\\| %";
+pub const BLEEDING: &str = "bleeding %";
+
 /// An error percentage as the tables print it.
 pub fn pct(x: f64) -> String {
     format!("{x:.3}")
@@ -97,6 +101,13 @@ impl Record {
         if with_mean_abs {
             cells.push(pct(100.0 * v.mean_abs));
         }
+        if self.soft() {
+            let (penumbra, bleeding) = match &v.soft {
+                Some(e) => (pct(100.0 * e.penumbra_mean_abs), pct(e.light_bleeding_pct)),
+                None => ("—".into(), "—".into()),
+            };
+            cells.extend([penumbra, bleeding]);
+        }
         for k in self.counter_keys() {
             cells.push(v.counters.get(&k).map_or("—".into(), |&n| count(n)));
         }
@@ -114,6 +125,9 @@ impl Record {
         ];
         if with_mean_abs {
             head.push("mean \\|ΔV\\| %".into());
+        }
+        if self.soft() {
+            head.extend([PENUMBRA.to_string(), BLEEDING.into()]);
         }
         head.extend(self.counter_keys().iter().map(|k| format!("`{k}`")));
         let timed = self.frames > 0;
@@ -273,9 +287,57 @@ pub fn row(cells: &[String]) -> String {
     format!("| {} |\n", cells.join(" | "))
 }
 
+/// What a scenes table's cells show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cell {
+    /// Misclassified % of the receivers (a hard shadow's error).
+    Misclassified,
+    /// Mean |ΔV| over the reference's penumbra, in % (a soft shadow's).
+    Penumbra,
+    /// Light bleeding, % of the reference's umbra.
+    Bleeding,
+}
+
+impl Cell {
+    /// The cells a lesson's scenes table shows: its records' own error.
+    pub fn error_of(records: &[&Record]) -> Cell {
+        match records.iter().any(|r| r.soft()) {
+            true => Cell::Penumbra,
+            false => Cell::Misclassified,
+        }
+    }
+
+    fn value(self, v: &VariantRecord) -> Option<f64> {
+        match self {
+            Cell::Misclassified => Some(v.misclassified_pct),
+            Cell::Penumbra => v.soft.as_ref().map(|s| 100.0 * s.penumbra_mean_abs),
+            Cell::Bleeding => v.soft.as_ref().map(|s| s.light_bleeding_pct),
+        }
+    }
+
+    /// The caption's words for the cells.
+    fn caption(self) -> &'static str {
+        match self {
+            Cell::Misclassified => "misclassified % of receiver pixels",
+            Cell::Penumbra => "mean |ΔV| over the reference's penumbra (0 < V < 1), in %",
+            Cell::Bleeding => "light bleeding: % of the reference's umbra (V = 0) lit above 0.1",
+        }
+    }
+
+    /// The legend's words for a variant's cell.
+    fn legend(self) -> &'static str {
+        match self {
+            Cell::Misclassified => "misclassified % on the row's scene",
+            Cell::Penumbra => "mean |V − V_ref| over the reference's penumbra (receivers with 0 < V_ref < 1) on the row's scene, in %",
+            Cell::Bleeding => "light bleeding on the row's scene: of the receivers in the reference's umbra (V_ref = 0), the % it lights above 0.1; 0 where the scene has no umbra",
+        }
+    }
+}
+
 /// A lesson's extreme cases side by side: one row a run, one column a
-/// variant, misclassified % in the cells.
-pub fn scenes_table(records: &[&Record]) -> Result<String> {
+/// variant, `cell` in the cells (misclassified %, or for a soft shadow
+/// the penumbra's mean |ΔV| or the bleeding).
+pub fn scenes_table(records: &[&Record], cell: Cell) -> Result<String> {
     let Some(first) = records.first() else {
         return Ok(String::new());
     };
@@ -288,8 +350,12 @@ pub fn scenes_table(records: &[&Record]) -> Result<String> {
         }
     }
     let mut s = format!(
-        "*{}, {} · {}×{} · misclassified % of receiver pixels*\n\n",
-        first.adapter, first.backend, first.width, first.height
+        "*{}, {} · {}×{} · {}*\n\n",
+        first.adapter,
+        first.backend,
+        first.width,
+        first.height,
+        cell.caption()
     );
     let mut head = vec!["scene".to_string()];
     head.extend(names.iter().map(|n| format!("`{n}`")));
@@ -302,7 +368,8 @@ pub fn scenes_table(records: &[&Record]) -> Result<String> {
                 r.variants
                     .iter()
                     .find(|v| &v.name == n)
-                    .map_or("—".into(), |v| pct(v.misclassified_pct)),
+                    .and_then(|v| cell.value(v))
+                    .map_or("—".into(), pct),
             );
         }
         s += &row(&cells);
@@ -312,7 +379,7 @@ pub fn scenes_table(records: &[&Record]) -> Result<String> {
         .map(|n| {
             (
                 format!("`{n}`"),
-                format!("variant `{n}`'s misclassified % on the row's scene"),
+                format!("variant `{n}`'s {}", cell.legend()),
             )
         })
         .collect();

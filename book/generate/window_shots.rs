@@ -26,7 +26,7 @@ struct Shot {
     shows: &'static str,
 }
 
-const SHOTS: [Shot; 9] = [
+const SHOTS: [Shot; 10] = [
     Shot { lesson: "lesson_01", variant: "res_1024", view: "diff", shows: "the difference against the exact reference: red false shadow, green false lit" },
     Shot { lesson: "lesson_02", variant: "bias_1tx", view: "diff", shows: "the difference against the exact reference: red false shadow (acne), green false lit (Peter Panning)" },
     Shot { lesson: "lesson_03", variant: "pcf_3x3", view: "diff", shows: "the difference against the exact reference along the filtered edges" },
@@ -36,17 +36,24 @@ const SHOTS: [Shot; 9] = [
     Shot { lesson: "lesson_07", variant: "reversed_z", view: "frame", shows: "the frame" },
     Shot { lesson: "lesson_08", variant: "bounds_scissor", view: "frame", shows: "the frame, with the knobs that switch the scissor, the depth bounds and the culling" },
     Shot { lesson: "lesson_09", variant: "k4", view: "buffer", shows: "the lesson's buffer: the cascade each pixel samples" },
+    Shot { lesson: "lesson_10", variant: "pcss", view: "diff", shows: "the difference against the exact soft shadow, classified at V = ½: red false shadow, green false lit, gray where both agree" },
 ];
 
-/// Takes every chapter's shot into `figures/window/` and writes its
-/// figure into `generated/window/`.
+/// Takes every chapter's shot (or only `only`'s, a lesson) into
+/// `figures/window/` and writes its figure into `generated/window/`.
 pub fn write_all(
     runner: &Runner,
     figures: &Path,
     generated: &Path,
     backend: &str,
     adapter: &str,
+    only: Option<&str>,
 ) -> Result<()> {
+    if let Some(l) = only {
+        if !SHOTS.iter().any(|s| s.lesson == l) {
+            bail!("--only: no window shot of {l:?}");
+        }
+    }
     let display = Display::open()?;
     let (pics, texts) = (figures.join("window"), generated.join("window"));
     for d in [&pics, &texts] {
@@ -54,7 +61,7 @@ pub fn write_all(
     }
     let work = std::env::temp_dir().join(format!("workbook-window-shots-{}", std::process::id()));
     std::fs::create_dir_all(&work)?;
-    for shot in &SHOTS {
+    for shot in SHOTS.iter().filter(|s| only.is_none_or(|l| l == s.lesson)) {
         let png = pics.join(format!("{}.png", shot.lesson));
         let log = work.join(format!("{}.jsonl", shot.lesson));
         let mut cmd = std::process::Command::new(runner.binary(shot.lesson));

@@ -11,7 +11,8 @@ use super::tradeoff::{pareto_front, tradeoff_plot, PlottedSeries, Series};
 use super::{COLOURS, GREY};
 
 /// One chapter's error-vs-time plot: x = median ms with a horizontal error bar
-/// [ms_low, ms_high]; y = misclassified % on a log axis (values below `floor`
+/// [ms_low, ms_high]; y = the series' error (misclassified %, or a soft
+/// shadow's penumbra mean |ΔV| %) on a log axis (values below `floor`
 /// are drawn at `floor`, e.g. 1e-3, and the plot says so on a line there);
 /// every point labelled with its variant; the Pareto front drawn as a step
 /// line, its points filled and the dominated ones hollow; an optional vertical

@@ -85,6 +85,7 @@ fn plots_are_deterministic_svg() {
     let s = Series {
         name: "lesson".into(),
         points: vec![pt("a", 1.0, 0.0), pt("b", 2.0, 0.5), pt("c", 3.0, 0.2)],
+        metric: Metric::Misclassified,
     };
     let (p1, p2) = (dir.join("1.svg"), dir.join("2.svg"));
     error_vs_time(&p1, "t", &s, Some(0.5), 1e-3).unwrap();

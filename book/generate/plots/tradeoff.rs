@@ -29,8 +29,35 @@ pub struct Point {
     pub ms_low: f64,
     /// Interquartile range high.
     pub ms_high: f64,
-    /// Misclassified % (y), may be 0.
+    /// The error (y), in % of the series' [`Metric`]; may be 0.
     pub error_pct: f64,
+}
+
+/// What a series' errors measure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Metric {
+    /// Misclassified % of the receiver pixels (a hard shadow).
+    Misclassified,
+    /// Mean |ΔV| over the reference's penumbra, in % (a soft shadow).
+    PenumbraMeanAbs,
+}
+
+impl Metric {
+    /// The y axis's description when every series measures this.
+    pub fn axis(self) -> &'static str {
+        match self {
+            Metric::Misclassified => "misclassified % of receiver pixels (log)",
+            Metric::PenumbraMeanAbs => "mean |ΔV| over the reference's penumbra, % (log)",
+        }
+    }
+
+    /// A short name, for a legend that mixes metrics.
+    pub fn short(self) -> &'static str {
+        match self {
+            Metric::Misclassified => "misclassified %",
+            Metric::PenumbraMeanAbs => "penumbra |ΔV| %",
+        }
+    }
 }
 
 /// One lesson's variants.
@@ -38,11 +65,24 @@ pub struct Point {
 pub struct Series {
     pub name: String,
     pub points: Vec<Point>,
+    /// What `error_pct` measures.
+    pub metric: Metric,
 }
 
 const X_DESC: &str =
     "median frame cost, ms: wall clock, CPU and GPU (bars: spread over frames and runs)";
-const Y_DESC: &str = "misclassified % of receiver pixels (log)";
+/// The y axis of a plot whose series measure different errors (its
+/// legend names the series that measure penumbra |ΔV|).
+const Y_MIXED: &str = "misclassified % or penumbra |ΔV| % (log)";
+
+/// The y axis's description for these series.
+pub(super) fn y_desc(plotted: &[PlottedSeries]) -> &'static str {
+    match plotted.first().map(|p| p.series.metric) {
+        Some(m) if plotted.iter().all(|p| p.series.metric == m) => m.axis(),
+        Some(_) => Y_MIXED,
+        None => Metric::Misclassified.axis(),
+    }
+}
 
 /// The Pareto-optimal points' indices (lower ms and lower error), sorted by
 /// ms. A point is on the front when no other point is at least as good on
@@ -141,7 +181,7 @@ pub(super) fn tradeoff_plot(
     let root = SVGBackend::new(path, (WIDE, HEIGHT)).into_drawing_area();
     root.fill(&WHITE)?;
     let area = titled(&root, title, legend_column_width(&legend) + LEGEND_GAP)?;
-    let chart = build_chart(&area, &xa, &ya, &x_desc, Y_DESC)?;
+    let chart = build_chart(&area, &xa, &ya, &x_desc, y_desc(plotted))?;
     let plot = plot_rect(&chart);
     let to_px = |ms: f64, err: f64| -> (f64, f64) {
         let (px, py) = chart.backend_coord(&(xa.t(ms), ya.t(err)));

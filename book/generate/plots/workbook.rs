@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 
 use super::draw::Marker;
 use super::legend::{LegendRow, Swatch};
-use super::tradeoff::{pareto_front, tradeoff_plot, PlottedSeries, Series};
+use super::tradeoff::{pareto_front, tradeoff_plot, Metric, PlottedSeries, Series};
 use super::COLOURS;
 
 /// The workbook-wide plot: every lesson's variants, one colour and marker per
@@ -25,11 +25,16 @@ pub fn workbook_plot(path: &Path, title: &str, series: &[Series], floor: f64) ->
             label_all: false,
         })
         .collect();
+    // A lesson whose error is not misclassified % names its own (the y
+    // axis says so too).
     let mut legend: Vec<LegendRow> = plotted
         .iter()
         .map(|p| LegendRow {
             swatch: Swatch::LineMarker(p.marker, p.colour),
-            text: p.series.name.clone(),
+            text: match p.series.metric {
+                Metric::Misclassified => p.series.name.clone(),
+                m => format!("{} ({})", p.series.name, m.short()),
+            },
         })
         .collect();
     legend.push(LegendRow {
