@@ -200,12 +200,7 @@ pub fn scene_path(name: &str) -> PathBuf {
 
 /// One untimed frame of `bin` at 640×360, on `scene` (a file in
 /// `scenes/`) or the lesson's own, with `extra` arguments.
-pub fn run_small(
-    bin: &str,
-    name: &str,
-    scene: Option<&str>,
-    extra: &[&str],
-) -> Option<LessonRun> {
+pub fn run_small(bin: &str, name: &str, scene: Option<&str>, extra: &[&str]) -> Option<LessonRun> {
     let scene = scene.map(|s| scene_path(s).display().to_string());
     let size = ["--width", "640", "--height", "360", "--frames", "1"];
     let mut args: Vec<&str> = [&size[..], extra].concat();

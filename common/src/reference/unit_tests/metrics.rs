@@ -290,7 +290,10 @@ fn soft_figures_count_the_penumbra_and_the_umbra_apart() {
     // The umbra lit 0.6 (misclassified and bleeding) and 0.05 (neither);
     // the penumbra off by 0.25 and 0.05; the lit pixels right.
     let gpu = [0.6, 0.05, 0.5, 0.7, 1.0, 1.0, 0.0];
-    let soft = compare(&r, 0, &[1; 7], &gpu).stats.soft.expect("an area light");
+    let soft = compare(&r, 0, &[1; 7], &gpu)
+        .stats
+        .soft
+        .expect("an area light");
     assert_eq!((soft.penumbra_pixels, soft.umbra_pixels), (2, 2));
     assert!((soft.penumbra_mean_abs - 0.15).abs() < 1e-6, "{soft:?}");
     assert_eq!(soft.umbra_misclassified_pct, 50.0);
