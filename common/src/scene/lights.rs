@@ -1,11 +1,61 @@
 //! The `[[lights]]` tables of a scene file: a light's kind (directional,
 //! point, spot), its colour, and its size (lesson 10's area lights).
 
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind {
+    /// `direction` is the way the light travels (unit length).
+    Directional {
+        direction: DVec3,
+    },
+    Point {
+        position: DVec3,
+        range: f64,
+    },
+    Spot {
+        position: DVec3,
+        direction: DVec3,
+        range: f64,
+        spot_angle_deg: f64,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    pub kind: LightKind,
+    pub color: Vec3,
+    /// The emitter's size (lesson 10): a sphere of this radius, scene
+    /// units, for point and spot lights (`radius`), or a cone of this
+    /// half-angle for directional ones (`angular_radius_deg`). 0: a hard
+    /// light, a point or one direction.
+    pub size: LightSize,
+}
+
+/// How big a light's emitter is; [`LightSize::HARD`] for a point or a
+/// single direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightSize {
+    /// Point and spot lights: the radius of the spherical emitter.
+    Radius(f64),
+    /// Directional lights: the half-angle of the cone of directions, degrees.
+    AngularRadiusDeg(f64),
+}
+
+impl LightSize {
+    pub const HARD: LightSize = LightSize::Radius(0.0);
+
+    /// Whether the emitter has a size (a soft shadow's light).
+    pub fn is_area(self) -> bool {
+        match self {
+            LightSize::Radius(r) | LightSize::AngularRadiusDeg(r) => r > 0.0,
+        }
+    }
+}
+
 use anyhow::{anyhow, bail, Result};
+use glam::{DVec3, Vec3};
 
 use crate::scene::file::LightFile;
-use crate::scene::limits::{check_coord, check_direction, short, MAX_COORD};
-use crate::scene::{color3, positive, Light, LightKind, LightSize};
+use crate::scene::limits::{check_coord, check_direction, color3, positive, short, MAX_COORD};
 
 pub(crate) fn parse_light(l: LightFile, i: usize) -> Result<Light> {
     let p = format!("lights[{i}]");

@@ -7,7 +7,8 @@
 //! that, and refuse the rest in one line that names the field and the range
 //! (the README and the book's appendix list them).
 
-use glam::DVec3;
+use anyhow::{bail, Result};
+use glam::{DVec3, Vec3};
 
 /// Any coordinate (eye, target, light position, translate, a vertex after
 /// its object's transform) lies within `±MAX_COORD`: 1,000 km, so a scene
@@ -144,6 +145,25 @@ impl Extent {
         }
         Ok(())
     }
+}
+
+/// A colour: components in [0, 1e6].
+pub(crate) fn color3(v: [f32; 3], what: &str) -> Result<Vec3> {
+    if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > 1e6) {
+        bail!(
+            "{what}: colour components must be in [0, 1e6], got {}",
+            short3(Vec3::from(v).as_dvec3())
+        );
+    }
+    Ok(Vec3::from(v))
+}
+
+/// A positive number up to `max`.
+pub(crate) fn positive(x: f64, max: f64, what: &str) -> Result<f64> {
+    if !(x.is_finite() && x > 0.0 && x <= max) {
+        bail!("{what}: must be in (0, {}], got {}", short(max), short(x));
+    }
+    Ok(x)
 }
 
 #[cfg(test)]

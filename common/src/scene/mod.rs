@@ -31,9 +31,11 @@ use glam::{DMat4, DQuat, DVec2, DVec3, EulerRot, Vec3};
 
 use crate::scene::file::{CameraPath, FarFile, ObjectFile, ScaleFile, SceneFile};
 use crate::scene::lights::parse_light;
+pub use crate::scene::lights::{Light, LightKind, LightSize};
 use crate::scene::limits::{
-    check_coord, check_direction, short, short3, Extent, MAX_COORD, MAX_DEPTH_RATIO, MAX_FOV_DEG,
-    MAX_REACH_OVER_NEAR, MAX_SCALE, MAX_SHIFT, MIN_FOV_DEG, MIN_NEAR, MIN_SCALE,
+    check_coord, check_direction, color3, positive, short, short3, Extent, MAX_COORD,
+    MAX_DEPTH_RATIO, MAX_FOV_DEG, MAX_REACH_OVER_NEAR, MAX_SCALE, MAX_SHIFT, MIN_FOV_DEG, MIN_NEAR,
+    MIN_SCALE,
 };
 use crate::scene::mesh::Mesh;
 
@@ -56,56 +58,6 @@ pub struct Camera {
     /// moves by `shift.x` half-widths and `shift.y` half-heights, so the
     /// frustum is off-centre. Applied in [`camera::camera_matrices`].
     pub shift: DVec2,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LightKind {
-    /// `direction` is the way the light travels (unit length).
-    Directional {
-        direction: DVec3,
-    },
-    Point {
-        position: DVec3,
-        range: f64,
-    },
-    Spot {
-        position: DVec3,
-        direction: DVec3,
-        range: f64,
-        spot_angle_deg: f64,
-    },
-}
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Light {
-    pub kind: LightKind,
-    pub color: Vec3,
-    /// The emitter's size (lesson 10): a sphere of this radius, scene
-    /// units, for point and spot lights (`radius`), or a cone of this
-    /// half-angle for directional ones (`angular_radius_deg`). 0: a hard
-    /// light, a point or one direction.
-    pub size: LightSize,
-}
-
-/// How big a light's emitter is; [`LightSize::HARD`] for a point or a
-/// single direction.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LightSize {
-    /// Point and spot lights: the radius of the spherical emitter.
-    Radius(f64),
-    /// Directional lights: the half-angle of the cone of directions, degrees.
-    AngularRadiusDeg(f64),
-}
-
-impl LightSize {
-    pub const HARD: LightSize = LightSize::Radius(0.0);
-
-    /// Whether the emitter has a size (a soft shadow's light).
-    pub fn is_area(self) -> bool {
-        match self {
-            LightSize::Radius(r) | LightSize::AngularRadiusDeg(r) => r > 0.0,
-        }
-    }
 }
 
 #[derive(Clone, Debug)]
@@ -141,24 +93,6 @@ fn finite3(v: [f64; 3], what: &str) -> Result<DVec3> {
         bail!("{what}: must be finite, got {}", short3(v));
     }
     Ok(DVec3::from(v))
-}
-
-pub(crate) fn color3(v: [f32; 3], what: &str) -> Result<Vec3> {
-    if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > 1e6) {
-        bail!(
-            "{what}: colour components must be in [0, 1e6], got {}",
-            short3(Vec3::from(v).as_dvec3())
-        );
-    }
-    Ok(Vec3::from(v))
-}
-
-/// A positive number up to `max`.
-pub(crate) fn positive(x: f64, max: f64, what: &str) -> Result<f64> {
-    if !(x.is_finite() && x > 0.0 && x <= max) {
-        bail!("{what}: must be in (0, {}], got {}", short(max), short(x));
-    }
-    Ok(x)
 }
 
 impl Scene {
