@@ -207,7 +207,7 @@ pub const RUNS: &[Run] = &[
     case("lesson_10", "contact", "scenes/lesson_10_contact.toml", "cube and sphere resting on the floor, a 2° sun"),
     case("lesson_10", "large_light", "scenes/lesson_10_large_light.toml", "a spot light of 1 m radius"),
     case("lesson_10", "overlap", "scenes/lesson_10_overlap.toml", "blockers at two heights side by side"),
-    case("lesson_10", "thin", "scenes/lesson_10_thin.toml", "a thin sheet over a box"),
+    case("lesson_10", "thin", "scenes/lesson_10_thin.toml", "a thin sheet's edge over a box"),
     case("lesson_10", "grazing", "scenes/lesson_10_grazing.toml", "a 1° sun 80° from the floor's normal"),
 ];
 
