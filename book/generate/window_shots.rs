@@ -113,8 +113,19 @@ fn caption(shot: &Shot, last: &serde_json::Value) -> Result<String> {
         );
     }
     let (w, h) = SIZE;
+    // An area light's figures (lesson 10), where the log has them.
+    let soft = match (
+        e["penumbra_mean_abs"].as_f64(),
+        e["light_bleeding_pct"].as_f64(),
+    ) {
+        (Some(p), Some(b)) => format!(
+            ", and inside the penumbra mean |ΔV| {:.3} %, bleeding {b:.3} % of the umbra",
+            100.0 * p
+        ),
+        _ => String::new(),
+    };
     Ok(format!(
-        "The window of <code>cargo run --release --bin {lesson} -- --variant {variant} --view {view}</code> ({w}×{h}, on {adapter}, captured with <code>--capture</code> after {frames} frames, once the full figure had come): the overlay at the top left, and {shows}. The overlay's figure, against the exact reference: misclassified {m:.3} %, false shadow {fs:.3} %, false lit {fl:.3} % (the headless report's figures for the same variant and size; <code>tests/window.rs</code> checks that the two agree).\n",
+        "The window of <code>cargo run --release --bin {lesson} -- --variant {variant} --view {view}</code> ({w}×{h}, on {adapter}, captured with <code>--capture</code> after {frames} frames, once the full figure had come): the overlay at the top left, and {shows}. The overlay's figure, against the exact reference: misclassified {m:.3} %, false shadow {fs:.3} %, false lit {fl:.3} %{soft} (the headless report's figures for the same variant and size; <code>tests/window.rs</code> checks that the two agree).\n",
         lesson = shot.lesson,
         variant = shot.variant,
         view = shot.view,

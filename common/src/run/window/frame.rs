@@ -271,6 +271,9 @@ impl<L: Lesson> App<L> {
                 "misclassified_pct": a.error.misclassified_pct,
                 "false_shadow_pct": a.error.false_shadow_pct,
                 "false_lit_pct": a.error.false_lit_pct,
+                // An area light's: the error inside the penumbra.
+                "penumbra_mean_abs": a.error.soft.as_ref().map(|x| x.penumbra_mean_abs),
+                "light_bleeding_pct": a.error.soft.as_ref().map(|x| x.light_bleeding_pct),
             })
         });
         let line = serde_json::json!({

@@ -175,6 +175,14 @@ fn error_rows(ui: &mut egui::Ui, p: &Panel) {
         ui.label(RichText::new(format!("false shadow {:.3} %", s.false_shadow_pct)).color(red));
         ui.label(RichText::new(format!("false lit {:.3} %", s.false_lit_pct)).color(green));
     });
+    // An area light's soft shadow: the error inside its penumbra.
+    if let Some(soft) = &s.soft {
+        ui.label(RichText::new(format!(
+            "penumbra |ΔV| {:.3} %   bleeding {:.3} % of the umbra",
+            100.0 * soft.penumbra_mean_abs,
+            soft.light_bleeding_pct
+        )));
+    }
     let lights = if p.lights > 1 {
         format!(", {} lights", p.lights)
     } else {
