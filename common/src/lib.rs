@@ -13,9 +13,12 @@
 //!   and the error metrics against it.
 //! - [`measure`]: timing (per pass, the protocol), counters, the no-shadow
 //!   baseline and the report.
+//! - [`ports`]: the card each port of another renderer's default keeps of
+//!   its source (file, commit, lines, constants), which its test checks.
 
 pub mod gpu;
 pub mod measure;
+pub mod ports;
 pub mod reference;
 pub mod run;
 pub mod scene;
