@@ -189,11 +189,15 @@ mod tests {
             ..CARD
         };
         assert_eq!(short.problems().len(), 1);
+        const ORPHAN: &[Constant] = &[Constant {
+            source: 1,
+            name: "TAPS",
+            value: Value::Num(16.0),
+            unit: "taps",
+            lines: "12",
+        }];
         let orphan = PortCard {
-            constants: &[Constant {
-                source: 1,
-                ..CARD.constants[0]
-            }],
+            constants: ORPHAN,
             ..CARD
         };
         assert_eq!(orphan.problems().len(), 1);
