@@ -41,7 +41,7 @@ pub const CONCLUSIONS: &[(&str, &str)] = &[
     ("pcss", "pcf_wide_16"),
     ("pcss", "hard_pcf"),
     ("vsm", "vsm_bleed_cut"),
-    ("godot_soft_low", "bevy_pcss"),
+    ("godot_soft_low", "bevy_pcss_or_pcf"),
 ];
 
 /// Two variants the chapter sets side by side without ranking them; the

@@ -362,7 +362,7 @@ pub const PEERS: &[Peer] = &[
     peer("lesson_04", "bevy_point", "pcf3d_1024", "Bevy's point-light biases"),
     peer("lesson_10", "filament_pcss", "pcss", "Filament's PCSS"),
     peer("lesson_10", "filament_evsm", "pcss", "Filament's VSM (an EVSM)"),
-    peer("lesson_10", "bevy_pcss", "pcss", "Bevy's PCSS"),
+    peer("lesson_10", "bevy_pcss_or_pcf", "pcss", "Bevy's PCSS on a spot, its Castaño PCF on a sun"),
     peer("lesson_10", "godot_soft_low", "pcss", "Godot's Soft Low"),
     peer("lesson_10", "threejs_pcf_soft", "pcss", "three.js's PCFSoftShadowMap"),
     peer("lesson_10", "threejs_vsm", "pcss", "three.js's VSMShadowMap"),

@@ -36,12 +36,8 @@ use workbook::lesson_02::bias::SlopeScaledBias;
 use workbook::lesson_03::pcf::{Filter, FilterUniform};
 use workbook::lesson_10::knobs;
 use workbook::lesson_10::moments::{MomentsMap, MomentsPasses};
-use workbook::lesson_10::soft::{
-    LightGeometry, Pcss, Penumbra, Search, SoftUniform, Technique, Variance,
-};
-
-/// Lesson 03's map size: the techniques differ, the map does not.
-const MAP_SIZE: u32 = 1024;
+use workbook::lesson_10::peers::{self, Peer};
+use workbook::lesson_10::soft::{LightGeometry, Pcss, SoftUniform, Technique, Variance};
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -73,44 +69,38 @@ enum Variant {
     /// lower bound of the two (EVSM4).
     #[value(name = "evsm")]
     Evsm,
-    /// Filament's PCSS (google/filament, shaders/src/surface_shadowing.fs
-    /// at f366ac3, `ShadowSample_PCSS`): 16 search and 16 filter taps,
-    /// receiver-plane bias, searching the bulb's size at the receiver,
-    /// penumbra ratio (d_r − d_b) / d_b; its `shadowBulbRadius` is the
-    /// spot's radius, or its default 0.02 m for a directional light
-    /// (LightManager.java at c35a608). Our Vogel disk, not its 64-point
-    /// Poisson disk.
+    /// Filament's PCSS (`ShadowType::PCSS`, shaders/src/surface_shadowing.fs):
+    /// the first 16 of its 64 Poisson points (all in one half of the
+    /// disk) to search and to filter, turned per pixel; the blockers' mean
+    /// reversed depth; its penumbra ratio; its bulb radius (the spot's
+    /// radius, or its default 2 cm on a sun). Card: `port_cards.rs`.
     #[value(name = "filament_pcss")]
     FilamentPcss,
-    /// Filament's VSM, an EVSM (surface_shadowing.fs at f366ac3; exponent
-    /// 5.54 for its default 16-bit moments, PerViewUniforms.cpp at
-    /// cb91a23; `lightBleedReduction` 0.15, `minVarianceScale` 0.5,
-    /// `blurWidth` 0: Options.h at 2fac13e, LightManager.java at c35a608).
+    /// Filament's VSM, an EVSM (exponent 5.54 for its 16-bit moments, no
+    /// blur, `lightBleedReduction` 0.15, least variance from
+    /// `minVarianceScale` 0.5 and the exponent). Card: `port_cards.rs`.
     #[value(name = "filament_evsm")]
     FilamentEvsm,
-    /// Bevy's PCSS (bevyengine/bevy, crates/bevy_pbr/src/render/
-    /// shadow_sampling.wgsl at 00ef04e, `sample_shadow_map_pcss`): 8 search
-    /// and 8 filter taps, searching the light's size, penumbra (z_b − z) /
-    /// z in reversed Z, at least 0.5 texel. Bevy turns soft shadows off
-    /// for a directional light by default (`soft_shadow_size: None`); on
-    /// one it runs our hard_pcf.
-    #[value(name = "bevy_pcss")]
-    BevyPcss,
-    /// Godot's default "Soft Low" (godotengine/godot, servers/rendering/
-    /// renderer_rd/shaders/scene_forward_lights_inc.glsl at 8bae2a4, and
-    /// renderer_scene_render_rd.cpp at 238862b): 8 Vogel taps to search
-    /// and the same 8 to filter, penumbra (b − z) / (1 − b) in reversed
-    /// depth, no receiver-plane bias.
+    /// Bevy's soft-shadow defaults: on a spot with `soft_shadows_enabled`
+    /// its PCSS (8 D3D points to search in its reversed infinite depth, 8
+    /// spiral taps to filter, widths in its own texel units); on a sun,
+    /// where `soft_shadow_size` is `None` by default, no PCSS but its
+    /// default Gaussian PCF (Castaño's 5×5) on its 2048² map. Card:
+    /// `port_cards.rs`.
+    #[value(name = "bevy_pcss_or_pcf")]
+    BevyPcssOrPcf,
+    /// Godot's default "Soft Low": 8 Vogel taps to search and the same 8 to
+    /// filter, its penumbra `(b − z) / (1 − b)` on reversed depth, no
+    /// receiver-plane bias. Card: `port_cards.rs`.
     #[value(name = "godot_soft_low")]
     GodotSoftLow,
-    /// three.js's `PCFSoftShadowMap` (mrdoob/three.js, src/renderers/
-    /// shaders/ShaderChunk/shadowmap_pars_fragment.glsl.js at 99e4d38): a
-    /// fixed 3×3-texel box, bilinearly smoothed; it has no light size.
+    /// three.js's `PCFSoftShadowMap`: a fixed 3×3-texel box, bilinearly
+    /// smoothed, on its 512² map; it has no light size. Card: `port_cards.rs`.
     #[value(name = "threejs_pcf_soft")]
     ThreejsPcfSoft,
-    /// three.js's `VSMShadowMap` (the same file; vsm.glsl.js at 1b7857e):
-    /// moments box-blurred over its `radius` 1, bleeding cut
-    /// linstep(0.3, 0.95, p).
+    /// three.js's `VSMShadowMap`: the (mean, deviation) of its map's depth,
+    /// 8 samples over ±1 texel along y then x, on its 512² map, cut by
+    /// linstep(0.3, 0.95, p). Card: `port_cards.rs`.
     #[value(name = "threejs_vsm")]
     ThreejsVsm,
     /// The chapter's exercises (`exercises.wgsl`), run only when named.
@@ -128,7 +118,7 @@ impl Variant {
             radius_texels: 8.0,
         };
         let ours = Technique::PCSS;
-        let variance = |blur, exponent, min_variance, bleed| {
+        let variance = |blur, exponent: Option<f32>, min_variance, bleed| {
             Technique::Variance(Variance {
                 blur,
                 exponent,
@@ -151,37 +141,21 @@ impl Variant {
                 min_variance: 1e-4,
                 bleed: (0.0, 1.0),
             }),
-            Variant::FilamentPcss => Technique::Pcss(Pcss {
-                search: Search::LightSizeAtReceiver,
-                penumbra: Penumbra::DepthRatio,
-                renderer_size: (!g.perspective).then_some(0.02),
-                ..ours
-            }),
-            // minVariance = (minVarianceScale · 0.01 · depth)²: relative.
-            Variant::FilamentEvsm => variance(0, Some(5.54), 2.5e-5, (0.15, 1.0)),
-            Variant::BevyPcss if !g.perspective => Technique::HardPcf,
-            Variant::BevyPcss => Technique::Pcss(Pcss {
-                search_taps: 8,
-                filter_taps: 8,
-                receiver_plane: false,
-                search: Search::LightSizeAtReceiver,
-                penumbra: Penumbra::BevyRatio,
-                min_filter_texels: 0.5,
-                ..ours
-            }),
-            Variant::GodotSoftLow => Technique::Pcss(Pcss {
-                search_taps: 8,
-                filter_taps: 8,
-                receiver_plane: false,
-                search: Search::NearPlane,
-                penumbra: Penumbra::DepthRatio,
-                ..ours
-            }),
-            Variant::ThreejsPcfSoft => Technique::ThreePcfSoft,
-            Variant::ThreejsVsm => variance(1, None, 1e-7, (0.3, 0.95)),
+            Variant::FilamentPcss
+            | Variant::FilamentEvsm
+            | Variant::BevyPcssOrPcf
+            | Variant::GodotSoftLow
+            | Variant::ThreejsPcfSoft
+            | Variant::ThreejsVsm => Technique::Peer(self.peer(g)),
             Variant::ExerciseBlockerSearch => Technique::Pcss(Pcss { student: 1, ..ours }),
             Variant::ExercisePenumbra => Technique::Pcss(Pcss { student: 2, ..ours }),
         }
+    }
+
+    /// A renderer's port, for a light of geometry `g` (`peers.rs`).
+    fn peer(self, g: &LightGeometry) -> Peer {
+        let name = self.to_possible_value().expect("a named variant");
+        peers::port(name.get_name(), g).expect("a port has a card and a peer")
     }
 
     /// The lesson's own techniques have knobs; the renderers' defaults and
@@ -200,27 +174,70 @@ impl Variant {
 }
 // ANCHOR_END: variants
 
-/// One variant's state for one light: its technique, its parameters'
-/// group, and the variance map's passes if it has one.
+/// One variant's state for one light: its technique, its map, its
+/// parameters' group, and the variance map's passes if it has one.
 struct PerLight {
     technique: Technique,
+    /// Index into `Soft::maps`: the map of the technique's size.
+    map: usize,
     group: wgpu::BindGroup,
     moments: Option<MomentsPasses>,
 }
 
-struct Soft {
+/// A shadow map of one size, its variance map, their bindings and the
+/// shadow pipelines that render it: the lesson's 1024², and each size a
+/// renderer's port runs (three.js 512², Bevy's cascade 2048²).
+struct MapSet {
+    size: u32,
     map: ShadowMap,
     moments: MomentsMap,
-    geometry: Vec<LightGeometry>,
     /// Group 2 with nearest and with linear comparisons.
     nearest: wgpu::BindGroup,
     linear: wgpu::BindGroup,
+    /// One pipeline per light: lesson 02's recommended bias.
+    shadow_pipelines: Vec<wgpu::RenderPipeline>,
+}
+
+impl MapSet {
+    fn new(
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        module: &wgpu::ShaderModule,
+        layout: &wgpu::BindGroupLayout,
+        size: u32,
+    ) -> MapSet {
+        let map = ShadowMap::new(gpu, size);
+        let moments = MomentsMap::new(gpu, size);
+        let shadow_pipelines = (0..scene.scene.lights.len())
+            .map(|k| {
+                let b = SlopeScaledBias::RECOMMENDED;
+                let state = ShadowPassState {
+                    cull: None,
+                    ..b.pass_state(gpu, &scene.scene, k, size)
+                };
+                shadow_map::shadow_pipeline(gpu, scene, module, state)
+            })
+            .collect();
+        let nearest = map_group(gpu, layout, &map, &moments, wgpu::FilterMode::Nearest);
+        let linear = map_group(gpu, layout, &map, &moments, wgpu::FilterMode::Linear);
+        MapSet {
+            size,
+            map,
+            moments,
+            nearest,
+            linear,
+            shadow_pipelines,
+        }
+    }
+}
+
+struct Soft {
+    maps: Vec<MapSet>,
+    geometry: Vec<LightGeometry>,
     params_layout: wgpu::BindGroupLayout,
     /// Lesson 03's filter uniform (its Poisson disk), for the hard baseline.
     filter: wgpu::Buffer,
     lit_pipeline: wgpu::RenderPipeline,
-    /// One pipeline per light: lesson 02's recommended bias.
-    shadow_pipelines: Vec<wgpu::RenderPipeline>,
     /// `per_light[variant][light]`.
     per_light: Vec<Vec<PerLight>>,
     draws: u64,
@@ -233,14 +250,26 @@ impl Soft {
         let soft = bindings::params_buffer(gpu, "soft", bytemuck::bytes_of(&u));
         let resources = [self.filter.as_entire_binding(), soft.as_entire_binding()];
         let name = format!("{v:?} light {k}");
+        let map = (self.maps.iter())
+            .position(|m| m.size == t.map_size())
+            .expect("a map of every technique's size (Soft::new)");
+        let set = &self.maps[map];
         PerLight {
             technique: t,
+            map,
             group: bindings::group(gpu, &name, &self.params_layout, &resources),
-            moments: match t {
-                Technique::Variance(var) => Some(self.moments.passes(gpu, &self.map, &var, g)),
-                _ => None,
-            },
+            moments: t
+                .variance()
+                .map(|(var, three)| set.moments.passes(gpu, &set.map, &var, three, g)),
         }
+    }
+
+    /// The map the variant's first light reads.
+    fn first_map(&self, variant: Variant) -> &MapSet {
+        let k = self.per_light[variant as usize]
+            .first()
+            .map_or(0, |p| p.map);
+        &self.maps[k]
     }
 }
 
@@ -274,11 +303,11 @@ impl Lesson for Soft {
     }
 
     /// The shadow map, as the last light's shadow pass left it.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
         let Some(last) = scene.scene.lights.len().checked_sub(1) else {
             return Ok(None);
         };
-        self.map.buffer_view(gpu, last).map(Some)
+        self.first_map(v).map.buffer_view(gpu, last).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -300,6 +329,10 @@ impl Lesson for Soft {
             (
                 exercises.as_str(),
                 workbook::lesson_10::exercises::EXERCISES_WGSL,
+            ),
+            (
+                "shaders/lesson_10/peers.wgsl",
+                include_str!("../../shaders/lesson_10/peers.wgsl"),
             ),
         ];
         let module = shadow_map::shader_module_from_files(gpu, "lesson_10", &files)?;
@@ -334,36 +367,27 @@ impl Lesson for Soft {
             scene.lit_depth_state(Default::default()),
             &[("MODE", 2.0)],
         );
-        let map = ShadowMap::new(gpu, MAP_SIZE);
-        let moments = MomentsMap::new(gpu, MAP_SIZE);
-        let shadow_pipelines = (0..scene.scene.lights.len())
-            .map(|k| {
-                let b = SlopeScaledBias::RECOMMENDED;
-                let state = ShadowPassState {
-                    cull: None,
-                    ..b.pass_state(gpu, &scene.scene, k, MAP_SIZE)
-                };
-                shadow_map::shadow_pipeline(gpu, scene, &module, state)
-            })
-            .collect();
         let geometry = (0..scene.scene.lights.len())
             .map(|k| {
                 LightGeometry::new(&scene.scene, k)
                     .ok_or_else(|| anyhow::anyhow!("light {k}: lesson_10 has no point lights"))
             })
             .collect::<Result<Vec<_>>>()?;
-        let nearest = map_group(gpu, &map_layout, &map, &moments, wgpu::FilterMode::Nearest);
-        let linear = map_group(gpu, &map_layout, &map, &moments, wgpu::FilterMode::Linear);
+        // One map of each size some variant runs on some light.
+        let mut sizes: Vec<u32> = (Variant::value_variants().iter())
+            .flat_map(|v| geometry.iter().map(|g| v.technique(g).map_size()))
+            .collect();
+        sizes.sort_unstable();
+        sizes.dedup();
+        let maps = (sizes.into_iter())
+            .map(|size| MapSet::new(gpu, scene, &module, &map_layout, size))
+            .collect();
         let mut soft = Soft {
-            map,
-            moments,
+            maps,
             geometry,
-            nearest,
-            linear,
             params_layout,
             filter,
             lit_pipeline,
-            shadow_pipelines,
             per_light: Vec::new(),
             draws: shadow_map::shadow_map_draws(scene),
         };
@@ -389,21 +413,22 @@ impl Lesson for Soft {
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
             let state = &self.per_light[variant as usize][light];
-            let shadow = &self.shadow_pipelines[light];
+            let set = &self.maps[state.map];
+            let shadow = &set.shadow_pipelines[light];
             frame.pass("shadow", |enc, ts| {
-                shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render())
+                shadow_map::shadow_pass(enc, scene, shadow, &set.map, light, ts.render())
             });
             if let Some(passes) = &state.moments {
                 frame.pass("moments", |enc, ts| {
-                    self.moments.record(enc, passes, false, ts.compute())
+                    set.moments.record(enc, passes, false, ts.compute())
                 });
                 frame.pass("blur", |enc, ts| {
-                    self.moments.record(enc, passes, true, ts.compute())
+                    set.moments.record(enc, passes, true, ts.compute())
                 });
             }
             let map_group = match state.technique.sampler() {
-                wgpu::FilterMode::Nearest => &self.nearest,
-                _ => &self.linear,
+                wgpu::FilterMode::Nearest => &set.nearest,
+                _ => &set.linear,
             };
             frame.pass("lighting", |enc, ts| {
                 let groups = [map_group, &state.group];
@@ -426,7 +451,10 @@ impl Lesson for Soft {
             ("blocker_search_taps".into(), search),
             ("filter_taps_per_pixel".into(), filter),
             ("texels_read".into(), texels),
-            ("shadow_map_size".into(), MAP_SIZE as u64),
+            (
+                "shadow_map_size".into(),
+                self.first_map(variant).size as u64,
+            ),
             ("draws".into(), self.draws),
         ])
     }

@@ -6,6 +6,8 @@
 
 pub mod knobs;
 pub mod moments;
+pub mod peers;
+pub mod port_cards;
 pub mod soft;
 
 /// The chapter's exercises: the starter code a student fills in, or with

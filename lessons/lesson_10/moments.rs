@@ -7,6 +7,7 @@ use common::gpu::bindings::{self, storage_entry, texture_entry};
 use common::gpu::Gpu;
 
 use crate::lesson_01::shadow_map::ShadowMap;
+use crate::lesson_10::peers::ThreeVsmBlur;
 use crate::lesson_10::soft::{LightGeometry, Variance};
 
 /// `Blur` in `moments.wgsl`.
@@ -21,6 +22,9 @@ pub struct BlurUniform {
     near: f32,
     far: f32,
     negative: f32,
+    samples: u32,
+    spread: f32,
+    _pad: [u32; 2],
 }
 
 /// The variance map and the passes that make it.
@@ -103,12 +107,13 @@ impl MomentsMap {
     }
 
     /// The two passes' groups for variance map `v` of `map`, for a light of
-    /// geometry `g`.
+    /// geometry `g`; with `three`, three.js's blur in place of the box.
     pub fn passes(
         &self,
         gpu: &Gpu,
         map: &ShadowMap,
         v: &Variance,
+        three: Option<ThreeVsmBlur>,
         g: &LightGeometry,
     ) -> MomentsPasses {
         let group = |vertical: bool| {
@@ -121,6 +126,9 @@ impl MomentsMap {
                 near: g.near,
                 far: g.far,
                 negative: v.negative.unwrap_or(0.0),
+                samples: three.map_or(0, |t| t.samples),
+                spread: three.map_or(0.0, |t| t.radius),
+                _pad: [0; 2],
             };
             let params = bindings::params_buffer(gpu, "blur", bytemuck::bytes_of(&u));
             // Along x: the depths into `first` (reading the map's buffer,

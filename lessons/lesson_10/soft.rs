@@ -7,6 +7,8 @@ use common::scene::camera::light_view_proj;
 use common::scene::{LightKind, LightSize, Scene};
 use glam::{Mat4, Vec3, Vec4Swizzles};
 
+use super::peers::Peer;
+
 // ANCHOR: technique
 /// How a variant turns the shadow map into a visibility.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,23 +23,20 @@ pub enum Technique {
     Pcss(Pcss),
     /// A variance map blurred over `(2 blur + 1)²` texels.
     Variance(Variance),
-    /// three.js's `PCFSoftShadowMap`: a fixed 3×3-texel smoothed box.
-    ThreePcfSoft,
+    /// A renderer's soft-shadow default, as its source runs it
+    /// ([`super::peers`]).
+    Peer(Peer),
 }
 
-/// A PCSS's choices: its taps, where it searches, how it estimates.
+/// A PCSS's choices: its taps, where it searches, its least width.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pcss {
     pub search_taps: u32,
     pub filter_taps: u32,
     pub receiver_plane: bool,
     pub search: Search,
-    pub penumbra: Penumbra,
-    /// The least filter radius, texels (Bevy: 0.5).
+    /// The least filter radius, texels.
     pub min_filter_texels: f32,
-    /// A renderer's own light size (Filament's bulb radius for a
-    /// directional light), world units; `None`: the scene's.
-    pub renderer_size: Option<f32>,
     /// The chapter's exercises: 1 the student's blocker search, 2 the
     /// student's penumbra estimate, 0 neither.
     pub student: u32,
@@ -49,24 +48,8 @@ pub enum Search {
     /// Every blocker that can hide part of the emitter: the emitter seen
     /// from the receiver, on the plane of the nearest caster (ours).
     NearestCaster,
-    /// The light's size at the receiver (Filament, Bevy, Godot's spot).
+    /// Only the light's size at the receiver (Filament's and Bevy's choice).
     LightSizeAtReceiver,
-    /// A directional light's cone from the light's near plane (Godot);
-    /// a spot's size at the receiver.
-    NearPlane,
-}
-
-/// How the penumbra's width follows from the blockers.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Penumbra {
-    /// Similar triangles with the light's true geometry (ours).
-    Geometry,
-    /// Fernando's `(d_r − d_b) / d_b` times the search radius: on
-    /// distances for a spot, on the map's depths for a directional light
-    /// (Filament's, Godot's).
-    DepthRatio,
-    /// `(z_r − z_b) / (1 − z_r)` (Bevy's `(z_b − z) / z` in reversed Z).
-    BevyRatio,
 }
 
 /// A variance map's choices.
@@ -87,6 +70,10 @@ pub struct Variance {
 }
 // ANCHOR_END: technique
 
+/// Lesson 03's map size: the techniques differ, the map does not (a
+/// renderer's port runs its renderer's size).
+pub const LESSON_MAP_SIZE: u32 = 1024;
+
 impl Technique {
     /// Our PCSS: 16 search and 16 filter taps, the light's geometry.
     pub const PCSS: Pcss = Pcss {
@@ -94,9 +81,7 @@ impl Technique {
         filter_taps: 16,
         receiver_plane: true,
         search: Search::NearestCaster,
-        penumbra: Penumbra::Geometry,
         min_filter_texels: 0.0,
-        renderer_size: None,
         student: 0,
     };
 
@@ -114,7 +99,7 @@ impl Technique {
             ),
             // Four texels of the blurred moments; the blur reads its own.
             Technique::Variance(_) => (0, 1, 4),
-            Technique::ThreePcfSoft => (0, 16, 16),
+            Technique::Peer(p) => p.taps(),
         }
     }
 
@@ -127,15 +112,33 @@ impl Technique {
             Technique::Pcss(p) if p.student == 2 => 6,
             Technique::Pcss(_) => 2,
             Technique::Variance(_) => 3,
-            Technique::ThreePcfSoft => 5,
+            Technique::Peer(p) => p.mode(),
         }
     }
 
     /// Nearest comparisons (three.js's point taps) or bilinear ones.
     pub fn sampler(self) -> wgpu::FilterMode {
         match self {
-            Technique::ThreePcfSoft => wgpu::FilterMode::Nearest,
+            Technique::Peer(p) => p.sampler(),
             _ => wgpu::FilterMode::Linear,
+        }
+    }
+
+    /// A variance map's moments (and three.js's blur), if the technique
+    /// reads one.
+    pub fn variance(self) -> Option<(Variance, Option<super::peers::ThreeVsmBlur>)> {
+        match self {
+            Technique::Variance(v) => Some((v, None)),
+            Technique::Peer(p) => p.variance(),
+            _ => None,
+        }
+    }
+
+    /// The shadow map's side, texels: the lesson's, or the renderer's.
+    pub fn map_size(self) -> u32 {
+        match self {
+            Technique::Peer(p) => p.map_size(),
+            _ => LESSON_MAP_SIZE,
         }
     }
 }
@@ -241,28 +244,28 @@ fn perspective_planes(m: Mat4) -> (f32, f32) {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct SoftUniform {
-    mode: u32,
-    search_taps: u32,
-    filter_taps: u32,
-    receiver_plane: u32,
-    perspective: u32,
-    search_model: u32,
-    penumbra_model: u32,
-    exponential: u32,
-    near: f32,
-    far: f32,
-    size: f32,
-    nearest_caster: f32,
-    uv_per: [f32; 2],
-    fixed_radius_texels: f32,
-    min_filter_texels: f32,
-    min_variance: f32,
-    bleed_lo: f32,
-    bleed_hi: f32,
-    exponent: f32,
-    negative: f32,
-    renderer_size: f32,
-    _pad: [f32; 2],
+    pub mode: u32,
+    pub search_taps: u32,
+    pub filter_taps: u32,
+    pub receiver_plane: u32,
+    pub perspective: u32,
+    pub search_at_receiver: u32,
+    pub exponential: u32,
+    pub mean_and_deviation: u32,
+    pub near: f32,
+    pub far: f32,
+    pub size: f32,
+    pub nearest_caster: f32,
+    pub uv_per: [f32; 2],
+    pub fixed_radius_texels: f32,
+    pub min_filter_texels: f32,
+    pub min_variance: f32,
+    pub bleed_lo: f32,
+    pub bleed_hi: f32,
+    pub exponent: f32,
+    pub negative: f32,
+    pub scale: f32,
+    pub _pad: [f32; 2],
 }
 
 impl SoftUniform {
@@ -273,9 +276,9 @@ impl SoftUniform {
             filter_taps: 0,
             receiver_plane: 0,
             perspective: g.perspective as u32,
-            search_model: 0,
-            penumbra_model: 0,
+            search_at_receiver: 0,
             exponential: 0,
+            mean_and_deviation: 0,
             near: g.near,
             far: g.far,
             size: g.size,
@@ -288,11 +291,11 @@ impl SoftUniform {
             bleed_hi: 1.0,
             exponent: 0.0,
             negative: 0.0,
-            renderer_size: 0.0,
+            scale: 0.0,
             _pad: [0.0; 2],
         };
         match t {
-            Technique::HardPcf | Technique::ThreePcfSoft => u.receiver_plane = 1,
+            Technique::HardPcf => u.receiver_plane = 1,
             Technique::FixedDisk {
                 taps,
                 radius_texels,
@@ -305,27 +308,21 @@ impl SoftUniform {
                 u.search_taps = p.search_taps;
                 u.filter_taps = p.filter_taps;
                 u.receiver_plane = p.receiver_plane as u32;
-                u.search_model = match p.search {
-                    Search::NearestCaster => 0,
-                    Search::LightSizeAtReceiver => 1,
-                    Search::NearPlane => 2,
-                };
-                u.penumbra_model = match p.penumbra {
-                    Penumbra::Geometry => 0,
-                    Penumbra::DepthRatio => 1,
-                    Penumbra::BevyRatio => 2,
-                };
+                u.search_at_receiver = (p.search == Search::LightSizeAtReceiver) as u32;
                 u.min_filter_texels = p.min_filter_texels;
-                u.renderer_size = p.renderer_size.unwrap_or(0.0);
             }
-            Technique::Variance(v) => {
-                u.exponential = v.exponent.is_some() as u32;
-                u.exponent = v.exponent.unwrap_or(0.0);
-                u.negative = v.negative.unwrap_or(0.0);
-                u.min_variance = v.min_variance;
-                (u.bleed_lo, u.bleed_hi) = v.bleed;
-            }
+            Technique::Variance(v) => u.set_variance(&v),
+            Technique::Peer(p) => p.set_uniform(&mut u, g),
         }
         u
+    }
+
+    /// A variance map's parameters.
+    pub fn set_variance(&mut self, v: &Variance) {
+        self.exponential = v.exponent.is_some() as u32;
+        self.exponent = v.exponent.unwrap_or(0.0);
+        self.negative = v.negative.unwrap_or(0.0);
+        self.min_variance = v.min_variance;
+        (self.bleed_lo, self.bleed_hi) = v.bleed;
     }
 }

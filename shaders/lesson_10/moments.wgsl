@@ -18,6 +18,12 @@ struct Blur {
     far: f32,
     // The negative warp's exponent (EVSM4); 0: none.
     negative: f32,
+    // three.js's blur (peers.rs `ThreeVsmBlur`): `samples` > 0 takes
+    // `samples` depths over ±`spread` texels, along y then along x.
+    samples: u32,
+    spread: f32,
+    _pad1: u32,
+    _pad2: u32,
 };
 @group(0) @binding(0) var depth: texture_2d<f32>;
 @group(0) @binding(1) var<storage, read> first: array<vec4<f32>>;
@@ -47,11 +53,55 @@ fn depth_moments(z: f32) -> vec4<f32> {
 }
 // ANCHOR_END: moments
 
+// ANCHOR: threejs_blur
+// three.js's VSM blur (vsm.glsl.js): `samples` reads evenly spaced over
+// ±spread texels; the first pass (along y) reads the map's own depth with
+// nearest filtering (its depth texture's NearestFilter), the second (along
+// x) the first's (mean, standard deviation), linearly filtered; both write
+// (mean, standard deviation).
+fn threejs_blur(p: vec2<i32>, size: vec2<i32>) -> vec4<f32> {
+    let n = f32(blur.samples);
+    var stride = 0.0;
+    var start = 0.0;
+    if n > 1.0 {
+        stride = 2.0 / (n - 1.0);
+        start = -1.0;
+    }
+    var mean = 0.0;
+    var squared_mean = 0.0;
+    for (var i = 0u; i < blur.samples; i++) {
+        let offset = (start + f32(i) * stride) * blur.spread;
+        let at = floor(offset);
+        let f = offset - at;
+        if blur.vertical == 0u {
+            // The nearest texel to the texel's centre plus the offset.
+            let t = clamp(p + vec2<i32>(0, i32(floor(offset + 0.5))), vec2<i32>(0), size - 1);
+            let d = textureLoad(depth, t, 0).r;
+            mean += d;
+            squared_mean += d * d;
+        } else {
+            let a = clamp(p + vec2<i32>(i32(at), 0), vec2<i32>(0), size - 1);
+            let b = clamp(p + vec2<i32>(i32(at) + 1, 0), vec2<i32>(0), size - 1);
+            let m = mix(first[a.y * size.x + a.x], first[b.y * size.x + b.x], f);
+            mean += m.x;
+            squared_mean += m.y * m.y + m.x * m.x;
+        }
+    }
+    mean = mean / n;
+    squared_mean = squared_mean / n;
+    return vec4<f32>(mean, sqrt(max(0.0, squared_mean - mean * mean)), 0.0, 0.0);
+}
+// ANCHOR_END: threejs_blur
+
 @compute @workgroup_size(8, 8)
 fn cs_blur(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = vec2<i32>(textureDimensions(depth));
     let p = vec2<i32>(id.xy);
     if any(p >= size) {
+        return;
+    }
+    if blur.samples > 0u {
+        out[p.y * size.x + p.x] = threejs_blur(p, size);
         return;
     }
     var sum = vec4<f32>(0.0);

@@ -1,7 +1,8 @@
 // lesson_10/soft.wgsl: soft shadows from one shadow map. Compiled after
 // common.wgsl, shadow_map.wgsl, lesson 03's exercises.wgsl and pcf.wgsl
 // (its receiver_plane_gradient, rotation_angle and pcf_poisson), then this
-// lesson's exercises.wgsl. Group 2: the map (lesson 03's bindings) and
+// lesson's exercises.wgsl, then peers.wgsl (the renderers' ports). Group 2:
+// the map (lesson 03's bindings) and
 // binding 3, the blurred moments of the filterable maps (moments.wgsl).
 // Group 3: lesson 03's `pcf` filter at binding 0 and `soft` at binding 1.
 
@@ -10,8 +11,8 @@
 // Rust: lessons/lesson_10/soft.rs `SoftUniform`, one per variant and light.
 struct Soft {
     // 0: lesson 03's Poisson PCF; 1: a fixed disk; 2: PCSS; 3: variance
-    // map; 4: PCSS with exercise 1's blocker search; 5: three.js's
-    // PCFSoftShadowMap; 6: PCSS with exercise 2's penumbra.
+    // map; 4: PCSS with exercise 1's blocker search; 6: PCSS with exercise
+    // 2's penumbra; 5 and from 7: a renderer's port (peers.wgsl).
     mode: u32,
     search_taps: u32,
     filter_taps: u32,
@@ -21,21 +22,19 @@ struct Soft {
     perspective: u32,
     // How far the blocker search looks: 0: every blocker between the
     // nearest caster and the receiver (ours); 1: the light's size at the
-    // receiver (Filament, Bevy); 2: a directional light's cone from its
-    // near plane (Godot), a spot's as 1.
-    search_model: u32,
-    // The penumbra: 0: the light's geometry, similar triangles (ours);
-    // 1: Fernando's ratio (d_r − d_b) / d_b times the search radius, on
-    // distances for a spot and on the map's depths for a directional light
-    // (Filament, Godot); 2: (z_r − z_b) / (1 − z_r) (Bevy).
-    penumbra_model: u32,
+    // receiver (Filament's and Bevy's choice, as a knob of ours).
+    search_at_receiver: u32,
     // Variance maps: 0 plain; 1 exponential (the moments of exp(c·z̃)).
     exponential: u32,
+    // Variance maps: 1 when the moments are (mean, standard deviation) of
+    // the map's own depth (three.js's), 0 for (z̃, z̃²) of the linear depth.
+    mean_and_deviation: u32,
     // Orthographic: world distance from the light's plane at depth 0 and 1.
     // Perspective: the near and far planes.
     near: f32,
     far: f32,
     // Orthographic: tan(angular radius); perspective: the emitter's radius.
+    // A port: the renderer's own light size (peers.rs says which).
     size: f32,
     // The nearest caster's distance from the light (depth-plane units).
     nearest_caster: f32,
@@ -53,9 +52,8 @@ struct Soft {
     exponent: f32,
     // The negative warp's exponent c⁻ (EVSM4); 0: the positive warp alone.
     negative: f32,
-    // A renderer's stand-in light size (Filament's bulb radius), world
-    // units; 0: the scene's.
-    renderer_size: f32,
+    // A port's second size (Godot's soft_shadow_scale).
+    scale: f32,
     _pad1: f32,
     _pad2: f32,
 };
@@ -149,20 +147,12 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>, student: u32) -> f32 {
     let d_r = light_distance(s.z);
     // 1. Where blockers can be: the emitter seen through the receiver.
     var search = filter_radius(d_r, min(soft.nearest_caster, d_r));
-    var size = soft.size;
-    if soft.renderer_size > 0.0 {
-        size = soft.renderer_size;
-    }
-    if soft.search_model == 1u || (soft.search_model == 2u && soft.perspective == 1u) {
-        // The light's size at the receiver (Filament's `penumbraLs`).
-        search = size * soft.uv_per;
+    if soft.search_at_receiver == 1u {
+        // Only the light's size at the receiver (a knob: Filament's choice).
+        search = soft.size * soft.uv_per;
         if soft.perspective == 1u {
             search = search / d_r;
         }
-    } else if soft.search_model == 2u {
-        // The cone's spread from the light's near plane (Godot's
-        // directional search).
-        search = filter_radius(d_r, soft.near);
     }
     var b = blocker_search(s, search, angle, gradient);
     if student == 1u {
@@ -176,31 +166,9 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>, student: u32) -> f32 {
     if student == 2u {
         radius = exercise_filter_radius(d_r, b.distance);
     }
-    if soft.penumbra_model != 0u {
-        let z_b = blocker_depth(b.distance);
-        // Fernando's (d_r − d_b) / d_b: distances for a spot, map depths
-        // for a directional light, as Filament and Godot compute it.
-        var ratio = (s.z - z_b) / max(z_b, 1e-6);
-        if soft.perspective == 1u {
-            ratio = (d_r - b.distance) / max(b.distance, 1e-6);
-        }
-        if soft.penumbra_model == 2u {
-            ratio = (s.z - z_b) / max(1.0 - s.z, 1e-6);
-        }
-        radius = search * max(ratio, 0.0);
-    }
     radius = max(radius, vec2<f32>(soft.min_filter_texels * texel));
     // 3. A PCF that wide.
     return disk_pcf(s, radius, soft.filter_taps, angle + 1.0, gradient);
-}
-
-// The map depth of a point at distance d from the light (light_distance's
-// inverse): the renderers' penumbra ratios use depths.
-fn blocker_depth(d: f32) -> f32 {
-    if soft.perspective == 0u {
-        return (d - soft.near) / (soft.far - soft.near);
-    }
-    return soft.far * (d - soft.near) / (d * (soft.far - soft.near));
 }
 // ANCHOR_END: pcss
 
@@ -251,6 +219,9 @@ fn variance_map(s: vec3<f32>) -> f32 {
     // The linear depth z̃ in [0, 1], as the moments hold it (moments.wgsl).
     let lin = linear_depth(s.z);
     let m = moments_at(s.xy);
+    if soft.mean_and_deviation == 1u {
+        return threejs_vsm(s, m);
+    }
     var p = 1.0;
     if soft.exponential == 0u {
         p = chebyshev(m.xy, lin, soft.min_variance);
@@ -271,37 +242,6 @@ fn linear_depth(z: f32) -> f32 {
     return (light_distance(z) - soft.near) / (soft.far - soft.near);
 }
 // ANCHOR_END: chebyshev
-
-// ANCHOR: three_pcf_soft
-// three.js's PCFSoftShadowMap (shadowmap_pars_fragment.glsl.js at
-// 99e4d38, SHADOWMAP_TYPE_PCF_SOFT): 16 nearest comparisons on the 4×4
-// texel block around the point (the lesson binds the nearest-filtering
-// comparison sampler for it), the outer rows and columns weighted by
-// the point's fraction f within its texel: a 3×3-texel box, bilinearly
-// smoothed, divided by 9. It has no light size: a fixed kernel.
-// Each tap compares with the receiver's plane there (three.js leaves that
-// to its `bias`, 0 by default: without it the outer taps acne).
-fn three_pcf_soft(s: vec3<f32>, gradient: vec2<f32>) -> f32 {
-    let size = vec2<f32>(textureDimensions(shadow_map));
-    let texel = 1.0 / size;
-    let f = fract(s.xy * size + 0.5);
-    let uv = s.xy - f * texel;
-    var sum = 0.0;
-    for (var j = 0; j < 4; j++) {
-        for (var i = 0; i < 4; i++) {
-            let o = (vec2<f32>(f32(i), f32(j)) - 1.0) * texel;
-            var w = 1.0;
-            if i == 0 { w *= 1.0 - f.x; }
-            if i == 3 { w *= f.x; }
-            if j == 0 { w *= 1.0 - f.y; }
-            if j == 3 { w *= f.y; }
-            let at = uv + o;
-            sum += w * textureSampleCompareLevel(shadow_map, shadow_compare, at, s.z + dot(gradient, at - s.xy));
-        }
-    }
-    return sum / 9.0;
-}
-// ANCHOR_END: three_pcf_soft
 
 // ANCHOR: fs_soft
 @fragment
@@ -325,7 +265,7 @@ fn fs_soft(in: VertexOut) -> LitOut {
             case 3u: { v = variance_map(s); }
             case 4u: { v = pcss(s, angle, gradient, 1u); }
             case 6u: { v = pcss(s, angle, gradient, 2u); }
-            default: { v = three_pcf_soft(s, gradient); }
+            default: { v = peer(s, in.clip.xy, gradient); }
         }
     }
     return lit_output(in, v);

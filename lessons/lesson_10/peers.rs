@@ -1,0 +1,236 @@
+//! The soft-shadow defaults of renderers people use, as lesson 10 variants:
+//! each port's parameters, as `shaders/lesson_10/peers.wgsl` and the
+//! variance map's passes read them. What each takes from its source, with
+//! the file, commit and lines, is on its card ([`super::port_cards`]);
+//! `tests/port_cards_lesson_10.rs` checks the two against each other.
+
+use super::soft::{LightGeometry, SoftUniform, Variance, LESSON_MAP_SIZE};
+
+/// A renderer's soft shadow, as its source runs it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Peer {
+    /// Filament's PCSS (`ShadowType::PCSS`): 16 of its Poisson points to
+    /// search and the same 16 to filter, its bulb radius in world units.
+    FilamentPcss { bulb_radius: f32 },
+    /// Bevy's PCSS on a spot with `soft_shadows_enabled`: 8 D3D points to
+    /// search, 8 spiral taps to filter, sized by its light's radius.
+    BevyPcss { light_size: f32 },
+    /// Bevy's default where soft shadows are off (a directional light's
+    /// `soft_shadow_size` is `None` by default): its Gaussian filter,
+    /// Castaño's 5×5 (lesson 03's `bevy`), on its own map size.
+    BevyCastano,
+    /// Godot's Soft Low: `taps` Vogel taps to search and to filter, its
+    /// soft-shadow size and scale (`size`, `scale`) in map units.
+    GodotSoft { taps: u32, size: f32, scale: f32 },
+    /// three.js's `PCFSoftShadowMap`: a fixed 3×3-texel box, bilinearly
+    /// smoothed, 16 nearest comparisons.
+    ThreePcfSoft,
+    /// Filament's VSM, an EVSM ([`filament_evsm`]).
+    FilamentEvsm(Variance),
+    /// three.js's `VSMShadowMap` ([`threejs_vsm`]): its own blur of the
+    /// map's own depth.
+    ThreeVsm(Variance, ThreeVsmBlur),
+}
+
+/// three.js's variance map (`VSMShadowMap`): the (mean, standard deviation)
+/// of `samples` depths over ±`radius` texels, along y then along x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThreeVsmBlur {
+    pub samples: u32,
+    pub radius: f32,
+}
+
+/// Filament's `shadowBulbRadius` default (LightManager.java), metres.
+pub const FILAMENT_BULB_RADIUS: f32 = 0.02;
+/// Filament's default shadow map (`ShadowOptions::mapSize`).
+pub const FILAMENT_MAP_SIZE: u32 = 1024;
+/// Filament's PCSS taps (`PCSS_SHADOW_BLOCKER_SEARCH_TAP_COUNT`,
+/// `PCSS_SHADOW_FILTER_TAP_COUNT`).
+pub const FILAMENT_PCSS_TAPS: u32 = 16;
+/// Bevy's cascade map side (`DirectionalLightShadowMap::default`).
+pub const BEVY_DIRECTIONAL_MAP_SIZE: u32 = 2048;
+/// Bevy's point and spot map side (`PointLightShadowMap::default`).
+pub const BEVY_POINT_MAP_SIZE: u32 = 1024;
+/// Bevy's PCSS taps: eight D3D sample points, eight spiral taps.
+pub const BEVY_PCSS_TAPS: u32 = 8;
+/// Godot's Soft Low: 8 penumbra taps (`directional_soft_shadow_filter_set_quality`).
+pub const GODOT_SOFT_LOW_TAPS: u32 = 8;
+/// Godot's `shadow_blur` default: the soft shadow's scale.
+pub const GODOT_SHADOW_BLUR: f32 = 1.0;
+/// three.js's `LightShadow` defaults: `mapSize` 512, `radius` 1,
+/// `blurSamples` 8.
+pub const THREEJS_MAP_SIZE: u32 = 1024;
+pub const THREEJS_VSM_BLUR: ThreeVsmBlur = ThreeVsmBlur {
+    samples: 8,
+    radius: 1.0,
+};
+/// three.js's light-bleeding cut in `VSMShadow`: linstep(0.3, 0.95, p).
+pub const THREEJS_VSM_BLEED: (f32, f32) = (0.3, 0.95);
+
+/// Filament's VSM: an EVSM with `vsmExponent` 5.54 (16-bit moments), no
+/// blur (`blurWidth` 0), `lightBleedReduction` 0.15, and the least variance
+/// `(vsmDepthScale · depth)²` with `vsmDepthScale = minVarianceScale · 0.01
+/// · vsmExponent` (`minVarianceScale` 0.5).
+pub const FILAMENT_VSM_EXPONENT: f32 = 5.54;
+pub const FILAMENT_MIN_VARIANCE_SCALE: f32 = 0.5;
+pub const FILAMENT_LIGHT_BLEED_REDUCTION: f32 = 0.15;
+
+pub fn filament_evsm() -> Variance {
+    let depth_scale = FILAMENT_MIN_VARIANCE_SCALE * 0.01 * FILAMENT_VSM_EXPONENT;
+    Variance {
+        blur: 0,
+        exponent: Some(FILAMENT_VSM_EXPONENT),
+        negative: None,
+        min_variance: depth_scale * depth_scale,
+        bleed: (FILAMENT_LIGHT_BLEED_REDUCTION, 1.0),
+    }
+}
+
+/// three.js's VSM: plain moments of the map's depth (as mean and standard
+/// deviation), its blur, its cut.
+pub fn threejs_vsm() -> (Variance, ThreeVsmBlur) {
+    let v = Variance {
+        blur: 0,
+        exponent: None,
+        negative: None,
+        min_variance: 0.0,
+        bleed: THREEJS_VSM_BLEED,
+    };
+    (v, THREEJS_VSM_BLUR)
+}
+
+/// The port named `variant` for a light of geometry `g`, or `None` if the
+/// variant is the lesson's own.
+pub fn port(variant: &str, g: &LightGeometry) -> Option<Peer> {
+    Some(match variant {
+        // The spot's radius as its bulb; on a sun, Filament's default.
+        "filament_pcss" => Peer::FilamentPcss {
+            bulb_radius: if g.perspective {
+                g.size
+            } else {
+                FILAMENT_BULB_RADIUS
+            },
+        },
+        "filament_evsm" => Peer::FilamentEvsm(filament_evsm()),
+        "bevy_pcss_or_pcf" if g.perspective => Peer::BevyPcss { light_size: g.size },
+        "bevy_pcss_or_pcf" => Peer::BevyCastano,
+        "godot_soft_low" => Peer::GodotSoft {
+            taps: GODOT_SOFT_LOW_TAPS,
+            size: godot_soft_size(g),
+            scale: GODOT_SHADOW_BLUR,
+        },
+        "threejs_pcf_soft" => Peer::ThreePcfSoft,
+        "threejs_vsm" => {
+            let (v, blur) = threejs_vsm();
+            Peer::ThreeVsm(v, blur)
+        }
+        _ => return None,
+    })
+}
+
+impl Peer {
+    /// Depth comparisons per pixel and light (search, filter) and the texels
+    /// they read: the counters.
+    pub fn taps(self) -> (u64, u64, u64) {
+        match self {
+            Peer::FilamentPcss { .. } => {
+                let n = FILAMENT_PCSS_TAPS as u64;
+                (n, n, n + 4 * n)
+            }
+            // Bilinear depths to search, 2×2 comparisons to filter.
+            Peer::BevyPcss { .. } => {
+                let n = BEVY_PCSS_TAPS as u64;
+                (n, n, 4 * n + 4 * n)
+            }
+            Peer::BevyCastano => (0, 9, 36),
+            Peer::GodotSoft { taps, .. } => (taps as u64, taps as u64, 8 * taps as u64),
+            Peer::ThreePcfSoft => (0, 16, 16),
+            // Four texels of the blurred moments; the blur reads its own.
+            Peer::FilamentEvsm(_) | Peer::ThreeVsm(..) => (0, 1, 4),
+        }
+    }
+
+    /// A variance map's moments and, for three.js, its blur.
+    pub fn variance(self) -> Option<(Variance, Option<ThreeVsmBlur>)> {
+        match self {
+            Peer::FilamentEvsm(v) => Some((v, None)),
+            Peer::ThreeVsm(v, b) => Some((v, Some(b))),
+            _ => None,
+        }
+    }
+
+    /// The shader's `mode` (peers.wgsl's constants).
+    pub fn mode(self) -> u32 {
+        match self {
+            Peer::ThreePcfSoft => 5,
+            Peer::FilamentPcss { .. } => 7,
+            Peer::BevyPcss { .. } => 8,
+            Peer::BevyCastano => 9,
+            Peer::GodotSoft { .. } => 10,
+            Peer::FilamentEvsm(_) | Peer::ThreeVsm(..) => 3,
+        }
+    }
+
+    /// three.js's point taps compare the nearest texel; the others blend 2×2.
+    pub fn sampler(self) -> wgpu::FilterMode {
+        match self {
+            Peer::ThreePcfSoft => wgpu::FilterMode::Nearest,
+            _ => wgpu::FilterMode::Linear,
+        }
+    }
+
+    /// The renderer's default shadow map side.
+    pub fn map_size(self) -> u32 {
+        match self {
+            Peer::FilamentPcss { .. } => FILAMENT_MAP_SIZE,
+            Peer::BevyPcss { .. } => BEVY_POINT_MAP_SIZE,
+            Peer::BevyCastano => BEVY_DIRECTIONAL_MAP_SIZE,
+            // Godot's atlas is not emulated: the lesson's map (its card).
+            Peer::GodotSoft { .. } => LESSON_MAP_SIZE,
+            Peer::ThreePcfSoft | Peer::ThreeVsm(..) => THREEJS_MAP_SIZE,
+            Peer::FilamentEvsm(_) => FILAMENT_MAP_SIZE,
+        }
+    }
+
+    /// The port's parameters in the lit pass's uniform.
+    pub fn set_uniform(self, u: &mut SoftUniform, g: &LightGeometry) {
+        match self {
+            Peer::FilamentPcss { bulb_radius } => {
+                u.size = bulb_radius;
+                u.receiver_plane = 1;
+            }
+            Peer::BevyPcss { light_size } => u.size = light_size,
+            Peer::BevyCastano | Peer::ThreePcfSoft => u.receiver_plane = 1,
+            Peer::GodotSoft { taps, size, scale } => {
+                u.search_taps = taps;
+                u.filter_taps = taps;
+                u.size = size;
+                u.scale = scale;
+                u.far = g.far;
+            }
+            Peer::FilamentEvsm(v) => u.set_variance(&v),
+            Peer::ThreeVsm(v, _) => {
+                u.set_variance(&v);
+                u.mean_and_deviation = 1;
+            }
+        }
+    }
+}
+
+/// Godot's soft-shadow size for light geometry `g`: a spot's
+/// `(size · 0.5 / range) / (half_np / z_near) · atlas_rect.width` in map
+/// units, with `half_np / z_near = tan(spot_angle)`, the whole map as its
+/// atlas rect and `size` the light's diameter, twice our radius; a
+/// directional light's `softshadow_angle = tan(light_angular_distance)`,
+/// the angle Godot's inspector calls the sun's angular diameter: twice our
+/// angular radius (light_storage.cpp).
+pub fn godot_soft_size(g: &LightGeometry) -> f32 {
+    if g.perspective {
+        // uv_per = 1 / (2 tan(spot_angle)).
+        let tan_half = 0.5 / g.uv_per[0];
+        let diameter = 2.0 * g.size;
+        (diameter * 0.5 / g.far) / tan_half
+    } else {
+        (2.0 * g.size.atan()).tan()
+    }
+}

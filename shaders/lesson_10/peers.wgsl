@@ -1,0 +1,292 @@
+// lesson_10/peers.wgsl: the soft-shadow defaults of renderers people use,
+// each written as its source writes it (the file, commit and lines are on
+// its card, lessons/lesson_10/port_cards.rs). Compiled after soft.wgsl:
+// light_distance, the map's bindings and `soft` are there. Every renderer
+// here keeps reversed depth (1 at the near plane); our map keeps forward
+// depth z, and for the same near and far planes the reversed depth is
+// exactly 1 − z (orthographic and perspective alike), so each port turns
+// our depths into its renderer's before its arithmetic.
+
+// The peer's mode in `soft.mode` (peers.rs `Peer::mode`).
+const FILAMENT_PCSS: u32 = 7u;
+const BEVY_PCSS: u32 = 8u;
+const BEVY_CASTANO: u32 = 9u;
+const GODOT_SOFT: u32 = 10u;
+const THREEJS_PCF_SOFT: u32 = 5u;
+
+fn peer(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
+    switch soft.mode {
+        case FILAMENT_PCSS: { return filament_pcss(s, pixel, gradient); }
+        case BEVY_PCSS: { return bevy_pcss(s, pixel); }
+        // Bevy with soft_shadow_size None (its default on a sun): its
+        // default filter, lesson 03's Castaño 5×5.
+        case BEVY_CASTANO: { return pcf_castano13(s); }
+        case GODOT_SOFT: { return godot_soft(s, pixel); }
+        default: { return three_pcf_soft(s, gradient); }
+    }
+}
+
+// Bilinear depth at uv, by hand from the four texels (a depth texture has no
+// filtering sampler in WebGPU); what a linear sampler on the map returns.
+fn depth_bilinear(uv: vec2<f32>) -> f32 {
+    let size = vec2<i32>(textureDimensions(shadow_depths));
+    let p = uv * vec2<f32>(size) - 0.5;
+    let f = fract(p);
+    let i = vec2<i32>(floor(p));
+    let a = textureLoad(shadow_depths, clamp(i, vec2<i32>(0), size - 1), 0).r;
+    let b = textureLoad(shadow_depths, clamp(i + vec2<i32>(1, 0), vec2<i32>(0), size - 1), 0).r;
+    let c = textureLoad(shadow_depths, clamp(i + vec2<i32>(0, 1), vec2<i32>(0), size - 1), 0).r;
+    let d = textureLoad(shadow_depths, clamp(i + vec2<i32>(1, 1), vec2<i32>(0), size - 1), 0).r;
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
+// The depth at the nearest texel to uv.
+fn depth_nearest(uv: vec2<f32>) -> f32 {
+    let size = vec2<i32>(textureDimensions(shadow_depths));
+    let t = clamp(vec2<i32>(floor(uv * vec2<f32>(size))), vec2<i32>(0), size - 1);
+    return textureLoad(shadow_depths, t, 0).r;
+}
+
+// ANCHOR: filament_pcss
+// Filament (google/filament, shaders/src/surface_shadowing.fs,
+// ShadowSample_PCSS): the first 16 points of its 64-point Poisson disk, the
+// only ones its PCSS reads; they all lie in the upper half of the disk
+// (every y > 0.036), turned per pixel by interleaved gradient noise.
+const FILAMENT_POISSON_16 = array<vec2<f32>, 16>(
+    vec2<f32>(0.511749, 0.547686), vec2<f32>(0.58929, 0.257224), vec2<f32>(0.165018, 0.57663), vec2<f32>(0.407692, 0.742285),
+    vec2<f32>(0.707012, 0.646523), vec2<f32>(0.31463, 0.466825), vec2<f32>(0.801257, 0.485186), vec2<f32>(0.418136, 0.146517),
+    vec2<f32>(0.579889, 0.0368284), vec2<f32>(0.79801, 0.140114), vec2<f32>(-0.0413185, 0.371455), vec2<f32>(-0.0529108, 0.627352),
+    vec2<f32>(0.0821375, 0.882071), vec2<f32>(0.17308, 0.301207), vec2<f32>(-0.120452, 0.867216), vec2<f32>(0.371096, 0.916454),
+);
+const FILAMENT_PCSS_TAPS: u32 = 16u;
+
+// Filament's penumbra ratio (getPenumbraRatio) on its reversed depths: for a
+// directional light (z_b − z_r) / (1 − z_b); for a spot, whose depths go as
+// 1/d, (k + z_b) / (k + z_r) − 1 with k = near / (far − near).
+fn filament_penumbra_ratio(z_r: f32, z_b: f32) -> f32 {
+    if soft.perspective == 0u {
+        return (z_b - z_r) / (1.0 - z_b);
+    }
+    let k = soft.near / (soft.far - soft.near);
+    return (k + z_b) / (k + z_r) - 1.0;
+}
+
+fn filament_pcss(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
+    let a = rotation_angle(pixel);
+    let r = mat2x2<f32>(cos(a), sin(a), -sin(a), cos(a));
+    // penumbraLs: the bulb's radius in map units (at the receiver's depth
+    // along the axis, for a spot).
+    var penumbra = soft.size * soft.uv_per;
+    if soft.perspective == 1u {
+        penumbra = penumbra / light_distance(s.z);
+    }
+    let z_rec = 1.0 - s.z;
+    // blockerSearchAndFilter: the blockers' reversed depths, summed.
+    var occluded = 0.0;
+    var z_occ_sum = 0.0;
+    for (var i = 0u; i < FILAMENT_PCSS_TAPS; i++) {
+        let duv = r * (FILAMENT_POISSON_16[i] * penumbra);
+        let z_occ = 1.0 - depth_nearest(s.xy + duv);
+        // Receiver plane bias: the reversed depth falls where ours rises.
+        let z_bias = -dot(gradient, duv);
+        let o = select(0.0, 1.0, z_occ - z_rec >= z_bias);
+        occluded += o;
+        z_occ_sum += z_occ * o;
+    }
+    if z_occ_sum == 0.0 {
+        return 1.0;
+    }
+    let ratio = filament_penumbra_ratio(z_rec, z_occ_sum / occluded);
+    // filterPCSS: each tap a 2×2 bilinear comparison, the same points.
+    var lit = 0.0;
+    for (var i = 0u; i < FILAMENT_PCSS_TAPS; i++) {
+        let duv = r * (FILAMENT_POISSON_16[i] * (penumbra * ratio));
+        lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + duv, s.z + dot(gradient, duv));
+    }
+    return lit / f32(FILAMENT_PCSS_TAPS);
+}
+// ANCHOR_END: filament_pcss
+
+// ANCHOR: bevy_pcss
+// Bevy (bevyengine/bevy, crates/bevy_pbr/src/render/shadow_sampling.wgsl,
+// sample_shadow_map_pcss, as fetch_spot_shadow calls it): a spot's depth is
+// reversed and infinite, near_z / d, so (z_b − z) / z is (d_r − d_b) / d_b;
+// the search and the filter are sized in its own units.
+const BEVY_SPOT_SHADOW_TEXEL_SIZE: f32 = 0.0134277345;
+const BEVY_D3D_SAMPLE_POINT_POSITIONS = array<vec2<f32>, 8>(
+    vec2<f32>(0.125, -0.375), vec2<f32>(-0.125, 0.375), vec2<f32>(0.625, 0.125), vec2<f32>(-0.375, -0.625),
+    vec2<f32>(-0.625, 0.625), vec2<f32>(-0.875, -0.125), vec2<f32>(0.375, 0.875), vec2<f32>(0.875, -0.875),
+);
+const BEVY_SPIRAL_OFFSETS = array<vec2<f32>, 8>(
+    vec2<f32>(-0.7071, 0.7071), vec2<f32>(-0.0000, -0.8750), vec2<f32>(0.5303, 0.5303), vec2<f32>(-0.6250, -0.0000),
+    vec2<f32>(0.3536, -0.3536), vec2<f32>(-0.0000, 0.3750), vec2<f32>(-0.1768, -0.1768), vec2<f32>(0.1250, 0.0000),
+);
+// Bevy's near plane for point and spot lights (its depth is near_z / d).
+const BEVY_NEAR_Z: f32 = 0.1;
+
+fn bevy_depth(z: f32) -> f32 {
+    return BEVY_NEAR_Z / light_distance(z);
+}
+
+// `map` in shadow_sampling.wgsl: value from [min1, max1] to [min2, max2].
+fn bevy_map(min1: f32, max1: f32, min2: f32, max2: f32, value: f32) -> f32 {
+    return min2 + (value - min1) * (max2 - min2) / (max1 - min1);
+}
+
+// interleaved_gradient_noise (bevy_pbr utils.wgsl) with frame 1, as
+// random_rotation_matrix passes it when not temporal.
+fn bevy_rotation(pixel: vec2<f32>) -> mat2x2<f32> {
+    let xy = pixel + 5.588238 * f32(1u % 64u);
+    let noise = fract(52.9829189 * fract(0.06711056 * xy.x + 0.00583715 * xy.y));
+    let angle = 2.0 * 3.1415926535897932 * noise;
+    let m = vec2<f32>(sin(angle), cos(angle));
+    return mat2x2<f32>(m.y, -m.x, m.x, m.y);
+}
+
+fn bevy_pcss(s: vec3<f32>, pixel: vec2<f32>) -> f32 {
+    let light_size = soft.size;
+    let texel_size = BEVY_SPOT_SHADOW_TEXEL_SIZE;
+    let shadow_map_size = f32(textureDimensions(shadow_map).x);
+    let depth = bevy_depth(s.z);
+    // search_for_blockers_in_shadow_map: 8 linear-filtered depths, a blocker
+    // where the depth is nearer (reversed: greater or equal). Our depth is
+    // affine in 1/d, so its bilinear blend is the blend of Bevy's.
+    let search_scale = light_size / (texel_size * shadow_map_size);
+    var sum = vec2<f32>(0.0);
+    for (var i = 0u; i < 8u; i++) {
+        let sampled = bevy_depth(depth_bilinear(s.xy + BEVY_D3D_SAMPLE_POINT_POSITIONS[i] * search_scale));
+        sum += select(vec2<f32>(0.0), vec2<f32>(sampled, 1.0), sampled >= depth);
+    }
+    var z_blocker = 0.0;
+    if sum.y != 0.0 {
+        z_blocker = sum.x / sum.y;
+    }
+    // "Don't let the blur size go below 0.5": no blocker gives 0.5 too.
+    let blur_size = max((z_blocker - depth) * light_size / depth, 0.5);
+    // sample_shadow_map_jimenez_fourteen: 8 spiral taps, each a 2×2
+    // hardware comparison, spaced by Bevy's fudge factor.
+    let f = bevy_map(0.00390625, 0.022949219, 0.015, 0.035, texel_size);
+    let uv_offset_scale = f * blur_size / (texel_size * shadow_map_size);
+    let rotation = bevy_rotation(pixel);
+    var lit = 0.0;
+    for (var i = 0u; i < 8u; i++) {
+        let offset = (rotation * BEVY_SPIRAL_OFFSETS[i]) * uv_offset_scale;
+        lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + offset, s.z);
+    }
+    return lit / 8.0;
+}
+// ANCHOR_END: bevy_pcss
+
+// ANCHOR: godot_soft
+// Godot 4's positional and directional soft shadows (godotengine/godot,
+// scene_forward_lights_inc.glsl): `taps` Vogel-disk taps to search and the
+// same taps to filter, both turned per pixel, no receiver-plane bias.
+// Its Vogel disk (renderer_scene_render_rd.cpp get_vogel_disk): golden
+// angle 2.4, radius sqrt(i + 0.5) / sqrt(n).
+fn godot_vogel(i: u32, n: u32) -> vec2<f32> {
+    let r = sqrt(f32(i) + 0.5) / sqrt(f32(n));
+    let theta = f32(i) * 2.4;
+    return vec2<f32>(cos(theta) * r, sin(theta) * r);
+}
+
+fn godot_rotation(pixel: vec2<f32>) -> mat2x2<f32> {
+    let r = rotation_angle(pixel);
+    return mat2x2<f32>(vec2<f32>(cos(r), -sin(r)), vec2<f32>(sin(r), cos(r)));
+}
+
+fn godot_soft(s: vec3<f32>, pixel: vec2<f32>) -> f32 {
+    let rotation = godot_rotation(pixel);
+    let n = soft.search_taps;
+    // Reversed depth, as Godot's atlas holds it.
+    let z = 1.0 - s.z;
+    var uv_size: vec2<f32>;
+    var z_norm = z;
+    if soft.perspective == 1u {
+        // A spot (light_process_spot): soft_shadow_size · z_norm ·
+        // soft_shadow_scale, z_norm the distance along the axis over the
+        // range; its penumbra then mixes this linear z_norm with the
+        // reversed perspective depths, as the source does.
+        z_norm = light_distance(s.z) / soft.far;
+        uv_size = vec2<f32>(soft.size * z_norm * soft.scale);
+    } else {
+        // A directional light (the call of sample_directional_soft_shadow):
+        // uv_scale · (range_pos − range_begin) · softshadow_angle ·
+        // soft_shadow_scale, the cone's spread from the map's near plane.
+        uv_size = soft.uv_per * (light_distance(s.z) - soft.near) * soft.size * soft.scale;
+    }
+    var blocker_count = 0.0;
+    var blocker_average = 0.0;
+    for (var i = 0u; i < n; i++) {
+        let suv = s.xy + (rotation * godot_vogel(i, n)) * uv_size;
+        let d = 1.0 - depth_bilinear(suv);
+        if d > z {
+            blocker_average += d;
+            blocker_count += 1.0;
+        }
+    }
+    if blocker_count == 0.0 {
+        return 1.0;
+    }
+    blocker_average /= blocker_count;
+    // A spot compares the linear z_norm with the reversed depths; a
+    // directional light its reversed depth.
+    let penumbra = (-z_norm + blocker_average) / (1.0 - blocker_average);
+    uv_size *= penumbra;
+    var shadow = 0.0;
+    for (var i = 0u; i < n; i++) {
+        let suv = s.xy + (rotation * godot_vogel(i, n)) * uv_size;
+        shadow += textureSampleCompareLevel(shadow_map, shadow_compare, suv, s.z);
+    }
+    return shadow / f32(n);
+}
+// ANCHOR_END: godot_soft
+// ANCHOR: three_pcf_soft
+// three.js's PCFSoftShadowMap (shadowmap_pars_fragment.glsl.js at
+// 99e4d38, SHADOWMAP_TYPE_PCF_SOFT): 16 nearest comparisons on the 4×4
+// texel block around the point (the lesson binds the nearest-filtering
+// comparison sampler for it), the outer rows and columns weighted by
+// the point's fraction f within its texel: a 3×3-texel box, bilinearly
+// smoothed, divided by 9. It has no light size: a fixed kernel.
+// Each tap compares with the receiver's plane there (three.js leaves that
+// to its `bias`, 0 by default: without it the outer taps acne).
+fn three_pcf_soft(s: vec3<f32>, gradient: vec2<f32>) -> f32 {
+    let size = vec2<f32>(textureDimensions(shadow_map));
+    let texel = 1.0 / size;
+    let f = fract(s.xy * size + 0.5);
+    let uv = s.xy - f * texel;
+    var sum = 0.0;
+    for (var j = 0; j < 4; j++) {
+        for (var i = 0; i < 4; i++) {
+            let o = (vec2<f32>(f32(i), f32(j)) - 1.0) * texel;
+            var w = 1.0;
+            if i == 0 { w *= 1.0 - f.x; }
+            if i == 3 { w *= f.x; }
+            if j == 0 { w *= 1.0 - f.y; }
+            if j == 3 { w *= f.y; }
+            let at = uv + o;
+            sum += w * textureSampleCompareLevel(shadow_map, shadow_compare, at, s.z + dot(gradient, at - s.xy));
+        }
+    }
+    return sum / 9.0;
+}
+// ANCHOR_END: three_pcf_soft
+
+// ANCHOR: threejs_vsm
+// three.js's VSMShadow (shadowmap_pars_fragment.glsl.js): `m` holds the
+// blurred (mean, standard deviation) of the map's own depth; a hard test
+// first, then Chebyshev's bound cut by linstep(0.3, 0.95, p) ("0.3 reduces
+// light bleed"), the larger of the two.
+fn threejs_vsm(s: vec3<f32>, m: vec4<f32>) -> f32 {
+    let compare = s.z;
+    var occlusion = 1.0;
+    let hard_shadow = step(compare, m.x);
+    if hard_shadow != 1.0 {
+        let distance = compare - m.x;
+        let variance = max(0.0, m.y * m.y);
+        var softness_probability = variance / (variance + distance * distance);
+        softness_probability = clamp((softness_probability - soft.bleed_lo) / (soft.bleed_hi - soft.bleed_lo), 0.0, 1.0);
+        occlusion = clamp(max(hard_shadow, softness_probability), 0.0, 1.0);
+    }
+    return occlusion;
+}
+// ANCHOR_END: threejs_vsm
