@@ -59,7 +59,7 @@ pub const GODOT_SOFT_LOW_TAPS: u32 = 8;
 pub const GODOT_SHADOW_BLUR: f32 = 1.0;
 /// three.js's `LightShadow` defaults: `mapSize` 512, `radius` 1,
 /// `blurSamples` 8.
-pub const THREEJS_MAP_SIZE: u32 = 1024;
+pub const THREEJS_MAP_SIZE: u32 = 512;
 pub const THREEJS_VSM_BLUR: ThreeVsmBlur = ThreeVsmBlur {
     samples: 8,
     radius: 1.0,
