@@ -21,6 +21,7 @@ mod lesson09;
 mod lesson10;
 mod manifest;
 mod plots;
+mod ports;
 mod prose;
 mod record;
 mod runner;
@@ -248,6 +249,7 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
         write_run_tables(&generated.join(run.lesson), run, record)?;
     }
     write_scenes_tables(generated, &records)?;
+    ports::write_all(generated)?;
     // Chapter 10's convergence first: the peers table reads its figure.
     let convergence =
         lesson10::write_all(root, generated, &records, manifest::WIDTH, manifest::HEIGHT)?;
