@@ -418,10 +418,11 @@ fn lesson_02_relative_coordinates_keep_the_millimetres() {
     );
 }
 
-/// The renderers' defaults on the same wide spot light. LearnOpenGL's bias,
-/// in depth units like the lwjgl book's, detaches the shadows; the wgpu
-/// example's is the rasteriser's, in units of the map, and stays within 1%;
-/// Bevy's, in world units and texels, lies between.
+/// The renderers' defaults on the same wide spot light, each on its own
+/// map size (512² the wgpu example, 2048² Bevy). LearnOpenGL's bias, in
+/// depth units like the lwjgl book's, detaches the shadows; the wgpu
+/// example's, the rasteriser's in units of its map, and Bevy's, in world
+/// units and texels, both stay within 1% and below LearnOpenGL's.
 #[test]
 fn lesson_02_renderer_defaults_on_a_wide_spot() {
     let Some(run) = run(
@@ -437,9 +438,11 @@ fn lesson_02_renderer_defaults_on_a_wide_spot() {
     let wgpu = support::error(&run.report, "wgpu_example", "misclassified_pct");
     assert!(wgpu <= 1.0, "wgpu_example misclassified {wgpu:.3}%");
     let bevy = support::error(&run.report, "bevy_bias", "misclassified_pct");
+    assert!(bevy <= 1.0, "bevy_bias misclassified {bevy:.3}%");
+    let logl_all = support::error(&run.report, "learnopengl", "misclassified_pct");
     assert!(
-        wgpu < bevy && bevy < logl,
-        "misclassified: wgpu_example {wgpu:.3}%, bevy_bias {bevy:.3}%, learnopengl {logl:.3}%"
+        wgpu < logl_all && bevy < logl_all,
+        "misclassified: wgpu_example {wgpu:.3}%, bevy_bias {bevy:.3}%, learnopengl {logl_all:.3}%"
     );
 }
 

@@ -154,6 +154,46 @@ pub fn value_text(v: &Value) -> String {
     }
 }
 
+/// The "where each port departs" tables of a chapter, in markdown: one row
+/// per departure (variant, renderer, what the port cannot do here, why),
+/// then one row per card with the files it was read from, as
+/// `file@commit7`. A card without departures gets a row that says so.
+pub fn departures_table(cards: &[PortCard]) -> String {
+    let cell = |t: &str| t.replace('|', "\\|").replace('\n', " ");
+    let mut out = String::from(
+        "| variant | renderer | what the port cannot do here | why |\n| --- | --- | --- | --- |\n",
+    );
+    for c in cards {
+        if c.departures.is_empty() {
+            out += &format!("| `{}` | {} | nothing | |\n", c.variant, cell(c.renderer));
+        }
+        for d in c.departures {
+            out += &format!(
+                "| `{}` | {} | {} | {} |\n",
+                c.variant,
+                cell(c.renderer),
+                cell(d.what),
+                cell(d.why)
+            );
+        }
+    }
+    out += "\n| variant | repository | read at |\n| --- | --- | --- |\n";
+    for c in cards {
+        let files: Vec<String> = c
+            .sources
+            .iter()
+            .map(|s| format!("`{}@{}`", s.file, &s.commit[..s.commit.len().min(7)]))
+            .collect();
+        out += &format!(
+            "| `{}` | {} | {} |\n",
+            c.variant,
+            cell(c.repository),
+            files.join("<br>")
+        );
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -201,5 +241,20 @@ mod tests {
             ..CARD
         };
         assert_eq!(orphan.problems().len(), 1);
+    }
+
+    #[test]
+    fn the_departures_table_has_a_row_per_departure_and_per_card() {
+        let card = PortCard {
+            departures: &[Departure {
+                what: "a | b",
+                why: "c",
+            }],
+            ..CARD
+        };
+        let t = departures_table(&[card, CARD]);
+        assert!(t.contains("| `x` | R | a \\| b | c |"), "{t}");
+        assert!(t.contains("| `x` | R | nothing | |"), "{t}");
+        assert!(t.contains("| `x` | o/r | `a.glsl@0123456` |"), "{t}");
     }
 }

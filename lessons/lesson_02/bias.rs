@@ -53,27 +53,25 @@ impl ShadowBias {
     };
 
     // ANCHOR: peer_biases
-    /// LearnOpenGL's "Shadow Mapping" (JoeyDeVries/LearnOpenGL, commit
-    /// 85530ab, src/5.advanced_lighting/3.1.3.shadow_mapping/
-    /// 3.1.3.shadow_mapping.fs line 30): `max(0.05 * (1.0 - dot(normal,
+    /// LearnOpenGL's "Shadow Mapping": `max(0.05 * (1.0 - dot(normal,
     /// lightDir)), 0.005)`, subtracted from the receiver's depth. Its units
-    /// are the depth of ITS light frustum, an orthographic near 1, far 7.5
-    /// (shadow_mapping.cpp): 0.005 there is 3.25 cm, 0.05 is 32.5 cm. Applied
-    /// verbatim to our depth, whose range is the light's fit to the scene,
-    /// the same numbers are (our range / 6.5) times as long.
+    /// are the depth of ITS light frustum, an orthographic near 1, far 7.5:
+    /// 0.005 there is 3.25 cm, 0.05 is 32.5 cm. Applied verbatim to our
+    /// depth, whose range is the light's fit to the scene, the same numbers
+    /// are (our range / 6.5) times as long. Its source lines:
+    /// `port_cards::LEARNOPENGL`.
     pub const LEARNOPENGL: ShadowBias = ShadowBias {
         depth: 0.005,
         depth_slope: 0.05,
         ..ShadowBias::NONE
     };
 
-    /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
-    /// src/directional_light.rs at commit a0d0176: `DEFAULT_SHADOW_DEPTH_BIAS
-    /// = 0.02`, `DEFAULT_SHADOW_NORMAL_BIAS = 1.8`), applied as
-    /// crates/bevy_pbr/src/render/shadows.wgsl (commit e85a706)
-    /// `sample_directional_cascade` does: the receiver moves 0.02 world units towards the light, and
-    /// `1.8 · √2` texels (the √2 from bevy_pbr/src/render/light.rs,
+    /// Bevy's `DirectionalLight` defaults (`DEFAULT_SHADOW_DEPTH_BIAS =
+    /// 0.02`, `DEFAULT_SHADOW_NORMAL_BIAS = 1.8`), applied as its
+    /// `sample_directional_cascade` does: the receiver moves 0.02 world
+    /// units towards the light, and `1.8 · √2` texels (the √2 from
     /// `extract_lights`: "worst-case diagonal offset") along its normal.
+    /// Its source lines: `port_cards::BEVY_BIAS`.
     pub const BEVY: ShadowBias = ShadowBias {
         toward_light_world: 0.02,
         normal_flat: 1.8 * std::f32::consts::SQRT_2,
@@ -81,6 +79,13 @@ impl ShadowBias {
     };
     // ANCHOR_END: peer_biases
 }
+
+/// The wgpu shadow example's map: `SHADOW_SIZE`, 512² texels.
+pub const WGPU_EXAMPLE_MAP_SIZE: u32 = 512;
+/// The faces the wgpu example's shadow pass culls.
+pub const WGPU_EXAMPLE_CULL: wgpu::Face = wgpu::Face::Back;
+/// Bevy's `DirectionalLightShadowMap::default()`: 2048² texels a cascade.
+pub const BEVY_MAP_SIZE: u32 = 2048;
 
 /// Whether the adapter can clamp the hardware depth bias
 /// (`DepthBiasState::clamp`); GL cannot, and a non-zero clamp fails there.
@@ -115,11 +120,10 @@ impl SlopeScaledBias {
         clamp_texels: 16.0,
     };
 
-    /// The wgpu shadow example's (gfx-rs/wgpu, examples/features/src/shadow/
-    /// mod.rs, the `shadow_pass` pipeline's `depth_stencil`, the same at
-    /// commits 02201f4 and 4230fe5): `DepthBiasState { constant: 2, //
-    /// corresponds to bilinear filtering`, `slope_scale: 2.0, clamp: 0.0 }`.
-    /// A clamp of 0 is no clamp.
+    /// The wgpu shadow example's (its `shadow_pass` pipeline's
+    /// `depth_stencil`): `DepthBiasState { constant: 2, // corresponds to
+    /// bilinear filtering`, `slope_scale: 2.0, clamp: 0.0 }`. A clamp of 0
+    /// is no clamp. Its source lines: `port_cards::WGPU_EXAMPLE`.
     pub const WGPU_EXAMPLE: SlopeScaledBias = SlopeScaledBias {
         constant: 2,
         slope_scale: 2.0,

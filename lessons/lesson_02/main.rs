@@ -30,11 +30,14 @@ use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
 use workbook::lesson_01::tally::TallyShader;
-use workbook::lesson_02::bias::{ShadowBias, SlopeScaledBias};
+use workbook::lesson_02::bias::{
+    ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
+};
 use workbook::lesson_02::exercise_pass::{self, Exercise};
 use workbook::lesson_02::knobs;
 
-/// One map size for every variant: the variants differ only in the bias.
+/// One map size for the lesson's variants: they differ only in the bias.
+/// A renderer's default runs at its renderer's size ([`Variant::map_size`]).
 const MAP_SIZE: u32 = 1024;
 
 // ANCHOR: variants
@@ -86,30 +89,22 @@ enum Variant {
     NormalOffset,
     #[value(name = "front_cull")]
     FrontCull,
-    /// LearnOpenGL "Shadow Mapping" (JoeyDeVries/LearnOpenGL, commit 85530ab,
-    /// src/5.advanced_lighting/3.1.3.shadow_mapping/3.1.3.shadow_mapping.fs
-    /// line 30; its one-tap test, line 32): `max(0.05 * (1.0 - dot(normal,
-    /// lightDir)), 0.005)` of depth, verbatim in our depth units. Its depth
-    /// spans an orthographic near 1 to far 7.5 (6.5 m); ours spans the
-    /// light's fit to the scene, so the same numbers are (our range / 6.5 m)
-    /// times as long here. Beyond the far plane it is lit, like ours.
+    /// LearnOpenGL "Shadow Mapping": `max(0.05 * (1.0 - dot(normal,
+    /// lightDir)), 0.005)` of depth, verbatim in our depth units, one tap
+    /// ([`ShadowBias::LEARNOPENGL`]; its source lines and departures:
+    /// `port_cards::LEARNOPENGL`).
     #[value(name = "learnopengl")]
     LearnOpenGl,
-    /// The wgpu shadow example (gfx-rs/wgpu, examples/features/src/shadow/
-    /// mod.rs, commits 02201f4 and 4230fe5): the shadow pipeline's
-    /// `DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 }` and
-    /// `cull_mode: Some(Face::Back)`; one nearest tap here (its linear
-    /// comparison sampler, a 2×2 filter, is lesson 03's `wgpu_example_hw2x2`).
-    /// Its map is 512² Depth32Float; ours stays 1024².
+    /// The wgpu shadow example: its shadow pass's `DepthBiasState {
+    /// constant: 2, slope_scale: 2.0, clamp: 0.0 }` with back faces culled,
+    /// on its 512² map; one nearest tap here (its 2×2 is lesson 03's
+    /// `wgpu_example_hw2x2`) (`port_cards::WGPU_EXAMPLE`).
     #[value(name = "wgpu_example")]
     WgpuExample,
-    /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
-    /// src/directional_light.rs, commit a0d0176: `DEFAULT_SHADOW_DEPTH_BIAS = 0.02`,
-    /// `DEFAULT_SHADOW_NORMAL_BIAS = 1.8`), applied as crates/bevy_pbr/src/
-    /// render/shadows.wgsl `sample_directional_cascade` does: 0.02 world
-    /// units towards the light, 1.8 · √2 texels along the normal (the √2:
-    /// bevy_pbr/src/render/light.rs `extract_lights`), our one map as its
-    /// cascade. One tap here; with Bevy's default filter: lesson 03's `bevy`.
+    /// Bevy's `DirectionalLight` defaults: 0.02 world units towards the
+    /// light, 1.8 · √2 texels along the normal, on its 2048² map as its
+    /// one cascade; one tap here (with Bevy's filter: lesson 03's `bevy`)
+    /// (`port_cards::BEVY_BIAS`).
     #[value(name = "bevy_bias")]
     BevyBias,
     #[value(name = "exercise_slope_bias")]
@@ -163,11 +158,20 @@ impl Variant {
             Variant::FrontCull => Fix::CullFrontFaces,
             Variant::LearnOpenGl => Fix::Receiver(ShadowBias::LEARNOPENGL),
             Variant::WgpuExample => {
-                Fix::Hardware(SlopeScaledBias::WGPU_EXAMPLE, Some(wgpu::Face::Back))
+                Fix::Hardware(SlopeScaledBias::WGPU_EXAMPLE, Some(WGPU_EXAMPLE_CULL))
             }
             Variant::BevyBias => Fix::Receiver(ShadowBias::BEVY),
             Variant::ExerciseSlopeBias => Fix::Exercise(Exercise::SlopeBias),
             Variant::ExerciseGrazingBias => Fix::Exercise(Exercise::GrazingBias),
+        }
+    }
+
+    /// The shadow map's size: the lesson's, or a renderer's default.
+    fn map_size(self) -> u32 {
+        match self {
+            Variant::WgpuExample => WGPU_EXAMPLE_MAP_SIZE,
+            Variant::BevyBias => BEVY_MAP_SIZE,
+            _ => MAP_SIZE,
         }
     }
 }
@@ -177,8 +181,8 @@ struct Bias {
     /// Each variant's receiver bias, bound at group 3 (zeros for the
     /// shadow-pass fixes), in variant order.
     bias_groups: Vec<wgpu::BindGroup>,
-    map: ShadowMap,
-    map_group: wgpu::BindGroup,
+    /// One map per size the variants use, and its bind group.
+    maps: Vec<(ShadowMap, wgpu::BindGroup)>,
     lit_pipeline: wgpu::RenderPipeline,
     /// The layouts of groups 2 and 3, for the exercises' lit pipelines.
     layouts: [wgpu::BindGroupLayout; 2],
@@ -217,11 +221,11 @@ impl Lesson for Bias {
     }
 
     /// The shadow map, as the variant's last shadow pass left it.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
         let Some(last) = scene.scene.lights.len().checked_sub(1) else {
             return Ok(None); // no light: no shadow pass
         };
-        self.map.buffer_view(gpu, last).map(Some)
+        self.map(v).0.buffer_view(gpu, last).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -240,9 +244,21 @@ impl Lesson for Bias {
             &[&map_layout, &bias_layout],
             Default::default(),
         );
-        let map = ShadowMap::new(gpu, MAP_SIZE);
-        let map_group =
-            shadow_map::shadow_map_group(gpu, &map_layout, &map, wgpu::FilterMode::Nearest);
+        let mut sizes: Vec<u32> = Variant::value_variants()
+            .iter()
+            .map(|v| v.map_size())
+            .collect();
+        sizes.sort_unstable();
+        sizes.dedup();
+        let maps = sizes
+            .iter()
+            .map(|&size| {
+                let map = ShadowMap::new(gpu, size);
+                let nearest = wgpu::FilterMode::Nearest;
+                let group = shadow_map::shadow_map_group(gpu, &map_layout, &map, nearest);
+                (map, group)
+            })
+            .collect();
 
         let pass = |state| shadow_map::shadow_pipeline(gpu, scene, &module, state);
         let tally = TallyShader::new(gpu);
@@ -262,7 +278,7 @@ impl Lesson for Bias {
                     (0..scene.scene.lights.len())
                         .map(|k| ShadowPassState {
                             cull,
-                            ..slope.pass_state(gpu, &scene.scene, k, MAP_SIZE)
+                            ..slope.pass_state(gpu, &scene.scene, k, v.map_size())
                         })
                         .collect(),
                 ),
@@ -285,8 +301,7 @@ impl Lesson for Bias {
             .collect();
         Ok(Bias {
             bias_groups,
-            map,
-            map_group,
+            maps,
             lit_pipeline,
             layouts: [map_layout, bias_layout],
             exercise_lit: Vec::new(),
@@ -320,7 +335,8 @@ impl Lesson for Bias {
         );
         if self.texels_written[variant as usize].is_none() {
             // Once per variant, its own submit: untimed.
-            let n = shadow_map::count_shadow_texels(frame.gpu, scene, MAP_SIZE, |k| {
+            let size = variant.map_size();
+            let n = shadow_map::count_shadow_texels(frame.gpu, scene, size, |k| {
                 match (fix, tally_slope) {
                     (Fix::CullFrontFaces, _) => &self.tally_cull,
                     (_, Some(hw)) => &hw[k],
@@ -345,6 +361,7 @@ impl Lesson for Bias {
             _ => None,
         }
         .unwrap_or(&self.lit_pipeline);
+        let (map, map_group) = self.map(variant);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = 0;
         for light in 0..scene.scene.lights.len() {
@@ -354,13 +371,13 @@ impl Lesson for Bias {
                 _ => &self.plain_shadow,
             };
             drawn += frame.pass("shadow", |enc, ts| {
-                shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render())
+                shadow_map::shadow_pass(enc, scene, shadow, map, light, ts.render())
             });
             frame.pass("lighting", |enc, ts| {
                 scene.lit_pass(
                     enc,
                     targets,
-                    LitPass::new(light, lit, &[&self.map_group, bias_group]),
+                    LitPass::new(light, lit, &[map_group, bias_group]),
                     ts.render(),
                 )
             });
@@ -372,7 +389,7 @@ impl Lesson for Bias {
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let mut c = BTreeMap::from([
-            ("shadow_map_size".into(), MAP_SIZE as u64),
+            ("shadow_map_size".into(), variant.map_size() as u64),
             ("casters_drawn".into(), self.casters_drawn),
             ("filter_taps_per_pixel".into(), 1),
             ("draws".into(), self.draws),
@@ -415,7 +432,7 @@ impl Lesson for Bias {
                 let states: Vec<ShadowPassState> = (0..scene.scene.lights.len())
                     .map(|k| ShadowPassState {
                         cull: *cull,
-                        ..slope.pass_state(gpu, &scene.scene, k, MAP_SIZE)
+                        ..slope.pass_state(gpu, &scene.scene, k, variant.map_size())
                     })
                     .collect();
                 let (module, tally) = (&self.module, &self.tally);
@@ -428,6 +445,17 @@ impl Lesson for Bias {
             _ => anyhow::bail!("--knob {name}: {} has no knobs", variant_name(variant)),
         }
         Ok(())
+    }
+}
+
+impl Bias {
+    /// The variant's shadow map and its bind group.
+    fn map(&self, v: Variant) -> &(ShadowMap, wgpu::BindGroup) {
+        let size = v.map_size();
+        self.maps
+            .iter()
+            .find(|(m, _)| m.size == size)
+            .expect("new makes a map of every variant's size")
     }
 }
 

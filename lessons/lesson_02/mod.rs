@@ -6,6 +6,8 @@ pub mod bias;
 
 pub mod knobs;
 
+pub mod port_cards;
+
 pub mod exercise_pass;
 
 /// The chapter's exercises: the starter code a student fills in, or with

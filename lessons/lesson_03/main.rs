@@ -33,12 +33,15 @@ use common::Result;
 use workbook::lesson_01::shadow_map::ShadowPassState;
 use workbook::lesson_01::shadow_map::{self, ShadowMap};
 use workbook::lesson_01::tally::TallyShader;
-use workbook::lesson_02::bias::{ShadowBias, SlopeScaledBias};
+use workbook::lesson_02::bias::{
+    ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
+};
 use workbook::lesson_03::exercises;
 use workbook::lesson_03::knobs;
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
-/// Lesson 02's map size: the filters differ, the map does not.
+/// Lesson 02's map size: the lesson's filters differ, the map does not. A
+/// renderer's default runs at its renderer's size ([`Variant::map_size`]).
 const MAP_SIZE: u32 = 1024;
 
 // ANCHOR: variants
@@ -62,32 +65,24 @@ enum Variant {
     Poisson16,
     #[value(name = "depth_avg_3x3")]
     DepthAvg3x3,
-    /// LearnOpenGL "Shadow Mapping" (JoeyDeVries/LearnOpenGL, commit 85530ab,
-    /// src/5.advanced_lighting/3.1.3.shadow_mapping/3.1.3.shadow_mapping.fs
-    /// lines 30 and 34-44): no bias in the shadow pass, `max(0.05 * (1.0 -
-    /// dot(normal, lightDir)), 0.005)` of depth off the receiver, and a 3×3
-    /// average of nearest taps one `textureSize` texel apart, all compared
-    /// with the centre's depth. Its depth spans near 1 to far 7.5 (6.5 m),
-    /// ours the light's fit to the scene: the same numbers are (our range /
-    /// 6.5 m) times as long here.
+    /// LearnOpenGL "Shadow Mapping": no bias in the shadow pass, `max(0.05
+    /// * (1.0 - dot(normal, lightDir)), 0.005)` of depth off the receiver,
+    /// and a 3×3 average of nearest taps one `textureSize` texel apart, all
+    /// compared with the centre's depth ([`pcf::LEARNOPENGL_3X3`]; its
+    /// source lines and departures: `port_cards::LEARNOPENGL_PCF`).
     #[value(name = "learnopengl_pcf")]
     LearnOpenGlPcf,
-    /// The wgpu shadow example (gfx-rs/wgpu, examples/features/src/shadow/
-    /// mod.rs, commits 02201f4 and 4230fe5): the shadow pass's `DepthBiasState
-    /// { constant: 2, slope_scale: 2.0, clamp: 0.0 }` with back faces culled,
-    /// and its comparison sampler (`LessEqual`, `mag_filter`/`min_filter`
-    /// `Linear`): the hardware's 2×2. Its map is 512²; ours stays 1024².
+    /// The wgpu shadow example: the shadow pass's `DepthBiasState {
+    /// constant: 2, slope_scale: 2.0, clamp: 0.0 }` with back faces culled,
+    /// its 512² map and its comparison sampler (`LessEqual`, `Linear`): the
+    /// hardware's 2×2 (`port_cards::WGPU_EXAMPLE_HW2X2`).
     #[value(name = "wgpu_example_hw2x2")]
     WgpuExampleHw2x2,
-    /// Bevy's `DirectionalLight` defaults (bevyengine/bevy, crates/bevy_light/
-    /// src/directional_light.rs, commit a0d0176: depth bias 0.02, normal bias
-    /// 1.8; applied as
-    /// crates/bevy_pbr/src/render/shadows.wgsl `sample_directional_cascade`:
-    /// 0.02 world units towards the light, 1.8 · √2 texels along the normal)
-    /// and its default filter, `ShadowFilteringMethod::Gaussian` (Castaño's
-    /// 9-tap 5×5, shadow_sampling.wgsl at commit 3971912); no bias in the
-    /// shadow pass, our one
-    /// map as its one cascade.
+    /// Bevy's `DirectionalLight` defaults (0.02 world units towards the
+    /// light, 1.8 · √2 texels along the normal, no bias in the shadow pass)
+    /// on its 2048² map as its one cascade, and its default filter,
+    /// `ShadowFilteringMethod::Gaussian`: Castaño's 9-tap 5×5
+    /// (`port_cards::BEVY`).
     #[value(name = "bevy")]
     Bevy,
     /// The chapter's exercises (`exercises.wgsl`), run only when named.
@@ -123,12 +118,18 @@ impl Variant {
             Variant::ExercisePcfKernel => Filter::ExerciseGrid { n: 5 },
             // 2.5 cm: about poisson_16's 2.5 texels on the default scene.
             Variant::ExerciseWorldDisk => Filter::ExerciseDisk { radius_m: 0.025 },
-            Variant::LearnOpenGlPcf => Filter::Grid {
-                n: 3,
-                receiver_plane: false,
-            },
-            Variant::WgpuExampleHw2x2 => Filter::Hardware2x2,
-            Variant::Bevy => Filter::Castano13,
+            Variant::LearnOpenGlPcf => pcf::LEARNOPENGL_3X3,
+            Variant::WgpuExampleHw2x2 => pcf::WGPU_EXAMPLE_HW2X2,
+            Variant::Bevy => pcf::BEVY_GAUSSIAN,
+        }
+    }
+
+    /// The shadow map's size: the lesson's, or a renderer's default.
+    fn map_size(self) -> u32 {
+        match self {
+            Variant::WgpuExampleHw2x2 => WGPU_EXAMPLE_MAP_SIZE,
+            Variant::Bevy => BEVY_MAP_SIZE,
+            _ => MAP_SIZE,
         }
     }
 
@@ -164,30 +165,47 @@ impl Variant {
 const PASSES: [(Option<SlopeScaledBias>, Option<wgpu::Face>); 3] = [
     (Some(SlopeScaledBias::RECOMMENDED), None),
     (None, None),
-    (Some(SlopeScaledBias::WGPU_EXAMPLE), Some(wgpu::Face::Back)),
+    (Some(SlopeScaledBias::WGPU_EXAMPLE), Some(WGPU_EXAMPLE_CULL)),
 ];
 // ANCHOR_END: variants
 
 struct Pcf {
     /// Each variant's filter parameters (group 3), in variant order.
     filter_groups: Vec<wgpu::BindGroup>,
-    map: ShadowMap,
-    nearest: wgpu::BindGroup,
-    linear: wgpu::BindGroup,
+    /// One map per size the variants use, with its nearest and linear groups.
+    maps: Vec<SizedMap>,
     /// Per [`Variant::lit_key`], the pipelines some variant uses.
     lit_pipelines: Vec<Option<wgpu::RenderPipeline>>,
     /// Per shadow pass of [`PASSES`], one pipeline per light.
     shadow_pipelines: Vec<Vec<wgpu::RenderPipeline>>,
     /// Their counting copies ([`shadow_map::shadow_tally_pipelines`]).
     tally_pipelines: Vec<Vec<[wgpu::RenderPipeline; 2]>>,
-    /// Per shadow pass, its depth writes and fragments, counted once.
-    texels_written: [Option<(u64, u64)>; 3],
+    /// Per shadow pass and map size, its depth writes and fragments, counted once.
+    texels_written: Vec<((usize, u32), (u64, u64))>,
     draws: u64,
     /// Per variant, its filter with the knobs' values: what `filter_groups`
     /// holds (`Variant::filter` when no knob was set).
     filters: Vec<Filter>,
     /// The layout of `filter_groups`, to make a variant's again.
     filter_layout: wgpu::BindGroupLayout,
+}
+
+/// A shadow map and its bind groups, sampled nearest and linear.
+struct SizedMap {
+    map: ShadowMap,
+    nearest: wgpu::BindGroup,
+    linear: wgpu::BindGroup,
+}
+
+impl Pcf {
+    /// The variant's shadow map.
+    fn map(&self, v: Variant) -> &SizedMap {
+        let size = v.map_size();
+        self.maps
+            .iter()
+            .find(|m| m.map.size == size)
+            .expect("new makes a map of every variant's size")
+    }
 }
 
 impl Lesson for Pcf {
@@ -200,11 +218,11 @@ impl Lesson for Pcf {
     }
 
     /// The shadow map, as the variant's last shadow pass left it.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
         let Some(last) = scene.scene.lights.len().checked_sub(1) else {
             return Ok(None); // no light: no shadow pass
         };
-        self.map.buffer_view(gpu, last).map(Some)
+        self.map(v).map.buffer_view(gpu, last).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -246,9 +264,27 @@ impl Lesson for Pcf {
                 ))
             })
             .collect();
-        let map = ShadowMap::new(gpu, MAP_SIZE);
-        let nearest = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
-        let linear = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
+        let mut sizes: Vec<u32> = Variant::value_variants()
+            .iter()
+            .map(|v| v.map_size())
+            .collect();
+        sizes.sort_unstable();
+        sizes.dedup();
+        let maps = sizes
+            .iter()
+            .map(|&size| {
+                let map = ShadowMap::new(gpu, size);
+                let nearest = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
+                let linear = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
+                SizedMap {
+                    map,
+                    nearest,
+                    linear,
+                }
+            })
+            .collect();
+        // The clamp of a pass's bias is converted for the lesson's map: only
+        // the lesson's own pass (0) has one.
         let states: Vec<Vec<_>> = PASSES
             .iter()
             .map(|&(bias, cull)| {
@@ -288,13 +324,11 @@ impl Lesson for Pcf {
             .collect();
         Ok(Pcf {
             filter_groups,
-            map,
-            nearest,
-            linear,
+            maps,
             lit_pipelines,
             shadow_pipelines,
             tally_pipelines,
-            texels_written: [None; 3],
+            texels_written: Vec::new(),
             draws: shadow_map::shadow_map_draws(scene),
             filters: Variant::value_variants()
                 .iter()
@@ -312,27 +346,28 @@ impl Lesson for Pcf {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        let pass = variant.pass();
-        if self.texels_written[pass].is_none() {
-            // Once per shadow pass, its own submit: untimed.
-            let n = shadow_map::count_shadow_texels(frame.gpu, scene, MAP_SIZE, |k| {
+        let (pass, size) = (variant.pass(), variant.map_size());
+        if !self.texels_written.iter().any(|(k, _)| *k == (pass, size)) {
+            // Once per shadow pass and map size, its own submit: untimed.
+            let n = shadow_map::count_shadow_texels(frame.gpu, scene, size, |k| {
                 &self.tally_pipelines[pass][k]
             })?;
-            self.texels_written[pass] = Some(n);
+            self.texels_written.push(((pass, size), n));
         }
         let filter_group = &self.filter_groups[variant as usize];
         let lit_pipeline = self.lit_pipelines[variant.lit_key() as usize]
             .as_ref()
             .expect("every variant's lit pipeline is built in new");
+        let map = self.map(variant);
         let map_group = match variant.filter().sampler() {
-            wgpu::FilterMode::Linear => &self.linear,
-            _ => &self.nearest,
+            wgpu::FilterMode::Linear => &map.linear,
+            _ => &map.nearest,
         };
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
             let shadow = &self.shadow_pipelines[pass][light];
             frame.pass("shadow", |enc, ts| {
-                shadow_map::shadow_pass(enc, scene, shadow, &self.map, light, ts.render())
+                shadow_map::shadow_pass(enc, scene, shadow, &map.map, light, ts.render())
             });
             frame.pass("lighting", |enc, ts| {
                 scene.lit_pass(
@@ -353,10 +388,13 @@ impl Lesson for Pcf {
             ("taps".into(), taps),
             ("filter_taps_per_pixel".into(), taps),
             ("texels_read".into(), texels),
-            ("shadow_map_size".into(), MAP_SIZE as u64),
+            ("shadow_map_size".into(), variant.map_size() as u64),
             ("draws".into(), self.draws),
         ]);
-        if let Some((written, fragments)) = self.texels_written[variant.pass()] {
+        let key = (variant.pass(), variant.map_size());
+        if let Some(&(_, (written, fragments))) =
+            self.texels_written.iter().find(|(k, _)| *k == key)
+        {
             c.insert("shadow_texels_written".into(), written);
             c.insert("shadow_fragments".into(), fragments);
         }

@@ -6,6 +6,8 @@ pub mod pcf;
 
 pub mod knobs;
 
+pub mod port_cards;
+
 /// The chapter's exercises: the starter code a student fills in, or with
 /// `--features solutions`, the reference solutions (`solutions/lesson_03.rs`).
 #[cfg(not(any(feature = "solutions", feature = "chapter_copies")))]

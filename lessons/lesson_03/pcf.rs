@@ -81,6 +81,17 @@ impl Filter {
 }
 // ANCHOR_END: filter
 
+/// LearnOpenGL's 3×3 (`learnopengl_pcf`): nearest taps one texel apart,
+/// all compared with the centre's depth (no receiver plane).
+pub const LEARNOPENGL_3X3: Filter = Filter::Grid {
+    n: 3,
+    receiver_plane: false,
+};
+/// The wgpu example's comparison sampler, linear (`wgpu_example_hw2x2`).
+pub const WGPU_EXAMPLE_HW2X2: Filter = Filter::Hardware2x2;
+/// Bevy's default, `ShadowFilteringMethod::Gaussian` (`bevy`).
+pub const BEVY_GAUSSIAN: Filter = Filter::Castano13;
+
 /// `Filter` in `pcf.wgsl`: the filter, and the receiver-side bias of a
 /// renderer's defaults (lesson 02's [`ShadowBias`]: LearnOpenGL's depth,
 /// Bevy's offsets; zero for the lesson's own filters).

@@ -170,14 +170,19 @@ impl FaceUniforms {
         pass.set_bind_group(0, &self.group, &[offset]);
     }
 
-    /// Writes the six faces' view-projections of light `light`.
-    pub fn write(&self, gpu: &Gpu, scene: &Scene, light: usize, near: f64) {
+    /// Writes the six faces' view-projections of light `light`, from `near`
+    /// to `far` (`None`: the light's range).
+    pub fn write(&self, gpu: &Gpu, scene: &Scene, light: usize, near: f64, far: Option<f64>) {
         let Some((pos, range)) = point_light(scene, light) else {
             return;
         };
+        let far = far.unwrap_or(range);
         for face in 0..6 {
             let mut u = light_uniform(scene, light);
-            u.view_proj = face_view_proj(pos, face, near, range).to_cols_array_2d();
+            u.view_proj = face_view_proj(pos, face, near, far).to_cols_array_2d();
+            // The faces' far plane in the range's slot: what the linear
+            // storage divides the distance by (`fs_cube_linear`).
+            u.color_range[3] = far as f32;
             gpu.queue.write_buffer(
                 &self.buffer,
                 SLOT * (6 * light + face) as u64,
@@ -228,9 +233,10 @@ pub struct CubeParams {
     pub near: f32,
     /// 2 / face resolution: a texel's width 1 m from the light.
     pub texel_at_1m: f32,
-    /// 1: clamp the receiver to the light's range.
+    /// 1: clamp the receiver to the far plane.
     pub clamp_range: u32,
-    pub _pad0: f32,
+    /// The faces' far plane in metres; 0: the light's range.
+    pub far: f32,
     /// A constant bias in world units.
     pub bias_world: f32,
     /// A bias in texels, plus `slope` × tan θ texels.

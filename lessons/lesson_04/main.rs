@@ -35,7 +35,7 @@ use workbook::lesson_04::cube_map::{
 };
 use workbook::lesson_04::culling::{self, Sphere};
 use workbook::lesson_04::exercises;
-use workbook::lesson_04::peers::Peer;
+use workbook::lesson_04::peers::{self, Peer, Port};
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -62,21 +62,20 @@ enum Variant {
     Clipped1024,
     #[value(name = "no_range_clamp_1024")]
     NoRangeClamp1024,
-    /// LearnOpenGL "Point Shadows" (JoeyDeVries/LearnOpenGL, commit 279e6be,
-    /// src/5.advanced_lighting/3.2.1.point_shadows/3.2.1.point_shadows.fs
-    /// line 30): distance / far stored, one nearest tap, `bias = 0.05` world
-    /// units, whatever the distance or the map.
+    /// LearnOpenGL "Point Shadows": distance / 25 stored in a cube clipped
+    /// at near 1 and far 25, one nearest tap, `bias = 0.05` world units
+    /// ([`peers::LEARNOPENGL_1TAP`]; its source lines:
+    /// `port_cards::LEARNOPENGL_1TAP`).
     #[value(name = "learnopengl_1tap")]
     LearnOpenGl1Tap,
-    /// LearnOpenGL's soft version (3.2.2.point_shadows_soft/
-    /// 3.2.2.point_shadows.fs, commit f844f7c, lines 61-65): `bias = 0.15`
-    /// and 20 taps on a disk of `(1 + viewDistance / far_plane) / 25` world
-    /// units ([`Peer::LearnOpenGlDisk`]); far_plane is our light's range.
+    /// LearnOpenGL's soft version: the same cube, `bias = 0.15` and 20 taps
+    /// on a disk of `(1 + viewDistance / far_plane) / 25` world units
+    /// ([`peers::LEARNOPENGL_PCF20`], `port_cards::LEARNOPENGL_PCF20`).
     #[value(name = "learnopengl_pcf20")]
     LearnOpenGlPcf20,
-    /// Bevy's `PointLight` defaults (crates/bevy_light/src/point_light.rs:
-    /// depth bias 0.08, normal bias 0.6) and default Gaussian filter, on
-    /// hardware depth ([`Peer::BevyPoint`]: where each is applied).
+    /// Bevy's `PointLight` defaults: hardware depth clipped at near 0.1,
+    /// depth bias 0.08, normal bias 0.6, the Gaussian filter
+    /// ([`peers::BEVY_POINT`], `port_cards::BEVY_POINT`).
     #[value(name = "bevy_point")]
     BevyPoint,
     /// The chapter's exercises (`exercises.rs`, `exercises.wgsl`), run only when named.
@@ -100,6 +99,9 @@ struct Settings {
     /// Skip out-of-range casters, and per face the casters this test says
     /// the face cannot see (the unculled frame must match); `None`: no culling.
     cull: Option<FaceTest>,
+    /// The faces' near plane (m), and their far plane (m; `None`: the light's range).
+    near: f64,
+    far: Option<f64>,
     /// Near-plane clipping off (DEPTH_CLIP_CONTROL) so casters nearer than it still cast.
     unclipped: bool,
     /// Clamp receivers beyond the range to the far plane.
@@ -118,17 +120,30 @@ const BASE: Settings = Settings {
     bias_world: 0.0,
     pcf: 0.0,
     cull: Some(sphere_test),
+    near: NEAR,
+    far: None,
     unclipped: true,
     clamp_range: true,
     peer: Peer::None,
 };
 
-/// The renderers' defaults: their own world-space bias, none of ours.
-const PEER: Settings = Settings {
-    bias_texels: 0.0,
-    slope: 0.0,
-    ..BASE
-};
+/// A renderer's defaults: its own cube, planes and world-space bias, none
+/// of ours (the culling stays: it changes no pixel).
+const fn port(p: Port) -> Settings {
+    Settings {
+        size: p.size,
+        storage: p.storage,
+        bias_texels: 0.0,
+        slope: 0.0,
+        bias_world: p.bias_world,
+        near: p.near,
+        far: p.far,
+        unclipped: !p.clipped,
+        clamp_range: p.clamp_range,
+        peer: p.lookup,
+        ..BASE
+    }
+}
 
 impl Variant {
     // One line per variant: what changes from BASE.
@@ -148,9 +163,9 @@ impl Variant {
             Variant::Nocull1024 => Settings { cull: None, ..BASE },
             Variant::Clipped1024 => Settings { unclipped: false, ..BASE },
             Variant::NoRangeClamp1024 => Settings { clamp_range: false, ..BASE },
-            Variant::LearnOpenGl1Tap => Settings { bias_world: 0.05, ..PEER },
-            Variant::LearnOpenGlPcf20 => Settings { bias_world: 0.15, peer: Peer::LearnOpenGlDisk, ..PEER },
-            Variant::BevyPoint => Settings { storage: Storage::Depth, bias_world: 0.08, peer: Peer::BevyPoint, ..PEER },
+            Variant::LearnOpenGl1Tap => port(peers::LEARNOPENGL_1TAP),
+            Variant::LearnOpenGlPcf20 => port(peers::LEARNOPENGL_PCF20),
+            Variant::BevyPoint => port(peers::BEVY_POINT),
             // Graded against linear_1024 and depth_1024 (exercises.toml).
             Variant::ExerciseCullFaces => Settings { cull: Some(exercise_face_test), ..BASE },
             Variant::ExerciseCubeFaces => Settings { storage: Storage::DepthExercise, ..BASE },
@@ -164,7 +179,8 @@ impl Variant {
 /// `pcf3d_slope1_1024` keeps the baseline's 1 and shows what that costs.
 const PCF3D_RADIUS: f32 = 1.5;
 
-/// The near plane of every face; 1 mm where DEPTH_CLIP_CONTROL is missing.
+/// The lesson's near plane of every face; 1 mm where DEPTH_CLIP_CONTROL
+/// is missing (for the variants that keep casters inside it).
 const NEAR: f64 = 0.05;
 const NEAR_FALLBACK: f64 = 0.001;
 // ANCHOR_END: variants
@@ -184,7 +200,7 @@ fn exercise_face_test(centre: DVec3, _radius: f64, half: DVec3, face: usize) -> 
     exercises::faces_touched(centre, half)[face]
 }
 
-/// One variant on this device: its pipeline, lit-pass bind group, map and near plane.
+/// One variant on this device: its pipeline, lit-pass bind group, map and planes.
 struct Prepared {
     pipeline: usize,
     /// Index into `lit_pipelines`.
@@ -192,6 +208,7 @@ struct Prepared {
     group: wgpu::BindGroup,
     map: usize,
     near: f64,
+    far: Option<f64>,
     unclipped: bool,
 }
 
@@ -284,7 +301,7 @@ impl Lesson for CubeShadows {
             let near = if v.unclipped && !has_unclipped {
                 NEAR_FALLBACK
             } else {
-                NEAR
+                v.near
             };
             let storage = v.storage.pass();
             let pipeline = keys
@@ -316,7 +333,7 @@ impl Lesson for CubeShadows {
                 near: near as f32,
                 texel_at_1m: 2.0 / v.size as f32,
                 clamp_range: v.clamp_range.into(),
-                _pad0: 0.0,
+                far: v.far.unwrap_or(0.0) as f32,
                 bias_world: v.bias_world,
                 bias_texels: v.bias_texels,
                 slope: v.slope,
@@ -342,6 +359,7 @@ impl Lesson for CubeShadows {
                 group,
                 map,
                 near,
+                far: v.far,
                 unclipped,
             });
         }
@@ -378,7 +396,8 @@ impl Lesson for CubeShadows {
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         self.stats = CubeStats::default();
         for light in 0..scene.scene.lights.len() {
-            self.faces.write(frame.gpu, &scene.scene, light, p.near);
+            self.faces
+                .write(frame.gpu, &scene.scene, light, p.near, p.far);
             let casters = |face| face_casters(scene, &self.spheres, light, v.cull, face);
             let map = &mut self.maps[p.map];
             let s = cube_map::cube_shadow_passes(
@@ -451,7 +470,7 @@ impl CubeShadows {
         let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
         let mut total = (0, 0);
         for light in 0..scene.scene.lights.len() {
-            self.faces.write(gpu, &scene.scene, light, p.near);
+            self.faces.write(gpu, &scene.scene, light, p.near, p.far);
             let (written, fragments) = costs::count_light_texels(
                 gpu,
                 scene,

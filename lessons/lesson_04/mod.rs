@@ -6,6 +6,7 @@ pub mod cross;
 pub mod cube_map;
 pub mod culling;
 pub mod peers;
+pub mod port_cards;
 
 /// The chapter's exercises: the starter code a student fills in, or with
 /// `--features solutions`, the reference solutions (`solutions/lesson_04.rs`).

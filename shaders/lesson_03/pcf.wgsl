@@ -150,30 +150,41 @@ fn depth_average(s: vec3<f32>, n: i32) -> f32 {
 // sample_shadow_map_castano_thirteen): a 5×5 tent-like Gaussian from 9
 // bilinear comparisons, their weights and positions chosen so each bilinear
 // tap stands for a 2×2 block of the kernel (Castaño, The Witness, 2013).
-fn pcf_castano13(s: vec3<f32>) -> f32 {
-    let size = vec2<f32>(textureDimensions(shadow_map));
-    let inv = 1.0 / size;
-    let uv = s.xy * size;
-    var base = floor(uv + 0.5);
-    let st = uv + 0.5 - base;
-    base = (base - 0.5) * inv;
-    let w0 = 4.0 - 3.0 * st;
-    let w2 = 1.0 + 3.0 * st;
-    let p0 = (3.0 - 2.0 * st) / w0 - 2.0;
-    let p1 = (3.0 + st) / 7.0;
-    let p2 = st / w2 + 2.0;
-    let wu = array<f32, 3>(w0.x, 7.0, w2.x);
-    let wv = array<f32, 3>(w0.y, 7.0, w2.y);
-    let pu = array<f32, 3>(p0.x, p1.x, p2.x);
-    let pv = array<f32, 3>(p0.y, p1.y, p2.y);
+// Bevy's lines and names, so that they read against its source.
+fn pcf_castano13(coords: vec3<f32>) -> f32 {
+    let shadow_map_size = vec2<f32>(textureDimensions(shadow_map));
+    let inv_shadow_map_size = 1.0 / shadow_map_size;
+    let uv = coords.xy * shadow_map_size;
+    var base_uv = floor(uv + 0.5);
+    let s = (uv.x + 0.5 - base_uv.x);
+    let t = (uv.y + 0.5 - base_uv.y);
+    base_uv -= 0.5;
+    base_uv *= inv_shadow_map_size;
+    let uw0 = (4.0 - 3.0 * s);
+    let uw1 = 7.0;
+    let uw2 = (1.0 + 3.0 * s);
+    let u0 = (3.0 - 2.0 * s) / uw0 - 2.0;
+    let u1 = (3.0 + s) / uw1;
+    let u2 = s / uw2 + 2.0;
+    let vw0 = (4.0 - 3.0 * t);
+    let vw1 = 7.0;
+    let vw2 = (1.0 + 3.0 * t);
+    let v0 = (3.0 - 2.0 * t) / vw0 - 2.0;
+    let v1 = (3.0 + t) / vw1;
+    let v2 = t / vw2 + 2.0;
+    // Bevy's nine sums, as a loop: weight uw[i] × vw[j] at (u[i], v[j]).
+    let uw = array<f32, 3>(uw0, uw1, uw2);
+    let vw = array<f32, 3>(vw0, vw1, vw2);
+    let u = array<f32, 3>(u0, u1, u2);
+    let v = array<f32, 3>(v0, v1, v2);
     var sum = 0.0;
     for (var j = 0; j < 3; j++) {
         for (var i = 0; i < 3; i++) {
-            let o = vec2<f32>(pu[i], pv[j]) * inv;
-            sum += wu[i] * wv[j] * textureSampleCompareLevel(shadow_map, shadow_compare, base + o, s.z);
+            let o = vec2<f32>(u[i], v[j]) * inv_shadow_map_size;
+            sum += uw[i] * vw[j] * textureSampleCompareLevel(shadow_map, shadow_compare, base_uv + o, coords.z);
         }
     }
-    return sum / 144.0;
+    return sum * (1.0 / 144.0);
 }
 // ANCHOR_END: castano
 

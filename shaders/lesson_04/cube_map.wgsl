@@ -25,9 +25,11 @@ struct CubeParams {
     near: f32,
     // 2 / face resolution: a texel's width 1 m from the light.
     texel_at_1m: f32,
-    // 1: clamp the receiver to the light's range.
+    // 1: clamp the receiver to the far plane.
     clamp_range: u32,
-    _pad0: f32,
+    // The faces' far plane (m); 0: the light's range (a renderer's own
+    // far plane otherwise).
+    far: f32,
     // A constant bias (world units), a bias in texels, a slope bias in texels
     // (times tan θ), and the 3D PCF radius in texels (0: one tap).
     bias_world: f32,
@@ -46,7 +48,8 @@ const STORAGE_LINEAR: u32 = 0u;
 const STORAGE_DEPTH_EUCLID: u32 = 2u;
 
 // ANCHOR: linear_distance
-// The linear-distance shadow pass: distance / range, written as the
+// The linear-distance shadow pass: distance / range (the face uniform's
+// range is the faces' far plane), written as the
 // fragment's depth into the Depth32Float cube (R32Float is no render
 // target on GL; a depth texture is, on every backend). The price: a fragment
 // stage the hardware-depth pass does not have, and no early depth test
@@ -84,11 +87,16 @@ fn fs_cube_linear_tally(in: LinearOut) -> LinearTallyOut {
     return LinearTallyOut(depth, vec4<f32>(1.0));
 }
 
+// The faces' far plane: the light's range, or a renderer's own.
+fn cube_far() -> f32 {
+    return select(light.color_range.w, params.far, params.far > 0.0);
+}
+
 // ANCHOR: receiver_depth
 // What the cube would store for a point at distance `d` along `v` (v: from
 // the light to the receiver), in the storage's units.
 fn receiver_depth(v: vec3<f32>, d: f32) -> f32 {
-    let far = light.color_range.w;
+    let far = cube_far();
     let near = params.near;
     var z = d / far;
     if STORAGE != STORAGE_LINEAR {
@@ -102,8 +110,8 @@ fn receiver_depth(v: vec3<f32>, d: f32) -> f32 {
         z = far * (m - near) / ((far - near) * m);
     }
     if params.clamp_range == 1u {
-        // Past the range the cube holds 1.0 (cleared, or clamped): compare
-        // at 1.0, and "nothing in range" reads lit.
+        // Past the far plane (the range) the cube holds 1.0 (cleared, or
+        // clamped): compare at 1.0, and "nothing in range" reads lit.
         z = min(z, 1.0);
     }
     return z;
@@ -157,14 +165,22 @@ fn fs_lit(in: VertexOut) -> LitOut {
     if dot(n, camera.eye.xyz - in.world) < 0.0 {
         n = -n;
     }
+    if PEER != 0u && dot(n, light.position_or_dir.xyz - in.world) <= 0.0 {
+        // Facing away, as in visibility: the renderers' diffuse term is
+        // max(N·L, 0), so the surface is dark whatever their shadow test.
+        return lit_output(in, 0.0);
+    }
     if PEER == 1u {
         return lit_output(in, learnopengl_disk(in.world));
     }
     if PEER == 2u {
-        if dot(n, light.position_or_dir.xyz - in.world) <= 0.0 {
-            return lit_output(in, 0.0); // facing away, as in visibility
+        // Bevy offsets along the mesh's interpolated normal, on the side
+        // the camera sees (its single-sided material culls the other).
+        var m = normalize(in.normal);
+        if dot(m, camera.eye.xyz - in.world) < 0.0 {
+            m = -m;
         }
-        return lit_output(in, bevy_point(in.world, n));
+        return lit_output(in, bevy_point(in.world, m));
     }
     return lit_output(in, visibility(in.world, n));
 }

@@ -3,18 +3,27 @@
 
 // ANCHOR: learnopengl_disk
 // LearnOpenGL's soft point shadows (3.2.2.point_shadows.fs): 20 taps along
-// the cube's corner and edge directions, a disk that widens with the
-// viewer's distance, in world units; the cube holds distance / range.
+// the cube's corner and edge directions, in its order, on a disk that
+// widens with the viewer's distance, in world units; the cube holds
+// distance / far_plane.
+const GRID_SAMPLING_DISK = array<vec3<f32>, 20>(
+    vec3<f32>(1.0, 1.0, 1.0), vec3<f32>(1.0, -1.0, 1.0), vec3<f32>(-1.0, -1.0, 1.0), vec3<f32>(-1.0, 1.0, 1.0),
+    vec3<f32>(1.0, 1.0, -1.0), vec3<f32>(1.0, -1.0, -1.0), vec3<f32>(-1.0, -1.0, -1.0), vec3<f32>(-1.0, 1.0, -1.0),
+    vec3<f32>(1.0, 1.0, 0.0), vec3<f32>(1.0, -1.0, 0.0), vec3<f32>(-1.0, -1.0, 0.0), vec3<f32>(-1.0, 1.0, 0.0),
+    vec3<f32>(1.0, 0.0, 1.0), vec3<f32>(-1.0, 0.0, 1.0), vec3<f32>(1.0, 0.0, -1.0), vec3<f32>(-1.0, 0.0, -1.0),
+    vec3<f32>(0.0, 1.0, 1.0), vec3<f32>(0.0, -1.0, 1.0), vec3<f32>(0.0, -1.0, -1.0), vec3<f32>(0.0, 1.0, -1.0),
+);
+
 fn learnopengl_disk(world: vec3<f32>) -> f32 {
     let v = world - light.position_or_dir.xyz;
-    let far = light.color_range.w;
     let view_distance = length(camera.eye.xyz - world);
-    let disk = (1.0 + view_distance / far) * params.peer_scale;
+    let disk = (1.0 + view_distance / cube_far()) * params.peer_scale;
     // `currentDepth - bias > closestDepth` is shadow: compare d − bias.
     let z = receiver_depth(v, length(v) - params.bias_world);
     var lit = 0.0;
     for (var i = 0; i < 20; i++) {
-        lit += textureSampleCompareLevel(cube_map, cube_compare, v + pcf_offset(i) * disk, z);
+        let dir = v + GRID_SAMPLING_DISK[i] * disk;
+        lit += textureSampleCompareLevel(cube_map, cube_compare, dir, z);
     }
     return lit / 20.0;
 }
@@ -40,19 +49,24 @@ fn bevy_point(world: vec3<f32>, n: vec3<f32>) -> f32 {
     let moved = world + params.peer_scale * major * n + params.bias_world * normalize(to_light);
     let v = moved - light.position_or_dir.xyz;
     let z = receiver_depth(v, length(v));
-    // A 2D basis across the direction (Bevy's orthonormalize).
+    // Bevy samples its cube at v with z flipped ("cubemaps assume a
+    // left-handed coordinate space") and lays its taps out in a basis of
+    // that flipped direction (its orthonormalize); flipping each tap back
+    // puts it where Bevy's lies, in this lesson's cube.
+    let flip_z = vec3<f32>(1.0, 1.0, -1.0);
+    let local = v * flip_z;
     var up = vec3<f32>(0.0, 1.0, 0.0);
-    if dot(up, normalize(v)) > 0.99 {
+    if dot(up, normalize(local)) > 0.99 {
         up = vec3<f32>(1.0, 0.0, 0.0);
     }
-    let bz = normalize(v);
-    let bx = normalize(cross(up, bz));
+    let bz = normalize(local);
+    let bx = normalize(cross(bz, up));
     let by = cross(bz, bx);
     let scale = POINT_SHADOW_SCALE * major;
     var lit = 0.0;
     for (var i = 0; i < 8; i++) {
         let o = D3D_POSITIONS[i] * scale;
-        let dir = v + o.x * bx + o.y * by;
+        let dir = (local + o.x * bx + o.y * by) * flip_z;
         lit += D3D_COEFFS[i] * textureSampleCompareLevel(cube_map, cube_compare, dir, z);
     }
     return lit;
