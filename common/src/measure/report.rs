@@ -5,7 +5,9 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::measure::timing::{TimingSource, CPU_TOTAL, FRAME, TOTAL};
-use crate::reference::metrics::{ClassError, ErrorStats, SoftError, COVERAGE_WARN_PCT};
+use crate::reference::metrics::{
+    ClassError, ErrorStats, SoftError, BLEEDING_THRESHOLD, COVERAGE_WARN_PCT, RIM_PX,
+};
 
 #[derive(Serialize, Deserialize, Clone, Debug)]
 pub struct AdapterReport {
@@ -199,24 +201,49 @@ pub fn combine(per_light: &[ErrorStats]) -> ErrorStats {
     }
 }
 
-/// The soft figures of the lights that have them, pooled like [`combine`]'s
-/// (penumbra by penumbra pixels, umbra by umbra pixels).
+/// The soft figures of the lights that have them, pooled like [`combine`]'s:
+/// every pixel count summed, every mean and share weighted by its own
+/// count (the penumbra's by penumbra pixels, the umbra's by umbra pixels,
+/// the leak's by deep-umbra pixels, the width error by contour pixels over
+/// the lights that have one; `None` if none has).
 fn combine_soft(per_light: &[ErrorStats]) -> Option<SoftError> {
     let soft: Vec<&SoftError> = per_light.iter().filter_map(|s| s.soft.as_ref()).collect();
     if soft.is_empty() {
         return None;
     }
-    let penumbra: u64 = soft.iter().map(|s| s.penumbra_pixels).sum();
-    let umbra: u64 = soft.iter().map(|s| s.umbra_pixels).sum();
-    let mean = |f: fn(&SoftError) -> f64, by: fn(&SoftError) -> u64, n: u64| {
+    let total = |by: fn(&SoftError) -> u64| soft.iter().map(|s| by(s)).sum::<u64>();
+    let mean = |f: fn(&SoftError) -> f64, by: fn(&SoftError) -> u64| {
+        let n = total(by);
         soft.iter().map(|s| f(s) * by(s) as f64).sum::<f64>() / n.max(1) as f64
     };
+    let widths: Vec<(f64, u64)> = (soft.iter())
+        .filter_map(|s| Some((s.penumbra_width_error_px?, s.contour_pixels)))
+        .collect();
+    let width_pixels: u64 = widths.iter().map(|&(_, n)| n).sum();
     Some(SoftError {
-        penumbra_pixels: penumbra,
-        penumbra_mean_abs: mean(|s| s.penumbra_mean_abs, |s| s.penumbra_pixels, penumbra),
-        umbra_pixels: umbra,
-        umbra_misclassified_pct: mean(|s| s.umbra_misclassified_pct, |s| s.umbra_pixels, umbra),
-        light_bleeding_pct: mean(|s| s.light_bleeding_pct, |s| s.umbra_pixels, umbra),
+        penumbra_pixels: total(|s| s.penumbra_pixels),
+        penumbra_mean_abs: mean(|s| s.penumbra_mean_abs, |s| s.penumbra_pixels),
+        umbra_pixels: total(|s| s.umbra_pixels),
+        umbra_misclassified_pct: mean(|s| s.umbra_misclassified_pct, |s| s.umbra_pixels),
+        light_bleeding_pct: mean(|s| s.light_bleeding_pct, |s| s.umbra_pixels),
+        umbra_mean_abs: mean(|s| s.umbra_mean_abs, |s| s.umbra_pixels),
+        lit_pixels: total(|s| s.lit_pixels),
+        lit_mean_abs: mean(|s| s.lit_mean_abs, |s| s.lit_pixels),
+        deep_umbra_pixels: total(|s| s.deep_umbra_pixels),
+        leak_mean_abs: mean(|s| s.leak_mean_abs, |s| s.deep_umbra_pixels),
+        leak_pct: mean(|s| s.leak_pct, |s| s.deep_umbra_pixels),
+        spill_pixels: total(|s| s.spill_pixels),
+        spill_mean_abs: mean(|s| s.spill_mean_abs, |s| s.spill_pixels),
+        horizon_clipped_pixels: total(|s| s.horizon_clipped_pixels),
+        horizon_clipped_mean_abs: mean(
+            |s| s.horizon_clipped_mean_abs,
+            |s| s.horizon_clipped_pixels,
+        ),
+        contour_pixels: total(|s| s.contour_pixels),
+        penumbra_width_error_px: (!widths.is_empty()).then(|| {
+            let sum: f64 = widths.iter().map(|&(e, n)| e * n as f64).sum();
+            sum / width_pixels.max(1) as f64
+        }),
     })
 }
 
@@ -319,12 +346,14 @@ impl Report {
             true => (" | shimmer %".to_string(), "-|----------".to_string()),
             false => (String::new(), String::new()),
         };
-        // Soft shadows (an area light): mean |ΔV|, in the penumbra, and
-        // light bleeding.
+        // Soft shadows (an area light): mean |ΔV|, then each class of
+        // receiver's count and figures (SOFT_COLUMNS).
         let soft = self.variants.iter().any(|v| v.error.soft.is_some());
         if soft {
-            head += " | mean |dV| | penumbra |dV| | bleeding %";
-            rule += "-|-----------|---------------|-----------";
+            for &(name, width, _) in SOFT_COLUMNS {
+                head += &format!(" | {name:>width$}");
+                rule += &format!("-|{}", "-".repeat(width + 1));
+            }
         }
         s += &format!(
             "{:<w$} | misclassified % | false shadow | false lit | frame ms |   GPU ms |   CPU ms{head}\n",
@@ -359,7 +388,7 @@ impl Report {
                 s += &format!(" | {:>9}", "-");
             }
             if soft {
-                s += &format!(" | {:>9} | {:>13} | {:>9}", "-", "-", "-");
+                s += &soft_cells(None);
             }
             s += "\n";
         }
@@ -379,15 +408,7 @@ impl Report {
                 }
             }
             if soft {
-                match &v.error.soft {
-                    Some(e) => {
-                        s += &format!(
-                            " | {:>9.4} | {:>13.4} | {:>9.3}",
-                            v.error.mean_abs, e.penumbra_mean_abs, e.light_bleeding_pct
-                        )
-                    }
-                    None => s += &format!(" | {:>9} | {:>13} | {:>9}", "-", "-", "-"),
-                }
+                s += &soft_cells(v.error.soft.as_ref().map(|e| (&v.error, e)));
             }
             s += "\n";
         }
@@ -395,8 +416,73 @@ impl Report {
             s += &line;
             s += "\n";
         }
+        if soft {
+            s += "What each soft column means (|dV|: the mean |V - V_ref| over the pixels counted; n: how many receiver pixels):\n";
+            for (name, meaning) in soft_legend() {
+                s += &format!("  {name}: {meaning}\n");
+            }
+        }
         s
     }
+}
+
+/// A soft shadow's columns of [`Report::table`]: the name, the width, and
+/// the cell of a variant's figures. Every mean has its count before it.
+type SoftColumn = (&'static str, usize, fn(&ErrorStats, &SoftError) -> String);
+const SOFT_COLUMNS: &[SoftColumn] = &[
+    ("mean |dV|", 9, |e, _| format!("{:.4}", e.mean_abs)),
+    ("n umbra", 7, |_, s| s.umbra_pixels.to_string()),
+    ("umbra |dV|", 10, |_, s| format!("{:.4}", s.umbra_mean_abs)),
+    ("n penumbra", 10, |_, s| s.penumbra_pixels.to_string()),
+    ("penumbra |dV|", 13, |_, s| {
+        format!("{:.4}", s.penumbra_mean_abs)
+    }),
+    ("n lit", 7, |_, s| s.lit_pixels.to_string()),
+    ("lit |dV|", 8, |_, s| format!("{:.4}", s.lit_mean_abs)),
+    ("bleeding %", 10, |_, s| {
+        format!("{:.3}", s.light_bleeding_pct)
+    }),
+    ("n deep", 7, |_, s| s.deep_umbra_pixels.to_string()),
+    ("leak |dV|", 9, |_, s| format!("{:.4}", s.leak_mean_abs)),
+    ("leak %", 7, |_, s| format!("{:.3}", s.leak_pct)),
+    ("n spill", 7, |_, s| s.spill_pixels.to_string()),
+    ("spill |dV|", 10, |_, s| format!("{:.4}", s.spill_mean_abs)),
+    ("n horizon", 9, |_, s| s.horizon_clipped_pixels.to_string()),
+    ("horizon |dV|", 12, |_, s| {
+        format!("{:.4}", s.horizon_clipped_mean_abs)
+    }),
+    ("n contour", 9, |_, s| s.contour_pixels.to_string()),
+    ("width err px", 12, |_, s| {
+        s.penumbra_width_error_px
+            .map_or_else(|| "-".to_string(), |d| format!("{d:.2}"))
+    }),
+];
+
+/// What each of [`SOFT_COLUMNS`] means, printed under a soft run's table
+/// (`common::reference::metrics::SoftError` defines each figure).
+pub fn soft_legend() -> Vec<(&'static str, String)> {
+    let rim = RIM_PX;
+    vec![
+        ("mean |dV|", "over every receiver of the light: n umbra + n penumbra + n lit + n horizon pixels".into()),
+        ("n umbra, umbra |dV|", "the receivers in the exact reference's umbra (V_ref = 0, the emitter wholly hidden)".into()),
+        ("n penumbra, penumbra |dV|", "the receivers in its penumbra (0 < V_ref < 1)".into()),
+        ("n lit, lit |dV|", "the receivers on its lit side (V_ref = 1): shadow where there is none (a blur's spill, acne)".into()),
+        ("bleeding %", format!("of the umbra (n umbra), the share lit above V = {BLEEDING_THRESHOLD}")),
+        ("n deep, leak |dV|, leak %", format!("the deep umbra, the umbra receivers more than {rim} px from every receiver with V_ref > 0: mean V there, and the share lit above V = {BLEEDING_THRESHOLD} (light through the blocker)")),
+        ("n spill, spill |dV|", format!("the umbra receivers within {rim} px of one with V_ref > 0 and the lit receivers within {rim} px of one with V_ref < 1 (light and shadow spilling out of the penumbra)")),
+        ("n horizon, horizon |dV|", "the receivers the reference flags horizon-clipped (part of the emitter below their tangent plane), kept out of every other column; 0 where it flags none".into()),
+        ("n contour, width err px", "the pixels of both images' 10 % and 90 % contours (V >= c beside V < c, on one object), and the mean distance in pixels from each to the other image's contour at the same level: 0 when the penumbra lies where the reference's does; - when one image has a contour the other lacks, or neither has one".into()),
+    ]
+}
+
+/// A variant's soft cells (figures and their count), or `-` in each.
+fn soft_cells(figures: Option<(&ErrorStats, &SoftError)>) -> String {
+    let mut s = String::new();
+    for &(_, width, cell) in SOFT_COLUMNS {
+        let text = figures.map_or_else(|| "-".to_string(), |(e, f)| cell(e, f));
+        s += &format!(" | {text:>width$}");
+    }
+    s
 }
 
 #[cfg(test)]

@@ -139,7 +139,8 @@ pub fn run_headless<L: Lesson>(
         let mut per_light = Vec::new();
         for k in 0..sg.scene.lights.len() {
             let vis = &images.visibility[k];
-            let cmp = metrics::compare(&reference, k, &images.id, vis);
+            // The reference flags no horizon-clipped receivers yet.
+            let cmp = metrics::compare(&reference, k, &images.id, vis, None);
             save(
                 &metrics::visibility_image(&images.id, vis, w, h),
                 &out_dir.join(format!("{v}_visibility_l{k}.png")),
