@@ -11,8 +11,8 @@ fn committed_port_tables_are_the_cards_tables() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     for (lesson, cards) in ports::lessons() {
         let path = root.join(format!("book/src/generated/{}/{lesson}.md", ports::DIR));
-        let committed = std::fs::read_to_string(&path)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let committed =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(
             committed,
             ports::table(cards),

@@ -287,6 +287,9 @@ fn write_run_tables(dir: &Path, run: &Run, record: &Record) -> Result<()> {
             &record.passes_table()?,
         )?;
     }
+    if let Some(classes) = record.soft_classes_table()? {
+        write(&dir.join(format!("{}_classes.md", run.name)), &classes)?;
+    }
     Ok(())
 }
 

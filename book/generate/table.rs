@@ -387,3 +387,62 @@ pub fn scenes_table(records: &[&Record], cell: Cell) -> Result<String> {
     s += &crate::legend::legend_with(&head, &own)?;
     Ok(s)
 }
+
+/// The soft shadow's figures per class of receiver (lesson 10), each with
+/// its pixel count: the umbra, the penumbra and the lit receivers of the
+/// reference, the deep umbra's leak, the spill around the penumbra, the
+/// receivers below their own horizon, and the penumbra's width error.
+const SOFT_CLASS_COLUMNS: &[(&str, &str)] = &[
+    ("variant", "the lesson's variant (its `--variant` name)"),
+    ("umbra px", "receiver pixels in the reference's umbra (V_ref = 0, the emitter wholly hidden)"),
+    ("umbra \\|ΔV\\| %", "the mean of |V − V_ref| over the umbra, in %: light where none arrives"),
+    ("penumbra px", "receiver pixels in the reference's penumbra (0 < V_ref < 1)"),
+    ("penumbra \\|ΔV\\| %", "the mean of |V − V_ref| over the penumbra, in %"),
+    ("lit px", "receiver pixels the reference lights fully (V_ref = 1)"),
+    ("lit \\|ΔV\\| %", "the mean of |V − V_ref| over the lit receivers, in %: a blur's spill into the light, acne under a wide kernel"),
+    ("deep umbra px", "umbra pixels farther than 3 px (RIM_PX) from every receiver the reference lights at all"),
+    ("leak %", "of the deep umbra, the share lit above V = 0.1: light leaking through a blocker (the variance maps' failure), not a blur's spill"),
+    ("spill px", "the umbra's rim and the lit fringe: umbra pixels within 3 px of a receiver with V_ref > 0, lit pixels within 3 px of one with V_ref < 1"),
+    ("spill \\|ΔV\\| %", "the mean of |V − V_ref| over the spill pixels, in %: a penumbra too wide or misplaced spills there"),
+    ("horizon px", "receivers that see part of the emitter below their own tangent plane, counted apart (no shadow map can model them); 0 where the reference flags none"),
+    ("width error px", "the mean distance, in pixels, between the reference's and the variant's 10 % and 90 % contours of V: how far the penumbra's edges are from where they belong; — where one image has a contour the other lacks"),
+];
+
+impl Record {
+    /// The per-class soft table, or `None` for a run without a soft shadow.
+    pub fn soft_classes_table(&self) -> Result<Option<String>> {
+        if !self.soft() {
+            return Ok(None);
+        }
+        let head: Vec<String> = SOFT_CLASS_COLUMNS
+            .iter()
+            .map(|(n, _)| n.to_string())
+            .collect();
+        let mut s = format!("{}\n\n", self.header());
+        s += &row(&head);
+        s += &row(&vec!["---".to_string(); head.len()]);
+        for v in &self.variants {
+            let Some(e) = &v.soft else { continue };
+            let width = e
+                .penumbra_width_error_px
+                .map_or("—".to_string(), |w| format!("{w:.2}"));
+            s += &row(&[
+                format!("`{}`", v.name),
+                count(e.umbra_pixels),
+                pct(100.0 * e.umbra_mean_abs),
+                count(e.penumbra_pixels),
+                pct(100.0 * e.penumbra_mean_abs),
+                count(e.lit_pixels),
+                pct(100.0 * e.lit_mean_abs),
+                count(e.deep_umbra_pixels),
+                pct(e.leak_pct),
+                count(e.spill_pixels),
+                pct(100.0 * e.spill_mean_abs),
+                count(e.horizon_clipped_pixels),
+                width,
+            ]);
+        }
+        s += &crate::legend::legend_own(&head, SOFT_CLASS_COLUMNS);
+        Ok(Some(s))
+    }
+}

@@ -22,6 +22,7 @@
 pub mod area;
 pub mod bvh;
 pub mod metrics;
+pub mod soft_metrics;
 
 use std::time::Instant;
 
