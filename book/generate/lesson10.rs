@@ -57,7 +57,7 @@ pub const TABLE: &str = "convergence.md";
 pub struct Row {
     pub scene: String,
     pub title: String,
-    /// Rays a penumbra pixel gets: the pilot, then the full strata.
+    /// Rays a penumbra pixel gets: the full strata.
     pub rays_per_penumbra_pixel_n: u64,
     pub rays_per_penumbra_pixel_4n: u64,
     /// Every shadow ray each reference cast.
@@ -98,9 +98,9 @@ impl Convergence {
     }
 }
 
-/// The rays a penumbra pixel gets with `s`: its pilot, then `side²`.
+/// The rays a penumbra pixel gets with `s`: `side²`.
 fn rays_per_penumbra_pixel(s: AreaSampling) -> u64 {
-    s.pilot_rays() + (s.side * s.side) as u64
+    s.rays()
 }
 
 /// Renders one scene's reference at N and 4N and compares them.
@@ -193,21 +193,13 @@ fn dv(x: f64) -> String {
 pub fn table(c: &Convergence, results: Option<&Record>) -> String {
     let (n, n4) = (AreaSampling::DEFAULT, AreaSampling::DEFAULT.times_four());
     let mut s = format!(
-        "*the exact reference on the CPU ({}, {} threads) · {}×{} · one image of each scene at N and at 4N rays: N = a pilot of {} rays ({} on the emitter's rim, {}×{} strata), then {}×{} strata where the pilot's rays disagree; 4N = {} ({}, {}×{}), then {}×{} · times: one run each, wall clock*\n\n",
+        "*the exact reference on the CPU ({}, {} threads) · {}×{} · one image of each scene at N and at 4N rays: N = {}×{} strata wherever a conservative query of the BVH finds a caster in the cone from the point to the emitter or the emitter is partly below the point's horizon, no ray (V = 1) elsewhere; 4N = {}×{} · times: one run each, wall clock*\n\n",
         c.cpu,
         c.threads,
         c.width,
         c.height,
-        n.pilot_rays(),
-        n.rim,
-        n.pilot_side,
-        n.pilot_side,
         n.side,
         n.side,
-        n4.pilot_rays(),
-        n4.rim,
-        n4.pilot_side,
-        n4.pilot_side,
         n4.side,
         n4.side,
     );
@@ -299,9 +291,9 @@ pub fn verdict(c: &Convergence, results: Option<&Record>) -> String {
 /// The convergence table's columns.
 const LEGEND: &[(&str, &str)] = &[
     ("scene", "the scene both references were rendered from, at the book's resolution, with the lesson's camera"),
-    ("rays per penumbra pixel, N", "the shadow rays a pixel in the penumbra gets with the reference's default sampling: its pilot (the emitter's rim and coarse strata), then the full strata, since in the penumbra the pilot's rays disagree"),
-    ("rays per penumbra pixel, 4N", "the same with four times the rays, pilot and full strata (`AreaSampling::times_four`)"),
-    ("shadow rays, N", "every shadow ray the reference with the default sampling cast, all pixels (`Reference::shadow_rays`): a pixel whose pilot agrees stops after it"),
+    ("rays per penumbra pixel, N", "the shadow rays a pixel in the penumbra gets with the reference's default sampling: the full strata, since in the penumbra a caster is in the cone toward the emitter"),
+    ("rays per penumbra pixel, 4N", "the same with four times the rays (`AreaSampling::times_four`: the strata's side doubled)"),
+    ("shadow rays, N", "every shadow ray the reference with the default sampling cast, all pixels (`Reference::shadow_rays`): a pixel with no caster in its cone toward the emitter and the emitter wholly above its horizon casts none"),
     ("shadow rays, 4N", "the same for the reference with four times the rays"),
     ("penumbra pixels", "receiver pixels (geometry facing the light inside its reach, as the error figures count them) whose visibility is strictly between 0 and 1 in either reference"),
     ("mean \\|V_N − V_4N\\| %", "the mean of |V_N − V_4N| over those pixels, in % of V: how far the default reference, the one every results table is measured against, moves with four times the rays; an estimate of its own sampling error (the 4N reference has one too, about half as large)"),

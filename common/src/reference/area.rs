@@ -13,53 +13,47 @@
 //! - a ray that leaves below the receiver's own tangent plane is blocked
 //!   (the surface hides that part of the emitter), as the hard reference
 //!   counts N·L ≤ 0 as shadow;
-//! - rays go where the answer is not 0 or 1: a pilot first, the emitter's
-//!   rim at [`AreaSampling::rim`] evenly spaced points and
-//!   [`AreaSampling::pilot_side`]² strata inside; only a point whose pilot
-//!   rays disagree gets the full [`AreaSampling::side`]². An edge that
-//!   crosses the emitter crosses its rim twice, so the rim catches every cap
-//!   wider than the rim's spacing (with 16 points, a cap of 0.4 % of the
-//!   emitter); a blocker seen wholly inside the emitter and smaller than a
-//!   pilot stratum can be missed. The convergence test (`N` against `4N`,
-//!   chapter 10) measures what that and the sampling leave.
+//! - rays go only where something might block them. Every ray lies in one
+//!   cone, from the point to the emitter ([`RayCone`]); a conservative query
+//!   of the scene's BVH ([`crate::reference::bvh::Bvh::may_block`]) says
+//!   whether any caster above the point's horizon reaches into it. Where
+//!   none does and the whole cone is above the horizon, V = 1 exactly, with
+//!   no ray. Anywhere else (a caster in the cone, however thin or small, or
+//!   part of the emitter below the horizon: "horizon-clipped") the point
+//!   gets the full [`AreaSampling::side`]² strata. What is left is the
+//!   strata's own sampling error, which the convergence test (`N` against
+//!   `4N`, chapter 10) measures.
 //!
 //! The jitter is a hash of the pixel and the ray: a reference is the same on
 //! every run and machine.
 
 use glam::Vec3;
 
+use crate::reference::cone::RayCone;
 use crate::scene::LightSize;
 
 // ANCHOR: sampling
-/// Rays per pixel for an area light: a pilot of `rim + pilot_side²`, then
-/// `side²` where the pilot's rays disagree.
+/// Rays per pixel for an area light: none where its cone toward the emitter
+/// is empty and above the horizon (V = 1 exactly), else `side²`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AreaSampling {
-    pub rim: u32,
-    pub pilot_side: u32,
     pub side: u32,
 }
 
 impl AreaSampling {
-    /// 32 pilot rays (16 on the rim), 256 in the penumbra.
-    pub const DEFAULT: AreaSampling = AreaSampling {
-        rim: 16,
-        pilot_side: 4,
-        side: 16,
-    };
+    /// 256 rays (16 × 16 strata) wherever something might block one.
+    pub const DEFAULT: AreaSampling = AreaSampling { side: 16 };
 
-    /// Four times the rays, pilot and full: the convergence check's `4N`.
+    /// Four times the rays (side doubled): the convergence check's `4N`.
     pub fn times_four(self) -> AreaSampling {
         AreaSampling {
-            rim: 4 * self.rim,
-            pilot_side: 2 * self.pilot_side,
             side: 2 * self.side,
         }
     }
 
-    /// The pilot's rays.
-    pub fn pilot_rays(self) -> u64 {
-        (self.rim + self.pilot_side * self.pilot_side) as u64
+    /// The rays a pixel that is sampled gets: `side²`.
+    pub fn rays(self) -> u64 {
+        (self.side * self.side) as u64
     }
 }
 // ANCHOR_END: sampling
@@ -132,8 +126,11 @@ fn jitter(pixel: u32, k: u32, round: u32) -> (f32, f32) {
 /// What one area-light query needs besides the rays' target: the point,
 /// its normal (facing the camera), and the light's centre.
 pub(crate) struct Query {
+    /// Where the rays start: the surface point, `lift` along `normal`.
     pub from: Vec3,
     pub normal: Vec3,
+    /// How far `from` is off the surface (the shadow offset).
+    pub lift: f32,
     pub pixel: u32,
     /// Toward the light: a point or spot light's position, or a
     /// directional light's unit vector toward it.
@@ -145,29 +142,43 @@ pub(crate) enum LightAt {
     Direction(Vec3),
 }
 
-// ANCHOR: area_visibility
-/// The fraction of `emitter` that `q.from` sees, and the rays it took.
-/// `blocked(dir, t_max)` casts one shadow ray (unit `dir`, length `t_max`,
-/// infinite for a direction); `margin` keeps a ray short of the light.
-pub(crate) fn visibility(
-    emitter: Emitter,
-    q: &Query,
-    sampling: AreaSampling,
-    margin: f32,
-    blocked: impl Fn(Vec3, f32) -> bool,
-) -> (f32, u64) {
-    let (centre, w) = match q.light {
-        LightAt::Position(p) => (Some(p), (p - q.from).normalize_or_zero()),
-        LightAt::Direction(d) => (None, d),
-    };
-    let (u, v) = basis(w);
-    // Whether the ray to the emitter's point (dx, dy) of the unit disk is
-    // blocked.
-    let ray = |dx: f32, dy: f32| -> bool {
-        let (dir, t_max) = match (emitter, centre) {
+impl Query {
+    /// The unit direction toward the emitter's centre, and the centre
+    /// itself for a light with a position.
+    fn axis(&self) -> (Vec3, Option<Vec3>) {
+        match self.light {
+            LightAt::Position(p) => ((p - self.from).normalize_or_zero(), Some(p)),
+            LightAt::Direction(d) => (d, None),
+        }
+    }
+
+    /// The cone that holds every ray toward `emitter`.
+    pub(crate) fn cone(&self, emitter: Emitter) -> RayCone {
+        let (w, centre) = self.axis();
+        let (half_angle, length) = match (emitter, centre) {
             (Emitter::Disk { radius }, Some(c)) => {
-                let target = c + radius * (dx * u + dy * v);
-                let to = target - q.from;
+                let l = (c - self.from).length();
+                (radius.atan2(l), l.hypot(radius))
+            }
+            (Emitter::Cone { one_minus_cos }, _) => {
+                // The widest ray [`Query::ray`] makes: its cosine, rounded
+                // in f32 (a few ulps lower, for a tiny sun's sake).
+                let cos = 1.0 - one_minus_cos * (1.0 + 4.0 * f32::EPSILON) - 2.0 * f32::EPSILON;
+                (cos.clamp(-1.0, 1.0).acos(), f32::INFINITY)
+            }
+            (Emitter::Disk { .. }, None) => (0.0, f32::INFINITY),
+        };
+        RayCone::new(self.from, self.normal, self.lift, w, half_angle, length)
+    }
+
+    /// The ray to the emitter's point `(dx, dy)` of the unit disk: unit
+    /// direction and length, `margin` short of a light with a position.
+    fn ray(&self, emitter: Emitter, dx: f32, dy: f32, margin: f32) -> (Vec3, f32) {
+        let (w, centre) = self.axis();
+        let (u, v) = basis(w);
+        match (emitter, centre) {
+            (Emitter::Disk { radius }, Some(c)) => {
+                let to = c + radius * (dx * u + dy * v) - self.from;
                 (to.normalize_or_zero(), to.length() - margin)
             }
             (Emitter::Cone { one_minus_cos }, _) => {
@@ -185,39 +196,67 @@ pub(crate) fn visibility(
             }
             // A disk needs a position; a cone, a direction (Emitter::of).
             (Emitter::Disk { .. }, None) => (w, f32::INFINITY),
-        };
-        // Below the tangent plane the receiver itself hides the emitter.
-        dir.dot(q.normal) <= 0.0 || (t_max > 0.0 && blocked(dir, t_max))
-    };
-    // Rays through a jittered point of each cell of an n × n pattern: how
-    // many reach the emitter.
-    let strata = |n: u32, round: u32| {
-        let seen = |k: u32| {
-            let (jx, jy) = jitter(q.pixel, k, round);
-            let (dx, dy) = concentric(
-                ((k % n) as f32 + jx) / n as f32,
-                ((k / n) as f32 + jy) / n as f32,
-            );
-            !ray(dx, dy)
-        };
-        (0..n * n).filter(|&k| seen(k)).count() as u64
-    };
-    // The pilot: the rim, turned by a random angle, and the strata inside.
-    let turn = jitter(q.pixel, u32::MAX, 2).0;
-    let rim = (0..sampling.rim)
-        .filter(|&k| {
-            let a = std::f32::consts::TAU * (k as f32 + turn) / sampling.rim as f32;
-            !ray(a.cos(), a.sin())
-        })
-        .count() as u64;
-    let pilot_rays = sampling.pilot_rays();
-    let seen = rim + strata(sampling.pilot_side, 0);
-    if seen == 0 || seen == pilot_rays {
-        return (if seen == 0 { 0.0 } else { 1.0 }, pilot_rays);
+        }
     }
+}
+
+/// What [`visibility`] found at one point for one light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Seen {
+    /// The fraction of the emitter the point sees.
+    pub visibility: f32,
+    /// The shadow rays cast.
+    pub rays: u64,
+    /// Whether part of the emitter is below the point's horizon.
+    pub horizon_clipped: bool,
+}
+
+impl Seen {
+    /// An empty cone above the horizon: the whole emitter, no ray.
+    pub const OPEN: Seen = Seen {
+        visibility: 1.0,
+        rays: 0,
+        horizon_clipped: false,
+    };
+}
+
+// ANCHOR: area_visibility
+/// The fraction of `emitter` that `q.from` sees. `may_block(cone)` is a
+/// conservative query: `false` only where no caster can cross a ray of
+/// `cone`. `blocked(dir, t_max)` casts one shadow ray (unit `dir`, length
+/// `t_max`, infinite for a direction); `margin` keeps a ray short of the
+/// light. V = 1 with no ray exactly where the cone is empty and above the
+/// horizon; any other point, whatever is in its cone, gets all `side²`
+/// strata.
+pub(crate) fn visibility(
+    emitter: Emitter,
+    q: &Query,
+    sampling: AreaSampling,
+    margin: f32,
+    may_block: impl Fn(&RayCone) -> bool,
+    blocked: impl Fn(Vec3, f32) -> bool,
+) -> Seen {
+    let cone = q.cone(emitter);
+    let horizon_clipped = cone.horizon_clipped();
+    if !horizon_clipped && !may_block(&cone) {
+        return Seen::OPEN;
+    }
+    // One ray through a jittered point of each cell of the n × n strata.
     let n = sampling.side;
-    let seen = strata(n, 1);
-    (seen as f32 / (n * n) as f32, pilot_rays + (n * n) as u64)
+    let seen = |k: u32| {
+        let (jx, jy) = jitter(q.pixel, k, 1);
+        let (sx, sy) = ((k % n) as f32 + jx, (k / n) as f32 + jy);
+        let (dx, dy) = concentric(sx / n as f32, sy / n as f32);
+        let (dir, t_max) = q.ray(emitter, dx, dy, margin);
+        // Below the tangent plane the receiver itself hides the emitter.
+        dir.dot(q.normal) > 0.0 && !(t_max > 0.0 && blocked(dir, t_max))
+    };
+    let lit = (0..n * n).filter(|&k| seen(k)).count();
+    Seen {
+        visibility: lit as f32 / (n * n) as f32,
+        rays: sampling.rays(),
+        horizon_clipped,
+    }
 }
 // ANCHOR_END: area_visibility
 

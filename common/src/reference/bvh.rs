@@ -11,6 +11,10 @@
 //!   misses every box. A straight-down light gives exactly such a ray, so we
 //!   turn `-0.0` into `+0.0` and clamp `1/d` at `±1e30` instead.
 //!
+//! Beside rays, [`Bvh::may_block`] asks whether anything might cross a
+//! cone of rays (an area light's, [`crate::reference::cone`]), walking the
+//! same tree's boxes.
+//!
 //! The triangle test is double-sided Möller–Trumbore. Its barycentric bounds
 //! are widened by [`EDGE_EPSILON`] (relative to the triangle), so neighbours
 //! overlap a hair and a ray through a shared edge hits at least one of them.
@@ -20,6 +24,8 @@ use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
 use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
+
+use crate::reference::cone::RayCone;
 
 /// The BVH refuses a vertex beyond `±MAX_COORD` (or a non-finite one): obvhs
 /// computes box areas in `f32`, and past about 1e19 they overflow and its
@@ -72,6 +78,11 @@ impl PreparedTri {
             e1: Vec3A::from(t[1]) - v0,
             e2: Vec3A::from(t[2]) - v0,
         }
+    }
+
+    /// The three corners.
+    fn corners(&self) -> [Vec3; 3] {
+        [self.v0, self.v0 + self.e1, self.v0 + self.e2].map(Vec3::from)
     }
 
     /// Distance `t` in `[t_min, t_max]` where the ray crosses either face,
@@ -241,6 +252,41 @@ impl Bvh {
             }
         });
         !missed
+    }
+
+    /// Whether a triangle other than `skip_tri` might cross a ray of
+    /// `cone` ([`RayCone`]: its tests are conservative, so `false` means
+    /// that no ray of the cone leaving above its horizon can hit one).
+    /// Walks obvhs' tree with its (outward-rounded) child boxes.
+    pub fn may_block(&self, cone: &RayCone, skip_tri: Option<u32>) -> bool {
+        if self.cwbvh.nodes.is_empty() {
+            return false;
+        }
+        let mut stack = Vec::with_capacity(32);
+        stack.push(0u32);
+        while let Some(n) = stack.pop() {
+            let node = &self.cwbvh.nodes[n as usize];
+            for child in (0..8).filter(|&c| !node.is_child_empty(c)) {
+                let b = node.child_aabb(child);
+                if !cone.may_touch_box(b.min.into(), b.max.into()) {
+                    continue;
+                }
+                if !node.is_leaf(child) {
+                    stack.push(node.child_node_index(child));
+                    continue;
+                }
+                let (first, count) = node.child_primitives(child);
+                for i in first as usize..(first + count) as usize {
+                    let i = self.cwbvh.primitive_indices[i] as usize;
+                    if Some(self.ids[i]) != skip_tri
+                        && cone.may_hit_triangle(self.tris[i].corners())
+                    {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
     }
 }
 

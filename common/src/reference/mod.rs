@@ -12,15 +12,19 @@
 //!   (N·L <= 0) is in its own shadow: visibility 0, no ray is cast.
 //!
 //! A light with a size (lesson 10) gets a fractional visibility: the share
-//! of its emitter the point sees, by stratified rays ([`area`]).
+//! of its emitter the point sees, by stratified rays ([`area`]), cast
+//! wherever a conservative query of the BVH finds a caster in the cone of
+//! those rays ([`cone`]); V = 1 without a ray where it finds none.
 //!
 //! Beside the reference:
 //! - [`area`]: the soft shadow of an area light, by stratified rays.
 //! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
+//! - [`cone`]: the cone of an area light's rays, and what might block it.
 //! - [`metrics`]: error of a GPU visibility image against the reference.
 
 pub mod area;
 pub mod bvh;
+pub mod cone;
 pub mod metrics;
 pub mod soft_metrics;
 
@@ -31,6 +35,7 @@ use rayon::prelude::*;
 
 use crate::reference::area::{AreaSampling, Emitter, LightAt, Query};
 use crate::reference::bvh::Bvh;
+use crate::reference::cone::RayCone;
 use crate::scene::{LightKind, Scene};
 
 /// Shadow-ray start offset, as a fraction of the scene's bounding diagonal.
@@ -67,10 +72,17 @@ pub struct Reference {
     pub lit_by: Vec<Vec<f32>>,
     /// `area_light[k]`: whether light `k` has a size (a soft shadow).
     pub area_light: Vec<bool>,
+    /// `horizon_clipped[k][pixel]`: for a light with a size, whether part
+    /// of its emitter is below the point's tangent plane (the surface
+    /// itself hides that part). Such a point got the full strata whatever
+    /// is in the way if it faces the light's centre, and V = 0 with no ray
+    /// if it does not. False for a hard light and where nothing was hit.
+    pub horizon_clipped: Vec<Vec<bool>>,
     /// Wall-clock time of [`render_reference`], BVH builds included.
     pub ms: f64,
-    /// Shadow rays cast, all lights: one per receiver and hard light, a
-    /// pilot and maybe a full pattern per receiver and area light.
+    /// Shadow rays cast, all lights: one per receiver and hard light; per
+    /// receiver and area light, none where nothing is in the cone toward
+    /// the emitter (V = 1), else the full strata.
     pub shadow_rays: u64,
 }
 
@@ -225,15 +237,28 @@ impl Occluders {
         })
     }
 
+    /// The casters' tree, and scene triangle `skip`'s index in it.
+    fn tree<'a>(&'a self, primary: &'a Bvh, skip: u32) -> (&'a Bvh, Option<u32>) {
+        match &self.bvh {
+            None => (primary, Some(skip)),
+            Some(bvh) => (
+                bvh,
+                Some(self.local[skip as usize]).filter(|&l| l != u32::MAX),
+            ),
+        }
+    }
+
     /// Whether a caster other than scene triangle `skip` crosses the ray.
     fn blocked(&self, primary: &Bvh, from: Vec3, dir: Vec3, t_max: f32, skip: u32) -> bool {
-        match &self.bvh {
-            None => primary.any_hit(from, dir, 0.0, t_max, Some(skip)),
-            Some(bvh) => {
-                let skip = Some(self.local[skip as usize]).filter(|&l| l != u32::MAX);
-                bvh.any_hit(from, dir, 0.0, t_max, skip)
-            }
-        }
+        let (bvh, skip) = self.tree(primary, skip);
+        bvh.any_hit(from, dir, 0.0, t_max, skip)
+    }
+
+    /// Whether a caster other than scene triangle `skip` might cross a ray
+    /// of `cone` (conservative: `false` only where none can).
+    fn may_block(&self, primary: &Bvh, cone: &RayCone, skip: u32) -> bool {
+        let (bvh, skip) = self.tree(primary, skip);
+        bvh.may_block(cone, skip)
     }
 }
 
@@ -312,46 +337,57 @@ pub fn try_render_reference_with(
     let origin = scene.origin();
     let mut visibility = Vec::with_capacity(scene.lights.len());
     let mut lit_by = Vec::with_capacity(scene.lights.len());
+    let mut horizon_clipped = Vec::with_capacity(scene.lights.len());
     let mut shadow_rays = 0u64;
     for scene_light in &scene.lights {
         let light = LightRel::new(&scene_light.kind, origin);
         let emitter = Emitter::of(scene_light.size);
-        let per_pixel: Vec<(f32, f32, u64)> = hits
+        let per_pixel: Vec<(f32, f32, u64, bool)> = hits
             .par_iter()
             .enumerate()
             .with_min_len(256)
             .map(|(pixel, hit)| {
-                let Some(h) = hit else { return (0.0, 0.0, 0) };
+                let Some(h) = hit else {
+                    return (0.0, 0.0, 0, false);
+                };
                 let (n_dot_l, inside) = light.n_dot_l(h.position, h.normal);
                 if n_dot_l.is_nan() || n_dot_l <= 0.0 {
-                    return (0.0, 0.0, 0); // faces away from the light: its own shadow
+                    // Faces away from the light: its own shadow (and an
+                    // emitter's centre below the horizon).
+                    return (0.0, 0.0, 0, emitter.is_some());
                 }
                 // Off the surface on the camera's side, then straight at the light.
                 let from = h.position + h.normal * offset;
                 let blocked =
                     |dir: Vec3, t_max: f32| occluders.blocked(&bvh, from, dir, t_max, h.triangle);
-                let (v, rays) = match emitter {
+                let (v, rays, clipped) = match emitter {
                     None => {
                         let (dir, t_max) = light.shadow_ray(from, offset);
                         let v = !(t_max > 0.0 && blocked(dir, t_max));
-                        (if v { 1.0 } else { 0.0 }, 1)
+                        (if v { 1.0 } else { 0.0 }, 1, false)
                     }
                     Some(emitter) => {
                         let q = Query {
                             from,
                             normal: h.normal,
+                            lift: offset,
                             pixel: pixel as u32,
                             light: light.at(),
                         };
-                        area::visibility(emitter, &q, sampling, offset, blocked)
+                        let may_block =
+                            |cone: &RayCone| occluders.may_block(&bvh, cone, h.triangle);
+                        let seen =
+                            area::visibility(emitter, &q, sampling, offset, may_block, blocked);
+                        (seen.visibility, seen.rays, seen.horizon_clipped)
                     }
                 };
-                (v, if inside { n_dot_l } else { 0.0 }, rays)
+                (v, if inside { n_dot_l } else { 0.0 }, rays, clipped)
             })
             .collect();
         shadow_rays += per_pixel.iter().map(|p| p.2).sum::<u64>();
         visibility.push(per_pixel.iter().map(|p| p.0).collect());
         lit_by.push(per_pixel.iter().map(|p| p.1).collect());
+        horizon_clipped.push(per_pixel.iter().map(|p| p.3).collect());
     }
 
     let ms = start.elapsed().as_secs_f64() * 1e3;
@@ -362,6 +398,7 @@ pub fn try_render_reference_with(
         visibility,
         lit_by,
         area_light: scene.lights.iter().map(|l| l.size.is_area()).collect(),
+        horizon_clipped,
         ms,
         shadow_rays,
     })

@@ -18,6 +18,7 @@ fn reference(w: u32, h: u32, pixels: &[(Option<u32>, f32, f32)]) -> Reference {
         visibility: vec![pixels.iter().map(|&(_, v, _)| v).collect()],
         lit_by: vec![pixels.iter().map(|&(_, _, l)| l).collect()],
         area_light: vec![false],
+        horizon_clipped: vec![vec![false; pixels.len()]],
         ms: 0.0,
         shadow_rays: 0,
     }

@@ -401,3 +401,97 @@ fn reference_timing_10k_triangles_720p() {
         .count();
     println!("{triangles} triangles, {} threads, 1280x720: {runs:.1?} ms; {covered} covered, {shadowed} shadowed receivers", rayon::current_num_threads());
 }
+
+/// A disk light of radius 0.1 over the plane, 1 up, with and without a
+/// small cube between: rays only where the cube is in a pixel's cone.
+#[test]
+fn an_area_light_casts_rays_only_where_a_caster_is_in_the_cone() {
+    let cube_at = |y: f64| {
+        object(
+            cube(),
+            DMat4::from_scale_rotation_translation(
+                DVec3::splat(0.1),
+                Default::default(),
+                DVec3::new(0.0, y, 0.0),
+            ),
+            true,
+        )
+    };
+    let light = LightKind::Point {
+        position: DVec3::new(0.0, 1.0, 0.0),
+        range: 10.0,
+    };
+    let render_with = |objects: Vec<Object>| {
+        let mut s = scene(objects, vec![light], DVec3::new(0.3, 1.5, 1.5), DVec3::ZERO);
+        s.lights[0].size = LightSize::Radius(0.1);
+        render(&s, 120, 90)
+    };
+    // The plane alone: lit everywhere, no ray, nothing below a horizon.
+    let r = render_with(vec![object(plane(), DMat4::IDENTITY, true)]);
+    assert_eq!(r.shadow_rays, 0);
+    assert!(r.horizon_clipped[0].iter().all(|&c| !c));
+    let plane_pixels = r.hits.iter().filter(|h| h.is_some()).count();
+    assert!(r.visibility[0]
+        .iter()
+        .zip(&r.hits)
+        .all(|(&v, h)| h.is_none() || v == 1.0));
+    // A cube 0.3 up: the strata where it is in the cone, none elsewhere.
+    let r = render_with(vec![object(plane(), DMat4::IDENTITY, true), cube_at(0.3)]);
+    let full = AreaSampling::DEFAULT.rays();
+    assert_eq!(r.shadow_rays % full, 0);
+    let sampled = r.shadow_rays / full;
+    let soft = (0..r.hits.len())
+        .filter(|&p| r.lit_by[0][p] > 0.0 && r.visibility[0][p] < 1.0)
+        .count() as u64;
+    assert!(
+        soft > 50 && sampled >= soft,
+        "{soft} in shadow, {sampled} sampled"
+    );
+    assert!(sampled < plane_pixels as u64 / 2, "{sampled} sampled");
+    // The cube's sides face away from the emitter's centre: its horizon
+    // hides at least half of the emitter.
+    let clipped = r.horizon_clipped[0].iter().filter(|&&c| c).count();
+    assert!(clipped > 0, "the cube's sides are flagged");
+}
+
+/// The soft-shadow reference's cost on lesson 10's scenes: time and shadow
+/// rays, at 640×360 (and 1280×720 with `REFERENCE_COST_720P` set), best
+/// of three runs.
+/// `cargo test --release -p common --lib -- --ignored --nocapture reference_cost_lesson_10`
+#[test]
+#[ignore = "timing, run by hand"]
+fn reference_cost_lesson_10_scenes() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let mut names: Vec<_> = std::fs::read_dir(&root)
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.starts_with("lesson_10") && n.ends_with(".toml"))
+        .collect();
+    names.sort();
+    let sizes: &[(u32, u32)] = match std::env::var("REFERENCE_COST_720P") {
+        Ok(_) => &[(640, 360), (1280, 720)],
+        Err(_) => &[(640, 360)],
+    };
+    for &(w, h) in sizes {
+        for name in &names {
+            let s = Scene::load(&root.join(name)).unwrap();
+            let vp = crate::scene::camera::camera_matrices(&s, w, h).view_proj;
+            let runs: Vec<Reference> = (0..3).map(|_| render_reference(&s, vp, w, h)).collect();
+            let best = runs.iter().map(|r| r.ms).fold(f64::INFINITY, f64::min);
+            let r = &runs[0];
+            // Receivers of each area light: in its penumbra, its umbra.
+            let (mut soft, mut umbra) = (0, 0);
+            for k in (0..s.lights.len()).filter(|&k| r.area_light[k]) {
+                for p in (0..r.hits.len()).filter(|&p| r.lit_by[k][p] > 0.0) {
+                    let v = r.visibility[k][p];
+                    soft += usize::from(v > 0.0 && v < 1.0);
+                    umbra += usize::from(v == 0.0);
+                }
+            }
+            println!(
+                "{name} {w}x{h}: {best:.0} ms (best of 3), {} shadow rays; receivers: {soft} with 0 < V < 1, {umbra} with V = 0",
+                r.shadow_rays
+            );
+        }
+    }
+}
