@@ -177,7 +177,7 @@ fn derived_tables_are_the_tables_their_records_make() {
         ),
         (
             "choosing/peers.md".to_string(),
-            choosing::peers(&records, Some(convergence.reference_error())),
+            choosing::peers(&records, Some(&convergence.errors_by_scene())),
         ),
         (
             "choosing/volumes_build.md".to_string(),

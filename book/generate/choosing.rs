@@ -15,7 +15,11 @@ use crate::table::{count, pct, row, stat, time_cells};
 /// Writes `generated/choosing/{families,peers,volumes_build}.md`.
 /// `reference_error`: the soft reference's own sampling error, in % of V
 /// (chapter 10's convergence), under which two soft errors do not differ.
-pub fn write_all(generated: &Path, records: &[Record], reference_error: Option<f64>) -> Result<()> {
+pub fn write_all(
+    generated: &Path,
+    records: &[Record],
+    reference_error: Option<&crate::lesson10::ReferenceErrors>,
+) -> Result<()> {
     let dir = generated.join("choosing");
     std::fs::create_dir_all(&dir)?;
     let files = [
@@ -151,7 +155,7 @@ const FAMILIES_LEGEND: &[(&str, &str)] = &[
 /// Each peer's default beside ours, on every scene of its lesson. A soft
 /// shadow's difference below `reference_error` (the exact reference's own
 /// sampling error, % of V) names no better one.
-pub fn peers(records: &[Record], reference_error: Option<f64>) -> String {
+pub fn peers(records: &[Record], reference_error: Option<&crate::lesson10::ReferenceErrors>) -> String {
     let mut s = caption(
         records,
         "each scene of the lesson, in the row's measure: misclassified % of receiver pixels, or for a soft shadow the mean |ΔV| over the reference's penumbra, in %; difference in percentage points (peer − ours)",
@@ -180,10 +184,9 @@ pub fn peers(records: &[Record], reference_error: Option<f64>) -> String {
         }
     }
     let better = match reference_error {
-        Some(e) => format!(
-            "{}; for a soft shadow, `within the reference's error` where the two differ by less than the exact reference's own sampling error, {} % of V (the largest mean \\|V_N − V_4N\\| of chapter 10's convergence table, its default and contact scenes)",
+        Some(_) => format!(
+            "{}; for a soft shadow, `within the reference's error` where the two differ by less than the exact reference's own sampling error on that row's scene, in % of V (its mean \\|V_N − V_4N\\| in chapter 10's convergence table; the largest of them for the default scene's other sizes)",
             BETTER,
-            pct(e)
         ),
         None => BETTER.to_string(),
     };
@@ -215,7 +218,7 @@ fn peer_cells(
     r: &Record,
     theirs: &VariantRecord,
     ours: &VariantRecord,
-    reference_error: Option<f64>,
+    reference_error: Option<&crate::lesson10::ReferenceErrors>,
 ) -> Vec<String> {
     let (a, b) = (theirs.error_pct(), ours.error_pct());
     let d = a - b;
@@ -223,7 +226,7 @@ fn peer_cells(
     // The tables print three decimals: a smaller difference is no difference.
     let better = if d.abs() < 0.0005 {
         "equal".to_string()
-    } else if soft && reference_error.is_some_and(|e| d.abs() < e) {
+    } else if soft && reference_error.is_some_and(|e| d.abs() < e.of(&r.scene)) {
         // The soft reference's own sampling could make a difference this size.
         "within the reference's error".to_string()
     } else if d > 0.0 {

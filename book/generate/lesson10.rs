@@ -22,13 +22,23 @@ use serde::{Deserialize, Serialize};
 use crate::record::Record;
 use crate::table::{count, ms, pct, row};
 
-/// The scenes the convergence is measured on: the default scene and the
-/// contact case (penumbrae that shrink to nothing), with their titles.
+/// The scenes the convergence is measured on: every scene chapter 10
+/// runs, with their titles; each scene's ranking threshold is its own row.
 pub const SCENES: &[(&str, &str)] = &[
     ("scenes/lesson_10.toml", "default scene"),
     (
         "scenes/lesson_10_contact.toml",
         "cube and sphere resting on the floor, a 2° sun",
+    ),
+    ("scenes/lesson_10_large_light.toml", "a spot light of 1 m radius"),
+    (
+        "scenes/lesson_10_overlap.toml",
+        "blockers at two heights side by side",
+    ),
+    ("scenes/lesson_10_thin.toml", "a thin sheet's edge over a box"),
+    (
+        "scenes/lesson_10_grazing.toml",
+        "a 1° sun 80° from the floor's normal",
     ),
 ];
 
@@ -95,6 +105,37 @@ impl Convergence {
             .iter()
             .map(|r| 100.0 * r.mean_abs)
             .fold(0.0, f64::max)
+    }
+
+    /// Each scene's own sampling error, in % of V, by the scene as a
+    /// record names it (`default` for the lesson's default scene, at any
+    /// size): the threshold a ranking on that scene uses.
+    pub fn errors_by_scene(&self) -> ReferenceErrors {
+        let mut by_scene: std::collections::BTreeMap<String, f64> = (self.rows.iter())
+            .map(|r| (r.scene.clone(), 100.0 * r.mean_abs))
+            .collect();
+        if let Some(own) = self.rows.iter().find(|r| r.scene == SCENES[0].0) {
+            by_scene.insert("default".into(), 100.0 * own.mean_abs);
+        }
+        ReferenceErrors {
+            by_scene,
+            largest: self.reference_error(),
+        }
+    }
+}
+
+/// The soft reference's own sampling error per scene (% of V), and the
+/// largest, for a scene the convergence table has no row of.
+#[derive(Clone, Debug)]
+pub struct ReferenceErrors {
+    pub by_scene: std::collections::BTreeMap<String, f64>,
+    pub largest: f64,
+}
+
+impl ReferenceErrors {
+    /// The threshold for a ranking on `scene`.
+    pub fn of(&self, scene: &str) -> f64 {
+        self.by_scene.get(scene).copied().unwrap_or(self.largest)
     }
 }
 

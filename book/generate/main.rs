@@ -253,7 +253,7 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     // Chapter 10's convergence first: the peers table reads its figure.
     let convergence =
         lesson10::write_all(root, generated, &records, manifest::WIDTH, manifest::HEIGHT)?;
-    choosing::write_all(generated, &records, Some(convergence.reference_error()))?;
+    choosing::write_all(generated, &records, Some(&convergence.errors_by_scene()))?;
     volumes_gpu::write(root, generated)?;
     gpu_costs::write(root, generated)?;
     scaling::write_tables(root)?;

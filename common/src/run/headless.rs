@@ -139,8 +139,9 @@ pub fn run_headless<L: Lesson>(
         let mut per_light = Vec::new();
         for k in 0..sg.scene.lights.len() {
             let vis = &images.visibility[k];
-            // The reference flags no horizon-clipped receivers yet.
-            let cmp = metrics::compare(&reference, k, &images.id, vis, None);
+            // Receivers below their own horizon for part of the emitter: apart.
+            let clipped = reference.horizon_clipped.get(k).map(Vec::as_slice);
+            let cmp = metrics::compare(&reference, k, &images.id, vis, clipped);
             save(
                 &metrics::visibility_image(&images.id, vis, w, h),
                 &out_dir.join(format!("{v}_visibility_l{k}.png")),

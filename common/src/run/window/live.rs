@@ -228,8 +228,9 @@ fn measure(reference: &Reference, frame: &FrameImages) -> (ErrorStats, RgbaImage
     let mut per_light = Vec::new();
     let mut diff = None;
     for (k, vis) in frame.visibility.iter().enumerate() {
-        // The reference flags no horizon-clipped receivers yet.
-        let c = compare(reference, k, &frame.id, vis, None);
+        // Receivers below their own horizon for part of the emitter: apart.
+        let clipped = reference.horizon_clipped.get(k).map(Vec::as_slice);
+        let c = compare(reference, k, &frame.id, vis, clipped);
         per_light.push(c.stats);
         diff.get_or_insert(c.diff);
     }
