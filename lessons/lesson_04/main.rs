@@ -62,20 +62,13 @@ enum Variant {
     Clipped1024,
     #[value(name = "no_range_clamp_1024")]
     NoRangeClamp1024,
-    /// LearnOpenGL "Point Shadows": distance / 25 stored in a cube clipped
-    /// at near 1 and far 25, one nearest tap, `bias = 0.05` world units
-    /// ([`peers::LEARNOPENGL_1TAP`]; its source lines:
-    /// `port_cards::LEARNOPENGL_1TAP`).
+    /// The renderers' point shadows, each on its own cube ([`peers`]; their
+    /// source lines: `port_cards`). LearnOpenGL, one tap and its 20-tap disk:
     #[value(name = "learnopengl_1tap")]
     LearnOpenGl1Tap,
-    /// LearnOpenGL's soft version: the same cube, `bias = 0.15` and 20 taps
-    /// on a disk of `(1 + viewDistance / far_plane) / 25` world units
-    /// ([`peers::LEARNOPENGL_PCF20`], `port_cards::LEARNOPENGL_PCF20`).
     #[value(name = "learnopengl_pcf20")]
     LearnOpenGlPcf20,
-    /// Bevy's `PointLight` defaults: hardware depth clipped at near 0.1,
-    /// depth bias 0.08, normal bias 0.6, the Gaussian filter
-    /// ([`peers::BEVY_POINT`], `port_cards::BEVY_POINT`).
+    /// Bevy's `PointLight` defaults and its Gaussian filter.
     #[value(name = "bevy_point")]
     BevyPoint,
     /// The chapter's exercises (`exercises.rs`, `exercises.wgsl`), run only when named.
@@ -99,7 +92,7 @@ struct Settings {
     /// Skip out-of-range casters, and per face the casters this test says
     /// the face cannot see (the unculled frame must match); `None`: no culling.
     cull: Option<FaceTest>,
-    /// The faces' near plane (m), and their far plane (m; `None`: the light's range).
+    /// The faces' near and far planes (m; `None`: the light's range).
     near: f64,
     far: Option<f64>,
     /// Near-plane clipping off (DEPTH_CLIP_CONTROL) so casters nearer than it still cast.
@@ -129,19 +122,12 @@ const BASE: Settings = Settings {
 
 /// A renderer's defaults: its own cube, planes and world-space bias, none
 /// of ours (the culling stays: it changes no pixel).
+#[rustfmt::skip]
 const fn port(p: Port) -> Settings {
     Settings {
-        size: p.size,
-        storage: p.storage,
-        bias_texels: 0.0,
-        slope: 0.0,
-        bias_world: p.bias_world,
-        near: p.near,
-        far: p.far,
-        unclipped: !p.clipped,
-        clamp_range: p.clamp_range,
-        peer: p.lookup,
-        ..BASE
+        size: p.size, storage: p.storage, near: p.near, far: p.far, unclipped: !p.clipped,
+        bias_world: p.bias_world, bias_texels: 0.0, slope: 0.0,
+        clamp_range: p.clamp_range, peer: p.lookup, ..BASE
     }
 }
 
@@ -179,8 +165,7 @@ impl Variant {
 /// `pcf3d_slope1_1024` keeps the baseline's 1 and shows what that costs.
 const PCF3D_RADIUS: f32 = 1.5;
 
-/// The lesson's near plane of every face; 1 mm where DEPTH_CLIP_CONTROL
-/// is missing (for the variants that keep casters inside it).
+/// The lesson's near plane of every face; 1 mm where DEPTH_CLIP_CONTROL is missing.
 const NEAR: f64 = 0.05;
 const NEAR_FALLBACK: f64 = 0.001;
 // ANCHOR_END: variants
