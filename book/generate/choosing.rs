@@ -155,7 +155,10 @@ const FAMILIES_LEGEND: &[(&str, &str)] = &[
 /// Each peer's default beside ours, on every scene of its lesson. A soft
 /// shadow's difference below `reference_error` (the exact reference's own
 /// sampling error, % of V) names no better one.
-pub fn peers(records: &[Record], reference_error: Option<&crate::lesson10::ReferenceErrors>) -> String {
+pub fn peers(
+    records: &[Record],
+    reference_error: Option<&crate::lesson10::ReferenceErrors>,
+) -> String {
     let mut s = caption(
         records,
         "each scene of the lesson, in the row's measure: misclassified % of receiver pixels, or for a soft shadow the mean |ΔV| over the reference's penumbra, in %; difference in percentage points (peer − ours)",

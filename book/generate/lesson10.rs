@@ -30,12 +30,18 @@ pub const SCENES: &[(&str, &str)] = &[
         "scenes/lesson_10_contact.toml",
         "cube and sphere resting on the floor, a 2° sun",
     ),
-    ("scenes/lesson_10_large_light.toml", "a spot light of 1 m radius"),
+    (
+        "scenes/lesson_10_large_light.toml",
+        "a spot light of 1 m radius",
+    ),
     (
         "scenes/lesson_10_overlap.toml",
         "blockers at two heights side by side",
     ),
-    ("scenes/lesson_10_thin.toml", "a thin sheet's edge over a box"),
+    (
+        "scenes/lesson_10_thin.toml",
+        "a thin sheet's edge over a box",
+    ),
     (
         "scenes/lesson_10_grazing.toml",
         "a 1° sun 80° from the floor's normal",

@@ -5,6 +5,7 @@
 //! and `--knob`.
 
 pub mod knobs;
+pub mod light_geometry;
 pub mod moments;
 pub mod peers;
 pub mod port_cards;

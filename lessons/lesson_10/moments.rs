@@ -7,8 +7,32 @@ use common::gpu::bindings::{self, storage_entry, texture_entry};
 use common::gpu::Gpu;
 
 use crate::lesson_01::shadow_map::ShadowMap;
-use crate::lesson_10::peers::ThreeVsmBlur;
-use crate::lesson_10::soft::{LightGeometry, Variance};
+use crate::lesson_10::light_geometry::LightGeometry;
+
+/// A variance map's choices.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Variance {
+    /// The box blur's radius, texels (0: the moments, bilinearly).
+    pub blur: u32,
+    /// `Some(c)`: exponential moments of `exp(c (2 z̃ − 1))`.
+    pub exponent: Option<f32>,
+    /// `Some(c⁻)`: also those of `−exp(−c⁻ (2 z̃ − 1))`, the bound the
+    /// lower of the two (EVSM4); `None`: the positive warp alone (EVSM2).
+    pub negative: Option<f32>,
+    /// The least variance (plain), or the least variance over the warped
+    /// receiver depth squared (exponential).
+    pub min_variance: f32,
+    /// The light-bleeding cut: `linstep(lo, hi, p)`; `(0, 1)` is none.
+    pub bleed: (f32, f32),
+}
+
+/// three.js's variance map (`VSMShadowMap`): the (mean, standard deviation)
+/// of `samples` depths over ±`radius` texels, along y then along x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThreeVsmBlur {
+    pub samples: u32,
+    pub radius: f32,
+}
 
 /// `Blur` in `moments.wgsl`.
 #[repr(C)]

@@ -4,7 +4,9 @@
 //! the file, commit and lines, is on its card ([`super::port_cards`]);
 //! `tests/port_cards_lesson_10.rs` checks the two against each other.
 
-use super::soft::{LightGeometry, SoftUniform, Variance, LESSON_MAP_SIZE};
+use super::light_geometry::LightGeometry;
+pub use super::moments::ThreeVsmBlur;
+use super::moments::Variance;
 
 /// A renderer's soft shadow, as its source runs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,14 +34,6 @@ pub enum Peer {
     ThreeVsm(Variance, ThreeVsmBlur),
 }
 
-/// three.js's variance map (`VSMShadowMap`): the (mean, standard deviation)
-/// of `samples` depths over ±`radius` texels, along y then along x.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ThreeVsmBlur {
-    pub samples: u32,
-    pub radius: f32,
-}
-
 /// Filament's `shadowBulbRadius` default (LightManager.java), metres.
 pub const FILAMENT_BULB_RADIUS: f32 = 0.02;
 /// Filament's default shadow map (`ShadowOptions::mapSize`).
@@ -55,6 +49,8 @@ pub const BEVY_POINT_MAP_SIZE: u32 = 1024;
 pub const BEVY_PCSS_TAPS: u32 = 8;
 /// Godot's Soft Low: 8 penumbra taps (`directional_soft_shadow_filter_set_quality`).
 pub const GODOT_SOFT_LOW_TAPS: u32 = 8;
+/// Godot's atlas and splits are not emulated: the lesson's 1024² map.
+pub const GODOT_MAP_SIZE: u32 = 1024;
 /// Godot's `shadow_blur` default: the soft shadow's scale.
 pub const GODOT_SHADOW_BLUR: f32 = 1.0;
 /// three.js's `LightShadow` defaults: `mapSize` 512, `radius` 1,
@@ -186,35 +182,68 @@ impl Peer {
             Peer::BevyPcss { .. } => BEVY_POINT_MAP_SIZE,
             Peer::BevyCastano => BEVY_DIRECTIONAL_MAP_SIZE,
             // Godot's atlas is not emulated: the lesson's map (its card).
-            Peer::GodotSoft { .. } => LESSON_MAP_SIZE,
+            Peer::GodotSoft { .. } => GODOT_MAP_SIZE,
             Peer::ThreePcfSoft | Peer::ThreeVsm(..) => THREEJS_MAP_SIZE,
             Peer::FilamentEvsm(_) => FILAMENT_MAP_SIZE,
         }
     }
 
-    /// The port's parameters in the lit pass's uniform.
-    pub fn set_uniform(self, u: &mut SoftUniform, g: &LightGeometry) {
+    /// The port's parameters, as the lit pass's uniform takes them.
+    pub fn params(self) -> PeerParams {
+        let none = PeerParams {
+            taps: 0,
+            receiver_plane: false,
+            size: None,
+            scale: 0.0,
+            variance: None,
+            mean_and_deviation: false,
+        };
         match self {
-            Peer::FilamentPcss { bulb_radius } => {
-                u.size = bulb_radius;
-                u.receiver_plane = 1;
-            }
-            Peer::BevyPcss { light_size } => u.size = light_size,
-            Peer::BevyCastano | Peer::ThreePcfSoft => u.receiver_plane = 1,
-            Peer::GodotSoft { taps, size, scale } => {
-                u.search_taps = taps;
-                u.filter_taps = taps;
-                u.size = size;
-                u.scale = scale;
-                u.far = g.far;
-            }
-            Peer::FilamentEvsm(v) => u.set_variance(&v),
-            Peer::ThreeVsm(v, _) => {
-                u.set_variance(&v);
-                u.mean_and_deviation = 1;
-            }
+            Peer::FilamentPcss { bulb_radius } => PeerParams {
+                size: Some(bulb_radius),
+                receiver_plane: true,
+                ..none
+            },
+            Peer::BevyPcss { light_size } => PeerParams {
+                size: Some(light_size),
+                ..none
+            },
+            Peer::BevyCastano | Peer::ThreePcfSoft => PeerParams {
+                receiver_plane: true,
+                ..none
+            },
+            Peer::GodotSoft { taps, size, scale } => PeerParams {
+                taps,
+                size: Some(size),
+                scale,
+                ..none
+            },
+            Peer::FilamentEvsm(v) => PeerParams {
+                variance: Some(v),
+                ..none
+            },
+            Peer::ThreeVsm(v, _) => PeerParams {
+                variance: Some(v),
+                mean_and_deviation: true,
+                ..none
+            },
         }
     }
+}
+
+/// What a port sets in the lit pass's uniform (`soft.rs` `SoftUniform`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PeerParams {
+    /// Search and filter taps (Godot's, which its shader reads).
+    pub taps: u32,
+    pub receiver_plane: bool,
+    /// The renderer's own light size, in its units; `None`: the scene's.
+    pub size: Option<f32>,
+    /// A second size (Godot's soft_shadow_scale).
+    pub scale: f32,
+    pub variance: Option<Variance>,
+    /// three.js's moments: (mean, standard deviation).
+    pub mean_and_deviation: bool,
 }
 
 /// Godot's soft-shadow size for light geometry `g`: a spot's

@@ -19,9 +19,6 @@ pub use crate::reference::soft_metrics::*;
 /// Receivers face the light at least this much (geometric N·L).
 pub const RECEIVER_MIN_N_DOT_L: f32 = 0.05;
 
-/// A pixel counts as lit from this visibility up.
-pub const LIT_THRESHOLD: f32 = 0.5;
-
 /// The pixels that are receivers of some light in the reference alone
 /// (geometry hit, N·L above [`RECEIVER_MIN_N_DOT_L`] inside the light's
 /// reach): with none, no error figure means anything.

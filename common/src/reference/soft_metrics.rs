@@ -8,10 +8,10 @@
 
 use serde::Serialize;
 
-#[allow(unused_imports)]
-use crate::reference::metrics::{ErrorStats, LIT_THRESHOLD};
+/// A pixel counts as lit from this visibility up.
+pub const LIT_THRESHOLD: f32 = 0.5;
 // ANCHOR: soft_error
-/// The error of a soft shadow (an area light), beside [`ErrorStats`]' figures
+/// The error of a soft shadow (an area light), beside `ErrorStats`' figures
 /// over all receivers, per class of receiver.
 ///
 /// Every receiver of the light falls in exactly one class, by the exact
@@ -413,3 +413,7 @@ fn squared_distance_1d(f: &[f64], out: &mut [f64]) {
         *o = d * d + f[roots[k]];
     }
 }
+
+#[cfg(test)]
+#[path = "unit_tests/soft_metrics.rs"]
+mod tests;
