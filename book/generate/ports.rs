@@ -24,7 +24,37 @@ pub fn lessons() -> Vec<(&'static str, &'static [PortCard])> {
 /// The table of `cards` ([`common::ports::departures_table`]): each
 /// departure with why, then each port's files at their commits.
 pub fn table(cards: &[PortCard]) -> String {
-    common::ports::departures_table(cards)
+    let text = common::ports::departures_table(cards);
+    let (departures, sources) = text.split_once("\n\n").unwrap_or((&text, ""));
+    let mut out = format!("{}\n{}", departures.trim_end(), legend(DEPARTURE_COLUMNS));
+    if !sources.trim().is_empty() {
+        out += &format!("\n{}\n{}", sources.trim_end(), legend(SOURCE_COLUMNS));
+    }
+    out
+}
+
+/// The departures table's columns.
+const DEPARTURE_COLUMNS: &[(&str, &str)] = &[
+    ("variant", "the lesson's variant that ports a renderer's default (its `--variant` name)"),
+    ("renderer", "the renderer or tutorial whose source the port follows"),
+    ("what the port cannot do here", "one thing the renderer's source does that the port does not, a row of the port's card"),
+    ("why", "the reason, and what the port does instead"),
+];
+
+/// The sources table's columns.
+const SOURCE_COLUMNS: &[(&str, &str)] = &[
+    ("variant", "the lesson's variant that ports a renderer's default"),
+    ("repository", "the renderer's public repository, `owner/name`"),
+    ("read at", "each file the port's card was read from, at its commit (the card gives the full commit and each constant's lines)"),
+];
+
+/// A legend under a table, in the book's form.
+fn legend(columns: &[(&str, &str)]) -> String {
+    let mut s = String::from("\n<details><summary>What each column means</summary>\n\n");
+    for (c, d) in columns {
+        s += &format!("- {c}: {d}\n");
+    }
+    s + "\n</details>\n"
 }
 
 /// Writes every lesson's table under `generated/ports/`.
