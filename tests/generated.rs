@@ -547,7 +547,18 @@ fn h100_default_scenes_are_within_tolerance_of_the_records() {
             let new = added_since.contains(&v.name.as_str());
             assert_eq!(ran(&v.name), !new, "{lesson}: {} on the H100", v.name);
         }
-        rec.variants.retain(|v| ran(&v.name));
+        // Ports made to run as their sources do since (their renderers'
+        // map sizes and near planes, `port_cards.rs`): the H100's figures
+        // are of the old ports, so these are checked on lavapipe only until
+        // a GPU runs them again.
+        let changed_since: &[&str] = match lesson.as_str() {
+            "lesson_02" => &["wgpu_example", "bevy_bias"],
+            "lesson_03" => &["wgpu_example_hw2x2", "bevy"],
+            "lesson_04" => &["learnopengl_1tap", "learnopengl_pcf20", "bevy_point"],
+            _ => &[],
+        };
+        rec.variants
+            .retain(|v| ran(&v.name) && !changed_since.contains(&v.name.as_str()));
         assert_eq!((report.width, report.height), (rec.width, rec.height));
         let fresh = fresh_record(&run.id(), &rec, &report);
         let n = within_tolerance(&rec, &fresh)
