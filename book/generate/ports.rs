@@ -35,9 +35,18 @@ pub fn table(cards: &[PortCard]) -> String {
 
 /// The departures table's columns.
 const DEPARTURE_COLUMNS: &[(&str, &str)] = &[
-    ("variant", "the lesson's variant that ports a renderer's default (its `--variant` name)"),
-    ("renderer", "the renderer or tutorial whose source the port follows"),
-    ("what the port cannot do here", "one thing the renderer's source does that the port does not, a row of the port's card"),
+    (
+        "variant",
+        "the lesson's variant that ports a renderer's default (its `--variant` name)",
+    ),
+    (
+        "renderer",
+        "the renderer or tutorial whose source the port follows",
+    ),
+    (
+        "what the port cannot do here",
+        "one thing the renderer's source does that the port does not, a row of the port's card",
+    ),
     ("why", "the reason, and what the port does instead"),
 ];
 
