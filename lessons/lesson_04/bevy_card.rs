@@ -1,11 +1,12 @@
 //! The card of lesson 04's Bevy port ([`super::peers`]): what `bevy_point`
 //! takes from Bevy's point-light source, read at a named file, commit and
-//! lines, and what it cannot do here (LearnOpenGL's cards are in
-//! [`super::port_cards`], which lists all three).
+//! lines, and what it cannot do here (LearnOpenGL's cards sit beside it,
+//! in `port_cards.rs`, which lists all three).
 
 use common::ports::{Constant, Departure, PortCard, Source, Value};
 
-use super::port_cards::{BEVY_AT_3971912, BEVY_AT_E85A706};
+const BEVY_AT_E85A706: &str = "e85a706c30d78f877ea865c1af943f54e94ece33";
+const BEVY_AT_3971912: &str = "3971912a7857f8603fc5703f4b6dc514322feff2";
 
 /// Bevy's D3D 8×MSAA sample positions, (x, y) pairs.
 const D3D_SAMPLE_POINT_POSITIONS: &[f64] = &[

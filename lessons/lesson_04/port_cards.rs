@@ -10,8 +10,6 @@ pub use super::bevy_card::BEVY_POINT;
 
 const LEARNOPENGL_AT_279E6BE: &str = "279e6be7fa6d0bcbff11628934dfce29d94ff277";
 const LEARNOPENGL_AT_F844F7C: &str = "f844f7c541a2428647683b132170f9e72931e445";
-pub(crate) const BEVY_AT_E85A706: &str = "e85a706c30d78f877ea865c1af943f54e94ece33";
-pub(crate) const BEVY_AT_3971912: &str = "3971912a7857f8603fc5703f4b6dc514322feff2";
 
 /// LearnOpenGL's depth cube is whatever `GL_DEPTH_COMPONENT` the driver
 /// picks; ours is Depth32Float.

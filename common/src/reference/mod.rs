@@ -21,6 +21,8 @@
 //! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
 //! - [`cone`]: the cone of an area light's rays, and what might block it.
 //! - [`metrics`]: error of a GPU visibility image against the reference.
+//! - [`soft_metrics`]: a soft shadow's error per class of receiver (umbra,
+//!   penumbra, lit), its leak and spill, and its penumbra-width error.
 
 pub mod area;
 pub mod bvh;
