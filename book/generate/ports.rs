@@ -66,12 +66,44 @@ fn legend(columns: &[(&str, &str)]) -> String {
     s + "\n</details>\n"
 }
 
-/// Writes every lesson's table under `generated/ports/`.
+/// The bibliography's list of every file a port was read from: one row per
+/// repository, file and full commit, with the lessons' variants that read
+/// it. Made from the cards, so a citation cannot drift from them.
+pub fn sources() -> String {
+    use std::collections::BTreeMap;
+    let mut rows: BTreeMap<(&str, &str, &str), Vec<String>> = BTreeMap::new();
+    for (lesson, cards) in lessons() {
+        for c in cards {
+            for s in c.sources {
+                rows.entry((c.repository, s.file, s.commit))
+                    .or_default()
+                    .push(format!("{lesson} `{}`", c.variant));
+            }
+        }
+    }
+    let mut out = String::from("| repository | file | commit | read by |\n| --- | --- | --- | --- |\n");
+    for ((repo, file, commit), readers) in rows {
+        out += &format!(
+            "| [{repo}](https://github.com/{repo}) | [`{file}`](https://github.com/{repo}/blob/{commit}/{file}) | `{commit}` | {} |\n",
+            readers.join(", ")
+        );
+    }
+    out + &legend(&[
+        ("repository", "the renderer's public repository"),
+        ("file", "a file a port's card was read from, linked at its commit"),
+        ("commit", "the full commit the file was read at"),
+        ("read by", "the lessons' variants whose cards cite the file at that commit"),
+    ])
+}
+
+/// Writes every lesson's table under `generated/ports/`, and the
+/// bibliography's list of sources (`sources.md`).
 pub fn write_all(generated: &Path) -> Result<()> {
     let dir = generated.join(DIR);
     std::fs::create_dir_all(&dir)?;
     for (lesson, cards) in lessons() {
         std::fs::write(dir.join(format!("{lesson}.md")), table(cards))?;
     }
+    std::fs::write(dir.join("sources.md"), sources())?;
     Ok(())
 }
