@@ -265,7 +265,9 @@ pub fn time_blocks(
     let mut blocks = Vec::with_capacity(order.len());
     for (i, &id) in order.iter().enumerate() {
         let mut warm_up = Settling::new(rule, i == 0);
-        let settled = loop {
+        // `--warm-up-ms 0`: no warm-up at all, for runs whose times nobody
+        // reads (the tests, the grader); the block is reported not settled.
+        let settled = rule.min_ms > 0.0 && loop {
             let mut frame = timer.frame(gpu);
             render(&mut frame, id)?;
             let t = frame.finish()?;
