@@ -351,3 +351,42 @@ fn lesson_01_times_the_variants_between_baseline_blocks() {
         run.stdout
     );
 }
+
+/// `--warm-up-ms 0`, as the tests and the grader run: each block is timed
+/// after one untimed frame (the costs counted on a variant's second frame
+/// need its first), with no settling, and reported not settled; the
+/// figures are the same as under the protocol's warm-up.
+#[test]
+fn lesson_01_with_no_warm_up_times_each_block_at_once() {
+    let args = [&SIZE[..], &["--variant", "res_256", "--frames", "1"]].concat();
+    let Some(run) = support::run_lesson_env(
+        BIN,
+        "lesson_01_no_warm_up",
+        &args,
+        &[("WORKBOOK_WARM_UP_MS", "0")],
+    ) else {
+        return;
+    };
+    let blocks = run.report["baseline"]["blocks"]
+        .as_array()
+        .expect("baseline blocks");
+    let v = support::variant(&run.report, "res_256");
+    for c in blocks.iter().chain([&v["timing_check"]]) {
+        assert_eq!(c["warm_up_frames"].as_u64(), Some(1), "{c}");
+        assert_eq!(c["settled"], false, "{c}");
+    }
+    let Some(warm) = support::run_lesson_env(
+        BIN,
+        "lesson_01_warm_up",
+        &args,
+        &[("WORKBOOK_WARM_UP_MS", "5")],
+    ) else {
+        return;
+    };
+    let w = support::variant(&warm.report, "res_256");
+    assert_eq!(
+        v["error"], w["error"],
+        "the figures do not depend on the warm-up"
+    );
+    assert_eq!(v["counters"], w["counters"]);
+}

@@ -43,7 +43,12 @@ fn the_bibliography_cites_every_card_at_its_commit() {
     for (_, cards) in ports::lessons() {
         for c in cards {
             for s in c.sources {
-                assert!(committed.contains(&format!("`{}`", s.commit)), "{}: {}", c.variant, s.file);
+                assert!(
+                    committed.contains(&format!("`{}`", s.commit)),
+                    "{}: {}",
+                    c.variant,
+                    s.file
+                );
             }
             assert!(
                 bib.contains(&format!("https://github.com/{}>", c.repository)),

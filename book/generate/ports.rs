@@ -81,7 +81,8 @@ pub fn sources() -> String {
             }
         }
     }
-    let mut out = String::from("| repository | file | commit | read by |\n| --- | --- | --- | --- |\n");
+    let mut out =
+        String::from("| repository | file | commit | read by |\n| --- | --- | --- | --- |\n");
     for ((repo, file, commit), readers) in rows {
         out += &format!(
             "| [{repo}](https://github.com/{repo}) | [`{file}`](https://github.com/{repo}/blob/{commit}/{file}) | `{commit}` | {} |\n",
@@ -90,9 +91,15 @@ pub fn sources() -> String {
     }
     out + &legend(&[
         ("repository", "the renderer's public repository"),
-        ("file", "a file a port's card was read from, linked at its commit"),
+        (
+            "file",
+            "a file a port's card was read from, linked at its commit",
+        ),
         ("commit", "the full commit the file was read at"),
-        ("read by", "the lessons' variants whose cards cite the file at that commit"),
+        (
+            "read by",
+            "the lessons' variants whose cards cite the file at that commit",
+        ),
     ])
 }
 

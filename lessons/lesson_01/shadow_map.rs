@@ -109,6 +109,42 @@ fn depth_shades(d: &[f32]) -> (Vec<Option<u8>>, Option<(f32, f32)>) {
     (shades, (lo < 1.0).then_some((lo, hi)))
 }
 
+/// One `T` per shadow-map size. A lesson whose variants run maps of several
+/// sizes (a renderer's port runs its renderer's) makes one of each size
+/// its variants use, and each variant finds its own by size.
+pub struct PerSize<T> {
+    items: Vec<(u32, T)>,
+}
+
+impl<T> PerSize<T> {
+    /// `make(size)` once for each distinct size in `sizes`, smallest first.
+    pub fn new(sizes: impl IntoIterator<Item = u32>, mut make: impl FnMut(u32) -> T) -> PerSize<T> {
+        let mut sizes: Vec<u32> = sizes.into_iter().collect();
+        sizes.sort_unstable();
+        sizes.dedup();
+        PerSize {
+            items: sizes.into_iter().map(|s| (s, make(s))).collect(),
+        }
+    }
+
+    /// Where the one of `size` is, for [`PerSize::at`].
+    pub fn index(&self, size: u32) -> usize {
+        (self.items.iter())
+            .position(|(s, _)| *s == size)
+            .expect("PerSize::new made one of every size the variants use")
+    }
+
+    /// The one at `index` ([`PerSize::index`]).
+    pub fn at(&self, index: usize) -> &T {
+        &self.items[index].1
+    }
+
+    /// The one of `size`.
+    pub fn get(&self, size: u32) -> &T {
+        self.at(self.index(size))
+    }
+}
+
 /// How the shadow pass rasterises: which faces it culls and what depth bias
 /// the hardware adds (lesson 02). Lesson 01 uses the default: none of either.
 #[derive(Clone, Copy, Debug, Default)]

@@ -28,7 +28,7 @@ use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
-use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
+use workbook::lesson_01::shadow_map::{self, PerSize, ShadowMap, ShadowPassState};
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{
     ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
@@ -182,7 +182,7 @@ struct Bias {
     /// shadow-pass fixes), in variant order.
     bias_groups: Vec<wgpu::BindGroup>,
     /// One map per size the variants use, and its bind group.
-    maps: Vec<(ShadowMap, wgpu::BindGroup)>,
+    maps: PerSize<(ShadowMap, wgpu::BindGroup)>,
     lit_pipeline: wgpu::RenderPipeline,
     /// The layouts of groups 2 and 3, for the exercises' lit pipelines.
     layouts: [wgpu::BindGroupLayout; 2],
@@ -244,21 +244,13 @@ impl Lesson for Bias {
             &[&map_layout, &bias_layout],
             Default::default(),
         );
-        let mut sizes: Vec<u32> = Variant::value_variants()
-            .iter()
-            .map(|v| v.map_size())
-            .collect();
-        sizes.sort_unstable();
-        sizes.dedup();
-        let maps = sizes
-            .iter()
-            .map(|&size| {
-                let map = ShadowMap::new(gpu, size);
-                let nearest = wgpu::FilterMode::Nearest;
-                let group = shadow_map::shadow_map_group(gpu, &map_layout, &map, nearest);
-                (map, group)
-            })
-            .collect();
+        let sizes = Variant::value_variants().iter().map(|v| v.map_size());
+        let maps = PerSize::new(sizes, |size| {
+            let map = ShadowMap::new(gpu, size);
+            let nearest = wgpu::FilterMode::Nearest;
+            let group = shadow_map::shadow_map_group(gpu, &map_layout, &map, nearest);
+            (map, group)
+        });
 
         let pass = |state| shadow_map::shadow_pipeline(gpu, scene, &module, state);
         let tally = TallyShader::new(gpu);
@@ -451,11 +443,7 @@ impl Lesson for Bias {
 impl Bias {
     /// The variant's shadow map and its bind group.
     fn map(&self, v: Variant) -> &(ShadowMap, wgpu::BindGroup) {
-        let size = v.map_size();
-        self.maps
-            .iter()
-            .find(|(m, _)| m.size == size)
-            .expect("new makes a map of every variant's size")
+        self.maps.get(v.map_size())
     }
 }
 

@@ -31,7 +31,7 @@ use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::ShadowPassState;
-use workbook::lesson_01::shadow_map::{self, ShadowMap};
+use workbook::lesson_01::shadow_map::{self, PerSize, ShadowMap};
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{
     ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
@@ -173,7 +173,7 @@ struct Pcf {
     /// Each variant's filter parameters (group 3), in variant order.
     filter_groups: Vec<wgpu::BindGroup>,
     /// One map per size the variants use, with its nearest and linear groups.
-    maps: Vec<SizedMap>,
+    maps: PerSize<SizedMap>,
     /// Per [`Variant::lit_key`], the pipelines some variant uses.
     lit_pipelines: Vec<Option<wgpu::RenderPipeline>>,
     /// Per shadow pass of [`PASSES`], one pipeline per light.
@@ -200,11 +200,7 @@ struct SizedMap {
 impl Pcf {
     /// The variant's shadow map.
     fn map(&self, v: Variant) -> &SizedMap {
-        let size = v.map_size();
-        self.maps
-            .iter()
-            .find(|m| m.map.size == size)
-            .expect("new makes a map of every variant's size")
+        self.maps.get(v.map_size())
     }
 }
 
@@ -264,25 +260,17 @@ impl Lesson for Pcf {
                 ))
             })
             .collect();
-        let mut sizes: Vec<u32> = Variant::value_variants()
-            .iter()
-            .map(|v| v.map_size())
-            .collect();
-        sizes.sort_unstable();
-        sizes.dedup();
-        let maps = sizes
-            .iter()
-            .map(|&size| {
-                let map = ShadowMap::new(gpu, size);
-                let nearest = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
-                let linear = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
-                SizedMap {
-                    map,
-                    nearest,
-                    linear,
-                }
-            })
-            .collect();
+        let sizes = Variant::value_variants().iter().map(|v| v.map_size());
+        let maps = PerSize::new(sizes, |size| {
+            let map = ShadowMap::new(gpu, size);
+            let nearest = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
+            let linear = pcf::pcf_map_group(gpu, &layout, &map, wgpu::FilterMode::Linear);
+            SizedMap {
+                map,
+                nearest,
+                linear,
+            }
+        });
         // The clamp of a pass's bias is converted for the lesson's map: only
         // the lesson's own pass (0) has one.
         let states: Vec<Vec<_>> = PASSES

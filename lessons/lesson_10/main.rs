@@ -31,7 +31,9 @@ use common::run::lesson::{BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::ShadowPassState;
-use workbook::lesson_01::shadow_map::{self, comparison_sampler, shadow_map_entries, ShadowMap};
+use workbook::lesson_01::shadow_map::{
+    self, comparison_sampler, shadow_map_entries, PerSize, ShadowMap,
+};
 use workbook::lesson_02::bias::SlopeScaledBias;
 use workbook::lesson_03::pcf::{Filter, FilterUniform};
 use workbook::lesson_10::knobs;
@@ -232,7 +234,7 @@ impl MapSet {
 }
 
 struct Soft {
-    maps: Vec<MapSet>,
+    maps: PerSize<MapSet>,
     geometry: Vec<LightGeometry>,
     params_layout: wgpu::BindGroupLayout,
     /// Lesson 03's filter uniform (its Poisson disk), for the hard baseline.
@@ -250,10 +252,8 @@ impl Soft {
         let soft = bindings::params_buffer(gpu, "soft", bytemuck::bytes_of(&u));
         let resources = [self.filter.as_entire_binding(), soft.as_entire_binding()];
         let name = format!("{v:?} light {k}");
-        let map = (self.maps.iter())
-            .position(|m| m.size == t.map_size())
-            .expect("a map of every technique's size (Soft::new)");
-        let set = &self.maps[map];
+        let map = self.maps.index(t.map_size());
+        let set = self.maps.at(map);
         PerLight {
             technique: t,
             map,
@@ -269,7 +269,7 @@ impl Soft {
         let k = self.per_light[variant as usize]
             .first()
             .map_or(0, |p| p.map);
-        &self.maps[k]
+        self.maps.at(k)
     }
 }
 
@@ -374,14 +374,11 @@ impl Lesson for Soft {
             })
             .collect::<Result<Vec<_>>>()?;
         // One map of each size some variant runs on some light.
-        let mut sizes: Vec<u32> = (Variant::value_variants().iter())
-            .flat_map(|v| geometry.iter().map(|g| v.technique(g).map_size()))
-            .collect();
-        sizes.sort_unstable();
-        sizes.dedup();
-        let maps = (sizes.into_iter())
-            .map(|size| MapSet::new(gpu, scene, &module, &map_layout, size))
-            .collect();
+        let sizes = (Variant::value_variants().iter())
+            .flat_map(|v| geometry.iter().map(|g| v.technique(g).map_size()));
+        let maps = PerSize::new(sizes, |size| {
+            MapSet::new(gpu, scene, &module, &map_layout, size)
+        });
         let mut soft = Soft {
             maps,
             geometry,
@@ -413,7 +410,7 @@ impl Lesson for Soft {
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
             let state = &self.per_light[variant as usize][light];
-            let set = &self.maps[state.map];
+            let set = self.maps.at(state.map);
             let shadow = &set.shadow_pipelines[light];
             frame.pass("shadow", |enc, ts| {
                 shadow_map::shadow_pass(enc, scene, shadow, &set.map, light, ts.render())
