@@ -92,8 +92,12 @@ memory_test!(lesson_08_memory_does_not_grow_with_frames, "lesson_08");
 /// The window's memory over two minutes of camera motion, with the live
 /// reference recomputing all along (`--orbit`): each view's reference,
 /// frame read-back and diff image are freed when the next replaces them.
-/// The growth from the first 20 s (once the window and the worker's pools
-/// are up) to the peak of the last 20 s must stay under 20 MB.
+/// The peak of the last 50 s must stay within 20 MB of the peak of the 50 s
+/// before, both after the first 20 s (the window and the worker's pools
+/// coming up). Peak against peak: each view's buffers come and go, so the
+/// RSS swings by about 20 MB from frame to frame on lavapipe, and the
+/// start-up's peak is lower than the steady one's; a leak grows between
+/// the two windows.
 #[test]
 fn window_memory_is_flat_over_two_minutes_of_motion() {
     const RUN_S: f64 = 120.0;
@@ -120,21 +124,21 @@ fn window_memory_is_flat_over_two_minutes_of_motion() {
         let kb = samples.map(|l| l["rss_kb"].as_u64().expect("rss_kb"));
         kb.max().expect("frames in the interval") as f64 / 1024.0
     };
-    let (early, late) = (rss(0.0, 20.0), rss(RUN_S - 20.0, RUN_S + 1.0));
+    let (early, late) = (rss(20.0, 70.0), rss(70.0, RUN_S + 1.0));
     let answers = run
         .log
         .iter()
         .filter_map(|l| l["error"]["scene_gen"].as_u64())
         .collect::<std::collections::BTreeSet<_>>()
         .len();
-    eprintln!("window RSS: {early:.1} MB in the first 20 s, {late:.1} MB in the last 20 s; {answers} views measured");
+    eprintln!("window RSS: peak {early:.1} MB from 20 to 70 s, {late:.1} MB from 70 s on; {answers} views measured");
     assert!(
         answers > 20,
         "the live reference measured only {answers} views"
     );
     assert!(
         late - early < ALLOWED_MB,
-        "the window's memory grew by {:.1} MB over {RUN_S} s of motion ({early:.1} → {late:.1} MB)",
+        "the window's memory grew by {:.1} MB from the peak of 20-70 s to that of 70-{RUN_S} s of motion ({early:.1} → {late:.1} MB)",
         late - early
     );
 }
