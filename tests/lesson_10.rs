@@ -25,6 +25,16 @@ fn bleeding(run: &support::LessonRun, variant: &str) -> f64 {
     support::error(&run.report, variant, "light_bleeding_pct")
 }
 
+/// Variants whose error figures no cross-adapter tolerance holds, left out
+/// of the snapshot's figures (their counters stay). `threejs_vsm` keeps,
+/// as three.js does, the mean and standard deviation of the map's own
+/// perspective depth, which crowds near 1: its variance is the difference
+/// of two f32 numbers near 1 that differ in the seventh digit, so a depth
+/// a rasteriser rounds otherwise moves its figures (llvmpipe's GL against
+/// lavapipe's Vulkan: penumbra |dV| 20.5 % against 22.2 %). Its figures
+/// are checked exactly on the records' adapter by `tests/generated.rs`.
+const ADAPTER_DEPENDENT: &[&str] = &["threejs_vsm"];
+
 #[test]
 fn lesson_10_snapshot() {
     let Some(run) = run("lesson_10_snapshot", None, &[]) else {
@@ -39,6 +49,15 @@ fn lesson_10_snapshot() {
         "the same in the reference's penumbra (both in percent), light bleeding % of the umbra\n\n";
     for v in run.report["variants"].as_array().expect("variants") {
         let name = v["name"].as_str().unwrap();
+        if ADAPTER_DEPENDENT.contains(&name) {
+            text += &format!(
+                "{name:<16} search {:>2}  filter {:>2}  texels {:>2}  figures: adapter-dependent (see ADAPTER_DEPENDENT)\n",
+                support::counter(&run.report, name, "blocker_search_taps"),
+                support::counter(&run.report, name, "filter_taps_per_pixel"),
+                support::counter(&run.report, name, "texels_read"),
+            );
+            continue;
+        }
         text += &format!(
             "{name:<16} search {:>2}  filter {:>2}  texels {:>2}  misclassified {:>5.2}%  mean |dV| {:>4.1}%  penumbra |dV| {:>4.1}%  bleeding {:>5.2}%\n",
             support::counter(&run.report, name, "blocker_search_taps"),
