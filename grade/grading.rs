@@ -170,7 +170,13 @@ fn likely_cause(ex: &Exercise, report: &Value, failing_metric: &str) -> Option<S
                 Side::AtLeast => value > limit,
                 Side::AtMost => value < limit,
             };
-            holds.then(|| (h.metric.as_str(), h.say.replace("{value}", &fmt(value))))
+            let say = h.say.replace("{value}", &fmt(value));
+            // The fix states the answer: the grader's output only.
+            let say = match &h.fix {
+                Some(fix) => format!("{say}; {fix}"),
+                None => say,
+            };
+            holds.then_some((h.metric.as_str(), say))
         })
         .collect();
     let own = holding.iter().find(|(m, _)| *m == failing_metric);

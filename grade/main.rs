@@ -66,11 +66,16 @@ struct Cli {
     check_starters: bool,
     /// For maintainers (CI), built with `--features chapter_copies`: grade
     /// each exercise answered with the nearest code its chapter prints
-    /// (`tests/chapter_copies/`) and succeed only if EVERY one fails,
-    /// which proves that no chapter hands out its exercises' answers.
+    /// (`tests/chapter_copies/`), then again with the copies that call the
+    /// lesson's own function, and succeed only if EVERY one fails, which
+    /// proves that no chapter hands out its exercises' answers.
     #[arg(long)]
     check_copies: bool,
 }
+
+/// The variable that picks which chapter copy the lessons compile
+/// (`common::gpu::render::chapter_copy_calls`): `calls`, or the pasted one.
+const COPY_ENV: &str = "WORKBOOK_CHAPTER_COPY";
 
 /// The workbook's root: where this binary was built from.
 fn root() -> PathBuf {
@@ -227,37 +232,55 @@ fn run(cli: Cli) -> Result<bool> {
     let exe = std::env::current_exe().context("cannot find the grade binary's own path")?;
     let runner = runner::Runner::beside(&exe)?;
     let out = cli.out.clone().unwrap_or_else(|| root.join("target/grade"));
-    let opts = grading::Options {
-        root: root.clone(),
-        out: out.clone(),
-        adapter,
-        backend: cli.backend.clone(),
-        hidden: cli.scenes.clone(),
-        hidden_only: false,
+    // The copy check grades every exercise twice: answered with the
+    // chapter's listing pasted, then with a call of the lesson's own
+    // function (`WORKBOOK_CHAPTER_COPY=calls`, read by the lessons).
+    let passes: &[Option<&str>] = if cli.check_copies {
+        &[None, Some("calls")]
+    } else {
+        &[None]
     };
     let mut all = Vec::new();
-    for l in &lessons {
-        let results = grading::grade_lesson(&runner, &opts, l, cli.exercise.as_deref())?;
-        // No adapter: nothing can be graded; say what to install, once.
-        if let Some(line) = results
-            .iter()
-            .flat_map(|r| &r.checks)
-            .filter_map(|c| c.feedback.as_deref())
-            .find_map(|f| f.find("no GPU adapter found").map(|at| &f[at..]))
-        {
-            bail!("{}", line.lines().next().unwrap_or(line));
+    for &pass in passes {
+        if let Some(kind) = pass {
+            std::env::set_var(COPY_ENV, kind);
         }
-        for r in &results {
-            print!("{}", grading::describe(r));
-            // Beside the runs: what `tests/exercises.rs` compares with the
-            // snapshot recorded from the reference solution.
-            let dir = out.join(&r.lesson).join(&r.exercise);
-            std::fs::create_dir_all(&dir)
-                .and_then(|()| std::fs::write(dir.join("snapshot.txt"), &r.snapshot))
-                .with_context(|| format!("cannot write {}", dir.display()))?;
+        let out = pass.map_or(out.clone(), |kind| out.join(kind));
+        let opts = grading::Options {
+            root: root.clone(),
+            out: out.clone(),
+            adapter: adapter.clone(),
+            backend: cli.backend.clone(),
+            hidden: cli.scenes.clone(),
+            hidden_only: false,
+        };
+        for l in &lessons {
+            let mut results = grading::grade_lesson(&runner, &opts, l, cli.exercise.as_deref())?;
+            // No adapter: nothing can be graded; say what to install, once.
+            if let Some(line) = results
+                .iter()
+                .flat_map(|r| &r.checks)
+                .filter_map(|c| c.feedback.as_deref())
+                .find_map(|f| f.find("no GPU adapter found").map(|at| &f[at..]))
+            {
+                bail!("{}", line.lines().next().unwrap_or(line));
+            }
+            for r in &mut results {
+                // Beside the runs: what `tests/exercises.rs` compares with the
+                // snapshot recorded from the reference solution.
+                let dir = out.join(&r.lesson).join(&r.exercise);
+                std::fs::create_dir_all(&dir)
+                    .and_then(|()| std::fs::write(dir.join("snapshot.txt"), &r.snapshot))
+                    .with_context(|| format!("cannot write {}", dir.display()))?;
+                if let Some(kind) = pass {
+                    r.exercise = format!("{} [{kind}]", r.exercise);
+                }
+                print!("{}", grading::describe(r));
+            }
+            all.extend(results);
         }
-        all.extend(results);
     }
+    std::env::remove_var(COPY_ENV);
     if all.is_empty() {
         bail!(
             "--exercise {}: no such exercise in {}",
@@ -324,7 +347,9 @@ fn run(cli: Cli) -> Result<bool> {
             return Ok(false);
         }
         println!(
-            "copy check passed: all {} exercises fail when answered with the chapter's code",
+            "copy check passed: all {} exercises fail when answered with the chapter's code, \
+             pasted or calling the lesson's own functions ({} gradings)",
+            all.len() / passes.len(),
             all.len()
         );
         return Ok(true);

@@ -4,7 +4,10 @@
 //! of the chapter to reread, its checks (a measured figure against a
 //! target, on a scene) and its hints (the likely cause of a failure, in
 //! words). The book includes these files, so the targets a student reads
-//! are the targets the grader applies.
+//! are the targets the grader applies. What a hint says to change, where
+//! that states the answer (a formula), is a `[[fix]]` at the end of the
+//! file, outside the chapter's anchors: the grader prints it after the
+//! hint's cause, and the chapter does not show it.
 
 use std::path::{Path, PathBuf};
 
@@ -17,6 +20,21 @@ use serde::Deserialize;
 pub struct Spec {
     #[serde(rename = "exercise", default)]
     pub exercises: Vec<Exercise>,
+    /// Moved into their hints' `fix` by [`Spec::load`].
+    #[serde(rename = "fix", default)]
+    fixes: Vec<Fix>,
+}
+
+/// The grader's half of a hint: what to change, printed after the hint's
+/// cause. It states the answer, so it is kept out of the chapters.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Fix {
+    /// The exercise (`exercise_<topic>`).
+    variant: String,
+    /// Its hint, counted from 1 in the file's order.
+    hint: usize,
+    say: String,
 }
 
 #[derive(Debug, Deserialize)]
@@ -103,6 +121,9 @@ pub struct Hint {
     pub slack: f64,
     /// The sentence; `{value}` is the hint metric's measured value.
     pub say: String,
+    /// What to change (a `[[fix]]` of the file), printed after `say`.
+    #[serde(skip)]
+    pub fix: Option<String>,
 }
 
 /// Which way a target points.
@@ -212,12 +233,29 @@ impl Spec {
     pub fn load(path: &Path, scenes_dir: &Path) -> Result<Spec> {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read the exercise spec", path.display()))?;
-        let spec: Spec = toml::from_str(&text).map_err(|e| {
+        let mut spec: Spec = toml::from_str(&text).map_err(|e| {
             let msg = e.message().replace('\n', " ");
             anyhow::anyhow!("{}: not a valid exercise spec: {msg}", path.display())
         })?;
         if spec.exercises.is_empty() {
             bail!("{}: no [[exercise]] in the spec", path.display());
+        }
+        for f in std::mem::take(&mut spec.fixes) {
+            let at = format!(
+                "{}: [[fix]] of {:?}, hint {}",
+                path.display(),
+                f.variant,
+                f.hint
+            );
+            let Some(ex) = spec.exercises.iter_mut().find(|e| e.variant == f.variant) else {
+                bail!("{at}: no such exercise");
+            };
+            let Some(h) = f.hint.checked_sub(1).and_then(|i| ex.hints.get_mut(i)) else {
+                bail!("{at}: the exercise has {} hints", ex.hints.len());
+            };
+            if h.fix.replace(f.say).is_some() {
+                bail!("{at}: a second fix for the same hint");
+            }
         }
         for ex in &spec.exercises {
             let at = format!("{}: exercise {:?}", path.display(), ex.variant);
@@ -345,6 +383,21 @@ say = "acne {value}"
             load(&GOOD.replace("\"misclassified_pct\"", "\"camera_path.\"")).unwrap_err()
         );
         assert!(e.contains("camera_path.<name>"), "{e}");
+    }
+
+    #[test]
+    fn fixes_join_their_hints() {
+        let with =
+            format!("{GOOD}\n[[fix]]\nvariant = \"exercise_x\"\nhint = 1\nsay = \"lower it\"\n");
+        let s = load(&with).unwrap();
+        assert_eq!(s.exercises[0].hints[0].fix.as_deref(), Some("lower it"));
+        for bad in [
+            with.replace("hint = 1", "hint = 2"),
+            with.replace("\"exercise_x\"\nhint", "\"exercise_y\"\nhint"),
+        ] {
+            let e = format!("{:#}", load(&bad).unwrap_err());
+            assert!(e.contains("[[fix]]"), "{e}");
+        }
     }
 
     #[test]

@@ -153,10 +153,34 @@ fn readable(line: &str) -> String {
     s
 }
 
+/// `markdown` with every HTML comment that spans lines (a claim that
+/// wraps, `book/generate/claims.rs`) blanked, its line breaks kept: a
+/// reader reads none of it.
+fn blank_wrapped_comments(markdown: &str) -> String {
+    let mut out = String::with_capacity(markdown.len());
+    let mut rest = markdown;
+    while let Some(a) = rest.find("<!--") {
+        let Some(b) = rest[a..].find("-->") else {
+            break;
+        };
+        let comment = &rest[a..a + b + 3];
+        out.push_str(&rest[..a]);
+        if comment.contains('\n') {
+            out.extend(comment.chars().map(|c| if c == '\n' { '\n' } else { ' ' }));
+        } else {
+            out.push_str(comment);
+        }
+        rest = &rest[a + b + 3..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// `(line, figure)` for every measured-looking figure in the prose of
 /// `markdown` that is not in `known` (the numbers of its generated output)
 /// and not listed by a `<!-- not measured: ... -->` comment above its paragraph.
 fn unsourced(markdown: &str, known: &BTreeSet<String>) -> Vec<(usize, String)> {
+    let markdown = &blank_wrapped_comments(markdown);
     let mut found = Vec::new();
     let mut fenced = false;
     let mut exempt: BTreeSet<String> = BTreeSet::new();
@@ -208,26 +232,7 @@ fn generated_numbers(chapter: &Path, text: &str) -> BTreeSet<String> {
 
 /// The book's pages (not the generated files), sorted.
 fn chapters() -> Vec<PathBuf> {
-    let src = root().join("book/src");
-    let mut out = Vec::new();
-    let mut stack = vec![src.clone()];
-    while let Some(d) = stack.pop() {
-        for e in fs::read_dir(&d).expect("book/src").flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                if !["generated", "figures", "katex"]
-                    .iter()
-                    .any(|x| p.ends_with(x))
-                {
-                    stack.push(p);
-                }
-            } else if p.extension().is_some_and(|x| x == "md") {
-                out.push(p);
-            }
-        }
-    }
-    out.sort();
-    out
+    prose::chapters(&root().join("book/src")).expect("book/src")
 }
 
 fn rel(p: &Path) -> String {
@@ -271,6 +276,9 @@ fn the_scanner_finds_what_it_looks_for() {
         "<!-- not measured: 1.449 % (a criterion) -->\ninfinite 1.449 %.\n\nagain 1.449 %\n";
     assert_eq!(unsourced(exempt, &known), vec![(4, "1.449".to_string())]);
     assert!(unsourced("```\n1.449 %\n```\n| 1.449 % |\n", &known).is_empty());
+    // A comment that wraps (a claim) is not prose, on any of its lines.
+    let wrapped = "a<!--claim: r:a:f > 0.95 * r:b:f;\n  r:a:f < 1.05 * r:b:f-->.\nthen 1.449 %\n";
+    assert_eq!(unsourced(wrapped, &known), vec![(3, "1.449".to_string())]);
 }
 
 #[test]

@@ -176,6 +176,34 @@ fn every_exercise_is_graded() {
     }
 }
 
+/// The marker line of a WGSL chapter copy: the calls follow it
+/// (`common::gpu::render::CHAPTER_COPY_CALLS`).
+const CHAPTER_COPY_CALLS: &str = "// ==== calls the lesson's own functions ====";
+
+/// A copy's function at line `at`: its comments above and its body, to
+/// the next line that closes an item.
+fn copy_block(lines: &[&str], at: usize) -> String {
+    let from = (0..at)
+        .rev()
+        .take_while(|&i| {
+            lines[i].trim_start().starts_with("//") || lines[i].trim_start().starts_with("#[")
+        })
+        .last()
+        .unwrap_or(at);
+    let to = (at..lines.len())
+        .find(|&i| i > at && lines[i].starts_with('}'))
+        .unwrap_or(lines.len() - 1);
+    lines[from..=to].join("\n")
+}
+
+/// Whether `block` names, in backticks, an anchor some chapter includes.
+fn names_listing(block: &str, anchors: &std::collections::BTreeSet<String>) -> bool {
+    block.split('`').skip(1).step_by(2).any(|t| {
+        let anchor = t.rsplit(':').next().unwrap_or(t);
+        anchors.contains(anchor)
+    })
+}
+
 /// mdBook's heading anchor: lower case, spaces to '-', punctuation dropped.
 fn slug(heading: &str) -> String {
     heading
@@ -236,7 +264,9 @@ fn hidden_scenes_are_graded() {
 /// with `--features chapter_copies` and `grade --check-copies`), and the
 /// copy names, in backticks beside its function, the chapter listing it
 /// calls or pastes: an anchor some chapter includes. A copy that names no
-/// printed listing would prove nothing when it fails.
+/// printed listing would prove nothing when it fails. Each exercise also
+/// has the copy that calls the lesson's own function, which the check's
+/// second pass grades (`WORKBOOK_CHAPTER_COPY=calls`).
 #[test]
 fn every_copy_names_the_listing_it_copies() {
     let mut anchors = std::collections::BTreeSet::new();
@@ -274,32 +304,40 @@ fn every_copy_names_the_listing_it_copies() {
             let text = std::fs::read_to_string(&path)
                 .unwrap_or_else(|_| panic!("{}: missing", path.display()));
             let lines: Vec<&str> = text.lines().collect();
-            let Some(at) = lines.iter().position(|l| {
-                l.contains(&format!("fn {name}(")) && !l.trim_start().starts_with("//")
-            }) else {
+            // A Rust copy answers both passes of the check (`if
+            // chapter_copy_calls()`, or one call in both); a WGSL copy holds
+            // the calls after its marker line.
+            let calls_from = lines
+                .iter()
+                .position(|l| l.trim() == CHAPTER_COPY_CALLS)
+                .unwrap_or(lines.len());
+            let defines = |i: usize| {
+                lines[i].contains(&format!("fn {name}("))
+                    && !lines[i].trim_start().starts_with("//")
+            };
+            let Some(at) = (0..calls_from).find(|&i| defines(i)) else {
                 errors.push(format!("{}: no fn {name}", path.display()));
                 continue;
             };
-            // Its comments above and its body, to the next blank line or item.
-            let from = (0..at)
-                .rev()
-                .take_while(|&i| {
-                    lines[i].trim_start().starts_with("//")
-                        || lines[i].trim_start().starts_with("#[")
-                })
-                .last()
-                .unwrap_or(at);
-            let to = (at..lines.len())
-                .find(|&i| i > at && lines[i].starts_with('}'))
-                .unwrap_or(lines.len() - 1);
-            let block = lines[from..=to].join("\n");
-            let named = block.split('`').skip(1).step_by(2).any(|t| {
-                let anchor = t.rsplit(':').next().unwrap_or(t);
-                anchors.contains(anchor)
-            });
-            if !named {
+            let block = copy_block(&lines, at);
+            if !names_listing(&block, &anchors) {
                 errors.push(format!(
                     "{}: fn {name} names no listing a chapter includes (write it in backticks, `file:anchor`)",
+                    path.display()
+                ));
+            }
+            let calls = if ext == "rs" {
+                block.contains("chapter_copy_calls()") || block.contains("both passes")
+            } else {
+                (calls_from..lines.len())
+                    .find(|&i| defines(i))
+                    .is_some_and(|i| names_listing(&copy_block(&lines, i), &anchors))
+            };
+            if !calls {
+                errors.push(format!(
+                    "{}: fn {name} has no copy that calls the lesson's own function (a Rust copy: \
+                     `if chapter_copy_calls()`, or a call named as serving both passes; a WGSL copy: \
+                     a second fn {name} after the line {CHAPTER_COPY_CALLS:?}, naming the listing it calls)",
                     path.display()
                 ));
             }

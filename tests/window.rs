@@ -20,11 +20,17 @@ const H: u32 = 360;
 /// The lesson's first variant in a window at `W × H` on the diff view,
 /// captured once the full figure came; and the same variant headless.
 fn check_lesson(bin: &str, lesson: &str) {
+    check_view(bin, lesson, "diff");
+}
+
+/// [`check_lesson`] on `view` (`diff`, or `dv` for an area light): the
+/// capture outside the overlay is the headless `<variant>_<view>_l0.png`.
+fn check_view(bin: &str, lesson: &str, view: &str) {
     let (w, h) = (W.to_string(), H.to_string());
     let size = ["--width", w.as_str(), "--height", h.as_str()];
     let mut args = size.to_vec();
-    args.extend(["--view", "diff", "--capture-after", "3"]);
-    let Some(win) = run_window(bin, &format!("{lesson}_window"), &args, true) else {
+    args.extend(["--view", view, "--capture-after", "3"]);
+    let Some(win) = run_window(bin, &format!("{lesson}_window_{view}"), &args, true) else {
         return;
     };
     let last = win.log.last().expect("the window drew frames");
@@ -38,7 +44,8 @@ fn check_lesson(bin: &str, lesson: &str) {
     // The same variant headless, at the same size: the same figure.
     let mut hargs = size.to_vec();
     hargs.extend(["--frames", "1", "--variant", variant.as_str()]);
-    let Some(run) = support::run_lesson(bin, &format!("{lesson}_window_headless"), &hargs) else {
+    let Some(run) = support::run_lesson(bin, &format!("{lesson}_window_{view}_headless"), &hargs)
+    else {
         return;
     };
     let report = &run.report["variants"][0]["error"];
@@ -63,8 +70,8 @@ fn check_lesson(bin: &str, lesson: &str) {
     // The capture: the diff view outside the overlay, the overlay over it.
     let shot = win.capture.expect("a capture");
     assert_eq!(shot.dimensions(), (W, H), "{lesson}: the capture's size");
-    let diff = image::open(run.out.join(format!("{variant}_diff_l0.png")))
-        .expect("the headless diff")
+    let diff = image::open(run.out.join(format!("{variant}_{view}_l0.png")))
+        .expect("the headless image of the view")
         .to_rgba8();
     let close = |a: &image::Rgba<u8>, b: &image::Rgba<u8>| {
         (0..3).all(|c| (a.0[c] as i32 - b.0[c] as i32).abs() <= 3)
@@ -112,7 +119,7 @@ fn check_lesson(bin: &str, lesson: &str) {
     let outside_pct = 100.0 * outside_same as f64 / outside as f64;
     assert!(
         outside_pct > 99.0,
-        "{lesson}: outside the overlay, only {outside_pct:.2} % of the capture is the headless diff image"
+        "{lesson}: outside the overlay, only {outside_pct:.2} % of the capture is the headless {view} image"
     );
     // The panel darkens what is under it, and its text is light.
     let text_pct = 100.0 * panel_text as f64 / panel as f64;
@@ -142,6 +149,14 @@ window_test!(lesson_07_window_capture, "lesson_07");
 window_test!(lesson_08_window_capture, "lesson_08");
 window_test!(lesson_09_window_capture, "lesson_09");
 window_test!(lesson_10_window_capture, "lesson_10");
+
+/// The signed ΔV view of an area light (lesson 10): a soft shadow's
+/// penumbra error, which the diff view cannot show, is the headless
+/// `<variant>_dv_l0.png` in the window.
+#[test]
+fn lesson_10_window_dv_view() {
+    check_view(env!("CARGO_BIN_EXE_lesson_10"), "lesson_10", "dv");
+}
 
 /// Bad window flags: one line naming the flag, non-zero, before any window.
 #[test]

@@ -35,7 +35,17 @@ pub fn write_all(
     Ok(())
 }
 
-fn default_of<'a>(records: &'a [Record], lesson: &str) -> Option<&'a Record> {
+/// The record's most accurate variant, the families table's: the lowest
+/// error (a hard shadow's misclassified %, a soft shadow's penumbra |ΔV|),
+/// the first in the lesson's order on a tie.
+pub fn most_accurate(r: &Record) -> Option<&VariantRecord> {
+    r.variants
+        .iter()
+        .min_by(|a, b| a.error_pct().total_cmp(&b.error_pct()))
+}
+
+/// The lesson's default run (`lesson_04`).
+pub fn default_of<'a>(records: &'a [Record], lesson: &str) -> Option<&'a Record> {
     records
         .iter()
         .find(|r| r.lesson == lesson && r.run == "results")
@@ -95,14 +105,8 @@ pub fn families(records: &[Record]) -> String {
             let Some(d) = default_of(records, lesson) else {
                 continue;
             };
-            // The lesson's own error: a hard shadow's misclassified %, a
-            // soft shadow's penumbra |ΔV|.
             let error = |v: &VariantRecord| v.error_pct();
-            let Some(best) = d
-                .variants
-                .iter()
-                .min_by(|a, b| error(a).total_cmp(&error(b)))
-            else {
+            let Some(best) = most_accurate(d) else {
                 continue;
             };
             let worst = cases_of(records, lesson)

@@ -10,10 +10,16 @@
 //! writes `book/src/generated/` (tables, and the records the drift test
 //! checks), `book/src/figures/` (figures, plots, diagrams) and the README's
 //! table between its marker comments.
+//!
+//! The chapters' measured figures are markers it fills ([`prose`]); the
+//! sentences comparing them carry claims it checks on the same records
+//! ([`claims`]): it fails, naming the chapter's line, when one is false.
 
 mod adapters;
 mod choosing;
+mod claims;
 mod diagrams;
+mod figures;
 mod gpu_costs;
 mod grade_times;
 mod legend;
@@ -27,6 +33,7 @@ mod record;
 mod runner;
 mod scaling;
 mod sets;
+mod soft_diagrams;
 mod stability;
 mod summary;
 mod table;
@@ -255,7 +262,7 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
         lesson10::write_all(root, generated, &records, manifest::WIDTH, manifest::HEIGHT)?;
     choosing::write_all(generated, &records, Some(&convergence.errors_by_scene()))?;
     volumes_gpu::write(root, generated)?;
-    gpu_costs::write(root, generated)?;
+    gpu_costs::write(root, generated, &records)?;
     scaling::write_tables(root)?;
     lesson09::write_all(generated, figures, &records)?;
     adapters::write_all(root, generated, &records)?;
@@ -265,8 +272,10 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     for chapter in prose::write_chapters(&root.join("book/src"), generated)? {
         println!("figures in prose rewritten: {chapter}");
     }
+    claims::check_book(root, generated)?;
     diagrams::write_all(root, &figures.join("diagrams"))?;
     volume_diagrams::write_all(root, &figures.join("diagrams"))?;
+    soft_diagrams::write_all(root, &figures.join("diagrams"))?;
     let readme = root.join("README.md");
     let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
     let text = summary::splice(&text, &summary::readme_block(&defaults))
@@ -470,9 +479,12 @@ fn pool_stable(runs: &[RunTimes]) -> Option<record::Timing> {
     pool(&stable).map(|t| record::Timing { left_out: why, ..t })
 }
 
-/// Copies the figures and lesson-written tables of the manifest.
+/// Copies the figures and lesson-written tables of the manifest; a PNG
+/// figure is made ready for the page on the way ([`figures::prepare`]),
+/// and its count goes to `generated/figures.json`.
 fn copy_outputs(work: &Path, figures: &Path, generated: &Path, only: Option<&str>) -> Result<()> {
-    for (list, dest_root) in [(FIGURES, figures), (TEXTS, generated)] {
+    let mut counts = figures::load_counts(generated)?;
+    for (list, dest_root, is_figure) in [(FIGURES, figures, true), (TEXTS, generated, false)] {
         for f in list
             .iter()
             .filter(|f| only.is_none_or(|l| f.run.starts_with(l)))
@@ -480,11 +492,16 @@ fn copy_outputs(work: &Path, figures: &Path, generated: &Path, only: Option<&str
             let src = work.join(f.run).join("r0").join(f.file);
             let dest = dest_root.join(f.dest);
             std::fs::create_dir_all(dest.parent().context("figure path")?)?;
+            if is_figure && f.dest.ends_with(".png") {
+                figures::prepare_file(&src, f.dest, &dest, &mut counts)
+                    .with_context(|| format!("figure {}", f.dest))?;
+                continue;
+            }
             std::fs::copy(&src, &dest)
                 .with_context(|| format!("figure {}: cannot copy {}", f.dest, src.display()))?;
         }
     }
-    Ok(())
+    figures::write_counts(generated, &counts)
 }
 
 /// Every committed record, by lesson then manifest order.

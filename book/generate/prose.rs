@@ -1,7 +1,9 @@
 //! Measured figures inside the chapters' sentences, written by the
 //! generator. A chapter never types a number a run produced: it names the
 //! record cell, and `workbook book` / `workbook tables` writes the value
-//! between the markers (invisible in the rendered book):
+//! between the markers (invisible in the rendered book). A sentence that
+//! compares figures carries a claim the generator checks on the same
+//! records (`crate::claims`):
 //!
 //! ```text
 //! <!--fig:lesson_07/results:clamp:misclassified_pct-->1.889 %<!--/fig-->
@@ -31,7 +33,7 @@ use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 
-use crate::record::Record;
+use crate::record::{Record, Stat};
 use crate::table::{count, ms, pct};
 
 /// Opens a marker: `<!--fig:KEY-->`.
@@ -72,6 +74,12 @@ pub fn fill(text: &str, lookup: &mut dyn FnMut(&str) -> Result<String>) -> Resul
 
 /// The value of one key, read from the records under `generated`.
 pub fn lookup(generated: &Path, key: &str) -> Result<String> {
+    let (record, variant, field) = read(generated, key)?;
+    value(&record, variant, field)
+}
+
+/// A key's record, variant and field: `RUN:VARIANT:FIELD`.
+pub fn read<'k>(generated: &Path, key: &'k str) -> Result<(Record, &'k str, &'k str)> {
     let mut parts = key.split(':');
     let (Some(run), Some(variant), Some(field), None) =
         (parts.next(), parts.next(), parts.next(), parts.next())
@@ -83,11 +91,54 @@ pub fn lookup(generated: &Path, key: &str) -> Result<String> {
         std::fs::read_to_string(&path).with_context(|| format!("no record {}", path.display()))?;
     let record: Record =
         serde_json::from_str(&text).with_context(|| format!("{}: not a record", path.display()))?;
-    value(&record, variant, field)
+    Ok((record, variant, field))
+}
+
+/// What one field of one variant measures, before it is formatted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Measured {
+    /// A percentage, as the tables print it (`1.889` for `1.889 %`).
+    Pct(f64),
+    /// A count.
+    Count(u64),
+    /// A time: its median and spread, in milliseconds.
+    Time(Stat),
+    /// The frame's time over the no-shadow baseline's.
+    Cost { frame: Stat, baseline: Stat },
+}
+
+impl Measured {
+    /// The figure as a number: the percentage, the count, the median, the
+    /// difference of the medians.
+    pub fn number(&self) -> f64 {
+        match *self {
+            Measured::Pct(x) => x,
+            Measured::Count(n) => n as f64,
+            Measured::Time(s) => s.median,
+            Measured::Cost { frame, baseline } => frame.median - baseline.median,
+        }
+    }
 }
 
 /// One field of one variant of a record, formatted as the tables print it.
 pub fn value(record: &Record, variant: &str, field: &str) -> Result<String> {
+    Ok(match measure(record, variant, field)? {
+        Measured::Pct(x) => format!("{} %", pct(x)),
+        Measured::Count(n) => count(n),
+        Measured::Time(s) => format!("{} ms", ms(s.median)),
+        Measured::Cost { frame, baseline } => {
+            if frame.differs_from(&baseline) {
+                format!("{:+.1} ms", frame.median - baseline.median)
+            } else {
+                "no measurable difference".into()
+            }
+        }
+    })
+}
+
+/// One field of one variant of a record, as a number (with its spread
+/// when it is a time).
+pub fn measure(record: &Record, variant: &str, field: &str) -> Result<Measured> {
     let timing = |name: &str| {
         if name == "baseline" {
             return record.baseline.as_ref();
@@ -109,11 +160,9 @@ pub fn value(record: &Record, variant: &str, field: &str) -> Result<String> {
             let Some(base) = record.baseline.as_ref() else {
                 bail!("no baseline in the record");
             };
-            let (f, b) = (t.frame(), base.frame());
-            return Ok(if f.differs_from(b) {
-                format!("{:+.1} ms", f.median - b.median)
-            } else {
-                "no measurable difference".into()
+            return Ok(Measured::Cost {
+                frame: *t.frame(),
+                baseline: *base.frame(),
             });
         }
         let stat = if field == "frame" {
@@ -124,16 +173,16 @@ pub fn value(record: &Record, variant: &str, field: &str) -> Result<String> {
         let Some(stat) = stat else {
             bail!("no time `{field}` for `{variant}`");
         };
-        return Ok(format!("{} ms", ms(stat.median)));
+        return Ok(Measured::Time(*stat));
     }
     let Some(v) = record.variants.iter().find(|v| v.name == variant) else {
         bail!("no variant `{variant}` in the record");
     };
     Ok(match field {
-        "misclassified_pct" => format!("{} %", pct(v.misclassified_pct)),
-        "false_shadow_pct" => format!("{} %", pct(v.false_shadow_pct)),
-        "false_lit_pct" => format!("{} %", pct(v.false_lit_pct)),
-        "mean_abs" => format!("{} %", pct(100.0 * v.mean_abs)),
+        "misclassified_pct" => Measured::Pct(v.misclassified_pct),
+        "false_shadow_pct" => Measured::Pct(v.false_shadow_pct),
+        "false_lit_pct" => Measured::Pct(v.false_lit_pct),
+        "mean_abs" => Measured::Pct(100.0 * v.mean_abs),
         "penumbra_mean_abs"
         | "light_bleeding_pct"
         | "umbra_misclassified_pct"
@@ -143,15 +192,15 @@ pub fn value(record: &Record, variant: &str, field: &str) -> Result<String> {
                 bail!("`{variant}` has no soft-shadow figures (its light has no size)");
             };
             match field {
-                "penumbra_mean_abs" => format!("{} %", pct(100.0 * e.penumbra_mean_abs)),
-                "light_bleeding_pct" => format!("{} %", pct(e.light_bleeding_pct)),
-                "umbra_misclassified_pct" => format!("{} %", pct(e.umbra_misclassified_pct)),
-                "penumbra_pixels" => count(e.penumbra_pixels),
-                _ => count(e.umbra_pixels),
+                "penumbra_mean_abs" => Measured::Pct(100.0 * e.penumbra_mean_abs),
+                "light_bleeding_pct" => Measured::Pct(e.light_bleeding_pct),
+                "umbra_misclassified_pct" => Measured::Pct(e.umbra_misclassified_pct),
+                "penumbra_pixels" => Measured::Count(e.penumbra_pixels),
+                _ => Measured::Count(e.umbra_pixels),
             }
         }
         counter => match v.counters.get(counter) {
-            Some(&n) => count(n),
+            Some(&n) => Measured::Count(n),
             None => bail!("`{variant}` has no field or counter `{counter}`"),
         },
     })
@@ -166,33 +215,43 @@ fn is_pass(record: &Record, field: &str) -> bool {
         .any(|t| t.passes.contains_key(field))
 }
 
-/// Rewrites every chapter under `src` (not the generated files) with its
-/// markers' values from `generated`; returns the chapters changed.
-pub fn write_chapters(src: &Path, generated: &Path) -> Result<Vec<String>> {
-    let mut changed = Vec::new();
+/// The chapters under `src` (not the generated files), sorted.
+pub fn chapters(src: &Path) -> Result<Vec<std::path::PathBuf>> {
+    let mut out = Vec::new();
     let mut stack = vec![src.to_path_buf()];
     while let Some(dir) = stack.pop() {
         for e in std::fs::read_dir(&dir).with_context(|| format!("{}", dir.display()))? {
             let p = e?.path();
             if p.is_dir() {
-                if !p.ends_with("generated") && !p.ends_with("figures") && !p.ends_with("katex") {
+                if !["generated", "figures", "katex"]
+                    .iter()
+                    .any(|x| p.ends_with(x))
+                {
                     stack.push(p);
                 }
-                continue;
+            } else if p.extension().is_some_and(|x| x == "md") {
+                out.push(p);
             }
-            if p.extension().is_none_or(|x| x != "md") {
-                continue;
-            }
-            let text = std::fs::read_to_string(&p)?;
-            if !text.contains(OPEN) {
-                continue;
-            }
-            let new = fill(&text, &mut |k| lookup(generated, k))
-                .with_context(|| format!("{}", p.display()))?;
-            if new != text {
-                std::fs::write(&p, &new)?;
-                changed.push(p.display().to_string());
-            }
+        }
+    }
+    out.sort();
+    Ok(out)
+}
+
+/// Rewrites every chapter under `src` (not the generated files) with its
+/// markers' values from `generated`; returns the chapters changed.
+pub fn write_chapters(src: &Path, generated: &Path) -> Result<Vec<String>> {
+    let mut changed = Vec::new();
+    for p in chapters(src)? {
+        let text = std::fs::read_to_string(&p)?;
+        if !text.contains(OPEN) {
+            continue;
+        }
+        let new = fill(&text, &mut |k| lookup(generated, k))
+            .with_context(|| format!("{}", p.display()))?;
+        if new != text {
+            std::fs::write(&p, &new)?;
+            changed.push(p.display().to_string());
         }
     }
     Ok(changed)

@@ -3,7 +3,8 @@
 //! (`common::run::display`) once the live reference's full figure for the
 //! view has come. Each chapter shows `figures/window/lesson_NN.png` with
 //! `generated/window/lesson_NN.md` as its caption, written from the
-//! window's own log.
+//! window's own log. The capture is made opaque for the page
+//! ([`crate::figures::prepare`]).
 
 use std::path::Path;
 
@@ -90,6 +91,10 @@ pub fn write_all(
             let err = String::from_utf8_lossy(&out.stderr);
             bail!("{}'s window: {}", shot.lesson, err.trim());
         }
+        // Opaque for the white page, like every figure (`figures.rs`).
+        let dest = format!("window/{}.png", shot.lesson);
+        let mut counts = std::collections::BTreeMap::new();
+        crate::figures::prepare_file(&png, &dest, &png, &mut counts)?;
         let text = std::fs::read_to_string(&log).context("the window's log")?;
         let last: serde_json::Value =
             serde_json::from_str(text.lines().last().context("the window drew no frame")?)?;

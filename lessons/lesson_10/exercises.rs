@@ -1,7 +1,8 @@
 //! Lesson 10's exercises, the starter code: both are WGSL functions in
 //! `shaders/lesson_10/exercises.wgsl`, appended to the lesson's shader. The
 //! variants `exercise_blocker_search` and `exercise_penumbra` run PCSS with
-//! one of them in place of the lesson's own. With `--features solutions`
+//! one of them in place of the lesson's own, in a shader module without
+//! the lesson's own (`exercise_shaders.rs`). With `--features solutions`
 //! the build reads `solutions/lesson_10.rs` instead.
 
 /// `exercise_blocker_search(s, radius, angle, gradient)` and

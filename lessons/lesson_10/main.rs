@@ -36,6 +36,7 @@ use workbook::lesson_01::shadow_map::{
 };
 use workbook::lesson_02::bias::SlopeScaledBias;
 use workbook::lesson_03::pcf::{Filter, FilterUniform};
+use workbook::lesson_10::exercise_shaders::Module;
 use workbook::lesson_10::knobs;
 use workbook::lesson_10::moments::{MomentsMap, MomentsPasses};
 use workbook::lesson_10::peers::{self, Peer};
@@ -154,6 +155,15 @@ impl Variant {
         }
     }
 
+    /// The shader module its lit pass is from (`exercise_shaders.rs`).
+    fn module(self) -> Module {
+        match self {
+            Variant::ExerciseBlockerSearch => Module::BlockerSearch,
+            Variant::ExercisePenumbra => Module::Penumbra,
+            _ => Module::Lesson,
+        }
+    }
+
     /// A renderer's port, for a light of geometry `g` (`peers.rs`).
     fn peer(self, g: &LightGeometry) -> Peer {
         let name = self.to_possible_value().expect("a named variant");
@@ -239,7 +249,8 @@ struct Soft {
     params_layout: wgpu::BindGroupLayout,
     /// Lesson 03's filter uniform (its Poisson disk), for the hard baseline.
     filter: wgpu::Buffer,
-    lit_pipeline: wgpu::RenderPipeline,
+    /// fs_soft of the lesson's module, then of each exercise's.
+    lit_pipelines: [wgpu::RenderPipeline; 3],
     /// `per_light[variant][light]`.
     per_light: Vec<Vec<PerLight>>,
     draws: u64,
@@ -311,31 +322,12 @@ impl Lesson for Soft {
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
-        let lesson_03 = workbook::exercises_wgsl_path("lesson_03");
-        let exercises = workbook::exercises_wgsl_path("lesson_10");
-        let files = [
-            (
-                lesson_03.as_str(),
-                workbook::lesson_03::exercises::EXERCISES_WGSL,
-            ),
-            (
-                "shaders/lesson_03/pcf.wgsl",
-                include_str!("../../shaders/lesson_03/pcf.wgsl"),
-            ),
-            (
-                "shaders/lesson_10/soft.wgsl",
-                include_str!("../../shaders/lesson_10/soft.wgsl"),
-            ),
-            (
-                exercises.as_str(),
-                workbook::lesson_10::exercises::EXERCISES_WGSL,
-            ),
-            (
-                "shaders/lesson_10/peers.wgsl",
-                include_str!("../../shaders/lesson_10/peers.wgsl"),
-            ),
-        ];
-        let module = shadow_map::shader_module_from_files(gpu, "lesson_10", &files)?;
+        // The lesson's module, then each exercise's (without the lesson's
+        // function it asks for).
+        let modules = Module::ALL.map(|m| m.compile(gpu));
+        let [module, search, penumbra] = modules;
+        let module = module?;
+        let exercise_modules = [search?, penumbra?];
         let mut entries = shadow_map_entries();
         entries.push(float_texture_entry(2));
         entries.push(storage_entry(3, wgpu::ShaderStages::FRAGMENT, false, None));
@@ -359,14 +351,17 @@ impl Lesson for Soft {
             "lesson 03 filter",
             bytemuck::bytes_of(&FilterUniform::from(poisson)),
         );
-        let lit_pipeline = scene.lit_pipeline_with_depth(
-            gpu,
-            &module,
-            "fs_soft",
-            &[&map_layout, &params_layout],
-            scene.lit_depth_state(Default::default()),
-            &[("MODE", 2.0)],
-        );
+        let lit = |module| {
+            scene.lit_pipeline_with_depth(
+                gpu,
+                module,
+                "fs_soft",
+                &[&map_layout, &params_layout],
+                scene.lit_depth_state(Default::default()),
+                &[("MODE", 2.0)],
+            )
+        };
+        let lit_pipelines = [&module, &exercise_modules[0], &exercise_modules[1]].map(lit);
         let geometry = (0..scene.scene.lights.len())
             .map(|k| {
                 LightGeometry::new(&scene.scene, k)
@@ -384,7 +379,7 @@ impl Lesson for Soft {
             geometry,
             params_layout,
             filter,
-            lit_pipeline,
+            lit_pipelines,
             per_light: Vec::new(),
             draws: shadow_map::shadow_map_draws(scene),
         };
@@ -429,7 +424,8 @@ impl Lesson for Soft {
             };
             frame.pass("lighting", |enc, ts| {
                 let groups = [map_group, &state.group];
-                let pass = LitPass::new(light, &self.lit_pipeline, &groups);
+                let pipeline = &self.lit_pipelines[variant.module() as usize];
+                let pass = LitPass::new(light, pipeline, &groups);
                 scene.lit_pass(enc, targets, pass, ts.render())
             });
         }

@@ -2,8 +2,10 @@
 //! one shadow map into the visible fraction of a light with a size (PCF,
 //! PCSS, variance maps, the renderers' defaults); [`moments`], the variance
 //! map's passes; [`knobs`], their sizes and taps, as the window's widgets
-//! and `--knob`.
+//! and `--knob`; [`exercise_shaders`], the shader modules, one per exercise
+//! without the lesson's function it asks for.
 
+pub mod exercise_shaders;
 pub mod knobs;
 pub mod light_geometry;
 pub mod moments;

@@ -1,7 +1,10 @@
 // lesson_10/exercises.wgsl: the chapter's exercises, the starter code.
-// Appended to soft.wgsl: light_distance, filter_radius, vogel, Blockers and
-// the `soft` parameters are there. The variants exercise_blocker_search and
-// exercise_penumbra run PCSS with one of these in place of the lesson's own.
+// Appended to soft.wgsl: light_distance, vogel, Blockers and the `soft`
+// parameters are there. The variants exercise_blocker_search and
+// exercise_penumbra run PCSS with one of these in place of the lesson's own,
+// each in a module without the lesson's function it replaces: calling
+// blocker_search (or filter_radius) there calls your own function, which
+// WGSL refuses (lessons/lesson_10/exercise_shaders.rs).
 
 // ANCHOR: blocker_search
 // Exercise 1: the blocker search. Of `soft.search_taps` taps on a disk of

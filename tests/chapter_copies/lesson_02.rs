@@ -1,7 +1,7 @@
-//! Lesson 02's exercises, the starter code: both are WGSL functions, in
-//! `shaders/lesson_02/exercises.wgsl` (`slope_bias`, `grazing_bias`). Edit
-//! them there, then run `cargo run --release --bin grade -- lesson_02`.
-//! The reference solutions are `solutions/lesson_02.rs` (`--features solutions`).
+//! Lesson 02's exercises answered with the chapter's own code
+//! (`--features chapter_copies`, for `grade --check-copies`): both are WGSL
+//! functions, in `lesson_02.wgsl` here, pasted from the chapter's listings
+//! and, after its marker line, calling the lesson's own functions.
 
 /// The WGSL of the exercises: `slope_bias(world, n)` (exercise 1) and
 /// `grazing_bias(world, n)` (exercise 2), each with a stub body.

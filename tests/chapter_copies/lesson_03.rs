@@ -1,8 +1,7 @@
-//! Lesson 03's exercises, the starter code: both are WGSL functions in
-//! `shaders/lesson_03/exercises.wgsl`, appended to the lesson's shader. The
-//! variants `exercise_pcf_kernel` and `exercise_world_disk` call them;
-//! the lesson's own variants never do. With `--features solutions` the
-//! build reads `solutions/lesson_03.rs` instead.
+//! Lesson 03's exercises answered with the chapter's own code
+//! (`--features chapter_copies`, for `grade --check-copies`): both are WGSL
+//! functions, in `lesson_03.wgsl` here, pasted from the chapter's listings
+//! and, after its marker line, calling the lesson's own functions.
 
 /// `exercise_pcf_kernel(s, radius, gradient)` and
 /// `exercise_world_disk(s, world, pixel, radius_m, gradient)`, to fill in.

@@ -24,3 +24,19 @@ fn exercise_world_disk(s: vec3<f32>, world: vec3<f32>, pixel: vec2<f32>, radius_
     return lit / 16.0;
 }
 // ANCHOR_END: world_disk
+
+// ==== calls the lesson's own functions ====
+// The second pass of grade --check-copies (WORKBOOK_CHAPTER_COPY=calls):
+// each exercise answered with a call of the lesson's own function.
+
+// Calls the chapter's `pcf_grid` listing (N = 2 radius + 1), as the
+// first pass does.
+fn exercise_pcf_kernel(s: vec3<f32>, radius: i32, gradient: vec2<f32>) -> f32 {
+    return pcf_grid(s, 2 * radius + 1, gradient);
+}
+
+// Calls the chapter's `poisson` listing, `pcf_poisson`: the rotated
+// disk of poisson_16's radius, in texels.
+fn exercise_world_disk(s: vec3<f32>, world: vec3<f32>, pixel: vec2<f32>, radius_m: f32, gradient: vec2<f32>) -> f32 {
+    return pcf_poisson(s, pixel, gradient);
+}

@@ -6,7 +6,8 @@ use common::glam::DVec3;
 
 /// Exercise 1, copied: the lesson's sphere test, on the sphere around the box.
 pub fn faces_touched(centre: DVec3, half: DVec3) -> [bool; 6] {
-    // Chapter 04's listing `culling.rs:sphere_in_face`, called as printed.
+    // Chapter 04's listing `culling.rs:sphere_in_face`, called as printed:
+    // the call of the lesson's own function, in both passes of the check.
     std::array::from_fn(|face| super::culling::sphere_touches_face(centre, half.length(), face))
 }
 

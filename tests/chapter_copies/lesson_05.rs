@@ -14,7 +14,8 @@ pub fn silhouette_edges_in_view(
     view: &[(DVec3, f64)],
 ) -> Vec<SilhouetteEdge> {
     let _ = view;
-    // Chapter 05's listing `silhouette.rs:silhouette_edges`, called as printed.
+    // Chapter 05's listing `silhouette.rs:silhouette_edges`, called as
+    // printed: the call of the lesson's own function, in both passes.
     super::silhouette::silhouette_edges(adj, light)
 }
 
@@ -27,6 +28,16 @@ pub fn volume_can_matter(
     range: Option<f64>,
     frustum: &[(DVec3, f64)],
 ) -> bool {
+    if common::gpu::render::chapter_copy_calls() {
+        // Lesson 05 skips no caster; the lessons' own caster test is
+        // chapter 08's `range_sphere.rs:caster_reaches` (it takes the
+        // scene: its test, on these arguments).
+        let _ = frustum;
+        return match (light, range) {
+            (LightDir::Point(p), Some(r)) => p.as_dvec3().distance(center) <= r + radius,
+            _ => true,
+        };
+    }
     let _ = range;
     // Chapter 06's listing `plan.rs:plan`, its `outside` test, pasted.
     let outside = |(n, d): &(DVec3, f64)| {

@@ -21,7 +21,8 @@ pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) ->
         .map(|p| p.distance(center))
         .fold(0.0, f64::max);
     // Chapter 06's listings `plan.rs:plan` (`reaches_near`) and
-    // `plan.rs:occlusion_pyramid`, called as printed.
+    // `plan.rs:occlusion_pyramid`, called as printed: the lesson's own
+    // functions, in both passes of the check.
     let (point, dir) = match light {
         LightDir::Point(p) => (Some(p.as_dvec3()), None),
         LightDir::Directional(d) => (None, Some(d.as_dvec3())),
@@ -38,7 +39,8 @@ pub fn volume_caps(
     light: LightDir,
     _view: &[(DVec3, f64)],
 ) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
-    // Chapter 06's listing `extrusion.rs:cpu_volume` (from lesson 05), its caps.
+    // Chapter 06's listing `extrusion.rs:cpu_volume` (from lesson 05), its
+    // caps: the lesson's own function, called, in both passes of the check.
     let lit = crate::lesson_05::silhouette::light_facing_triangles(adj, light);
     let back = lit.iter().map(|t| [t[0], t[2], t[1]]).collect();
     (lit, back)

@@ -8,7 +8,8 @@ use crate::lesson_08::range_sphere::sphere_depth_bounds;
 
 // ANCHOR: cone_sphere
 /// Exercise 1, copied: the chapter's `light_bounds` listing bounds a spot
-/// light by its range sphere, centre `position`, radius `range`.
+/// light by its range sphere, centre `position`, radius `range` (the
+/// sphere is its data, not a function's: the same in both passes).
 pub fn cone_sphere(position: DVec3, direction: DVec3, range: f64, half_angle: f64) -> (DVec3, f64) {
     let _ = (direction, half_angle);
     (position, range) // listing `light_bounds` (range_sphere.rs)
@@ -17,7 +18,8 @@ pub fn cone_sphere(position: DVec3, direction: DVec3, range: f64, half_angle: f6
 
 // ANCHOR: cone_depth_bounds
 /// Exercise 2, copied: the range sphere's interval, the chapter's
-/// `sphere_depth_bounds` listing.
+/// `sphere_depth_bounds` listing: the lesson's own function, called, in
+/// both passes of the check.
 pub fn cone_depth_bounds(
     proj: DMat4,
     near: f64,

@@ -23,3 +23,21 @@ fn exercise_filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
     return (d_r - d_b) / max(d_b, 1e-6) * soft.size * soft.uv_per;
 }
 // ANCHOR_END: filter_radius
+
+// ==== calls the lesson's own functions ====
+// The second pass of grade --check-copies (WORKBOOK_CHAPTER_COPY=calls):
+// each exercise answered with one call of the lesson's own function, as
+// the chapter's `pcss` listing calls it. Each exercise's module leaves
+// that function out and gives its name to the exercise
+// (lessons/lesson_10/exercise_shaders.rs): the call is a call of itself,
+// which WGSL refuses, and the exercise fails with the compiler's line.
+
+// Calls soft.wgsl's blocker_search, as the chapter's `pcss` listing does.
+fn exercise_blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
+    return blocker_search(s, radius, angle, gradient);
+}
+
+// Calls soft.wgsl's filter_radius, as the chapter's `pcss` listing does.
+fn exercise_filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
+    return filter_radius(d_r, d_b);
+}

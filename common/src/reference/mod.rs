@@ -20,6 +20,8 @@
 //! - [`area`]: the soft shadow of an area light, by stratified rays.
 //! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
 //! - [`cone`]: the cone of an area light's rays, and what might block it.
+//! - [`dv_view`]: the signed ΔV view of a soft shadow (GPU − exact), on a
+//!   diverging colour scale.
 //! - [`metrics`]: error of a GPU visibility image against the reference.
 //! - [`soft_metrics`]: a soft shadow's error per class of receiver (umbra,
 //!   penumbra, lit), its leak and spill, and its penumbra-width error.
@@ -27,6 +29,7 @@
 pub mod area;
 pub mod bvh;
 pub mod cone;
+pub mod dv_view;
 pub mod metrics;
 pub mod soft_metrics;
 

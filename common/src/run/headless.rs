@@ -15,7 +15,7 @@ use crate::measure::report::VariantReport;
 use crate::measure::report::{combine, AdapterReport, BaselineReport, CameraPathReport, Report};
 use crate::measure::timing::{median_times, samples, spread_times, Timer};
 use crate::reference::metrics::{self, pixel_states, PixelState, ReferenceStates};
-use crate::reference::try_render_reference;
+use crate::reference::{dv_view, try_render_reference};
 use crate::run::cli::Args;
 use crate::run::lesson::{apply_cli_knobs, knob_values};
 use crate::run::lesson::{variant_name, Lesson};
@@ -147,6 +147,13 @@ pub fn run_headless<L: Lesson>(
                 &out_dir.join(format!("{v}_visibility_l{k}.png")),
             )?;
             save(&cmp.diff, &out_dir.join(format!("{v}_diff_l{k}.png")))?;
+            // A soft shadow's error is below the diff's V = ½: its signed ΔV.
+            if reference.area_light[k] {
+                save(
+                    &dv_view::dv_image(&reference, k, &images.id, vis),
+                    &out_dir.join(format!("{v}_dv_l{k}.png")),
+                )?;
+            }
             per_light.push(cmp.stats);
         }
         lesson.write_extras(&gpu, &sg, variant, &out_dir)?;

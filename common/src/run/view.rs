@@ -1,6 +1,7 @@
 //! What the window shows: the frame, the variant's visibility, its
-//! difference against the exact reference, or the lesson's own buffer
-//! (`--view` picks the first; the window's keys switch).
+//! difference against the exact reference (classified, or the signed
+//! visibility error ΔV), or the lesson's own buffer (`--view` picks the
+//! first; the window's keys switch).
 
 use clap::ValueEnum;
 
@@ -14,13 +15,24 @@ pub enum View {
     /// Against the exact reference (light 0): red false shadow, green false
     /// lit, gray where both agree (lighter lit), near black not a receiver.
     Diff,
+    /// The signed visibility error against the exact reference (light 0):
+    /// blue where the GPU is darker, red where it is lighter, white where
+    /// they agree; a soft shadow's penumbra error shows here, not in
+    /// [`View::Diff`] (common/src/reference/dv_view.rs).
+    Dv,
     /// The lesson's own buffer: the shadow map, the cube map's cross, the
     /// stencil count or the cascades.
     Buffer,
 }
 
 impl View {
-    pub const ALL: [View; 4] = [View::Frame, View::Visibility, View::Diff, View::Buffer];
+    pub const ALL: [View; 5] = [
+        View::Frame,
+        View::Visibility,
+        View::Diff,
+        View::Buffer,
+        View::Dv,
+    ];
 
     /// The key that shows it.
     pub fn key(self) -> char {
@@ -29,6 +41,7 @@ impl View {
             View::Visibility => '2',
             View::Diff => '3',
             View::Buffer => '4',
+            View::Dv => '5',
         }
     }
 
@@ -37,6 +50,7 @@ impl View {
             View::Frame => "frame",
             View::Visibility => "visibility",
             View::Diff => "diff",
+            View::Dv => "dv",
             View::Buffer => "buffer",
         }
     }

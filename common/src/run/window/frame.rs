@@ -71,9 +71,9 @@ impl<L: Lesson> App<L> {
             for a in live.answers()? {
                 let current = a.stamp == s.stamp;
                 s.answer_latency = current.then(|| (Instant::now() - s.view_since).as_secs_f64());
-                r.present.set_diff(&r.gpu, &a.diff);
                 s.diff = Some((diff_title(&a), (a.stamp.scene_gen, a.stamp.image_gen)));
                 s.answer = Some(a);
+                s.error_image = None;
             }
             let due = s.sent_at.is_none_or(|t| now - t >= JOB_EVERY);
             if !live.busy() && s.sent != Some(s.stamp) && s.variant_frames >= 2 && due {
@@ -86,6 +86,23 @@ impl<L: Lesson> App<L> {
                     frame,
                 });
                 s.sent = Some(s.stamp);
+            }
+        }
+
+        // The diff and dv views share one texture: it holds the shown one's.
+        let error_view = match s.view {
+            View::Dv => View::Dv,
+            _ => View::Diff,
+        };
+        if s.error_image != Some(error_view) {
+            if let Some(a) = &s.answer {
+                let image = if error_view == View::Dv {
+                    &a.dv
+                } else {
+                    &a.diff
+                };
+                r.present.set_diff(&r.gpu, image);
+                s.error_image = Some(error_view);
             }
         }
 
@@ -131,6 +148,11 @@ impl<L: Lesson> App<L> {
             }
             View::Diff => Some(match &s.diff {
                 Some((title, stamp)) => titled(title, *stamp),
+                None => "computing…".to_string(),
+            }),
+            View::Dv if r.live.is_none() => Some("no dv: the live reference is off".to_string()),
+            View::Dv => Some(match &s.diff {
+                Some((title, stamp)) => titled(&dv_title(title), *stamp),
                 None => "computing…".to_string(),
             }),
             View::Buffer => match picture {
@@ -301,6 +323,16 @@ fn diff_title(a: &super::live::Answer) -> String {
         Level::Full => "every pixel",
     };
     format!("diff against the exact reference, light 0 ({level}): red false shadow, green false lit, gray agree, near black not a receiver")
+}
+
+/// What the dv image shows, in one line, at the diff's `level` (read from
+/// its title).
+fn dv_title(diff_title: &str) -> String {
+    let level = match diff_title.contains("coarse") {
+        true => "coarse estimate",
+        false => "every pixel",
+    };
+    format!("signed error V − V_ref, light 0 ({level}): blue darker than exact, red lighter, white agree, dark gray not a receiver")
 }
 
 /// This process's resident memory (Linux), for the log.

@@ -25,6 +25,7 @@ use image::RgbaImage;
 
 use crate::gpu::targets::FrameImages;
 use crate::measure::report::combine;
+use crate::reference::dv_view::dv_image;
 use crate::reference::metrics::{compare, ErrorStats};
 use crate::reference::{try_render_reference, Reference};
 use crate::scene::Scene;
@@ -66,6 +67,8 @@ pub struct Answer {
     pub error: ErrorStats,
     /// The difference image of light 0 (red false shadow, green false lit).
     pub diff: RgbaImage,
+    /// The signed visibility error of light 0 (`dv_view::dv_image`).
+    pub dv: RgbaImage,
     /// Milliseconds from the job's start to this answer.
     pub ms: f64,
     /// Whether this ends the job (the worker is idle after it).
@@ -181,13 +184,14 @@ fn serve(
                 let (cw, ch) = ((w / COARSE).max(1), (h / COARSE).max(1));
                 let coarse = try_render_reference(&job.scene, job.view_proj, cw, ch)?;
                 let frame = subsample(&job.frame, cw, ch);
-                let (error, diff) = measure(&coarse, &frame);
+                let (error, diff, dv) = measure(&coarse, &frame);
                 let overtaken = latest.load(Ordering::Relaxed) != job.stamp.scene_gen;
                 let a = Answer {
                     stamp: job.stamp,
                     level: Level::Coarse,
                     error,
                     diff,
+                    dv,
                     ms: ms(),
                     last: overtaken,
                 };
@@ -198,12 +202,13 @@ fn serve(
                 cached = Some((job.stamp.scene_gen, full));
             }
             let (_, reference) = cached.as_ref().expect("a reference was made above");
-            let (error, diff) = measure(reference, &job.frame);
+            let (error, diff, dv) = measure(reference, &job.frame);
             Ok(Some(Answer {
                 stamp: job.stamp,
                 level: Level::Full,
                 error,
                 diff,
+                dv,
                 ms: ms(),
                 last: true,
             }))
@@ -223,8 +228,9 @@ fn serve(
     }
 }
 
-/// Every light's figure (combined) and light 0's difference image.
-fn measure(reference: &Reference, frame: &FrameImages) -> (ErrorStats, RgbaImage) {
+/// Every light's figure (combined), light 0's difference image and its
+/// signed ΔV image.
+fn measure(reference: &Reference, frame: &FrameImages) -> (ErrorStats, RgbaImage, RgbaImage) {
     let mut per_light = Vec::new();
     let mut diff = None;
     for (k, vis) in frame.visibility.iter().enumerate() {
@@ -235,7 +241,11 @@ fn measure(reference: &Reference, frame: &FrameImages) -> (ErrorStats, RgbaImage
         diff.get_or_insert(c.diff);
     }
     let diff = diff.unwrap_or_else(|| RgbaImage::new(frame.width, frame.height));
-    (combine(&per_light), diff)
+    let dv = match frame.visibility.first() {
+        Some(vis) => dv_image(reference, 0, &frame.id, vis),
+        None => RgbaImage::new(frame.width, frame.height),
+    };
+    (combine(&per_light), diff, dv)
 }
 
 /// The frame's pixels nearest the centres of a `cw × ch` grid over it: what

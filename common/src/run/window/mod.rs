@@ -86,6 +86,9 @@ struct State {
     /// The diff view's title and the stamp it was computed for (its image
     /// is in [`Present`]).
     diff: Option<(String, (u64, u64))>,
+    /// Which answer image (the diff's or the dv's) the shared texture
+    /// holds; `None` after a new answer.
+    error_image: Option<View>,
     buffer: Option<Picture>,
     buffer_note: Option<String>,
     buffer_at: Option<Instant>,
@@ -149,6 +152,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
             answer: None,
             answer_latency: None,
             diff: None,
+            error_image: None,
             buffer: None,
             buffer_note: None,
             buffer_at: None,

@@ -21,7 +21,10 @@ pub const KEYS: &[(&str, &str)] = &[
         "move a point or spot light up and down",
     ),
     ("V or Space / Shift+V", "next / previous variant"),
-    ("1 2 3 4, Tab", "view: frame, visibility, diff, buffer"),
+    (
+        "1 2 3 4 5, Tab",
+        "view: frame, visibility, diff, buffer, dv",
+    ),
     ("K", "print the command line that reproduces this, headless"),
     ("H", "hide or show this overlay"),
     ("Escape", "quit"),

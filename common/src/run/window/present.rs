@@ -106,7 +106,7 @@ impl Present {
                 &self.blit_gray,
                 &self.visibility_group,
             ),
-            View::Diff => {
+            View::Diff | View::Dv => {
                 draw_fullscreen(&mut enc, &self.picture_view, &self.blit, &self.diff_group)
             }
             // The overlay paints the buffer over a dark background.
