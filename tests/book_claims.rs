@@ -597,3 +597,48 @@ fn every_comparison_of_measured_figures_carries_a_claim() {
         errors.join("\n  ")
     );
 }
+
+/// The comments a sentence holds (`<!--claim: …-->`, `<!-- no claim: …-->`,
+/// markers) open and close on one line: mdBook parses a comment inside a
+/// paragraph line by line, and one that runs on past its line is left
+/// open ("Saw EOF in state Comment"), swallowing the text after it.
+fn comments_left_open(markdown: &str) -> Vec<usize> {
+    let mut open = Vec::new();
+    let mut fenced = false;
+    for (n, line) in markdown.lines().enumerate() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+        }
+        // The last comment opened on the line is still open at its end.
+        let unclosed = line
+            .rfind("<!--")
+            .is_some_and(|at| !line[at..].contains("-->"));
+        if !fenced && unclosed {
+            open.push(n + 1);
+        }
+    }
+    open
+}
+
+#[test]
+fn every_comment_in_a_sentence_closes_on_its_line() {
+    assert_eq!(
+        comments_left_open("a <!--claim: x < y;\ny > z--> b\n"),
+        vec![1]
+    );
+    assert!(comments_left_open("the line that starts with `-->`\n").is_empty());
+    assert!(comments_left_open("a <!--claim: x < y; y > z--> b\n").is_empty());
+    let mut errors = Vec::new();
+    for path in prose::chapters(&root().join("book/src")).expect("book/src") {
+        let text = fs::read_to_string(&path).expect("chapter");
+        for line in comments_left_open(&text) {
+            errors.push(format!("{}:{line}", rel(&path)));
+        }
+    }
+    assert!(
+        errors.is_empty(),
+        "comments that do not close on the line they open on (mdBook leaves them open and \
+         swallows what follows): put each on one line:\n  {}",
+        errors.join("\n  ")
+    );
+}
