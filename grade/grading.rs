@@ -28,6 +28,9 @@ pub struct Options {
     pub hidden: Option<PathBuf>,
     /// Grade on the hidden scenes only (not on the spec's own scenes).
     pub hidden_only: bool,
+    /// Measure how far each figure may move on another adapter
+    /// (`--fragile`): the snapshot prints the exercise's bounds.
+    pub fragile: bool,
 }
 
 /// One check's outcome (the JSON's `checks`).
@@ -117,6 +120,20 @@ fn metric(report: &Value, variant_name: &str, metric: &str) -> Option<f64> {
         Some(("camera_path", c)) => v["camera_path"][c].as_f64(),
         _ => v["error"][metric].as_f64(),
     }
+}
+
+/// ` ±B`: how far figure `field` of `variant_name` may move on another
+/// adapter, as the run measured it (report.json's `fragile.bounds`, times
+/// `scale`, rounded up to two decimals); empty when it measured none.
+fn bound(report: &Value, variant_name: &str, field: &str, scale: f64) -> String {
+    variant(report, variant_name)
+        .and_then(|v| v["fragile"]["bounds"][field].as_f64())
+        .map_or(String::new(), |b| {
+            format!(
+                " ±{:.2}",
+                (b * scale * 100.0 - 1e-9).ceil().max(0.0) / 100.0
+            )
+        })
 }
 
 /// Prints a figure with as many decimals as small figures need.
@@ -215,6 +232,7 @@ fn run_scene(
         adapter: Some(&opts.adapter),
         // The grade reads errors, never times.
         warm_up_ms: Some(0.0),
+        fragile: opts.fragile,
     };
     let report = runner.run(&args, out)?;
     Ok(serde_json::to_value(report)?)
@@ -231,26 +249,38 @@ fn snapshot_part(ex: &Exercise, label: &str, report: &Value, out: &Path) -> Resu
     let vis: Vec<f32> = img.pixels().map(|p| p.0[0] as f32 / 255.0).collect();
     let mask = common::reference::metrics::ascii_mask(&ids, &vis, w, h, 64, 18);
     let f = |m: &str| metric(report, &ex.variant, m).unwrap_or(f64::NAN);
+    // Each figure's bound (` ±B`), when the run measured them (`--fragile`).
+    let b = |m: &str, scale: f64| bound(report, &ex.variant, m, scale);
     let mut text = format!(
         "scene {label}: light 0 ('#' shadow, '.' lit, ' ' background)\n{mask}\n\
-         misclassified {:.2} %  false shadow {:.2} %  false lit {:.2} %  mean |dV| {:.2} %\n",
+         misclassified {:.2} %{}  false shadow {:.2} %{}  false lit {:.2} %{}  mean |dV| {:.2} %{}\n",
         f("misclassified_pct"),
+        b("misclassified_pct", 1.0),
         f("false_shadow_pct"),
+        b("false_shadow_pct", 1.0),
         f("false_lit_pct"),
+        b("false_lit_pct", 1.0),
         100.0 * f("mean_abs"),
+        b("mean_abs", 100.0),
     );
     // An area light's soft shadow: its penumbra and its umbra.
     if metric(report, &ex.variant, "penumbra_mean_abs").is_some() {
         text += &format!(
-            "penumbra |dV| {:.2} %  umbra misclassified {:.2} %  bleeding {:.2} %\n",
+            "penumbra |dV| {:.2} %{}  umbra misclassified {:.2} %{}  bleeding {:.2} %{}\n",
             100.0 * f("penumbra_mean_abs"),
+            b("penumbra_mean_abs", 100.0),
             f("umbra_misclassified_pct"),
+            b("umbra_misclassified_pct", 1.0),
             f("light_bleeding_pct"),
+            b("light_bleeding_pct", 1.0),
         );
     }
     for c in &ex.snapshot_counters {
         let v = metric(report, &ex.variant, &format!("counters.{c}"));
-        text += &format!("{c} {}\n", v.map_or("missing".into(), fmt));
+        let moved = variant(report, &ex.variant)
+            .and_then(|v| v["fragile"]["counters"][c.as_str()].as_u64())
+            .map_or(String::new(), |n| format!(" ±{n}"));
+        text += &format!("{c} {}{moved}\n", v.map_or("missing".into(), fmt));
     }
     Ok(text + "\n")
 }
@@ -441,9 +471,11 @@ pub fn grade_exercise(
         task: ex.task.clone(),
         checks,
         skipped_scenes: skipped,
+        // The adapter first: on the one it was recorded on, a snapshot
+        // must match exactly (tests/support/tolerance.rs).
+        snapshot: format!("adapter: {} ({})\n{snapshot}", adapter.0, adapter.1),
         adapter: adapter.0,
         backend: adapter.1,
-        snapshot,
     })
 }
 

@@ -253,6 +253,7 @@ fn run(cli: Cli) -> Result<bool> {
             backend: cli.backend.clone(),
             hidden: cli.scenes.clone(),
             hidden_only: false,
+            fragile: false,
         };
         for l in &lessons {
             let mut results = grading::grade_lesson(&runner, &opts, l, cli.exercise.as_deref())?;

@@ -642,3 +642,46 @@ fn every_comment_in_a_sentence_closes_on_its_line() {
         errors.join("\n  ")
     );
 }
+
+/// The lines (1-based) of `text` that start with a marker (`<!--fig:`,
+/// `<!--claim:`) inside a paragraph: CommonMark reads such a line as a raw
+/// HTML block, which breaks the paragraph there and prints the rest of the
+/// line unrendered (`hard_pcf`'s64, code spans left as backticks).
+fn markers_opening_a_line(text: &str) -> Vec<usize> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut fence = false;
+    let mut out = Vec::new();
+    for (i, l) in lines.iter().enumerate() {
+        if l.trim_start().starts_with("```") {
+            fence = !fence;
+        }
+        let marker =
+            l.trim_start().starts_with("<!--fig:") || l.trim_start().starts_with("<!--claim:");
+        if !fence && marker && i > 0 && !lines[i - 1].trim().is_empty() {
+            out.push(i + 1);
+        }
+    }
+    out
+}
+
+#[test]
+fn no_marker_opens_a_line_of_a_paragraph() {
+    assert_eq!(
+        markers_opening_a_line("at 256² and\n  <!--fig:a:b:c-->2<!--/fig--> at 4096²\n"),
+        vec![2]
+    );
+    assert!(markers_opening_a_line("at 256² and <!--fig:a:b:c-->2<!--/fig-->\n").is_empty());
+    let mut errors = Vec::new();
+    for path in prose::chapters(&root().join("book/src")).expect("book/src") {
+        let text = fs::read_to_string(&path).expect("chapter");
+        for line in markers_opening_a_line(&text) {
+            errors.push(format!("{}:{line}", rel(&path)));
+        }
+    }
+    assert!(
+        errors.is_empty(),
+        "lines that open with a marker inside a paragraph (mdBook prints them as raw HTML, \
+         breaking the paragraph): join each to the line before:\n  {}",
+        errors.join("\n  ")
+    );
+}

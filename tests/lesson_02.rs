@@ -63,7 +63,12 @@ fn lesson_02_snapshot() {
         &run.report,
         &["draws", "filter_taps_per_pixel", "shadow_fragments"],
     );
-    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_02", text));
+    support::tolerance::tolerant(|| {
+        insta::assert_snapshot!(
+            "lesson_02",
+            support::tolerance::adapter_line(&run.report) + &text
+        )
+    });
 }
 
 /// The bar: on the default scene the best variant misclassifies at
@@ -474,7 +479,17 @@ fn lesson_02_light_frustum_much_larger_than_the_scene() {
 
 #[test]
 fn lesson_02_writes_every_output() {
-    let Some(run) = run("lesson_02_outputs", None, (320, 180), &[BEST]) else {
+    let args = [
+        "--width",
+        "320",
+        "--height",
+        "180",
+        "--frames",
+        "1",
+        "--variant",
+        BEST,
+    ];
+    let Some(run) = support::run_lesson_env(BIN, "lesson_02_outputs", &args, support::TIMED) else {
         return;
     };
     for f in [

@@ -48,18 +48,25 @@ fn lesson_03_snapshot() {
     for v in run.report["variants"].as_array().expect("variants") {
         let name = v["name"].as_str().unwrap();
         text += &format!(
-            "{name:<14} taps {:>2}  texels {:>2}  misclassified {:>5.2}%  mean |dV| {:>4.1}%\n",
+            "{name:<14} taps {:>2}  texels {:>2}  misclassified {:>5.2}%{}  mean |dV| {:>4.1}%{}\n",
             support::counter(&run.report, name, "taps"),
             support::counter(&run.report, name, "texels_read"),
             support::error(&run.report, name, "misclassified_pct"),
+            support::bound(v, "misclassified_pct", 1.0, 2),
             100.0 * support::error(&run.report, name, "mean_abs"),
+            support::bound(v, "mean_abs", 100.0, 1),
         );
     }
     text += &support::counter_lines(
         &run.report,
         &["draws", "filter_taps_per_pixel", "shadow_fragments"],
     );
-    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_03", text));
+    support::tolerance::tolerant(|| {
+        insta::assert_snapshot!(
+            "lesson_03",
+            support::tolerance::adapter_line(&run.report) + &text
+        )
+    });
 }
 
 /// The bar: on the default scene the best variant misclassifies at
@@ -93,7 +100,8 @@ fn lesson_03_best_variant_is_within_one_percent() {
 /// while the misclassified share stays put, and the lighting pass has a time.
 #[test]
 fn lesson_03_taps_error_and_time() {
-    let Some(run) = run("lesson_03_taps", None, &[]) else {
+    let args = ["--width", "640", "--height", "360", "--frames", "1"];
+    let Some(run) = support::run_lesson_env(BIN, "lesson_03_taps", &args, support::TIMED) else {
         return;
     };
     let expect = [

@@ -88,7 +88,12 @@ fn lesson_04_snapshot() {
         );
     }
     text += &support::counter_lines(&run.report, &["draws", "filter_taps_per_pixel"]);
-    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_04", text));
+    support::tolerance::tolerant(|| {
+        insta::assert_snapshot!(
+            "lesson_04",
+            support::tolerance::adapter_line(&run.report) + &text
+        )
+    });
     // 3D PCF's raised slope bias is a reported parameter, not a silent one.
     assert_eq!(counter(&run, "pcf3d_1024", "slope_bias_millitexels"), 2500);
     assert_eq!(

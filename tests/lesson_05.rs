@@ -42,13 +42,18 @@ fn lesson_05_snapshot() {
         &run.report,
         &["draws", "volume_triangles", "volume_fragments"],
     );
-    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_05", text));
+    support::tolerance::tolerant(|| {
+        insta::assert_snapshot!(
+            "lesson_05",
+            support::tolerance::adapter_line(&run.report) + &text
+        )
+    });
 }
 
 /// With the camera outside every volume, z-pass is exact (both builds).
 #[test]
 fn lesson_05_exact_when_the_eye_is_outside() {
-    let Some(run) = support::run_lesson(BIN, "lesson_05_exact", &SIZE) else {
+    let Some(run) = support::run_lesson_env(BIN, "lesson_05_exact", &SIZE, support::TIMED) else {
         return;
     };
     for v in ["zpass_cpu", "zpass_quads"] {
@@ -214,7 +219,7 @@ fn lesson_05_compute_matches_cpu() {
         ]
         .concat();
         let name = format!("lesson_05_compute_{}", scene.replace(".toml", ""));
-        let Some(run) = support::run_lesson(BIN, &name, &args) else {
+        let Some(run) = support::run_lesson_env(BIN, &name, &args, support::TIMED) else {
             return;
         };
         same_as(&run, "zpass_compute", "zpass_cpu");

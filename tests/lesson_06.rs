@@ -30,7 +30,12 @@ fn lesson_06_snapshot() {
         &run.report,
         &["draws", "volume_triangles", "volume_fragments"],
     );
-    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_06", text));
+    support::tolerance::tolerant(|| {
+        insta::assert_snapshot!(
+            "lesson_06",
+            support::tolerance::adapter_line(&run.report) + &text
+        )
+    });
 }
 
 /// The camera is in the roof's umbra: z-pass fails, z-fail is exact, and a

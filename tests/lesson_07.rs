@@ -68,7 +68,12 @@ fn lesson_07_snapshot() {
             "stencil_updates",
         ],
     );
-    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_07", text));
+    support::tolerance::tolerant(|| {
+        insta::assert_snapshot!(
+            "lesson_07",
+            support::tolerance::adapter_line(&run.report) + &text
+        )
+    });
 }
 
 /// The showcase: volumes cross the finite far plane. Neither clamp nor an

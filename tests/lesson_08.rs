@@ -118,7 +118,12 @@ fn lesson_08_snapshot() {
             "stencil_updates",
         ],
     );
-    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_08", text));
+    support::tolerance::tolerant(|| {
+        insta::assert_snapshot!(
+            "lesson_08",
+            support::tolerance::adapter_line(&run.report) + &text
+        )
+    });
 }
 
 /// The default scene (four point lights of range 3.5): identical pixels,

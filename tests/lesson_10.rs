@@ -59,18 +59,27 @@ fn lesson_10_snapshot() {
             continue;
         }
         text += &format!(
-            "{name:<16} search {:>2}  filter {:>2}  texels {:>2}  misclassified {:>5.2}%  mean |dV| {:>4.1}%  penumbra |dV| {:>4.1}%  bleeding {:>5.2}%\n",
+            "{name:<16} search {:>2}  filter {:>2}  texels {:>2}  misclassified {:>5.2}%{}  mean |dV| {:>4.1}%{}  penumbra |dV| {:>4.1}%{}  bleeding {:>5.2}%{}\n",
             support::counter(&run.report, name, "blocker_search_taps"),
             support::counter(&run.report, name, "filter_taps_per_pixel"),
             support::counter(&run.report, name, "texels_read"),
             support::error(&run.report, name, "misclassified_pct"),
+            support::bound(v, "misclassified_pct", 1.0, 2),
             100.0 * support::error(&run.report, name, "mean_abs"),
+            support::bound(v, "mean_abs", 100.0, 1),
             100.0 * penumbra(&run, name),
+            support::bound(v, "penumbra_mean_abs", 100.0, 1),
             bleeding(&run, name),
+            support::bound(v, "light_bleeding_pct", 1.0, 2),
         );
     }
     text += &support::counter_lines(&run.report, &["draws", "shadow_map_size"]);
-    support::tolerance::tolerant(|| insta::assert_snapshot!("lesson_10", text));
+    support::tolerance::tolerant(|| {
+        insta::assert_snapshot!(
+            "lesson_10",
+            support::tolerance::adapter_line(&run.report) + &text
+        )
+    });
 }
 
 // ANCHOR: pcss_bar

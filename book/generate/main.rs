@@ -346,6 +346,7 @@ impl Measure<'_> {
             adapter: Some(self.adapter),
             // Untimed runs keep errors and counters only: no warm-up needed.
             warm_up_ms: (!run.timed).then_some(0.0),
+            fragile: false,
         };
         let bar = self.bar;
         bar.set_message(format!("{} ({}/{repeats})", run.id(), i + 1));

@@ -27,6 +27,9 @@ pub struct RunArgs<'a> {
     /// `--warm-up-ms`: the lesson's default protocol when `None`; `Some(0.0)`
     /// for runs whose times nobody reads (errors and counters only).
     pub warm_up_ms: Option<f64>,
+    /// `--fragile`: also measure how far each figure may move on another
+    /// adapter (report.json's `fragile`).
+    pub fragile: bool,
 }
 
 /// Finds the lesson binaries: beside this executable (`target/release/`).
@@ -89,6 +92,13 @@ impl Runner {
         }
         if let Some(ms) = a.warm_up_ms {
             cmd.args(["--warm-up-ms", &ms.to_string()]);
+        }
+        // Times nobody reads are not measured at all.
+        if a.warm_up_ms == Some(0.0) {
+            cmd.arg("--no-timing");
+        }
+        if a.fragile {
+            cmd.arg("--fragile");
         }
         let output = cmd
             .output()

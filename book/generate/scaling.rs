@@ -828,6 +828,7 @@ fn measure(
             backend: Some(backend),
             adapter: Some(manifest::ADAPTER),
             warm_up_ms: None,
+            fragile: false,
         };
         let out = work.join("runs").join(plan.name).join(format!("p{i}"));
         let report = match runner.run(&args, &out) {

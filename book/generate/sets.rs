@@ -4,16 +4,311 @@
 //! leaving the book's own set (lavapipe, Vulkan) as it is. Each chapter
 //! then shows the other sets' tables beside lavapipe's
 //! (`generated/<lesson>/results_other_adapters.md`).
+//!
+//! A set is measured at one commit ([`ORIGINS`]), and the code moves on.
+//! A variant changed since that commit ([`CHANGES`]) is left out of the
+//! set's tables and named under them with the commit that changed it, so
+//! that no figure of code the lesson no longer runs sits beside today's.
+//! The generator fails when a set's variant no longer exists, or runs with
+//! other settings than the book's own record of the same run says, and
+//! [`CHANGES`] does not say why ([`check_set`]).
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 
-use crate::manifest::{self, RUNS};
+use crate::manifest::{self, HD, RUNS};
 use crate::record::Record;
 
 /// The folder of the other sets, under `book/src/generated/`.
 pub const SETS_DIR: &str = "sets";
+
+/// Where and when a committed set (or another measurement of the book's
+/// lessons) was made.
+pub struct Origin {
+    /// The set's folder name ([`slug`]).
+    pub set: &'static str,
+    /// The commit whose code it ran.
+    pub commit: &'static str,
+    /// The day it ran.
+    pub measured: &'static str,
+}
+
+/// The committed sets. Measuring a set again: give its new commit here and
+/// drop its [`CHANGES`] that came before that commit.
+pub const ORIGINS: &[Origin] = &[Origin {
+    set: "nvidia-h100-80gb-hbm3-vulkan",
+    commit: "d7678c5",
+    measured: "2026-11-26",
+}];
+
+/// A change, after the commit a measurement ran, to what it measured.
+pub struct Change {
+    /// The measurement's commit ([`Origin::commit`]).
+    pub since: &'static str,
+    pub lesson: &'static str,
+    /// The variant, by the name the measurement gives it; `None`: what
+    /// every variant of the lesson is measured against (the reference).
+    pub variant: Option<&'static str>,
+    /// The variant's name today, when it was renamed.
+    pub now: Option<&'static str>,
+    /// The commits that changed it.
+    pub commits: &'static [&'static str],
+    pub what: &'static str,
+}
+
+/// What changed since each measurement's commit, read from
+/// `git log d7678c5..HEAD -- lessons/ shaders/ common/src/reference/` and
+/// checked against the book's own records of those commits.
+pub const CHANGES: &[Change] = &[
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_03",
+        variant: Some("wgpu_example_hw2x2"),
+        now: None,
+        commits: &["b76feab"],
+        what: "the wgpu example's own 512² map (it ran on 1024²)",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_03",
+        variant: Some("bevy"),
+        now: None,
+        commits: &["b76feab"],
+        what: "Bevy's own 2048² map (it ran on 1024²)",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_04",
+        variant: Some("learnopengl_1tap"),
+        now: None,
+        commits: &["b76feab"],
+        what: "LearnOpenGL's near plane (1 m, clipped), depth stored as distance / 25, no range clamp (it ran with a 5 cm near plane, unclipped)",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_04",
+        variant: Some("learnopengl_pcf20"),
+        now: None,
+        commits: &["b76feab"],
+        what: "LearnOpenGL's near plane (1 m, clipped), depth stored as distance / 25, no range clamp (it ran with a 5 cm near plane, unclipped)",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_04",
+        variant: Some("bevy_point"),
+        now: None,
+        commits: &["b76feab"],
+        what: "Bevy's near plane (0.1 m, clipped), its flipped Gaussian basis and its interpolated normal (it ran with a 5 cm near plane, unclipped)",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_10",
+        variant: Some("filament_pcss"),
+        now: None,
+        commits: &["b4352d7"],
+        what: "Filament's first 16 Poisson points and its depth-averaged penumbra ratio",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_10",
+        variant: Some("filament_evsm"),
+        now: None,
+        commits: &["b4352d7"],
+        what: "Filament's EVSM floor with its exponent",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_10",
+        variant: Some("bevy_pcss"),
+        now: Some("bevy_pcss_or_pcf"),
+        commits: &["b4352d7"],
+        what: "Bevy's reversed infinite spot depth and its own width units; on a sun, Bevy's Castaño PCF",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_10",
+        variant: Some("godot_soft_low"),
+        now: None,
+        commits: &["b4352d7"],
+        what: "Godot's spot formula",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_10",
+        variant: Some("threejs_pcf_soft"),
+        now: None,
+        commits: &["9a542e5"],
+        what: "three.js's own 512² map (it ran on 1024²)",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_10",
+        variant: Some("threejs_vsm"),
+        now: None,
+        commits: &["b4352d7", "9a542e5"],
+        what: "three.js's VSM, the blur of its map's own depth, on its 512² map (it ran on 1024²)",
+    },
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_10",
+        variant: None,
+        now: None,
+        commits: &["0a5b04a"],
+        what: "the exact reference: an area light's rays now go wherever a conservative cone query finds a caster, so this set's errors are against the reference as it was (its times do not depend on it)",
+    },
+];
+
+/// Counters that count rasterised fragments: adapters differ by a few at
+/// triangle edges, so these alone do not say that a variant changed.
+const RASTERISED: &[&str] = &[
+    "shadow_fragments",
+    "shadow_texels_written",
+    "fragment_shader_invocations",
+    "stencil_updates",
+    "volume_fragments",
+];
+
+/// The origin of the set in folder `set`, when [`ORIGINS`] has it.
+pub fn origin(set: &str) -> Option<&'static Origin> {
+    ORIGINS.iter().find(|o| o.set == set)
+}
+
+/// The changes since `commit` to `lesson`'s `variant` (by the name the
+/// measurement gives it).
+pub fn changed(commit: &str, lesson: &str, variant: &str) -> Option<&'static Change> {
+    CHANGES
+        .iter()
+        .find(|c| c.since == commit && c.lesson == lesson && c.variant == Some(variant))
+}
+
+/// The changes since `commit` to what every variant of `lesson` is
+/// measured against.
+fn lesson_wide_changes<'a>(
+    commit: &'a str,
+    lesson: &'a str,
+) -> impl Iterator<Item = &'static Change> + 'a {
+    CHANGES
+        .iter()
+        .filter(move |c| c.since == commit && c.lesson == lesson && c.variant.is_none())
+}
+
+/// The commits as the book names them: `` `a` `` or `` `a` and `b` ``.
+fn commits(c: &Change) -> String {
+    let named: Vec<String> = c.commits.iter().map(|h| format!("`{h}`")).collect();
+    named.join(" and ")
+}
+
+/// The note under a table of a measurement made at `commit`: the variants
+/// of `lesson` it left out (`left_out`, by the measurement's names) and
+/// why; with `lesson_wide`, also what changed since for every variant (the
+/// reference their errors are measured against). `whose` names the rows
+/// when the table holds other lessons too (`lesson 10's`).
+pub fn changes_note(
+    commit: &str,
+    lesson: &str,
+    left_out: &[&str],
+    lesson_wide: bool,
+    whose: Option<&str>,
+) -> String {
+    let mut s = String::new();
+    let named: Vec<(&str, &Change)> = left_out
+        .iter()
+        .filter_map(|n| Some((*n, changed(commit, lesson, n)?)))
+        .collect();
+    if !named.is_empty() {
+        let of = whose.map_or(String::new(), |w| format!(" of {w} rows"));
+        s += &format!(
+            "\nLeft out{of}: the variants changed since `{commit}`, whose figures here are of code the lesson no longer runs:\n\n"
+        );
+        for (name, c) in named {
+            let renamed = c.now.map_or(String::new(), |n| format!(", now `{n}`"));
+            s += &format!("- `{name}`{renamed} ({}): {}\n", commits(c), c.what);
+        }
+    }
+    if lesson_wide {
+        for c in lesson_wide_changes(commit, lesson) {
+            s += &format!(
+                "\nChanged since `{commit}`, for every variant ({}): {}.\n",
+                commits(c),
+                c.what
+            );
+        }
+    }
+    s
+}
+
+/// Fails when the set `name` (measured at `commit`) holds a variant that
+/// the book's own record of the same run (`main`) does not have, or one
+/// whose settings (its counters, bar the rasterised ones) differ from that
+/// record's, without a [`CHANGES`] entry; or when [`CHANGES`] names a
+/// variant of the set's commit that the set does not hold.
+pub fn check_set(
+    name: &str,
+    commit: Option<&str>,
+    records: &[Record],
+    main: &[Record],
+) -> Result<()> {
+    let mut errors = Vec::new();
+    for r in records {
+        let Some(ours) = main.iter().find(|m| m.id() == r.id()) else {
+            continue;
+        };
+        for v in &r.variants {
+            if commit.is_some_and(|c| changed(c, &r.lesson, &v.name).is_some()) {
+                continue;
+            }
+            let Some(today) = ours.variants.iter().find(|w| w.name == v.name) else {
+                errors.push(format!(
+                    "{}: `{}` is no variant of the lesson today",
+                    r.id(),
+                    v.name
+                ));
+                continue;
+            };
+            let differs: Vec<String> = v
+                .counters
+                .iter()
+                .filter(|(k, _)| !RASTERISED.contains(&k.as_str()))
+                .filter(|(k, n)| today.counters.get(*k) != Some(n))
+                .map(|(k, n)| format!("{k} {n} → {:?}", today.counters.get(k)))
+                .collect();
+            if !differs.is_empty() {
+                errors.push(format!(
+                    "{}: `{}` ran with other settings than today's ({})",
+                    r.id(),
+                    v.name,
+                    differs.join(", ")
+                ));
+            }
+        }
+    }
+    if let Some(commit) = commit {
+        for c in CHANGES.iter().filter(|c| c.since == commit) {
+            let held = records.iter().any(|r| {
+                r.lesson == c.lesson
+                    && c.variant
+                        .is_none_or(|n| r.variants.iter().any(|v| v.name == n))
+            });
+            let lesson_held = records.iter().any(|r| r.lesson == c.lesson);
+            if lesson_held && !held {
+                errors.push(format!(
+                    "CHANGES names {}'s `{}`, which the set does not hold",
+                    c.lesson,
+                    c.variant.unwrap_or("")
+                ));
+            }
+        }
+    }
+    if !errors.is_empty() {
+        bail!(
+            "the set {name}{} differs from the book's records; name each change, with the commit that made it, in sets::CHANGES (or measure the set again):\n  {}",
+            commit.map_or(String::new(), |c| format!(" (measured at {c})")),
+            errors.join("\n  ")
+        );
+    }
+    Ok(())
+}
 
 /// Whether `--adapter` and `--backend` make the book's own set.
 pub fn is_main(adapter: &str, backend: &str) -> bool {
@@ -71,41 +366,129 @@ pub fn load_sets(generated: &Path) -> Result<Vec<(String, Vec<Record>)>> {
     Ok(sets)
 }
 
-/// Each lesson's `results_other_adapters.md`: the default run's table of
-/// every other set, or how to make one.
+/// A set's heading: its adapter and the commit it ran.
+fn heading(name: &str, records: &[Record]) -> String {
+    let who = records.first().map_or(name.to_string(), |r| {
+        format!("{} ({})", r.adapter, r.backend)
+    });
+    match origin(name) {
+        Some(o) => format!(
+            "**{who}, the code of commit `{}`** (measured {}; lavapipe's tables are of the code as it is now)\n\n",
+            o.commit, o.measured
+        ),
+        None => format!("**{who}**\n\n"),
+    }
+}
+
+/// A run's table without the variants changed since the set's commit, and
+/// the names of those left out.
+fn table_of(r: &Record, commit: Option<&str>) -> Result<(String, Vec<String>)> {
+    let mut shown = r.clone();
+    let mut left_out = Vec::new();
+    shown.variants.retain(|v| {
+        let gone = commit.is_some_and(|c| changed(c, &r.lesson, &v.name).is_some());
+        if gone {
+            left_out.push(v.name.clone());
+        }
+        !gone
+    });
+    if shown.variants.is_empty() {
+        return Ok((String::new(), left_out));
+    }
+    let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&r.lesson.as_str());
+    Ok((shown.table(mean_abs)?, left_out))
+}
+
+/// One set's part of a lesson's `results_other_adapters.md`: its default
+/// run and its run at the window's size, less the variants changed since
+/// its commit (returned, by name); or that it has no run of the lesson.
+fn set_part(name: &str, records: &[Record], lesson: &str) -> Result<(String, Vec<String>)> {
+    let commit = origin(name).map(|o| o.commit);
+    let mut s = heading(name, records);
+    let runs: Vec<&Record> = ["results", HD]
+        .iter()
+        .filter_map(|run| records.iter().find(|r| r.lesson == lesson && r.run == *run))
+        .collect();
+    let mut left_out: Vec<String> = Vec::new();
+    if runs.is_empty() {
+        let mut held: Vec<String> = records
+            .iter()
+            .map(|r| r.lesson.replace("lesson_", ""))
+            .collect();
+        held.sort();
+        held.dedup();
+        s += &format!(
+            "*This set has no run of this lesson (it holds lessons {}).*\n",
+            held.join(", ")
+        );
+        return Ok((s, left_out));
+    }
+    for (i, r) in runs.iter().enumerate() {
+        let (table, out) = table_of(r, commit)?;
+        if i > 0 {
+            s += &format!("\nThe same at {}×{}:\n\n", r.width, r.height);
+        }
+        s += &table;
+        for n in out {
+            if !left_out.contains(&n) {
+                left_out.push(n);
+            }
+        }
+    }
+    Ok((s, left_out))
+}
+
+/// Each lesson's `results_other_adapters.md`: every other set's default
+/// run and its run at the window's size (less the variants changed since
+/// the set's commit, named under them), the same GPU's runs at 1920×1080
+/// where they are committed ([`crate::gpu_costs`]), or how to make a set.
+/// Fails when a set differs from the book's records in a way
+/// [`CHANGES`] does not explain ([`check_set`]).
 pub fn write_other_adapters(generated: &Path, sets: &[(String, Vec<Record>)]) -> Result<()> {
+    let main = crate::load_records(generated)?;
+    for (name, records) in sets {
+        check_set(name, origin(name).map(|o| o.commit), records, &main)?;
+    }
+    let full_hd = crate::gpu_costs::load(generated)?;
     let mut lessons: Vec<&str> = RUNS.iter().map(|r| r.lesson).collect();
     lessons.dedup();
     for lesson in lessons {
-        let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&lesson);
-        let tables: Vec<String> = sets
-            .iter()
-            .filter_map(|(_, records)| {
-                records
-                    .iter()
-                    .find(|r| r.lesson == lesson && r.run == "results")
-            })
-            .map(|r| {
-                Ok(format!(
-                    "**{} ({})**\n\n{}",
-                    r.adapter,
-                    r.backend,
-                    r.table(mean_abs)?
-                ))
-            })
-            .collect::<Result<_>>()?;
-        let text = if tables.is_empty() && !sets.is_empty() {
-            let names: Vec<&str> = sets.iter().map(|(n, _)| n.as_str()).collect();
-            format!(
-                "*The committed sets of other adapters ({}) have no run of this lesson.*\n",
-                names.join(", ")
-            )
-        } else if tables.is_empty() {
+        let mut parts = Vec::new();
+        for (name, records) in sets {
+            let commit = origin(name).map(|o| o.commit);
+            let (mut part, mut left_out) = set_part(name, records, lesson)?;
+            // The reference's changes touch the errors: only where the set
+            // shows this lesson's.
+            let lesson_wide = records.iter().any(|r| r.lesson == lesson);
+            if full_hd.set == name.as_str() {
+                let (lines, out) = crate::gpu_costs::lesson_lines(&full_hd, lesson);
+                if commit != Some(crate::gpu_costs::ORIGIN.commit) {
+                    // Another commit than the set's: its own note.
+                    let names: Vec<&str> = out.iter().map(String::as_str).collect();
+                    part +=
+                        &changes_note(crate::gpu_costs::ORIGIN.commit, lesson, &names, false, None);
+                    part += &lines;
+                } else {
+                    part += &lines;
+                    left_out.extend(
+                        out.into_iter()
+                            .filter(|n| !left_out.contains(n))
+                            .collect::<Vec<_>>(),
+                    );
+                }
+            }
+            if let Some(c) = commit {
+                let names: Vec<&str> = left_out.iter().map(String::as_str).collect();
+                part += &changes_note(c, lesson, &names, lesson_wide, None);
+            }
+            parts.push(part);
+        }
+        let text = if parts.is_empty() {
             format!(
                 "*Only lavapipe's records are committed. On a GPU, `cargo run --release --bin workbook -- book --adapter any` measures every run there and writes its set to `book/src/generated/{SETS_DIR}/<adapter>-<backend>/`; its table then appears here, beside lavapipe's.*\n"
             )
         } else {
-            tables.join("\n")
+            parts.join("\n")
         };
         let path = generated.join(lesson).join("results_other_adapters.md");
         std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
@@ -129,5 +512,140 @@ mod tests {
         );
         assert!(is_main("software", "vulkan"));
         assert!(!is_main("software", "gl") && !is_main("any", "vulkan"));
+    }
+
+    #[test]
+    fn every_change_is_of_a_known_measurement_and_names_its_commits() {
+        for c in CHANGES {
+            assert!(
+                ORIGINS.iter().any(|o| o.commit == c.since)
+                    || c.since == crate::gpu_costs::ORIGIN.commit,
+                "{}: since {}",
+                c.lesson,
+                c.since
+            );
+            assert!(!c.commits.is_empty() && !c.what.is_empty(), "{}", c.lesson);
+        }
+    }
+
+    fn record(lesson: &str, variants: &[(&str, u64)]) -> Record {
+        let v = |name: &str, size: u64| crate::record::VariantRecord {
+            name: name.into(),
+            receiver_pixels: 1,
+            misclassified_pct: 0.0,
+            false_shadow_pct: 0.0,
+            false_lit_pct: 0.0,
+            mean_abs: 0.0,
+            coverage_mismatch_pct: 0.0,
+            counters: [
+                ("shadow_map_size".to_string(), size),
+                ("shadow_fragments".to_string(), size * 3),
+            ]
+            .into(),
+            timing: None,
+            camera_path: None,
+            classes: Vec::new(),
+            soft: None,
+        };
+        Record {
+            lesson: lesson.into(),
+            run: "results".into(),
+            scene: "default".into(),
+            title: "default scene".into(),
+            adapter: "A".into(),
+            backend: "Vulkan".into(),
+            width: 640,
+            height: 360,
+            repeats: 1,
+            frames: 0,
+            timing_source: String::new(),
+            warm_up_ms: None,
+            variants: variants.iter().map(|(n, s)| v(n, *s)).collect(),
+            baseline: None,
+        }
+    }
+
+    #[test]
+    fn a_set_that_differs_from_the_records_must_say_why() {
+        let today = [record("lesson_03", &[("poisson_16", 1024), ("bevy", 2048)])];
+        // The same settings (the rasterised counts aside): nothing to say.
+        let mut same = record("lesson_03", &[("poisson_16", 1024), ("bevy", 2048)]);
+        same.variants[0]
+            .counters
+            .insert("shadow_fragments".into(), 7);
+        assert!(check_set("x", None, &[same], &today).is_ok());
+        // Another map size, unexplained: fails, naming the variant.
+        let today = [record(
+            "lesson_03",
+            &[
+                ("poisson_16", 1024),
+                ("bevy", 2048),
+                ("wgpu_example_hw2x2", 512),
+            ],
+        )];
+        let old = [record(
+            "lesson_03",
+            &[
+                ("poisson_16", 1024),
+                ("bevy", 1024),
+                ("wgpu_example_hw2x2", 1024),
+            ],
+        )];
+        let e = check_set("x", None, &old, &today).unwrap_err().to_string();
+        assert!(e.contains("`bevy`") && e.contains("shadow_map_size"), "{e}");
+        // Explained by CHANGES (bevy's map since d7678c5): passes, and the
+        // table leaves it out.
+        assert!(check_set("x", Some("d7678c5"), &old, &today).is_ok());
+        let (_, out) = table_of(&old[0], Some("d7678c5")).unwrap();
+        assert_eq!(
+            out,
+            vec!["bevy".to_string(), "wgpu_example_hw2x2".to_string()]
+        );
+        // A variant that no longer exists, unexplained: fails.
+        let gone = [record(
+            "lesson_03",
+            &[("poisson_16", 1024), ("pcf_9x9", 1024)],
+        )];
+        assert!(check_set("x", None, &gone, &today).is_err());
+        // A change named for a variant the set does not hold: fails.
+        let without = [record("lesson_03", &[("poisson_16", 1024)])];
+        let e = check_set("x", Some("d7678c5"), &without, &today)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("wgpu_example_hw2x2"), "{e}");
+    }
+
+    #[test]
+    fn the_note_names_each_left_out_variant_with_its_commit() {
+        let note = changes_note(
+            "d7678c5",
+            "lesson_10",
+            &["bevy_pcss", "threejs_vsm"],
+            true,
+            None,
+        );
+        assert!(
+            note.contains("`bevy_pcss`, now `bevy_pcss_or_pcf` (`b4352d7`)"),
+            "{note}"
+        );
+        assert!(
+            note.contains("`threejs_vsm` (`b4352d7` and `9a542e5`)"),
+            "{note}"
+        );
+        assert!(note.contains("`0a5b04a`"), "{note}");
+        assert_eq!(changes_note("d7678c5", "lesson_05", &[], true, None), "");
+        // The GPU cost table's rows of several lessons: whose they are,
+        // and no reference note (its times do not depend on it).
+        let rows = changes_note(
+            "d7678c5",
+            "lesson_10",
+            &["godot_soft_low"],
+            false,
+            Some("lesson 10's"),
+        );
+        assert!(
+            rows.contains("Left out of lesson 10's rows") && !rows.contains("0a5b04a"),
+            "{rows}"
+        );
     }
 }

@@ -197,6 +197,11 @@ impl Lesson for ZPass {
         Some(format!("{}: {why}", variant_name(variant)))
     }
 
+    fn count_again(&mut self, variant: Variant) -> u32 {
+        self.frames[variant as usize] = 0;
+        2
+    }
+
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let mut c = self.scene_counters.clone();
         c.insert("casters_drawn".into(), self.casters_drawn);

@@ -184,6 +184,7 @@ impl ReversedZ {
         // The window orbits the camera and moves lights: follow them.
         self.scene.scene.camera = scene.scene.camera.clone();
         self.scene.scene.lights = scene.scene.lights.clone();
+        self.scene.jitter = scene.jitter;
         set_reversed_camera(frame.gpu, &mut self.scene);
         let t = with_depth(targets, &self.depth);
         let s = &self.scene;
@@ -227,7 +228,8 @@ fn set_reversed_camera(gpu: &Gpu, s: &mut SceneGpu) {
     // The scene's lens shift, after the projection as the runner applies it.
     let proj = lens_shift(c.shift) * proj;
     s.camera.proj = proj.as_mat4();
-    s.camera.view_proj = (proj * view).as_mat4();
+    // The runner's sub-pixel move, if any (`SceneGpu::jitter`).
+    s.camera.view_proj = s.jitter * (proj * view).as_mat4();
     s.upload_uniforms(gpu);
 }
 

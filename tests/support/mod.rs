@@ -48,8 +48,17 @@ pub fn lesson_command(bin: &str) -> Command {
     if std::env::var_os("WORKBOOK_WARM_UP_MS").is_none() {
         c.env("WORKBOOK_WARM_UP_MS", "0");
     }
+    // Most tests read no times at all: they skip the timed blocks
+    // (`--no-timing`). A test that reads times sets WORKBOOK_NO_TIMING=0
+    // for its run ([`TIMED`]).
+    if std::env::var_os("WORKBOOK_NO_TIMING").is_none() {
+        c.env("WORKBOOK_NO_TIMING", "1");
+    }
     c
 }
+
+/// The environment of a run whose times a test reads.
+pub const TIMED: &[(&str, &str)] = &[("WORKBOOK_NO_TIMING", "0")];
 
 pub struct LessonRun {
     pub out: PathBuf,
@@ -81,7 +90,16 @@ pub fn run_lesson_env(
     env: &[(&str, &str)],
 ) -> Option<LessonRun> {
     let out = out_dir(name);
+    // A snapshot's run (its name ends in `_snapshot`) also measures how far
+    // each figure may move on another adapter (`--fragile`): the snapshot
+    // prints those bounds as `±B`, and `tolerance::compare` allows them.
+    let fragile = if name.ends_with("_snapshot") {
+        "1"
+    } else {
+        "0"
+    };
     let o = lesson_command(bin)
+        .env("WORKBOOK_FRAGILE", fragile)
         .envs(env.iter().copied())
         .arg("--headless")
         .arg("--out")
@@ -163,18 +181,49 @@ pub fn ascii_levels(path: &Path, cols: u32, rows: u32) -> String {
     out
 }
 
-/// One variant's error figures, rounded for a stable snapshot.
+/// One variant's error figures, rounded for a stable snapshot, each with
+/// its bound when the run measured one ([`bound`]).
 pub fn error_line(v: &serde_json::Value, decimals: usize) -> String {
     let e = &v["error"];
     let f = |k: &str| e[k].as_f64().unwrap_or(f64::NAN);
+    let b = |k: &str| bound(v, k, 1.0, decimals);
     format!(
-        "{:<14} misclassified {:>6.d$}%  false shadow {:>6.d$}%  false lit {:>6.d$}%",
+        "{:<14} misclassified {:>6.d$}%{}  false shadow {:>6.d$}%{}  false lit {:>6.d$}%{}",
         v["name"].as_str().unwrap_or("?"),
         f("misclassified_pct"),
+        b("misclassified_pct"),
         f("false_shadow_pct"),
+        b("false_shadow_pct"),
         f("false_lit_pct"),
+        b("false_lit_pct"),
         d = decimals
     )
+}
+
+/// ` ±B`: how far error figure `field` (an `ErrorStats` or `SoftError`
+/// field) of variant `v` may move on another adapter, as the run measured
+/// it (`--fragile`, report.json's `fragile.bounds`; see
+/// `common::reference::fragile`), times `scale` (100 for a fraction
+/// printed in percent), rounded up to `decimals`. Empty when the run
+/// measured none. `tolerance::compare` allows the committed text's bound.
+pub fn bound(v: &serde_json::Value, field: &str, scale: f64, decimals: usize) -> String {
+    match v["fragile"]["bounds"][field].as_f64() {
+        Some(b) => {
+            let step = 10f64.powi(-(decimals as i32));
+            let up = (b * scale / step - 1e-9).ceil().max(0.0) * step;
+            format!(" ±{up:.decimals$}")
+        }
+        None => String::new(),
+    }
+}
+
+/// ` ±N`: how far counter `key` of variant `v` moved when the run drew it
+/// again with the camera moved (`fragile.counters`), or empty.
+pub fn counter_bound(v: &serde_json::Value, key: &str) -> String {
+    match v["fragile"]["counters"][key].as_u64() {
+        Some(n) => format!(" ±{n}"),
+        None => String::new(),
+    }
 }
 
 /// One error figure of one variant (`"misclassified_pct"`, `"false_lit_pct"`, ...).
@@ -384,7 +433,11 @@ pub fn counter_lines(report: &serde_json::Value, keys: &[&str]) -> String {
         let c = &v["counters"];
         let parts: Vec<String> = keys
             .iter()
-            .filter_map(|k| c[*k].as_u64().map(|n| format!("{k} {n}")))
+            .filter_map(|k| {
+                c[*k]
+                    .as_u64()
+                    .map(|n| format!("{k} {n}{}", counter_bound(v, k)))
+            })
             .collect();
         out += &format!(
             "{:<18} {}\n",

@@ -8,6 +8,7 @@
 //! - [`render`]: the scene on the GPU, the shader prelude, the base pass.
 //! - [`lit`]: the lit pass that adds one light.
 //! - [`bindings`]: bind group layouts and groups (textures, samplers, uniforms).
+//! - [`chapter_copy`]: the half of a chapter copy a grading run compiles.
 //! - [`targets`]: the frame's render targets and texture helpers.
 //! - [`fullscreen`]: the full-screen triangle (blits, readback, markers).
 //! - [`readback`]: buffers, textures and query results back to the CPU.
@@ -16,6 +17,7 @@
 //!   to the file, line and column they came from.
 
 pub mod bindings;
+pub mod chapter_copy;
 pub mod depth_probe;
 pub mod fullscreen;
 pub mod lit;

@@ -7,6 +7,8 @@ use glam::Mat4;
 use wgpu::util::DeviceExt;
 
 use crate::gpu::bindings;
+use crate::gpu::chapter_copy;
+pub use crate::gpu::chapter_copy::{chapter_copy_calls, CHAPTER_COPY_CALLS};
 use crate::gpu::targets::{FrameTargets, COLOR_FORMAT, ID_FORMAT};
 use crate::gpu::Gpu;
 use crate::scene::camera::{camera_matrices, light_uniform, CameraMatrices, LightUniform};
@@ -68,6 +70,13 @@ pub struct SceneGpu {
     pub width: u32,
     pub height: u32,
     pub camera: CameraMatrices,
+    /// The runner's sub-pixel move of the camera (`--fragile`): a
+    /// clip-space translation applied after the view-projection, the
+    /// identity otherwise. A lesson that draws with a camera of its own
+    /// (lesson 07) applies it too ([`SceneGpu::set_jitter`]).
+    pub jitter: Mat4,
+    /// The view-projection before [`SceneGpu::set_jitter`] moved it.
+    unjittered: Option<Mat4>,
     pub meshes: Vec<GpuMesh>,
     camera_buf: wgpu::Buffer,
     light_buf: wgpu::Buffer,
@@ -121,42 +130,9 @@ pub fn shader_module_from_files(
     let mut source = crate::gpu::wgsl::WgslSource::new();
     source.push("shaders/common.wgsl", COMMON_WGSL);
     for (path, text) in files {
-        source.push(path, &chapter_copy_half(path, text));
+        source.push(path, &chapter_copy::chapter_copy_half(path, text));
     }
     Ok(source.shader_module(gpu, label)?)
-}
-
-/// The line of a chapter copy (`tests/chapter_copies/lesson_NN.wgsl`, CI's
-/// `grade --check-copies`) after which each exercise is answered again,
-/// with a call of the lesson's own function in place of a pasted listing.
-pub const CHAPTER_COPY_CALLS: &str = "// ==== calls the lesson's own functions ====";
-
-/// Whether this run grades the chapter copies that call the lesson's own
-/// functions (`WORKBOOK_CHAPTER_COPY=calls`, set by `grade --check-copies`
-/// for its second pass) rather than those that paste its listings. Only
-/// builds with `--features chapter_copies` read it.
-pub fn chapter_copy_calls() -> bool {
-    std::env::var("WORKBOOK_CHAPTER_COPY").is_ok_and(|v| v == "calls")
-}
-
-/// A chapter copy's WGSL holds both answers to each exercise, the pasted
-/// listings, then after [`CHAPTER_COPY_CALLS`] the calls: the half this run
-/// grades ([`chapter_copy_calls`]), the other half's lines left blank so
-/// that an error keeps its line number. Any other file is compiled as it is.
-fn chapter_copy_half<'a>(path: &str, text: &'a str) -> std::borrow::Cow<'a, str> {
-    let Some(at) = text.find(CHAPTER_COPY_CALLS) else {
-        return text.into();
-    };
-    if !path.starts_with("tests/chapter_copies/") {
-        return text.into();
-    }
-    let blank = |t: &str| "\n".repeat(t.matches('\n').count());
-    let (pasted, calls) = text.split_at(at);
-    if chapter_copy_calls() {
-        format!("{}{calls}", blank(pasted)).into()
-    } else {
-        format!("{pasted}{}", blank(calls)).into()
-    }
 }
 
 impl SceneGpu {
@@ -246,6 +222,8 @@ impl SceneGpu {
             width,
             height,
             camera,
+            jitter: Mat4::IDENTITY,
+            unjittered: None,
             meshes,
             camera_buf,
             light_buf,
@@ -292,6 +270,25 @@ impl SceneGpu {
     /// Recomputes the camera after `scene.camera` changed.
     pub fn set_camera(&mut self, gpu: &Gpu) {
         self.camera = camera_matrices(&self.scene, self.width, self.height);
+        (self.jitter, self.unjittered) = (Mat4::IDENTITY, None);
+        self.upload_uniforms(gpu);
+    }
+
+    /// Moves the camera's image by the clip-space translation `jitter`
+    /// (see [`SceneGpu::jitter`]) and uploads it; the identity puts back
+    /// the very view-projection it had.
+    pub fn set_jitter(&mut self, gpu: &Gpu, jitter: Mat4) {
+        if jitter == self.jitter {
+            return;
+        }
+        let base = *self.unjittered.get_or_insert(self.camera.view_proj);
+        self.camera.view_proj = if jitter == Mat4::IDENTITY {
+            self.unjittered = None;
+            base
+        } else {
+            jitter * base
+        };
+        self.jitter = jitter;
         self.upload_uniforms(gpu);
     }
 

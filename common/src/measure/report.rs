@@ -56,6 +56,10 @@ pub struct VariantReport {
     /// absent in reports older than the protocol.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub timing_check: Option<TimingCheck>,
+    /// The receivers a rasteriser could flip, and how far each error figure
+    /// can move by them (`--fragile`; absent otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fragile: Option<crate::reference::fragile::Fragile>,
 }
 
 impl VariantReport {

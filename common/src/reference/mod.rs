@@ -20,6 +20,8 @@
 //! - [`area`]: the soft shadow of an area light, by stratified rays.
 //! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
 //! - [`cone`]: the cone of an area light's rays, and what might block it.
+//! - [`fragile`]: the receivers a rasteriser could flip, found by drawing
+//!   the frame again with the camera moved by a sixteenth of a pixel.
 //! - [`dv_view`]: the signed ΔV view of a soft shadow (GPU − exact), on a
 //!   diverging colour scale.
 //! - [`metrics`]: error of a GPU visibility image against the reference.
@@ -30,6 +32,7 @@ pub mod area;
 pub mod bvh;
 pub mod cone;
 pub mod dv_view;
+pub mod fragile;
 pub mod metrics;
 pub mod soft_metrics;
 

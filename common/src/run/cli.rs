@@ -87,6 +87,17 @@ pub struct Args {
     /// | depth32float-stencil8. WORKBOOK_DEPTH_FORMAT is honoured too.
     #[arg(long, value_name = "auto|depth24plus-stencil8|depth32float-stencil8")]
     pub depth_format: Option<String>,
+    /// Also count, per variant, the receivers a rasteriser could flip: draw
+    /// it again with the camera moved by 1/16 pixel each way and see which
+    /// change (report.json's `fragile`: how far each error figure can move
+    /// between two GPUs). WORKBOOK_FRAGILE=1 is honoured too.
+    #[arg(long, env = "WORKBOOK_FRAGILE", value_parser = clap::builder::BoolishValueParser::new())]
+    pub fragile: bool,
+    /// Time nothing: render each variant only for its images, figures and
+    /// counters (the tests and the grader read no times). report.json then
+    /// has empty `timing_ms`. WORKBOOK_NO_TIMING=1 is honoured too.
+    #[arg(long, env = "WORKBOOK_NO_TIMING", value_parser = clap::builder::BoolishValueParser::new())]
+    pub no_timing: bool,
 }
 
 /// The most warm-up `--warm-up-ms` accepts (a minute).

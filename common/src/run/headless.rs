@@ -15,7 +15,7 @@ use crate::measure::report::VariantReport;
 use crate::measure::report::{combine, AdapterReport, BaselineReport, CameraPathReport, Report};
 use crate::measure::timing::{median_times, samples, spread_times, Timer};
 use crate::reference::metrics::{self, pixel_states, PixelState, ReferenceStates};
-use crate::reference::{dv_view, try_render_reference};
+use crate::reference::{dv_view, fragile, try_render_reference};
 use crate::run::cli::Args;
 use crate::run::lesson::{apply_cli_knobs, knob_values};
 use crate::run::lesson::{variant_name, Lesson};
@@ -90,21 +90,26 @@ pub fn run_headless<L: Lesson>(
     // 1. Time every variant first, back to back and interleaved with the
     //    no-shadow baseline, before any CPU-only work lets the GPU idle
     //    (measure::protocol).
-    let baseline = Baseline::new(&gpu, &sg);
-    let order = block_order(runnable.len());
-    let blocks = time_blocks(
-        &mut timer,
-        &gpu,
-        WarmUp::with_min_ms(args.warm_up_ms),
-        args.frames,
-        &order,
-        |frame, id| match id {
-            Some(i) => lesson.render(frame, &sg, &targets, runnable[i]),
-            None => baseline.render(frame, &sg, &targets),
-        },
-    )?;
-    let names: Vec<String> = runnable.iter().map(|&v| variant_name(v)).collect();
-    let timed = verdicts(&blocks, &names, args.warm_up_ms);
+    //    `--no-timing` times nothing (the tests read no times).
+    let timed = if args.no_timing {
+        None
+    } else {
+        let baseline = Baseline::new(&gpu, &sg);
+        let order = block_order(runnable.len());
+        let blocks = time_blocks(
+            &mut timer,
+            &gpu,
+            WarmUp::with_min_ms(args.warm_up_ms),
+            args.frames,
+            &order,
+            |frame, id| match id {
+                Some(i) => lesson.render(frame, &sg, &targets, runnable[i]),
+                None => baseline.render(frame, &sg, &targets),
+            },
+        )?;
+        let names: Vec<String> = runnable.iter().map(|&v| variant_name(v)).collect();
+        Some(verdicts(&blocks, &names, args.warm_up_ms))
+    };
 
     // 2. The reference, then each variant's images and error (untimed).
     let reference = try_render_reference(&sg.scene, sg.camera.view_proj, args.width, args.height)?;
@@ -161,12 +166,33 @@ pub fn run_headless<L: Lesson>(
             save(&b.image, &out_dir.join(format!("{v}_buffer.png")))?;
         }
         let states = light_states(&reference_states, &images);
-        let classes = match lesson.pixel_classes(&sg, variant, &view_depth) {
-            Some((names, class_of)) => Some(metrics::class_errors(&names, &class_of, &states)?),
+        let class_map = lesson.pixel_classes(&sg, variant, &view_depth);
+        let classes = match &class_map {
+            Some((names, class_of)) => Some(metrics::class_errors(names, class_of, &states)?),
             None => None,
         };
-        // Counters first: the path's frames may change what a frame counts.
+        // Counters first: the path's and the jitter's frames may change
+        // what a frame counts.
         let counters = lesson.counters(variant);
+        let fragile = if args.fragile {
+            let run = Jittered {
+                reference: &reference,
+                images: &images,
+                counters: &counters,
+                classes: class_map.as_ref(),
+            };
+            Some(fragile_of(
+                &gpu,
+                &mut sg,
+                &targets,
+                &mut timer,
+                &mut lesson,
+                variant,
+                run,
+            )?)
+        } else {
+            None
+        };
         let camera_path = match sg.scene.camera_path {
             Some(path) => {
                 let mut walk = PathWalk {
@@ -188,7 +214,11 @@ pub fn run_headless<L: Lesson>(
             }
             None => None,
         };
-        let (times, check) = &timed.variants[i];
+        let no_times = Vec::new();
+        let (times, check) = match &timed {
+            Some(t) => (&t.variants[i].0, Some(t.variants[i].1.clone())),
+            None => (&no_times, None),
+        };
         rows.push(VariantReport {
             name: v,
             error: combine(&per_light),
@@ -201,7 +231,8 @@ pub fn run_headless<L: Lesson>(
             knobs: knob_values(&lesson, variant),
             camera_path,
             classes,
-            timing_check: Some(check.clone()),
+            timing_check: check,
+            fragile,
         });
     }
     let report = Report {
@@ -218,13 +249,13 @@ pub fn run_headless<L: Lesson>(
         reference_ms: reference.ms,
         frames: args.frames,
         variants: rows,
-        baseline: Some(BaselineReport {
-            timing_ms: median_times(&timed.baseline.0),
-            timing_spread_ms: spread_times(&timed.baseline.0),
-            timing_samples_ms: samples(&timed.baseline.0),
-            blocks: timed.baseline.1,
+        baseline: timed.as_ref().map(|t| BaselineReport {
+            timing_ms: median_times(&t.baseline.0),
+            timing_spread_ms: spread_times(&t.baseline.0),
+            timing_samples_ms: samples(&t.baseline.0),
+            blocks: t.baseline.1.clone(),
         }),
-        timing_protocol: Some(timed.protocol),
+        timing_protocol: timed.map(|t| t.protocol),
     };
     let json = serde_json::to_string_pretty(&report)?;
     std::fs::write(out_dir.join("report.json"), json)
@@ -235,6 +266,69 @@ pub fn run_headless<L: Lesson>(
 
 /// Refuses a view with no receiver: every error figure would be 0.000 %
 /// of nothing. Names what the camera sees instead.
+/// What a variant's measured frame gave, for [`fragile_of`].
+struct Jittered<'a> {
+    reference: &'a crate::reference::Reference,
+    images: &'a FrameImages,
+    counters: &'a std::collections::BTreeMap<String, u64>,
+    classes: Option<&'a (Vec<String>, Vec<u8>)>,
+}
+
+/// The variant drawn again at each of [`fragile::JITTERS`] (the camera
+/// moved by a sixteenth of a pixel), against the frame measured in
+/// `images`: which receivers a rasteriser could flip ([`fragile`]). The
+/// camera is put back afterwards.
+fn fragile_of<L: Lesson>(
+    gpu: &Gpu,
+    sg: &mut SceneGpu,
+    targets: &FrameTargets,
+    timer: &mut Timer,
+    lesson: &mut L,
+    variant: L::Variant,
+    measured: Jittered,
+) -> Result<fragile::Fragile> {
+    let Jittered {
+        reference,
+        images,
+        counters,
+        classes,
+    } = measured;
+    let (w, h) = (sg.width, sg.height);
+    let (mut moved, mut moved_counters) = (Vec::new(), Vec::new());
+    for j in fragile::JITTERS {
+        let px = [j[0] * fragile::JITTER_PX, j[1] * fragile::JITTER_PX];
+        sg.set_jitter(gpu, fragile::jitter_matrix(px, w, h));
+        // Some lessons count on their second frame.
+        for _ in 0..lesson.count_again(variant) {
+            let mut frame = timer.frame(gpu);
+            lesson.render(&mut frame, sg, targets, variant)?;
+            frame.finish()?;
+        }
+        moved.push(targets.read(gpu)?);
+        moved_counters.push(lesson.counters(variant));
+    }
+    sg.set_jitter(gpu, glam::Mat4::IDENTITY);
+    lesson.count_again(variant);
+    let mut tally = match classes {
+        Some((names, _)) => fragile::Tally::with_classes(names),
+        None => fragile::Tally::default(),
+    };
+    let class_of = classes.map(|(_, c)| c.as_slice());
+    for k in 0..sg.scene.lights.len() {
+        fn at(f: &FrameImages, k: usize) -> fragile::Images<'_> {
+            fragile::Images {
+                id: &f.id,
+                visibility: &f.visibility[k],
+            }
+        }
+        let moved: Vec<fragile::Images> = moved.iter().map(|f| at(f, k)).collect();
+        tally.add(reference, k, at(images, k), &moved, class_of);
+    }
+    let mut out = tally.finish(fragile::JITTERS.len());
+    out.counters = fragile::counter_moves(counters, &moved_counters);
+    Ok(out)
+}
+
 fn check_receivers(sg: &SceneGpu, reference: &crate::reference::Reference) -> Result<()> {
     if metrics::reference_receivers(reference) > 0 {
         return Ok(());

@@ -88,6 +88,15 @@ pub trait Lesson: Sized {
         BTreeMap::new()
     }
 
+    /// Forgets what `variant` counted once (lessons 05, 06 and 08 count
+    /// their volumes on a variant's second frame), so that its next frames
+    /// count again: the runner's `--fragile` frames, drawn with the camera
+    /// moved. Returns the frames to draw before the counters are new again:
+    /// 1 for a lesson that counts every frame (the default).
+    fn count_again(&mut self, _variant: Self::Variant) -> u32 {
+        1
+    }
+
     /// The knobs `variant` exposes ([`crate::run::knobs`]), with the values
     /// it runs with now: the parameters its chapter discusses. None by
     /// default.
