@@ -14,7 +14,9 @@ const RUN_S: f64 = 9.0;
 /// camera moves (measured on lavapipe at 1280×720 on 2 cores: under 1 s).
 const MAX_MOVING_LATENCY_S: f64 = 3.0;
 /// The longest from the camera's stop to the full figure of its last view
-/// (measured: about 1 s).
+/// (measured on lavapipe and llvmpipe GL, 2 cores: 0.70–1.00 s; 4.2–5.1 s
+/// before the worker waited for the window's next frame to judge a view
+/// still, and before a CPU adapter drew a still view slowly).
 const MAX_SETTLE_S: f64 = 4.5;
 
 /// Frames per second over `[from, to)` seconds of a log.

@@ -26,10 +26,45 @@ const CAPTURE_WAIT: Duration = Duration::from_secs(60);
 /// nothing a reader sees.
 const JOB_EVERY: Duration = Duration::from_millis(300);
 
+/// On a CPU adapter, the longest between two frames while the live
+/// reference works on the view on screen: the window's frames and the ray
+/// casts share the same cores, and redrawing an unchanged view as fast as
+/// it can kept the full figure waiting 4–5 s at 1280×720 on 2 cores.
+const STILL_FRAME_EVERY: Duration = Duration::from_millis(500);
+
+/// How often a waiting window looks for the live reference's answer.
+const ANSWER_POLL: Duration = Duration::from_millis(20);
+
 /// How often the buffer view reads the lesson's buffer back.
 const BUFFER_EVERY: Duration = Duration::from_millis(500);
 
 impl<L: Lesson> App<L> {
+    /// When the next frame is due: `None` for at once. Only a CPU adapter
+    /// with the live reference at work on a still view waits, until an
+    /// answer comes or [`STILL_FRAME_EVERY`] has passed; a GPU draws
+    /// without a pause, so that its clock and the cost it shows hold.
+    pub(super) fn frame_due(&mut self) -> Option<Instant> {
+        let r = self.running.as_mut()?;
+        let live = r.live.as_mut()?;
+        let s = &self.state;
+        let orbiting = self.args.orbit.is_some()
+            && self
+                .args
+                .orbit_seconds
+                .is_none_or(|t| self.started.elapsed().as_secs_f64() < t);
+        // Still, and the coarse figure of this view shown: the full one is under way.
+        let coarse_shown = s.answer.as_ref().is_some_and(|a| a.stamp == s.stamp);
+        let still = !orbiting && !self.dragging && s.sent == Some(s.stamp) && coarse_shown;
+        if r.gpu.info.device_type != wgpu::DeviceType::Cpu || !live.busy() || !still {
+            return None;
+        }
+        let last = self.last_frame?;
+        if live.ready() || last.elapsed() >= STILL_FRAME_EVERY {
+            return None;
+        }
+        Some((Instant::now() + ANSWER_POLL).min(last + STILL_FRAME_EVERY))
+    }
+
     pub(super) fn redraw(&mut self, el: &ActiveEventLoop) -> Result<()> {
         if self.running.is_none() {
             return Ok(());
@@ -48,6 +83,11 @@ impl<L: Lesson> App<L> {
         let variant = self.variants[self.state.current];
         let r = self.running.as_mut().expect("checked above");
         let s = &mut self.state;
+        // The view this frame draws: a job of an older one stops after
+        // its coarse pass.
+        if let Some(live) = &r.live {
+            live.note_view(s.stamp.scene_gen);
+        }
 
         // 1. The variant's frame, timed as the headless runner times it.
         let mut frame = r.timer.frame(&r.gpu);
@@ -67,7 +107,6 @@ impl<L: Lesson> App<L> {
         // 2. The live reference: read what it answered, send the next job.
         let ctx = r.egui.egui_ctx().clone();
         if let Some(live) = r.live.as_mut() {
-            live.note_view(s.stamp.scene_gen);
             for a in live.answers()? {
                 let current = a.stamp == s.stamp;
                 s.answer_latency = current.then(|| (Instant::now() - s.view_since).as_secs_f64());

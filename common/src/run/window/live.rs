@@ -7,9 +7,11 @@
 //! variant or a knob changed and the worker is idle. A new view is ray cast
 //! twice: coarse first (a quarter of the width and height, so 1/16 of the
 //! rays, compared with the frame's matching pixels) and then at full size.
-//! A job whose view has moved on by the end of its coarse pass stops there:
-//! while the camera moves, the figure is coarse and follows it; once it
-//! stops, the full one comes. The
+//! A job whose view has moved on by the window's first frame after its
+//! coarse pass stops there: while the camera moves, the figure is coarse
+//! and follows it; once it stops, the full one comes (and on a CPU
+//! adapter the window draws its still view slowly meanwhile, so that the
+//! rays get the cores: `frame::STILL_FRAME_EVERY`). The
 //! worker threads run at the lowest priority the system gives (`nice` 19
 //! on Linux), so that they take what the renderer leaves idle rather than
 //! slow it down.
@@ -79,10 +81,12 @@ pub struct Answer {
 pub struct LiveReference {
     jobs: Option<Sender<Job>>,
     answers: Receiver<Result<Answer, String>>,
+    /// Answers received by [`LiveReference::ready`] and not yet read.
+    arrived: Vec<Result<Answer, String>>,
     worker: Option<JoinHandle<()>>,
     busy: bool,
-    /// The window's view now (its `scene_gen`), read by the worker.
-    latest: Arc<AtomicU64>,
+    /// The window's view now, read by the worker.
+    latest: Arc<Shown>,
 }
 
 impl LiveReference {
@@ -99,7 +103,7 @@ impl LiveReference {
             .build()?;
         let (job_tx, job_rx) = channel::<Job>();
         let (ans_tx, answers) = channel();
-        let latest = Arc::new(AtomicU64::new(0));
+        let latest = Arc::new(Shown::default());
         let now = latest.clone();
         let worker = std::thread::Builder::new()
             .name("reference".into())
@@ -110,6 +114,7 @@ impl LiveReference {
         Ok(LiveReference {
             jobs: Some(job_tx),
             answers,
+            arrived: Vec::new(),
             worker: Some(worker),
             busy: false,
             latest,
@@ -121,9 +126,10 @@ impl LiveReference {
         self.busy
     }
 
-    /// Tells the worker which view the window shows now.
+    /// Tells the worker which view the window's next frame draws.
     pub fn note_view(&self, scene_gen: u64) {
-        self.latest.store(scene_gen, Ordering::Relaxed);
+        self.latest.scene_gen.store(scene_gen, Ordering::Relaxed);
+        self.latest.frames.fetch_add(1, Ordering::Relaxed);
     }
 
     /// Sends a job (only when not [`LiveReference::busy`]).
@@ -133,24 +139,38 @@ impl LiveReference {
         }
     }
 
+    /// Whether an answer (or the worker's failure) is waiting to be read.
+    pub fn ready(&mut self) -> bool {
+        while let Ok(a) = self.answers.try_recv() {
+            self.arrived.push(a);
+        }
+        !self.arrived.is_empty()
+    }
+
     /// The answers that arrived since the last call, oldest first.
     pub fn answers(&mut self) -> Result<Vec<Answer>> {
+        self.ready();
         let mut out = Vec::new();
-        loop {
-            match self.answers.try_recv() {
-                Ok(Ok(a)) => {
+        for a in self.arrived.drain(..) {
+            match a {
+                Ok(a) => {
                     if a.last {
                         self.busy = false;
                     }
                     out.push(a);
                 }
-                Ok(Err(e)) => anyhow::bail!("the live reference failed: {e}"),
-                Err(TryRecvError::Empty) => return Ok(out),
-                Err(TryRecvError::Disconnected) => {
-                    anyhow::bail!("the live reference's worker stopped")
-                }
+                Err(e) => anyhow::bail!("the live reference failed: {e}"),
             }
         }
+        match self.answers.try_recv() {
+            // Came after `ready`: read with the next call.
+            Ok(a) => self.arrived.push(a),
+            Err(TryRecvError::Disconnected) => {
+                anyhow::bail!("the live reference's worker stopped")
+            }
+            Err(TryRecvError::Empty) => {}
+        }
+        Ok(out)
     }
 }
 
@@ -163,13 +183,39 @@ impl Drop for LiveReference {
     }
 }
 
+/// What the window draws: the view (`scene_gen`) of its latest frame, and
+/// how many frames it began.
+#[derive(Default)]
+struct Shown {
+    scene_gen: AtomicU64,
+    frames: AtomicU64,
+}
+
+impl Shown {
+    /// Whether the view has moved on from `scene_gen`, judged at the
+    /// window's next frame: a view still on screen when a coarse pass ends
+    /// may be one frame of a moving camera, and its full pass (16 times
+    /// the rays) would leave the figure behind the camera for seconds.
+    fn moved_on(&self, scene_gen: u64) -> bool {
+        let frames = self.frames.load(Ordering::Relaxed);
+        let waited = Instant::now();
+        while self.frames.load(Ordering::Relaxed) == frames && waited.elapsed() < NEXT_FRAME_WAIT {
+            std::thread::sleep(std::time::Duration::from_millis(2));
+        }
+        self.scene_gen.load(Ordering::Relaxed) != scene_gen
+    }
+}
+
+/// The longest the worker waits for the window's next frame.
+const NEXT_FRAME_WAIT: std::time::Duration = std::time::Duration::from_secs(1);
+
 /// The worker's loop: one job at a time; the reference of the last view is
 /// kept, so that a new variant or knob on the same view costs a comparison.
 fn serve(
     pool: &rayon::ThreadPool,
     jobs: &Receiver<Job>,
     answers: &Sender<Result<Answer, String>>,
-    latest: &AtomicU64,
+    latest: &Shown,
 ) {
     let mut cached: Option<(u64, Reference)> = None;
     while let Ok(job) = jobs.recv() {
@@ -185,7 +231,7 @@ fn serve(
                 let coarse = try_render_reference(&job.scene, job.view_proj, cw, ch)?;
                 let frame = subsample(&job.frame, cw, ch);
                 let (error, diff, dv) = measure(&coarse, &frame);
-                let overtaken = latest.load(Ordering::Relaxed) != job.stamp.scene_gen;
+                let overtaken = latest.moved_on(job.stamp.scene_gen);
                 let a = Answer {
                     stamp: job.stamp,
                     level: Level::Coarse,

@@ -25,7 +25,7 @@ use std::time::Instant;
 use anyhow::{anyhow, Context, Result};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::window::{Window, WindowId};
 
 use crate::gpu::render::SceneGpu;
@@ -383,9 +383,15 @@ impl<L: Lesson> ApplicationHandler for App<L> {
         }
     }
 
-    fn about_to_wait(&mut self, _el: &ActiveEventLoop) {
-        if let Some(r) = &self.running {
-            r.window.request_redraw();
+    fn about_to_wait(&mut self, el: &ActiveEventLoop) {
+        match self.frame_due() {
+            Some(at) => el.set_control_flow(ControlFlow::WaitUntil(at)),
+            None => {
+                el.set_control_flow(ControlFlow::Wait);
+                if let Some(r) = &self.running {
+                    r.window.request_redraw();
+                }
+            }
         }
     }
 }
