@@ -16,7 +16,7 @@ use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::scene::camera::{light_uniform, LightUniform};
-use common::scene::{LightKind, Scene};
+use common::scene::{Light, LightKind, Scene};
 
 pub const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Uniform slots are spaced by the dynamic-offset alignment.
@@ -46,14 +46,40 @@ pub fn face_view_proj(light: DVec3, face: usize, near: f64, far: f64) -> Mat4 {
 }
 // ANCHOR_END: cube_faces
 
-/// The light's position (origin-relative) and range; `None` for a directional light.
-pub fn point_light(scene: &Scene, light: usize) -> Option<(DVec3, f64)> {
+/// The light's position (relative to `origin`, the scene's) and range;
+/// `None` for a directional light.
+pub fn point_light(scene: &Scene, origin: DVec3, light: usize) -> Option<(DVec3, f64)> {
     match scene.lights[light].kind {
         LightKind::Point { position, range }
         | LightKind::Spot {
             position, range, ..
-        } => Some((position - scene.origin(), range)),
+        } => Some((position - origin, range)),
         LightKind::Directional { .. } => None,
+    }
+}
+
+/// [`light_uniform`] of each light, made again only when the light
+/// changes (the window moves lights): making it finds the scene's origin,
+/// and a directional light's map the scene's bounds, passes over every
+/// vertex that no frame needs to repeat (objects do not move).
+#[derive(Clone, Debug, Default)]
+pub struct LightUniforms(Vec<Option<(Light, LightUniform)>>);
+
+impl LightUniforms {
+    /// Light `light`'s uniform, as [`light_uniform`] makes it.
+    pub fn get(&mut self, scene: &Scene, light: usize) -> LightUniform {
+        let l = scene.lights[light];
+        if self.0.len() <= light {
+            self.0.resize(light + 1, None);
+        }
+        match self.0[light] {
+            Some((made_for, u)) if made_for == l => u,
+            _ => {
+                let u = light_uniform(scene, light);
+                self.0[light] = Some((l, u));
+                u
+            }
+        }
     }
 }
 
@@ -125,6 +151,12 @@ impl CubeShadowMap {
 pub struct FaceUniforms {
     buffer: wgpu::Buffer,
     group: wgpu::BindGroup,
+    /// The scene's origin, found once (objects do not move), each light's
+    /// uniform, made once per light, and the six slots last written for
+    /// each light.
+    pub origin: DVec3,
+    lights: LightUniforms,
+    written: Vec<Vec<u8>>,
 }
 
 impl FaceUniforms {
@@ -161,7 +193,13 @@ impl FaceUniforms {
                 },
             ],
         });
-        FaceUniforms { buffer, group }
+        FaceUniforms {
+            buffer,
+            group,
+            origin: scene.scene.origin(),
+            lights: LightUniforms::default(),
+            written: vec![Vec::new(); scene.scene.lights.len()],
+        }
     }
 
     /// Binds face `face` of light `light` as group 0.
@@ -172,22 +210,27 @@ impl FaceUniforms {
 
     /// Writes the six faces' view-projections of light `light`, from `near`
     /// to `far` (`None`: the light's range).
-    pub fn write(&self, gpu: &Gpu, scene: &Scene, light: usize, near: f64, far: Option<f64>) {
-        let Some((pos, range)) = point_light(scene, light) else {
+    pub fn write(&mut self, gpu: &Gpu, scene: &Scene, light: usize, near: f64, far: Option<f64>) {
+        let Some((pos, range)) = point_light(scene, self.origin, light) else {
             return;
         };
         let far = far.unwrap_or(range);
-        for face in 0..6 {
-            let mut u = light_uniform(scene, light);
+        let base = self.lights.get(scene, light);
+        // The six slots in one write, when they change (the light moved,
+        // or another variant's near and far).
+        let mut slots = vec![0u8; 6 * SLOT as usize];
+        for (face, slot) in slots.chunks_exact_mut(SLOT as usize).enumerate() {
+            let mut u = base;
             u.view_proj = face_view_proj(pos, face, near, far).to_cols_array_2d();
             // The faces' far plane in the range's slot: what the linear
             // storage divides the distance by (`fs_cube_linear`).
             u.color_range[3] = far as f32;
-            gpu.queue.write_buffer(
-                &self.buffer,
-                SLOT * (6 * light + face) as u64,
-                bytemuck::bytes_of(&u),
-            );
+            slot[..std::mem::size_of::<LightUniform>()].copy_from_slice(bytemuck::bytes_of(&u));
+        }
+        if self.written[light] != slots {
+            gpu.queue
+                .write_buffer(&self.buffer, SLOT * 6 * light as u64, &slots);
+            self.written[light] = slots;
         }
     }
 }

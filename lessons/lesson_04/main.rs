@@ -373,9 +373,9 @@ impl Lesson for CubeShadows {
         variant: Variant,
     ) -> Result<()> {
         if self.texels_written[variant as usize].is_none() {
-            // Once per variant, its own submits: untimed.
-            self.texels_written[variant as usize] =
-                Some(self.count_texels(frame.gpu, scene, variant)?);
+            // Once per variant, its own submits: left out of the frame's times.
+            let n = frame.untimed(|gpu| self.count_texels(gpu, scene, variant))?;
+            self.texels_written[variant as usize] = Some(n);
         }
         let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
@@ -383,7 +383,9 @@ impl Lesson for CubeShadows {
         for light in 0..scene.scene.lights.len() {
             self.faces
                 .write(frame.gpu, &scene.scene, light, p.near, p.far);
-            let casters = |face| face_casters(scene, &self.spheres, light, v.cull, face);
+            let at = cube_map::point_light(&scene.scene, self.faces.origin, light)
+                .expect("check_scene allows point and spot lights");
+            let casters = |face| face_casters(scene, &self.spheres, at, v.cull, face);
             let map = &mut self.maps[p.map];
             let s = cube_map::cube_shadow_passes(
                 frame,
@@ -451,11 +453,18 @@ impl Lesson for CubeShadows {
 
 impl CubeShadows {
     /// Every light's face passes for `variant`, counted ([`costs::count_light_texels`]).
-    fn count_texels(&self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) -> Result<(u64, u64)> {
+    fn count_texels(
+        &mut self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        variant: Variant,
+    ) -> Result<(u64, u64)> {
         let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
         let mut total = (0, 0);
         for light in 0..scene.scene.lights.len() {
             self.faces.write(gpu, &scene.scene, light, p.near, p.far);
+            let at = cube_map::point_light(&scene.scene, self.faces.origin, light)
+                .expect("check_scene allows point and spot lights");
             let (written, fragments) = costs::count_light_texels(
                 gpu,
                 scene,
@@ -463,7 +472,7 @@ impl CubeShadows {
                 &self.faces,
                 v.size,
                 light,
-                |face| face_casters(scene, &self.spheres, light, v.cull, face),
+                |face| face_casters(scene, &self.spheres, at, v.cull, face),
             )?;
             total = (total.0 + written, total.1 + fragments);
         }
@@ -472,18 +481,17 @@ impl CubeShadows {
 }
 
 // ANCHOR: face_casters
-/// The casters drawn into face `face` of light `light`. With `cull`, what
-/// the light cannot see is left out: casters past its range, and casters
-/// whose bounding sphere misses the face's frustum (`touches`).
+/// The casters drawn into face `face` of the light at `pos` (origin-relative)
+/// with this `range`. With `cull`, what the light cannot see is left out:
+/// casters past its range, and casters whose bounding sphere misses the
+/// face's frustum (`touches`).
 fn face_casters(
     scene: &SceneGpu,
     spheres: &[Sphere],
-    light: usize,
+    (pos, range): (DVec3, f64),
     cull: Option<FaceTest>,
     face: usize,
 ) -> Vec<usize> {
-    let (pos, range) = cube_map::point_light(&scene.scene, light)
-        .expect("check_scene allows point and spot lights");
     (0..spheres.len())
         .filter(|&o| scene.casts_shadow(o))
         .filter(|&o| {

@@ -7,7 +7,6 @@ use common::glam::DVec3;
 use common::gpu::render::SceneGpu;
 use common::scene::LightKind;
 
-use super::extrusion::world_light;
 use super::silhouette::LightDir;
 use super::volumes::{CasterDraw, ShadowVolumes};
 
@@ -28,7 +27,7 @@ pub fn kept_draws(
     let frustum = frustum_planes(scene.camera.view_proj.as_dmat4());
     (0..scene.scene.lights.len())
         .map(|k| {
-            let light = world_light(scene, k);
+            let light = volumes.light(scene, k);
             let range = match scene.scene.lights[k].kind {
                 LightKind::Directional { .. } => None,
                 LightKind::Point { range, .. } | LightKind::Spot { range, .. } => Some(range),
