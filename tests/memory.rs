@@ -5,6 +5,11 @@
 //! `/proc/<pid>/status`) while it runs. A lesson that leaks per frame or per
 //! draw (lessons 01–03 leaked about 0.93 MB per draw on lavapipe, 4.7 MB a
 //! frame on lesson 01's scene) grows by hundreds of megabytes here.
+//!
+//! And a scene is bounded by memory, not by one buffer: lesson 05's compute
+//! route splits each caster into chunks that each fit one storage binding
+//! (`lessons/lesson_05/compute/chunks.rs`); split small, it builds the same
+//! volumes and renders the same frame as in one chunk.
 
 #![cfg(target_os = "linux")]
 
@@ -140,5 +145,124 @@ fn window_memory_is_flat_over_two_minutes_of_motion() {
         late - early < ALLOWED_MB,
         "the window's memory grew by {:.1} MB from the peak of 20-70 s to that of 70-{RUN_S} s of motion ({early:.1} → {late:.1} MB)",
         late - early
+    );
+}
+
+/// The compute route in many chunks builds the volume it builds in one:
+/// the same triangles (as multisets of exact bit patterns), on the
+/// built-ins and a non-manifold mesh, for point and directional lights, at
+/// infinity and with a finite reach.
+#[test]
+fn compute_volumes_in_chunks_are_the_volumes_in_one() {
+    use common::glam::Vec3;
+    use common::gpu::Gpu;
+    use common::scene::mesh::builtin;
+    use workbook::lesson_05::adjacency::Adjacency;
+    use workbook::lesson_05::compute::{chunk_bytes, extrude_in_chunks, pack_adjacency};
+    use workbook::lesson_05::extrusion::CpuVertex;
+    use workbook::lesson_05::silhouette::{caster_adjacency, LightDir};
+
+    let adapter = support::test_adapter();
+    let gpu = match Gpu::new(None, Some(&adapter), None) {
+        Ok(gpu) => gpu,
+        Err(e) if !support::gpu_required() => return eprintln!("SKIPPED: {e}"),
+        Err(e) => panic!("{e}"),
+    };
+    let multiset = |v: &[CpuVertex]| {
+        let mut t: Vec<Vec<u32>> = (v.chunks_exact(3))
+            .map(|t| {
+                let words = t
+                    .iter()
+                    .flat_map(|v| [v.position[0], v.position[1], v.position[2], v.w]);
+                words.map(f32::to_bits).collect()
+            })
+            .collect();
+        t.sort();
+        t
+    };
+    // Two pages on one spine run it one way, one the other.
+    let p = [
+        Vec3::ZERO,
+        Vec3::Y,
+        Vec3::X,
+        Vec3::Z,
+        Vec3::NEG_X,
+        Vec3::new(0.3, 0.5, -1.0),
+    ];
+    let spine = Adjacency::from_triangles(&p, &[0, 1, 2, 1, 0, 3, 0, 1, 4, 0, 1, 5]);
+    let mut meshes: Vec<(&str, Adjacency)> = ["knot", "torus", "sphere", "plane"]
+        .iter()
+        .map(|&n| (n, caster_adjacency(&builtin(n).unwrap())))
+        .collect();
+    meshes.push(("non-manifold", spine));
+    let lights = [
+        LightDir::Point(Vec3::new(0.4, 2.5, 0.7)),
+        LightDir::Point(Vec3::new(0.1, 0.2, 0.05)),
+        LightDir::Directional(Vec3::new(-0.4, -1.0, -0.3)),
+    ];
+    for (name, adj) in &meshes {
+        // Chunks of about a fifth of the mesh's worst-case volume (at
+        // least a few edges' worth).
+        let small = (pack_adjacency(adj).bytes().1 / 5).max(600);
+        let mut sides = 0;
+        for light in lights {
+            for reach in [0.0, 0.25] {
+                let (one, whole) =
+                    extrude_in_chunks(&gpu, adj, light, reach, chunk_bytes(&gpu)).unwrap();
+                let (many, parts) = extrude_in_chunks(&gpu, adj, light, reach, small).unwrap();
+                assert_eq!(one, 1, "{name}: one chunk under the adapter's limit");
+                assert!(many > 1, "{name}: {many} chunks of {small} bytes");
+                for p in 0..3 {
+                    assert!(
+                        multiset(&whole[p]) == multiset(&parts[p]),
+                        "{name}, {light:?}, reach {reach}, part {p}: {} vertices in one chunk, {} in {many}",
+                        whole[p].len(),
+                        parts[p].len()
+                    );
+                }
+                sides += whole[0].len();
+            }
+        }
+        assert!(sides > 0, "{name}: no silhouette for any light");
+    }
+}
+
+/// The whole frame: lesson 05's compute route with every storage binding
+/// capped small (`WORKBOOK_MAX_BUFFER_SIZE`, a smaller GPU's room), so that
+/// each caster is many chunks, renders what it renders in one chunk: the
+/// same error figures and counters, but for one draw per chunk and part
+/// more.
+#[test]
+fn compute_route_in_chunks_renders_the_same_frame() {
+    let bin = env!("CARGO_BIN_EXE_lesson_05");
+    let args = ["--width", "320", "--height", "180", "--frames", "1"];
+    let args = [&args[..], &["--variant", "zpass_compute"]].concat();
+    let Some(one) = support::run_lesson(bin, "lesson_05_compute_one_chunk", &args) else {
+        return;
+    };
+    // Room for the frame's other buffers (the readback: 230 kB), not
+    // for the knot's volume in one chunk (about 1 MB).
+    let env = [("WORKBOOK_MAX_BUFFER_SIZE", "400000")];
+    let Some(many) = support::run_lesson_env(bin, "lesson_05_compute_chunks", &args, &env) else {
+        return;
+    };
+    let (a, b) = (
+        support::variant(&one.report, "zpass_compute"),
+        support::variant(&many.report, "zpass_compute"),
+    );
+    assert_eq!(a["error"], b["error"], "the same error figures");
+    assert_eq!(a["error_per_light"], b["error_per_light"]);
+    let counters = |v: &serde_json::Value| {
+        let mut c = v["counters"].as_object().unwrap().clone();
+        c.remove("draws")
+            .map(|d| d.as_u64().unwrap())
+            .map(|d| (c, d))
+            .expect("a draws counter")
+    };
+    let ((ca, da), (cb, db)) = (counters(a), counters(b));
+    assert_eq!(ca, cb, "the same counters but draws");
+    assert!(
+        db > da,
+        "chunks draw more: {da} draws in one chunk, {db} in many"
     );
 }

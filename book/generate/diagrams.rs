@@ -10,7 +10,7 @@ use common::glam::{DMat4, DVec3};
 use common::scene::camera::{camera_matrices, light_view_proj};
 use common::scene::{LightKind, Scene};
 use workbook::lesson_02::bias::{depth_per_texel, SlopeScaledBias};
-use workbook::lesson_04::cube_map::{face_view_proj, CUBE_FACES};
+use workbook::lesson_04::faces::{face_view_proj, CUBE_FACES};
 use workbook::lesson_08::range_sphere::{sphere_depth_bounds, sphere_scissor, SPHERE_MARGIN};
 
 /// Lesson 02's shadow-map size (`MAP_SIZE` in `lessons/lesson_02/main.rs`).

@@ -105,6 +105,14 @@ enum Command {
     /// Time `grade --adapter software` once per chapter and write the
     /// coursework page's table (`generated/coursework/grade_times.md`).
     GradeTimes,
+    /// Run one scaling sweep again (`triangles_lesson_05`) and rewrite its
+    /// record, table and plot; the other sweeps' records stay as committed.
+    Sweep {
+        /// The sweep's name, as its record's file is named.
+        name: String,
+        #[arg(long, default_value = manifest::BACKEND)]
+        backend: String,
+    },
 }
 
 fn root() -> PathBuf {
@@ -160,6 +168,16 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::GradeTimes => {
             return grade_times::run(&root(), &root().join("book/src/generated"));
+        }
+        Command::Sweep { name, backend } => {
+            let root = root();
+            let bar = ProgressBar::new(0);
+            let work = root.join("target/book-runs");
+            let runner = runner_or_build()?;
+            scaling::run(&runner, &root, &work, &backend, &bar, Some(&name))?;
+            bar.finish_with_message("sweep done");
+            println!("sweep {name} run again: its record, table and plot rewritten");
+            return Ok(());
         }
     };
     if let Some(l) = &only {
@@ -236,7 +254,7 @@ fn run(cli: Cli) -> Result<()> {
         return Ok(());
     }
     if only.is_none() {
-        scaling::run(&runner, &root, &work, &backend, &bar)?;
+        scaling::run(&runner, &root, &work, &backend, &bar, None)?;
         window_shots::write_all(&runner, &figures, &generated, &backend, &adapter, None)?;
     }
     bar.finish_with_message("runs done");

@@ -523,15 +523,17 @@ struct Step {
     xs: Vec<(&'static str, f64, String)>,
 }
 
-/// Runs the scaling sweeps and writes book/src/generated/scaling/*.json and
-/// *.md and book/src/figures/scaling/*.svg. `work` is a scratch folder
-/// (meshes, scenes, run outputs).
+/// Runs the scaling sweeps (all, or the one named `only`) and writes
+/// book/src/generated/scaling/*.json and *.md and
+/// book/src/figures/scaling/*.svg. `work` is a scratch folder (meshes,
+/// scenes, run outputs).
 pub fn run(
     runner: &Runner,
     root: &Path,
     work: &Path,
     backend: &str,
     bar: &ProgressBar,
+    only: Option<&str>,
 ) -> Result<()> {
     let work = work.join("scaling");
     std::fs::create_dir_all(&work)?;
@@ -540,7 +542,14 @@ pub fn run(
     std::fs::create_dir_all(&generated)?;
     std::fs::create_dir_all(&figures)?;
 
-    let sweeps = plans(&work)?;
+    let mut sweeps = plans(&work)?;
+    if let Some(name) = only {
+        let names: Vec<&str> = sweeps.iter().map(|(p, _)| p.name).collect();
+        if !names.contains(&name) {
+            bail!("sweep: no sweep {name:?} (one of {})", names.join(", "));
+        }
+        sweeps.retain(|(p, _)| p.name == name);
+    }
     let total: usize = sweeps.iter().map(|(_, steps)| steps.len()).sum();
     bar.inc_length(total as u64);
     for (plan, steps) in &sweeps {
@@ -640,10 +649,18 @@ fn plans(work: &Path) -> Result<Vec<(Plan, Vec<Step>)>> {
             x_label: "caster triangles n (log)",
             scene: format!("{torus_routes}, one point light"),
             variants: &ROUTES,
-            passes: &["cpu_silhouette", "extrude", "volume", "base", "lighting"],
+            passes: &[
+                "cpu_total",
+                "cpu_silhouette",
+                "extrude",
+                "volume",
+                "base",
+                "lighting",
+            ],
             counters: &["volume_triangles", "volume_fragments", "stencil_updates"],
             curves: vec![
                 ("zpass_cpu", "total", Unit::Ms, "O(n)", 1.0),
+                ("zpass_compute", "cpu_total", Unit::Ms, "O(1)", 0.0),
                 ("zpass_cpu", "cpu_silhouette", Unit::Ms, "O(n)", 1.0),
                 ("zpass_cpu", "volume", Unit::Ms, "O(√n)", 0.5),
                 ("zpass_quads", "total", Unit::Ms, "O(n)", 1.0),

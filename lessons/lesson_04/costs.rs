@@ -10,7 +10,8 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
 
-use super::cube_map::{cube_pipeline_with, DepthStorage, FaceUniforms, CUBE_FORMAT};
+use super::cube_map::{cube_pipeline_with, DepthStorage, CUBE_FORMAT};
+use super::faces::FaceUniforms;
 use crate::lesson_01::tally::{Tally, TallyShader, TALLY_TARGETS};
 
 /// Texture lookups per lit pixel of the 3D PCF variants: the 20 directions

@@ -1,61 +1,19 @@
 //! Cube-map shadows for point lights (lesson 04): the light renders six 90°
-//! faces into the six layers of one depth texture; the lit pass samples it
+//! faces ([`super::faces`]) into the six layers of one depth texture; the lit pass samples it
 //! through a `Cube` view with the direction from the light.
 //!
-//! Also here: the per-face light uniforms (six faces in one submission need
-//! six uniform slots), the two ways to store depth, and the lit pass's
-//! parameters. Culling is in [`super::culling`], the picture of the six
-//! faces in [`super::cross`].
+//! Also here: the two ways to store depth, and the lit pass's parameters.
+//! The faces' directions, view-projections and light uniforms are in
+//! [`super::faces`], culling in
+//! [`super::culling`], the picture of the six faces in [`super::cross`].
 
-use common::glam::dcamera::rh::proj::directx as webgpu;
-use common::glam::dcamera::rh::view::look_at_mat4;
-use common::glam::{DMat4, DVec3, Mat4};
 use common::gpu::bindings::{self, params_buffer, sampler_entry, storage_entry, texture_entry};
-use common::gpu::render::{pipeline_layout_for, vertex_state, SceneGpu, SCENE_BUFFER_USAGE};
+use common::gpu::render::{pipeline_layout_for, vertex_state, SceneGpu};
 use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::scene::camera::{light_uniform, LightUniform};
-use common::scene::{LightKind, Scene};
 
 pub const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// Uniform slots are spaced by the dynamic-offset alignment.
-const SLOT: u64 = 256;
-
-// ANCHOR: cube_faces
-/// The six faces in wgpu's layer order +X, −X, +Y, −Y, +Z, −Z: the axis each
-/// face looks along, and its `up` (the usual cube-map up vectors).
-pub const CUBE_FACES: [(DVec3, DVec3); 6] = [
-    (DVec3::X, DVec3::NEG_Y),
-    (DVec3::NEG_X, DVec3::NEG_Y),
-    (DVec3::Y, DVec3::Z),
-    (DVec3::NEG_Y, DVec3::NEG_Z),
-    (DVec3::Z, DVec3::NEG_Y),
-    (DVec3::NEG_Z, DVec3::NEG_Y),
-];
-
-/// Face `face`'s view-projection for a light at `light` (origin-relative):
-/// a square 90° frustum, so the six faces tile every direction exactly.
-pub fn face_view_proj(light: DVec3, face: usize, near: f64, far: f64) -> Mat4 {
-    let (axis, up) = CUBE_FACES[face];
-    let view = look_at_mat4(light, light + axis, up);
-    let proj = webgpu::perspective(std::f64::consts::FRAC_PI_2, 1.0, near, far);
-    // Those up vectors were made for OpenGL, whose framebuffer rows grow
-    // upwards; WebGPU's grow downwards. Flip y, or every face is read upside down.
-    (DMat4::from_scale(DVec3::new(1.0, -1.0, 1.0)) * proj * view).as_mat4()
-}
-// ANCHOR_END: cube_faces
-
-/// The light's position (origin-relative) and range; `None` for a directional light.
-pub fn point_light(scene: &Scene, light: usize) -> Option<(DVec3, f64)> {
-    match scene.lights[light].kind {
-        LightKind::Point { position, range }
-        | LightKind::Spot {
-            position, range, ..
-        } => Some((position - scene.origin(), range)),
-        LightKind::Directional { .. } => None,
-    }
-}
 
 /// A cube of six square depth layers: one `D2` view per face to render
 /// into, one view to sample: `Cube`, or for [`CubeShadowMap::new_faces`]
@@ -115,79 +73,6 @@ impl CubeShadowMap {
             cube_view,
             faces: true,
             empty: [false; 6],
-        }
-    }
-}
-
-/// Six light uniforms per light (one per face), bound as group 0 with the
-/// scene's frame layout: `write_light_view_proj` has one slot per light, and
-/// queue writes all land before the frame's single submission.
-pub struct FaceUniforms {
-    buffer: wgpu::Buffer,
-    group: wgpu::BindGroup,
-}
-
-impl FaceUniforms {
-    pub fn new(gpu: &Gpu, scene: &SceneGpu) -> FaceUniforms {
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cube face lights"),
-            size: SLOT * 6 * scene.scene.lights.len().max(1) as u64,
-            usage: SCENE_BUFFER_USAGE,
-            mapped_at_creation: false,
-        });
-        // Binding 0 (the camera) is unused by the shadow shaders but part of the layout.
-        let camera = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cube faces: unused camera"),
-            size: 96,
-            usage: SCENE_BUFFER_USAGE,
-            mapped_at_creation: false,
-        });
-        let light_size = std::mem::size_of::<LightUniform>() as u64;
-        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("cube faces"),
-            layout: &scene.frame_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: camera.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &buffer,
-                        offset: 0,
-                        size: wgpu::BufferSize::new(light_size),
-                    }),
-                },
-            ],
-        });
-        FaceUniforms { buffer, group }
-    }
-
-    /// Binds face `face` of light `light` as group 0.
-    pub fn bind(&self, pass: &mut wgpu::RenderPass<'_>, light: usize, face: usize) {
-        let offset = (SLOT * (6 * light + face) as u64) as u32;
-        pass.set_bind_group(0, &self.group, &[offset]);
-    }
-
-    /// Writes the six faces' view-projections of light `light`, from `near`
-    /// to `far` (`None`: the light's range).
-    pub fn write(&self, gpu: &Gpu, scene: &Scene, light: usize, near: f64, far: Option<f64>) {
-        let Some((pos, range)) = point_light(scene, light) else {
-            return;
-        };
-        let far = far.unwrap_or(range);
-        for face in 0..6 {
-            let mut u = light_uniform(scene, light);
-            u.view_proj = face_view_proj(pos, face, near, far).to_cols_array_2d();
-            // The faces' far plane in the range's slot: what the linear
-            // storage divides the distance by (`fs_cube_linear`).
-            u.color_range[3] = far as f32;
-            gpu.queue.write_buffer(
-                &self.buffer,
-                SLOT * (6 * light + face) as u64,
-                bytemuck::bytes_of(&u),
-            );
         }
     }
 }
@@ -382,7 +267,7 @@ pub fn cube_shadow_passes(
     scene: &SceneGpu,
     pipeline: &wgpu::RenderPipeline,
     map: &mut CubeShadowMap,
-    faces: &FaceUniforms,
+    faces: &super::faces::FaceUniforms,
     light: usize,
     casters: impl Fn(usize) -> Vec<usize>,
 ) -> CubeStats {

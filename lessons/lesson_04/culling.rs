@@ -3,9 +3,10 @@
 //! face's frustum. The unculled frame must come out the same.
 
 use common::glam::DVec3;
+use common::gpu::render::SceneGpu;
 use common::scene::Scene;
 
-use super::cube_map::CUBE_FACES;
+use super::faces::CUBE_FACES;
 
 /// A bounding sphere, origin-relative, around the world-space box of
 /// half extents `half` (the chapter's exercise tests the box).
@@ -51,3 +52,30 @@ pub fn sphere_touches_face(centre: DVec3, radius: f64, face: usize) -> bool {
     (m - a.abs()) / 2f64.sqrt() > -radius && (m - b.abs()) / 2f64.sqrt() > -radius
 }
 // ANCHOR_END: sphere_in_face
+
+/// Whether a caster (its bounding sphere's centre relative to the light,
+/// radius, and the half extents of the box inside it) can touch a face.
+pub type FaceTest = fn(DVec3, f64, DVec3, usize) -> bool;
+
+// ANCHOR: face_casters
+/// The casters drawn into face `face` of the light at `pos` (origin-relative)
+/// with this `range`. With `cull`, what the light cannot see is left out:
+/// casters past its range, and casters whose bounding sphere misses the
+/// face's frustum (`touches`).
+pub fn face_casters(
+    scene: &SceneGpu,
+    spheres: &[Sphere],
+    (pos, range): (DVec3, f64),
+    cull: Option<FaceTest>,
+    face: usize,
+) -> Vec<usize> {
+    (0..spheres.len())
+        .filter(|&o| scene.casts_shadow(o))
+        .filter(|&o| {
+            let c = spheres[o].centre - pos;
+            let (r, half) = (spheres[o].radius, spheres[o].half);
+            cull.is_none_or(|touches| c.length() - r < range && touches(c, r, half, face))
+        })
+        .collect()
+}
+// ANCHOR_END: face_casters

@@ -30,11 +30,10 @@ use common::Result;
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_04::costs::{self, PCF3D_TAPS};
 use workbook::lesson_04::cross::{cross_view, write_cross_png};
-use workbook::lesson_04::cube_map::{
-    self, CubeParams, CubeShadowMap, CubeStats, FaceUniforms, LitKey, Storage,
-};
-use workbook::lesson_04::culling::{self, Sphere};
+use workbook::lesson_04::cube_map::{self, CubeParams, CubeShadowMap, CubeStats, LitKey, Storage};
+use workbook::lesson_04::culling::{self, face_casters, FaceTest, Sphere};
 use workbook::lesson_04::exercises;
+use workbook::lesson_04::faces::{point_light, FaceUniforms};
 use workbook::lesson_04::peers::{self, Peer, Port};
 
 // ANCHOR: variants
@@ -169,10 +168,6 @@ const PCF3D_RADIUS: f32 = 1.5;
 const NEAR: f64 = 0.05;
 const NEAR_FALLBACK: f64 = 0.001;
 // ANCHOR_END: variants
-
-/// Whether a caster (its bounding sphere's centre relative to the light,
-/// radius, and the half extents of the box inside it) can touch a face.
-type FaceTest = fn(DVec3, f64, DVec3, usize) -> bool;
 
 /// The lesson's test: the sphere only.
 fn sphere_test(centre: DVec3, radius: f64, _half: DVec3, face: usize) -> bool {
@@ -373,9 +368,9 @@ impl Lesson for CubeShadows {
         variant: Variant,
     ) -> Result<()> {
         if self.texels_written[variant as usize].is_none() {
-            // Once per variant, its own submits: untimed.
-            self.texels_written[variant as usize] =
-                Some(self.count_texels(frame.gpu, scene, variant)?);
+            // Once per variant, its own submits: left out of the frame's times.
+            let n = frame.untimed(|gpu| self.count_texels(gpu, scene, variant))?;
+            self.texels_written[variant as usize] = Some(n);
         }
         let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
@@ -383,7 +378,9 @@ impl Lesson for CubeShadows {
         for light in 0..scene.scene.lights.len() {
             self.faces
                 .write(frame.gpu, &scene.scene, light, p.near, p.far);
-            let casters = |face| face_casters(scene, &self.spheres, light, v.cull, face);
+            let at = point_light(&scene.scene, self.faces.origin, light)
+                .expect("check_scene allows point and spot lights");
+            let casters = |face| face_casters(scene, &self.spheres, at, v.cull, face);
             let map = &mut self.maps[p.map];
             let s = cube_map::cube_shadow_passes(
                 frame,
@@ -451,11 +448,18 @@ impl Lesson for CubeShadows {
 
 impl CubeShadows {
     /// Every light's face passes for `variant`, counted ([`costs::count_light_texels`]).
-    fn count_texels(&self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) -> Result<(u64, u64)> {
+    fn count_texels(
+        &mut self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        variant: Variant,
+    ) -> Result<(u64, u64)> {
         let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
         let mut total = (0, 0);
         for light in 0..scene.scene.lights.len() {
             self.faces.write(gpu, &scene.scene, light, p.near, p.far);
+            let at = point_light(&scene.scene, self.faces.origin, light)
+                .expect("check_scene allows point and spot lights");
             let (written, fragments) = costs::count_light_texels(
                 gpu,
                 scene,
@@ -463,37 +467,13 @@ impl CubeShadows {
                 &self.faces,
                 v.size,
                 light,
-                |face| face_casters(scene, &self.spheres, light, v.cull, face),
+                |face| face_casters(scene, &self.spheres, at, v.cull, face),
             )?;
             total = (total.0 + written, total.1 + fragments);
         }
         Ok(total)
     }
 }
-
-// ANCHOR: face_casters
-/// The casters drawn into face `face` of light `light`. With `cull`, what
-/// the light cannot see is left out: casters past its range, and casters
-/// whose bounding sphere misses the face's frustum (`touches`).
-fn face_casters(
-    scene: &SceneGpu,
-    spheres: &[Sphere],
-    light: usize,
-    cull: Option<FaceTest>,
-    face: usize,
-) -> Vec<usize> {
-    let (pos, range) = cube_map::point_light(&scene.scene, light)
-        .expect("check_scene allows point and spot lights");
-    (0..spheres.len())
-        .filter(|&o| scene.casts_shadow(o))
-        .filter(|&o| {
-            let c = spheres[o].centre - pos;
-            let (r, half) = (spheres[o].radius, spheres[o].half);
-            cull.is_none_or(|touches| c.length() - r < range && touches(c, r, half, face))
-        })
-        .collect()
-}
-// ANCHOR_END: face_casters
 
 fn main() -> std::process::ExitCode {
     app::main::<CubeShadows>()

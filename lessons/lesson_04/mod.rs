@@ -6,6 +6,7 @@ pub mod costs;
 pub mod cross;
 pub mod cube_map;
 pub mod culling;
+pub mod faces;
 pub mod peers;
 pub mod port_cards;
 

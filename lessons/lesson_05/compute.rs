@@ -4,41 +4,50 @@
 //! The CPU route finds the silhouette on the CPU and uploads the volume
 //! every frame; the quads route uploads everything once and lets the
 //! vertex shader throw most of it away. Here each caster's adjacency is
-//! uploaded once ([`pack_adjacency`]), and every frame a compute shader
-//! (`shaders/lesson_05/extrude.wgsl`, one invocation per edge and per
-//! face) writes the CPU route's triangles, `(position, w)`, into a storage
-//! buffer and counts them into the indirect draw arguments with
-//! `atomicAdd`. The volume pass then draws them with the CPU route's own
-//! pipelines (`vs_volume_cpu`) and `draw_indirect`: the CPU never learns
-//! how many triangles there are.
+//! uploaded once, in chunks ([`chunks`]: no binding holds a whole mesh),
+//! and every frame a compute shader (`shaders/lesson_05/extrude.wgsl`, one
+//! invocation per edge and per face of a chunk) writes the CPU route's
+//! triangles, `(position, w)`, into the chunk's vertex buffer and counts
+//! them into the indirect draw arguments with `atomicAdd`. The volume
+//! pass then draws them with the CPU route's own pipelines
+//! (`vs_volume_cpu`) and `draw_indirect`: the CPU never learns how many
+//! triangles there are, and its work per frame does not grow with the
+//! mesh (one dispatch and up to three draws a chunk).
 //!
 //! The triangles are the CPU route's, in another order; the wrapping
 //! stencil count does not depend on the order, so the pixels are the same.
 
+use std::future::Future;
+
 use anyhow::{bail, Result};
 use common::glam::Mat4;
-use common::gpu::readback::read_buffer;
 use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
+use common::scene::LightKind;
 use wgpu::util::{DeviceExt, DrawIndirectArgs};
 
 use super::adjacency::Adjacency;
-use super::extrusion::{world_light, CpuVertex};
+use super::extrusion::CpuVertex;
 use super::silhouette::LightDir;
 
+pub mod chunks;
 mod pipeline;
+mod read;
+pub use chunks::{pack_adjacency, PackedMesh};
 use pipeline::{bind_group_layout, compute_pipeline};
+use read::read_words;
+pub use read::{extrude_in_chunks, extrude_once};
 
 /// The compute shader (`shaders/lesson_05/extrude.wgsl`).
 pub const EXTRUDE_WGSL: &str = include_str!("../../shaders/lesson_05/extrude.wgsl");
 
 const WORKGROUP: u32 = 64;
-/// Bytes of one draw's arguments; a (light, caster) has three.
+/// Bytes of one draw's arguments; a (light, chunk) has three.
 const ARGS: u64 = std::mem::size_of::<DrawIndirectArgs>() as u64;
 const VERTEX: u64 = std::mem::size_of::<CpuVertex>() as u64;
 
-/// `Params` of extrude.wgsl: one (light, caster).
+/// `Params` of extrude.wgsl: one (light, chunk).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 struct Params {
@@ -76,61 +85,12 @@ pub fn unavailable(gpu: &Gpu) -> Option<String> {
     })
 }
 
-/// One caster's adjacency as extrude.wgsl reads it: one `u32` array of
-/// five tables, and how many vertices its volume can need at most.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct PackedMesh {
-    pub words: Vec<u32>,
-    /// Where positions, normals, triangles, edges and face uses start.
-    pub offsets: [u32; 5],
-    pub edges: u32,
-    pub faces: u32,
-    /// Side vertices when every edge is a silhouette as often as it can
-    /// be: max(faces running one way, faces running the other) per edge,
-    /// 6 vertices each (a point light's two triangles).
-    pub max_side_vertices: u32,
+/// The most bytes one chunk may bind, its tables or its worst-case
+/// volume: the adapter's storage binding limit (and buffer size limit).
+pub fn chunk_bytes(gpu: &Gpu) -> u64 {
+    let limits = gpu.device.limits();
+    (limits.max_storage_buffer_binding_size).min(limits.max_buffer_size)
 }
-
-// ANCHOR: pack_adjacency
-/// Packs `adj` for extrude.wgsl (see the shader's `mesh` binding).
-pub fn pack_adjacency(adj: &Adjacency) -> PackedMesh {
-    let mut w: Vec<u32> = Vec::new();
-    let mut offsets = [0u32; 5];
-    offsets[0] = w.len() as u32;
-    w.extend(
-        adj.positions
-            .iter()
-            .flat_map(|p| p.to_array().map(f32::to_bits)),
-    );
-    offsets[1] = w.len() as u32;
-    w.extend(
-        adj.face_normals
-            .iter()
-            .flat_map(|n| n.to_array().map(f32::to_bits)),
-    );
-    offsets[2] = w.len() as u32;
-    w.extend(adj.triangles.iter().flatten());
-    offsets[3] = w.len() as u32;
-    let (mut uses, mut max_sides) = (Vec::new(), 0u32);
-    for e in &adj.edges {
-        let faces = adj.faces_of(e);
-        w.extend([e.v[0], e.v[1], uses.len() as u32, faces.len() as u32]);
-        uses.extend(faces.iter().map(|f| f.face << 1 | f.forward as u32));
-        let forward = faces.iter().filter(|f| f.forward).count() as u32;
-        max_sides += forward.max(faces.len() as u32 - forward);
-    }
-    offsets[4] = w.len() as u32;
-    w.extend(uses);
-    w.push(0); // never empty: wgpu rejects a zero-sized binding
-    PackedMesh {
-        words: w,
-        offsets,
-        edges: adj.edges.len() as u32,
-        faces: adj.triangles.len() as u32,
-        max_side_vertices: 6 * max_sides,
-    }
-}
-// ANCHOR_END: pack_adjacency
 
 /// The light as extrude.wgsl takes it: object space, w = 0 directional.
 fn light_params(light: LightDir) -> [f32; 4] {
@@ -140,15 +100,42 @@ fn light_params(light: LightDir) -> [f32; 4] {
     }
 }
 
-/// Every caster's packed adjacency, the compute pipeline, and one region
-/// of the vertex buffer and three indirect draws (sides, front cap, back
-/// cap) per (light, caster): slot `light * casters + caster`.
+/// What the shader needs of one chunk: its table offsets and counts.
+#[derive(Clone, Copy, Debug)]
+struct ChunkShape {
+    offsets: [u32; 5],
+    edges: u32,
+    faces: u32,
+    /// Where its sides, front cap and back cap start in its vertex buffer.
+    firsts: [u32; 3],
+}
+
+/// One (light, chunk): the chunk's vertex buffer for that light, and the
+/// bind group of its dispatch.
+struct Slot {
+    vertices: wgpu::Buffer,
+    group: wgpu::BindGroup,
+    chunk: usize,
+}
+
+/// One indirect draw of a caster's volume ([`ComputeVolumes::draws`]).
+pub struct ChunkDraw<'a> {
+    /// The chunk's vertices, and where its arguments are in [`ComputeVolumes::args`].
+    pub vertices: &'a wgpu::Buffer,
+    pub args_at: u64,
+    /// Which part: 0 sides, 1 front cap, 2 back cap (a cap if not 0).
+    pub part: usize,
+    /// Its slot in [`ComputeVolumes::read_counts`].
+    pub slot: usize,
+}
+
+/// Every caster's chunks (their tables on the GPU), the compute
+/// pipeline, and per (light, chunk) a vertex buffer and three indirect
+/// draws (sides, front cap, back cap): slot `light * chunks + chunk`.
 pub struct ComputeVolumes {
     pipeline: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     params_stride: u64,
-    /// Every slot's volume vertices ([`CpuVertex`]), STORAGE | VERTEX.
-    pub vertices: wgpu::Buffer,
     /// Every slot's three `DrawIndirectArgs`, INDIRECT | STORAGE | COPY_DST.
     pub args: wgpu::Buffer,
     /// The arguments each frame starts from (count 0, one instance),
@@ -156,41 +143,109 @@ pub struct ComputeVolumes {
     /// land before the counting submits of [`count_costs`](super::volumes::ShadowVolumes::count_costs)
     /// and zero the counts they draw with.
     reset: wgpu::Buffer,
-    /// Its contents: where each draw's vertices start.
-    firsts: Vec<u32>,
-    slots: usize,
-    /// Per caster: its bind group, and its edges and faces.
-    casters: Vec<(wgpu::BindGroup, PackedMesh)>,
+    chunks: Vec<ChunkShape>,
+    /// Per caster: its chunks, a range of `chunks`.
+    caster_chunks: Vec<std::ops::Range<usize>>,
+    slots: Vec<Slot>,
     lights: usize,
+    /// The bytes last written to `params`.
+    written: Vec<u8>,
 }
 
+/// The dispatches of a frame: (slot, workgroup grid).
+type Dispatches = Vec<(usize, (u32, u32))>;
+
 impl ComputeVolumes {
-    /// Uploads every caster's adjacency and sizes the outputs for the
-    /// worst case. A one-line error if the adapter cannot; whether the
-    /// buffers fit its limits is `fit::compute_unfit`'s to say, before.
+    /// Uploads every caster's adjacency in chunks of at most
+    /// [`chunk_bytes`] and sizes the outputs for the worst case. A
+    /// one-line error if the adapter cannot, or if its memory cannot hold
+    /// them.
     pub fn new(gpu: &Gpu, casters: &[&Adjacency], lights: usize) -> Result<ComputeVolumes> {
+        ComputeVolumes::in_chunks(gpu, casters, lights, chunk_bytes(gpu))
+    }
+
+    /// [`new`](Self::new), with chunks of at most `max_bytes` (the tests
+    /// split small meshes with it).
+    pub fn in_chunks(
+        gpu: &Gpu,
+        casters: &[&Adjacency],
+        lights: usize,
+        max_bytes: u64,
+    ) -> Result<ComputeVolumes> {
         if let Some(why) = unavailable(gpu) {
             bail!("{why}");
         }
+        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let built = ComputeVolumes::build(gpu, casters, lights, max_bytes);
+        // Native wgpu answers at once: no need to block on the future.
+        let mut pop = std::pin::pin!(scope.pop());
+        let waker = std::task::Waker::noop();
+        let popped = pop
+            .as_mut()
+            .poll(&mut std::task::Context::from_waker(waker));
+        if let std::task::Poll::Ready(Some(e)) = popped {
+            let bytes: u64 = (casters.iter())
+                .map(|a| VERTEX * lights as u64 * fit_vertices(a))
+                .sum();
+            bail!(
+                "the compute route's worst-case vertex buffers ({:.0} MiB for {lights} lights) \
+                 do not fit in the memory of {}: {}; the _cpu route needs only what is drawn",
+                bytes as f64 / (1u64 << 20) as f64,
+                gpu.adapter_name(),
+                e.to_string()
+                    .split_whitespace()
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            );
+        }
+        built
+    }
+
+    fn build(
+        gpu: &Gpu,
+        casters: &[&Adjacency],
+        lights: usize,
+        max_bytes: u64,
+    ) -> Result<ComputeVolumes> {
+        use wgpu::BufferUsages as U;
         let limits = gpu.device.limits();
-        let packed: Vec<PackedMesh> = casters.iter().map(|a| pack_adjacency(a)).collect();
-        // Each slot's regions: sides, front cap, back cap.
+        let layout = bind_group_layout(gpu);
+        // Every caster's chunks, their tables uploaded once.
+        let (mut chunks, mut meshes, mut caster_chunks) = (Vec::new(), Vec::new(), Vec::new());
+        for adj in casters {
+            let first = chunks.len();
+            for p in chunks::split(adj, max_bytes)? {
+                let sides = p.max_side_vertices;
+                chunks.push(ChunkShape {
+                    offsets: p.offsets,
+                    edges: p.edges,
+                    faces: p.faces,
+                    firsts: [0, sides, sides + 3 * p.faces],
+                });
+                meshes.push(
+                    gpu.device
+                        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                            label: Some("caster adjacency chunk"),
+                            contents: bytemuck::cast_slice(&p.words),
+                            usage: U::STORAGE,
+                        }),
+                );
+            }
+            caster_chunks.push(first..chunks.len());
+        }
+        let slots_n = (lights * chunks.len()).max(1) as u64;
         let mut reset = Vec::new();
-        let mut first = 0u64;
         for _ in 0..lights {
-            for p in &packed {
-                for n in [p.max_side_vertices, 3 * p.faces, 3 * p.faces] {
-                    reset.push(DrawIndirectArgs {
-                        vertex_count: 0,
-                        instance_count: 1,
-                        first_vertex: first as u32,
-                        first_instance: 0,
-                    });
-                    first += n as u64;
-                }
+            for c in &chunks {
+                reset.extend(c.firsts.map(|first| DrawIndirectArgs {
+                    vertex_count: 0,
+                    instance_count: 1,
+                    first_vertex: first,
+                    first_instance: 0,
+                }));
             }
         }
-        let bytes = first.max(1) * VERTEX;
+        reset.resize(reset.len().max(1), DrawIndirectArgs::default());
         let buffer = |label, size, usage| {
             gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -199,14 +254,6 @@ impl ComputeVolumes {
                 mapped_at_creation: false,
             })
         };
-        use wgpu::BufferUsages as U;
-        let vertices = buffer(
-            "compute volumes",
-            bytes,
-            U::STORAGE | U::VERTEX | U::COPY_SRC,
-        );
-        let args_size = (reset.len() as u64).max(1) * ARGS;
-        reset.resize(reset.len().max(1), DrawIndirectArgs::default());
         let reset_src = gpu
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -214,17 +261,17 @@ impl ComputeVolumes {
                 contents: bytemuck::cast_slice(&reset),
                 usage: U::COPY_SRC,
             });
+        let args_usage = U::INDIRECT | U::STORAGE | U::COPY_DST | U::COPY_SRC;
         let args = buffer(
             "compute volume draws",
-            args_size,
-            U::INDIRECT | U::STORAGE | U::COPY_DST | U::COPY_SRC,
+            reset.len() as u64 * ARGS,
+            args_usage,
         );
         let params_stride = (std::mem::size_of::<Params>() as u64)
             .next_multiple_of(limits.min_uniform_buffer_offset_alignment as u64);
-        let slots = (lights * casters.len()).max(1) as u64;
         let params = buffer(
             "extrude params",
-            params_stride * slots,
+            params_stride * slots_n,
             U::UNIFORM | U::COPY_DST,
         );
         let module = gpu
@@ -233,84 +280,75 @@ impl ComputeVolumes {
                 label: Some("extrude"),
                 source: wgpu::ShaderSource::Wgsl(EXTRUDE_WGSL.into()),
             });
-        let layout = bind_group_layout(gpu);
         let pipeline = compute_pipeline(gpu, &module, &layout);
-        let packed_len = packed.len();
-        let casters: Vec<(wgpu::BindGroup, PackedMesh)> = packed
-            .into_iter()
-            .map(|p| {
-                let mesh = gpu
-                    .device
-                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("caster adjacency"),
-                        contents: bytemuck::cast_slice(&p.words),
-                        usage: U::STORAGE,
-                    });
+        // Per light and chunk: the volume's vertices, within one binding.
+        let mut slots = Vec::with_capacity(lights * chunks.len());
+        for _ in 0..lights {
+            for (chunk, c) in chunks.iter().enumerate() {
+                let n = (c.firsts[2] + 3 * c.faces).max(1) as u64;
+                let usage = U::STORAGE | U::VERTEX | U::COPY_SRC;
+                let vertices = buffer("compute volume chunk", n * VERTEX, usage);
                 let params = wgpu::BufferBinding {
                     buffer: &params,
                     offset: 0,
                     size: wgpu::BufferSize::new(std::mem::size_of::<Params>() as u64),
                 };
-                let bg = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+                let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("extrude"),
                     layout: &layout,
                     entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: wgpu::BindingResource::Buffer(params),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: mesh.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: vertices.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 3,
-                            resource: args.as_entire_binding(),
-                        },
+                        entry(0, wgpu::BindingResource::Buffer(params)),
+                        entry(1, meshes[chunk].as_entire_binding()),
+                        entry(2, vertices.as_entire_binding()),
+                        entry(3, args.as_entire_binding()),
                     ],
                 });
-                (bg, p)
-            })
-            .collect();
+                slots.push(Slot {
+                    vertices,
+                    group,
+                    chunk,
+                });
+            }
+        }
         Ok(ComputeVolumes {
             pipeline,
             params,
             params_stride,
-            vertices,
             args,
             reset: reset_src,
-            firsts: reset.iter().map(|a| a.first_vertex).collect(),
-            slots: lights * packed_len,
-            casters,
+            chunks,
+            caster_chunks,
+            slots,
             lights,
+            written: Vec::new(),
         })
     }
 
-    fn slot(&self, light: usize, caster: usize) -> usize {
-        light * self.casters.len() + caster
+    /// The slots of light `light`'s volume of caster `caster`, one per chunk.
+    pub fn slots_of(&self, light: usize, caster: usize) -> std::ops::Range<usize> {
+        let c = &self.caster_chunks[caster];
+        let at = light * self.chunks.len();
+        at + c.start..at + c.end
     }
 
     // ANCHOR: extrude
-    /// The per-frame work: for every light k and caster whose object
-    /// `drawn(k, object)` says, the light in object space (`models`) and the reach
-    /// (`reach[light][caster]`, 0 infinity) go to the shader, the vertex
-    /// counts are reset, and one dispatch per (light, caster) writes the
-    /// volumes. Timed as the pass `extrude`.
+    /// The per-frame work: for every light k (`lights`, origin-relative
+    /// world space) and caster whose object `drawn(k, object)` says, the
+    /// light in object space (`models`) and the reach (`reach[light][caster]`,
+    /// 0 infinity) go to the shader, the vertex counts are reset, and one
+    /// dispatch per (light, chunk) writes the volumes. Timed as the pass
+    /// `extrude`.
     pub fn extrude(
-        &self,
+        &mut self,
         frame: &mut Frame,
-        scene: &SceneGpu,
+        lights: &[LightDir],
         objects: &[usize],
         (models, reach): (&[Mat4], &[Vec<f32>]),
         drawn: impl Fn(usize, usize) -> bool,
     ) {
         let mut jobs = Vec::new();
-        for k in 0..self.lights {
-            let world = world_light(scene, k);
+        for (k, world) in lights.iter().enumerate().take(self.lights) {
             for (ci, &object) in objects.iter().enumerate() {
                 if drawn(k, object) {
                     // Silhouettes in object space: the light moves, not the mesh.
@@ -320,49 +358,55 @@ impl ComputeVolumes {
                 }
             }
         }
-        let dispatches = self.write_params(frame.gpu, &jobs);
+        let (params, dispatches) = self.params_of(frame.gpu, &jobs);
+        // Uploaded again only when a light or a reach has moved.
+        if params != self.written {
+            frame.gpu.queue.write_buffer(&self.params, 0, &params);
+            self.written = params;
+        }
         frame.pass("extrude", |enc, ts| {
             self.record(enc, ts.compute(), &dispatches)
         });
     }
     // ANCHOR_END: extrude
 
-    /// Writes the `Params` of each job (light k, caster, object-space
-    /// light, reach w); returns the dispatches: (caster, slot, grid).
-    fn write_params(
+    /// The `Params` of each job's chunks (light k, caster, object-space
+    /// light, reach w), as the bytes of [`params`](Self::params), and the
+    /// dispatches: (slot, grid).
+    fn params_of(
         &self,
         gpu: &Gpu,
         jobs: &[(usize, usize, LightDir, f32)],
-    ) -> Vec<(usize, usize, (u32, u32))> {
+    ) -> (Vec<u8>, Dispatches) {
         let max_groups = gpu.device.limits().max_compute_workgroups_per_dimension;
         let stride = self.params_stride as usize;
-        let mut params = vec![0u8; stride * self.slots.max(1)];
+        let mut params = vec![0u8; stride * self.slots.len().max(1)];
         let mut dispatches = Vec::new();
         for &(k, ci, light, reach_w) in jobs {
-            let p = &self.casters[ci].1;
-            let n = p.edges + p.faces;
-            if n == 0 {
-                continue;
+            for slot in self.slots_of(k, ci) {
+                let c = &self.chunks[self.slots[slot].chunk];
+                let n = c.edges + c.faces;
+                if n == 0 {
+                    continue;
+                }
+                let groups = n.div_ceil(WORKGROUP);
+                let grid = (groups.min(max_groups), groups.div_ceil(max_groups));
+                let value = Params {
+                    light: light_params(light),
+                    reach_w,
+                    edges: c.edges,
+                    faces: c.faces,
+                    slot: slot as u32,
+                    offsets: c.offsets,
+                    row: grid.0 * WORKGROUP,
+                    _pad: [0; 2],
+                };
+                params[slot * stride..][..std::mem::size_of::<Params>()]
+                    .copy_from_slice(bytemuck::bytes_of(&value));
+                dispatches.push((slot, grid));
             }
-            let groups = n.div_ceil(WORKGROUP);
-            let grid = (groups.min(max_groups), groups.div_ceil(max_groups));
-            let slot = self.slot(k, ci);
-            let value = Params {
-                light: light_params(light),
-                reach_w,
-                edges: p.edges,
-                faces: p.faces,
-                slot: slot as u32,
-                offsets: p.offsets,
-                row: grid.0 * WORKGROUP,
-                _pad: [0; 2],
-            };
-            params[slot * stride..][..std::mem::size_of::<Params>()]
-                .copy_from_slice(bytemuck::bytes_of(&value));
-            dispatches.push((ci, slot, grid));
         }
-        gpu.queue.write_buffer(&self.params, 0, &params);
-        dispatches
+        (params, dispatches)
     }
 
     /// Resets the counts and records the dispatches.
@@ -370,7 +414,7 @@ impl ComputeVolumes {
         &self,
         enc: &mut wgpu::CommandEncoder,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
-        dispatches: &[(usize, usize, (u32, u32))],
+        dispatches: &[(usize, (u32, u32))],
     ) {
         // Every count back to 0 before the dispatches add to it.
         enc.copy_buffer_to_buffer(&self.reset, 0, &self.args, 0, self.args.size());
@@ -379,52 +423,42 @@ impl ComputeVolumes {
             timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
-        for &(ci, slot, (x, y)) in dispatches {
+        for &(slot, (x, y)) in dispatches {
             let offset = (slot as u64 * self.params_stride) as u32;
-            pass.set_bind_group(0, &self.casters[ci].0, &[offset]);
+            pass.set_bind_group(0, &self.slots[slot].group, &[offset]);
             pass.dispatch_workgroups(x, y, 1);
         }
     }
 
-    /// One caster's indirect draws for light `light`: (byte offset in
-    /// [`args`](Self::args), is it a cap?), the sides and the caps asked
-    /// for, `(front, back)`. A directional light has no back cap (it is one point).
+    /// One caster's indirect draws for light `light`, chunk by chunk: the
+    /// sides and the caps asked for, `(front, back)`. A directional light
+    /// has no back cap (it is one point).
     pub fn draws(
         &self,
         scene: &SceneGpu,
         light: usize,
         caster: usize,
         (front, back): (bool, bool),
-    ) -> Vec<(u64, bool)> {
-        let directional = matches!(world_light(scene, light), LightDir::Directional(_));
-        let at = self.slot(light, caster) as u64 * 3 * ARGS;
-        [
-            Some((at, false)),
-            front.then_some((at + ARGS, true)),
-            (back && !directional).then_some((at + 2 * ARGS, true)),
-        ]
-        .into_iter()
-        .flatten()
-        .collect()
+    ) -> Vec<ChunkDraw<'_>> {
+        let directional = is_directional(scene, light);
+        let parts = [true, front, back && !directional];
+        let draw = |slot: usize, part: usize| ChunkDraw {
+            vertices: &self.slots[slot].vertices,
+            args_at: (3 * slot + part) as u64 * ARGS,
+            part,
+            slot,
+        };
+        (self.slots_of(light, caster))
+            .flat_map(|slot| (0..3).filter(|&p| parts[p]).map(move |p| draw(slot, p)))
+            .collect()
     }
 
     /// Reads back every slot's vertex counts (sides, front cap, back cap),
-    /// `counts[light * casters + caster]`, as the last frame left them.
-    /// Untimed: its own submit.
+    /// `counts[slot]` ([`slots_of`](Self::slots_of)), as the last frame
+    /// left them. Untimed: its own submit.
     pub fn read_counts(&self, gpu: &Gpu) -> Result<Vec<[u32; 3]>> {
-        let size = self.args.size();
-        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("compute volume counts"),
-            size,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        enc.copy_buffer_to_buffer(&self.args, 0, &staging, 0, size);
-        gpu.queue.submit([enc.finish()]);
-        let bytes = read_buffer(gpu, &staging, size, "compute volume counts")?;
-        let words: &[u32] = bytemuck::cast_slice(&bytes);
-        Ok((0..self.slots)
+        let words = read_words(gpu, &self.args, "compute volume counts")?;
+        Ok((0..self.slots.len())
             .map(|s| [0, 1, 2].map(|p| words[(3 * s + p) * 4]))
             .collect())
     }
@@ -432,44 +466,23 @@ impl ComputeVolumes {
     /// The number of vertices on one side of a silhouette edge: 6 for a
     /// point light, 3 for a directional one.
     pub fn per_side(scene: &SceneGpu, light: usize) -> u32 {
-        match world_light(scene, light) {
-            LightDir::Directional(_) => 3,
-            LightDir::Point(_) => 6,
+        if is_directional(scene, light) {
+            3
+        } else {
+            6
         }
     }
 }
 
-/// One caster's volume for one light, built by the compute shader and
-/// read back: (sides, front cap, back cap), each a triangle list in the
-/// order the invocations appended it. [`cpu_volume_reaching`](super::extrusion::cpu_volume_reaching)'s
-/// triangles, in another order (the tests compare the two).
-pub fn extrude_once(
-    gpu: &Gpu,
-    adj: &Adjacency,
-    light: LightDir,
-    reach_w: f32,
-) -> Result<[Vec<CpuVertex>; 3]> {
-    let volumes = ComputeVolumes::new(gpu, &[adj], 1)?;
-    let dispatches = volumes.write_params(gpu, &[(0, 0, light, reach_w)]);
-    let mut enc = gpu.device.create_command_encoder(&Default::default());
-    volumes.record(&mut enc, None, &dispatches);
-    gpu.queue.submit([enc.finish()]);
-    let counts = volumes.read_counts(gpu)?[0];
-    let firsts = &volumes.firsts;
-    let size = volumes.vertices.size();
-    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("compute volume readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut enc = gpu.device.create_command_encoder(&Default::default());
-    enc.copy_buffer_to_buffer(&volumes.vertices, 0, &staging, 0, size);
-    gpu.queue.submit([enc.finish()]);
-    let bytes = read_buffer(gpu, &staging, size, "compute volume")?;
-    let all: &[CpuVertex] = bytemuck::cast_slice(&bytes);
-    Ok([0, 1, 2].map(|p| {
-        let first = firsts[p] as usize;
-        all[first..first + counts[p] as usize].to_vec()
-    }))
+/// A directional light (no back cap, one triangle a side).
+fn is_directional(scene: &SceneGpu, light: usize) -> bool {
+    matches!(
+        scene.scene.lights[light].kind,
+        LightKind::Directional { .. }
+    )
+}
+
+/// `adj`'s worst-case volume, in vertices: every side, both caps.
+fn fit_vertices(adj: &Adjacency) -> u64 {
+    super::fit::max_side_vertices(adj) + 6 * adj.triangles.len() as u64
 }

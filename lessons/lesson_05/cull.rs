@@ -7,11 +7,9 @@ use common::glam::DVec3;
 use common::gpu::render::SceneGpu;
 use common::scene::LightKind;
 
-use super::extrusion::world_light;
+pub use super::frustum::frustum_planes;
 use super::silhouette::LightDir;
 use super::volumes::{CasterDraw, ShadowVolumes};
-
-pub use super::volumes::frustum_planes;
 
 /// A test "can this caster's volume matter?" (lesson 05's exercise
 /// `volume_can_matter`): the caster's bounding sphere (centre, radius), the
@@ -28,7 +26,7 @@ pub fn kept_draws(
     let frustum = frustum_planes(scene.camera.view_proj.as_dmat4());
     (0..scene.scene.lights.len())
         .map(|k| {
-            let light = world_light(scene, k);
+            let light = volumes.light(scene, k);
             let range = match scene.scene.lights[k].kind {
                 LightKind::Directional { .. } => None,
                 LightKind::Point { range, .. } | LightKind::Spot { range, .. } => Some(range),

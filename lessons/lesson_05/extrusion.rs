@@ -22,10 +22,10 @@ use common::glam::DVec3;
 use common::gpu::render::shader_module;
 use common::gpu::Gpu;
 
-pub use super::silhouette::world_light;
 use super::silhouette::{
     face_facing, light_facing_triangles_for, silhouette_edges_for, LightDir, SilhouetteEdge,
 };
+pub use super::silhouette::{light_relative_to, world_light};
 
 /// The volume WGSL (`shaders/lesson_05/volume.wgsl`), after `common.wgsl`.
 pub const VOLUME_WGSL: &str = include_str!("../../shaders/lesson_05/volume.wgsl");

@@ -9,10 +9,15 @@
 //! |---|---|---|
 //! | `_cpu` | vertices, rewritten every frame | (6 × silhouette edges + 6 × lit faces) × 16 B per light, at worst (6 × E' + 6 F) × 16 B |
 //! | `_quads` | vertices and indices, built once | (4 E'' + 6 F) × 76 B + (6 E'' + 6 F) × 4 B |
-//! | `_compute` | vertices for the worst case, a storage binding | (6 × E' + 6 F) × 16 B per light |
+//! | `_compute` | vertices for the worst case, in chunks | (6 × E' + 6 F) × 16 B per light |
 //!
 //! E' counts an edge once per face it can be a silhouette for, E'' once per
 //! quad ([`quad_sizes`]): E for a closed manifold mesh.
+//!
+//! The compute route has no row here to fail: it splits each caster into
+//! chunks that each bind less than `max_storage_buffer_binding_size`
+//! ([`chunks`](super::compute::chunks)), so only the device's memory bounds
+//! it (and a device that cannot hold its buffers says so in one line).
 
 use super::adjacency::Adjacency;
 #[cfg(doc)]
@@ -74,41 +79,6 @@ pub fn quads_unfit(gpu: &Gpu, casters: &[(&str, (u64, u64))]) -> Option<String> 
         over(gpu, &what, vertices * QUAD_VERTEX_BYTES, "max_buffer_size", max).or_else(|| {
             let what = format!("the quad route's index buffer for {name}");
             over(gpu, &what, indices * 4, "max_buffer_size", max)
-        })
-    })
-}
-
-/// Why the compute route's buffers would pass a limit, or `None`: its
-/// worst-case vertex buffer is a storage binding, and so is each caster's
-/// packed adjacency (`pack_adjacency`).
-pub fn compute_unfit(gpu: &Gpu, casters: &[(&str, &Adjacency)], lights: usize) -> Option<String> {
-    let limits = gpu.device.limits();
-    let binding = limits
-        .max_storage_buffer_binding_size
-        .min(limits.max_buffer_size);
-    let name = if limits.max_storage_buffer_binding_size <= limits.max_buffer_size {
-        "max_storage_buffer_binding_size"
-    } else {
-        "max_buffer_size"
-    };
-    let adjacency: Vec<&Adjacency> = casters.iter().map(|c| c.1).collect();
-    let vertices = worst_case_vertices(&adjacency, lights).max(1);
-    let what = format!("the compute route's worst-case vertex buffer ({vertices} vertices × {CPU_VERTEX_BYTES} bytes)");
-    if vertices > u32::MAX as u64 {
-        return Some(format!(
-            "{what} needs more vertices than a draw can address (2^32)"
-        ));
-    }
-    over(gpu, &what, vertices * CPU_VERTEX_BYTES, name, binding).or_else(|| {
-        casters.iter().find_map(|(name, a)| {
-            let uses: u64 = a.edges.iter().map(|e| a.faces_of(e).len() as u64).sum();
-            let words = 3 * a.positions.len() as u64
-                + 6 * a.triangles.len() as u64
-                + 4 * a.edges.len() as u64
-                + uses
-                + 1;
-            let what = format!("the compute route's adjacency of {name}");
-            over(gpu, &what, 4 * words, name, binding)
         })
     })
 }

@@ -177,14 +177,20 @@ impl Lesson for ZPass {
         // What the "buffer" view reads: this frame's stencil.
         self.depth_stencil = Some(targets.depth.clone());
         // The second call finds the first frame's depth in place: count
-        // then, once, in submits of their own (untimed).
+        // then, once, in submits of their own, left out of the frame's times.
         let n = &mut self.frames[variant as usize];
         *n += 1;
         if *n == 2 {
-            let (gpu, draws) = (frame.gpu, all);
-            let v = variant as usize;
-            self.invocations[v] = self.volumes.count_fragments(gpu, scene, ext, draws);
-            self.costs[v] = Some(self.volumes.count_costs(gpu, scene, targets, ext, draws)?);
+            let (v, volumes) = (variant as usize, &self.volumes);
+            let (invocations, costs) = frame.untimed(|gpu| {
+                let invocations = volumes.count_fragments(gpu, scene, ext, all);
+                (
+                    invocations,
+                    volumes.count_costs(gpu, scene, targets, ext, all),
+                )
+            });
+            self.invocations[v] = invocations;
+            self.costs[v] = Some(costs?);
         }
         Ok(())
     }

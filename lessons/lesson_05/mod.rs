@@ -8,6 +8,7 @@ pub mod count_view;
 pub mod cull;
 pub mod extrusion;
 pub mod fit;
+pub mod frustum;
 pub mod quads;
 pub mod silhouette;
 pub mod stencil;

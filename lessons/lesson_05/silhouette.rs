@@ -164,9 +164,19 @@ pub fn casts_two_sided(mesh: &Mesh) -> bool {
 
 /// Light `k` as the volumes see it: origin-relative world space. Spot
 /// lights cast like point lights (the cone is applied in the lit pass).
+/// Finds the scene's origin, a pass over every vertex: per frame, use
+/// [`light_relative_to`] with the origin found once.
 pub fn world_light(scene: &common::gpu::render::SceneGpu, k: usize) -> LightDir {
-    let o = scene.scene.origin();
-    match scene.scene.lights[k].kind {
+    light_relative_to(&scene.scene, scene.scene.origin(), k)
+}
+
+/// [`world_light`], relative to `origin` ([`Scene::origin`](common::scene::Scene::origin)).
+pub fn light_relative_to(
+    scene: &common::scene::Scene,
+    o: common::glam::DVec3,
+    k: usize,
+) -> LightDir {
+    match scene.lights[k].kind {
         common::scene::LightKind::Directional { direction } => {
             LightDir::Directional(direction.as_vec3())
         }

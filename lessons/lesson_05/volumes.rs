@@ -34,7 +34,7 @@
 use std::ops::Range;
 
 use anyhow::Result;
-use common::glam::{DMat4, DVec3, DVec4, Mat4};
+use common::glam::{DVec3, Mat4};
 use common::gpu::lit::LitPass;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
@@ -45,10 +45,12 @@ use common::measure::timing::Frame;
 use super::adjacency::Adjacency;
 use super::compute::{self, ComputeVolumes};
 use super::extrusion::{
-    cpu_volume_parts, world_light, CpuParts, CpuVertex, Extrusion, VolumeRanges,
+    cpu_volume_parts, light_relative_to, CpuParts, CpuVertex, Extrusion, VolumeRanges,
 };
 use super::fit;
+use super::frustum::frustum_planes;
 use super::quads::REACH_SLOT;
+use super::silhouette::LightDir;
 use super::stencil::{Counting, Method, VolumePipelines};
 use crate::lesson_01::tally::Tally;
 
@@ -128,9 +130,11 @@ pub struct ShadowVolumes {
     pub casters: Vec<VolumeCaster>,
     /// `caster_of[object]`: the object's index in `casters`, if it casts.
     caster_of: Vec<Option<usize>>,
-    /// Every object's origin-relative model matrix, found once: objects do
-    /// not move (the window moves only the camera and the lights).
+    /// Every object's origin-relative model matrix, and the origin (the
+    /// centre of the scene's bounds, a pass over every vertex), found once:
+    /// objects do not move (the window moves only the camera and the lights).
     models: Vec<Mat4>,
+    origin: DVec3,
     /// `reach[light][caster]`: the w of extruded vertices (0: infinity).
     reach: Vec<Vec<f32>>,
     /// The same, one [`REACH_SLOT`] per (light, caster), for the quads path;
@@ -154,6 +158,7 @@ impl ShadowVolumes {
     pub fn new(gpu: &Gpu, scene: &SceneGpu, counting: &Counting) -> Result<ShadowVolumes> {
         let casters = build_casters(gpu, scene);
         let models = scene.scene.relative_models();
+        let origin = scene.scene.origin();
         let lights = scene.scene.lights.len();
         let objects = &scene.scene.objects;
         let adjacency: Vec<(&str, &Adjacency)> = (casters.iter())
@@ -165,7 +170,7 @@ impl ShadowVolumes {
         let unfit = [
             fit::cpu_unfit(gpu, &adjacency, lights),
             fit::quads_unfit(gpu, &sizes),
-            compute::unavailable(gpu).or_else(|| fit::compute_unfit(gpu, &adjacency, lights)),
+            compute::unavailable(gpu),
         ];
         let reach = vec![vec![0.0; casters.len()]; lights];
         let reach_buffer = counting.finite_reach.then(|| {
@@ -185,6 +190,7 @@ impl ShadowVolumes {
             casters,
             caster_of,
             models,
+            origin,
             reach,
             reach_buffer,
             cpu: CpuGeometry::default(),
@@ -233,6 +239,13 @@ impl ShadowVolumes {
         self.casters.iter().map(|c| draw(c.object)).collect()
     }
 
+    /// Light `k` as the volumes see it (origin-relative world space), as
+    /// [`world_light`](super::silhouette::world_light) finds it, from the
+    /// origin found once: cheap enough for every frame.
+    pub fn light(&self, scene: &SceneGpu, k: usize) -> LightDir {
+        light_relative_to(&scene.scene, self.origin, k)
+    }
+
     fn caster(&self, object: usize) -> Option<(usize, &VolumeCaster)> {
         let ci = (*self.caster_of.get(object)?)?;
         Some((ci, &self.casters[ci]))
@@ -256,7 +269,7 @@ impl ShadowVolumes {
         parts: CpuParts,
     ) {
         let gpu = frame.gpu;
-        let cpu = &mut self.cpu;
+        let (cpu, origin) = (&mut self.cpu, self.origin);
         let casters = &self.casters;
         let reach = &self.reach;
         let models = &self.models;
@@ -270,7 +283,7 @@ impl ShadowVolumes {
             cpu.vertices.clear();
             cpu.ranges.clear();
             for (k, draws_k) in draws.iter().enumerate() {
-                let light = world_light(scene, k);
+                let light = light_relative_to(&scene.scene, origin, k);
                 let mut ranges = vec![VolumeRanges::default(); casters.len()];
                 let mut drawn = vec![false; scene.scene.objects.len()];
                 for d in draws_k {
@@ -342,16 +355,19 @@ impl ShadowVolumes {
         if self.compute.is_none() {
             let adjacency: Vec<_> = self.casters.iter().map(|c| &c.adjacency).collect();
             let lights = scene.scene.lights.len();
-            self.compute = Some(ComputeVolumes::new(frame.gpu, &adjacency, lights)?);
+            // Made once, on the first frame, and left out of its times.
+            let made = frame.untimed(|gpu| ComputeVolumes::new(gpu, &adjacency, lights))?;
+            self.compute = Some(made);
         }
-        if let Some(c) = &self.compute {
+        let lights: Vec<LightDir> = (0..draws.len()).map(|k| self.light(scene, k)).collect();
+        if let Some(c) = &mut self.compute {
             let objects: Vec<usize> = self.casters.iter().map(|c| c.object).collect();
             let drawn = |k: usize, o| {
                 draws
                     .get(k)
                     .is_some_and(|d| d.iter().any(|d| d.object == o))
             };
-            c.extrude(frame, scene, &objects, (&self.models, &self.reach), drawn);
+            c.extrude(frame, &lights, &objects, (&self.models, &self.reach), drawn);
         }
         Ok(())
     }
@@ -412,11 +428,11 @@ impl ShadowVolumes {
                 }
                 Extrusion::Compute => {
                     let Some(cv) = &self.compute else { continue };
-                    pass.set_vertex_buffer(0, cv.vertices.slice(..));
-                    // As many vertices as the compute shader counted.
-                    for (at, cap) in cv.draws(scene, v.light, ci, (d.front_cap, d.back_cap)) {
-                        pass.set_pipeline(pipeline(cap));
-                        pass.draw_indirect(&cv.args, at);
+                    // As many vertices as the compute shader counted, chunk by chunk.
+                    for draw in cv.draws(scene, v.light, ci, (d.front_cap, d.back_cap)) {
+                        pass.set_vertex_buffer(0, draw.vertices.slice(..));
+                        pass.set_pipeline(pipeline(draw.part > 0));
+                        pass.draw_indirect(&cv.args, draw.args_at);
                     }
                 }
             }
@@ -468,26 +484,4 @@ impl ShadowVolumes {
     pub fn counter(&self) -> Option<&FragmentCounter> {
         self.counter.as_ref()
     }
-}
-
-/// Planes `(n, d)`, `n` of unit length, with n·p + d ≥ 0 inside, from a
-/// WebGPU view-projection (depth in [0, 1]). A far plane at infinity is
-/// left out.
-pub fn frustum_planes(vp: DMat4) -> Vec<(DVec3, f64)> {
-    let r = |i: usize| vp.row(i);
-    let candidates = [
-        r(3) + r(0),
-        r(3) - r(0),
-        r(3) + r(1),
-        r(3) - r(1),
-        r(2),
-        r(3) - r(2),
-    ];
-    candidates
-        .iter()
-        .filter_map(|p: &DVec4| {
-            let len = p.truncate().length();
-            (len > 1e-9 * p.length().max(1.0)).then(|| (p.truncate() / len, p.w / len))
-        })
-        .collect()
 }

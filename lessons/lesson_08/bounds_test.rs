@@ -13,7 +13,7 @@ use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::counters::FragmentCounter;
 
-use super::range_sphere::{caster_reaches, LightBounds};
+use super::range_sphere::{caster_reaches, LightBounds, RangeSphere};
 use crate::lesson_05::extrusion::volume_shader_module;
 use crate::lesson_05::quads::QUAD_VERTEX_LAYOUT;
 use crate::lesson_05::stencil::lit_stencil;
@@ -69,12 +69,13 @@ pub struct Limits {
     pub cull: bool,
 }
 
-/// One light's bounded volume pass: the light, its range sphere's bounds
-/// (`None` for a light without a range, `Some(None)` when the sphere is off
-/// screen), and the savings to use.
+/// One light's bounded volume pass: the light, its range sphere (for
+/// `cull`) and the sphere's bounds (`None` for a light without a range,
+/// `Some(None)` when the sphere is off screen), and the savings to use.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BoundedLight {
     pub light: usize,
+    pub sphere: RangeSphere,
     pub bounds: Option<Option<LightBounds>>,
     pub limits: Limits,
 }
@@ -276,24 +277,33 @@ impl BoundedVolumes {
     /// Draw calls and triangles of one light's volumes, as
     /// [`draw_volumes`](Self::draw_volumes) draws them, without the two
     /// bounds-marker triangles.
-    pub fn volume_draws(&self, scene: &SceneGpu, b: &BoundedLight) -> (u64, u64) {
+    pub fn volume_draws(&self, b: &BoundedLight) -> (u64, u64) {
         let ranges = (self.casters.iter())
-            .filter(|c| self.drawn(scene, b, c))
+            .filter(|c| self.drawn(b, c))
             .flat_map(|c| &c.ranges);
         ranges.fold((0, 0), |(d, t), (r, _)| (d + 1, t + r.len() as u64 / 3))
     }
 
-    /// Uploads light `k`'s depth bounds (before the frame is submitted).
-    pub fn write_bounds(&self, gpu: &Gpu, k: usize, b: &LightBounds) {
-        let v = [b.depth.0, b.depth.1, 0.0, 0.0];
-        gpu.queue
-            .write_buffer(&self.bounds_buf, SLOT * k as u64, bytemuck::cast_slice(&v));
+    /// Uploads every light's depth bounds, one slot a light, in one write
+    /// (before the frame is submitted); a light without bounds gets zeros,
+    /// which nothing reads.
+    pub fn write_bounds(&self, gpu: &Gpu, bounds: &[Option<Option<LightBounds>>]) {
+        let mut slots = vec![0f32; bounds.len() * SLOT as usize / 4];
+        for (slot, b) in slots.chunks_exact_mut(SLOT as usize / 4).zip(bounds) {
+            if let Some(Some(b)) = b {
+                slot[..2].copy_from_slice(&[b.depth.0, b.depth.1]);
+            }
+        }
+        if !slots.is_empty() {
+            gpu.queue
+                .write_buffer(&self.bounds_buf, 0, bytemuck::cast_slice(&slots));
+        }
     }
 
     /// Whether `b`'s volume pass draws caster `c`: every caster, or with
     /// `cull` only those that reach into the light's range.
-    fn drawn(&self, scene: &SceneGpu, b: &BoundedLight, c: &Caster) -> bool {
-        !b.limits.cull || caster_reaches(&scene.scene, b.light, c.center, c.radius)
+    fn drawn(&self, b: &BoundedLight, c: &Caster) -> bool {
+        !b.limits.cull || caster_reaches(b.sphere, c.center, c.radius)
     }
 
     /// Draws light `b.light`'s volumes (sides and caps of every caster, or
@@ -309,7 +319,7 @@ impl BoundedVolumes {
         scene.bind_frame(pass, b.light);
         let mut drawn = 0;
         for c in &self.casters {
-            if !self.drawn(scene, b, c) {
+            if !self.drawn(b, c) {
                 continue;
             }
             drawn += 1;

@@ -125,7 +125,7 @@ impl VolumeTally {
     ) -> Result<BoundedCosts> {
         let mut costs = BoundedCosts::default();
         for b in lights {
-            let (calls, triangles) = volumes.volume_draws(scene, b);
+            let (calls, triangles) = volumes.volume_draws(b);
             if b.limits != Limits::default() && b.bounds == Some(None) {
                 continue; // the volume pass draws nothing for this light
             }

@@ -6,7 +6,9 @@
 use common::gpu::render::SceneGpu;
 
 use super::exercises;
-use super::range_sphere::{all_bounds, sphere_depth_bounds, sphere_scissor, LightBounds};
+use super::range_sphere::{
+    all_bounds, sphere_depth_bounds, sphere_scissor, LightBounds, RangeSphere,
+};
 use common::scene::LightKind;
 
 /// Which bound the student's code computes.
@@ -19,25 +21,31 @@ pub enum Student {
     DepthBounds,
 }
 
-/// As [`all_bounds`], a spot light's scissor or depth bounds from the
-/// exercise.
-pub fn exercise_bounds(scene: &SceneGpu, student: Student) -> Vec<Option<Option<LightBounds>>> {
+/// As [`all_bounds`] (of the same `spheres`), a spot light's scissor or
+/// depth bounds from the exercise.
+pub fn exercise_bounds(
+    scene: &SceneGpu,
+    spheres: &[RangeSphere],
+    student: Student,
+) -> Vec<Option<Option<LightBounds>>> {
     let (cam, s) = (&scene.camera, &scene.scene);
     let (view, proj) = (cam.view.as_dmat4(), cam.proj.as_dmat4());
     let (near, w, h) = (s.camera.near, scene.width, scene.height);
-    let mut out = all_bounds(scene);
-    for (b, l) in out.iter_mut().zip(&s.lights) {
-        let LightKind::Spot {
-            position,
-            direction,
-            range,
-            spot_angle_deg,
-        } = l.kind
+    let mut out = all_bounds(scene, spheres);
+    for ((b, l), sphere) in out.iter_mut().zip(&s.lights).zip(spheres) {
+        let (
+            LightKind::Spot {
+                direction,
+                range,
+                spot_angle_deg,
+                ..
+            },
+            Some((p, _)),
+        ) = (l.kind, *sphere)
         else {
             continue;
         };
         let half = (0.5 * spot_angle_deg).to_radians();
-        let p = position - s.origin();
         let c = view.transform_point3(p);
         let (depth, scissor) = match student {
             Student::Scissor => {

@@ -33,6 +33,7 @@
 use std::collections::BTreeMap;
 
 use clap::ValueEnum;
+use common::glam::DVec3;
 use common::gpu::lit::LitPass;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
@@ -41,7 +42,7 @@ use common::measure::timing::Frame;
 use common::run::app;
 use common::run::knobs::{Knob, KnobRange};
 use common::run::lesson::{BufferView, Lesson};
-use common::scene::{Far, LightKind};
+use common::scene::Far;
 use common::Result;
 use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::extrusion::{volume_shader_module, Extrusion};
@@ -53,7 +54,7 @@ use workbook::lesson_08::bounds_test::{
 use workbook::lesson_08::costs::VolumeTally;
 use workbook::lesson_08::count_bits;
 use workbook::lesson_08::exercise_bounds::{exercise_bounds, Student};
-use workbook::lesson_08::range_sphere::{all_bounds, LightBounds};
+use workbook::lesson_08::range_sphere::{all_bounds, range_spheres, LightBounds, RangeSphere};
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -97,25 +98,28 @@ impl Variant {
         }
     }
 
-    /// Every light's bounds: the range sphere's, or for an exercise, with
+    /// Every light's bounds: its range sphere's, or for an exercise, with
     /// one of them from the student's code.
-    fn bounds(self, scene: &SceneGpu) -> Vec<Option<Option<LightBounds>>> {
+    fn bounds(self, scene: &SceneGpu, spheres: &[RangeSphere]) -> Vec<Option<Option<LightBounds>>> {
         match self {
-            Variant::ExerciseScissorRect => exercise_bounds(scene, Student::Scissor),
-            Variant::ExerciseDepthBounds => exercise_bounds(scene, Student::DepthBounds),
-            _ => all_bounds(scene),
+            Variant::ExerciseScissorRect => exercise_bounds(scene, spheres, Student::Scissor),
+            Variant::ExerciseDepthBounds => exercise_bounds(scene, spheres, Student::DepthBounds),
+            _ => all_bounds(scene, spheres),
         }
     }
 }
 // ANCHOR_END: variants
 
 /// Each light's bounded volume pass for a variant.
-fn bounded_lights(bounds: &[Option<Option<LightBounds>>], limits: Limits) -> Vec<BoundedLight> {
-    bounds
-        .iter()
-        .enumerate()
-        .map(|(light, &bounds)| BoundedLight {
+fn bounded_lights(
+    spheres: &[RangeSphere],
+    bounds: &[Option<Option<LightBounds>>],
+    limits: Limits,
+) -> Vec<BoundedLight> {
+    (spheres.iter().zip(bounds).enumerate())
+        .map(|(light, (&sphere, &bounds))| BoundedLight {
             light,
+            sphere,
             bounds,
             limits,
         })
@@ -128,6 +132,10 @@ struct DepthBounds {
     tally: VolumeTally,
     volumes: ShadowVolumes,
     lit_pipeline: wgpu::RenderPipeline,
+    /// The scene's origin, found once (a pass over every vertex; objects
+    /// do not move), and the last frame's range spheres and bounds.
+    origin: DVec3,
+    spheres: Vec<RangeSphere>,
     bounds: Vec<Option<Option<LightBounds>>>,
     scene_counters: BTreeMap<String, u64>,
     /// Per variant, in variant order: the counters, and frames rendered.
@@ -166,6 +174,8 @@ impl Lesson for DepthBounds {
         // A finite far plane would clip the volumes' ends at infinity: clamp
         // depth instead, as lesson 07's `clamp` variant does.
         let unclipped_depth = scene.scene.camera.far != Far::Infinite;
+        let origin = scene.scene.origin();
+        let spheres = range_spheres(&scene.scene, origin);
         let module = volume_shader_module(
             gpu,
             "lesson_08",
@@ -181,7 +191,9 @@ impl Lesson for DepthBounds {
                 &[],
                 bounded_lit_stencil(),
             ),
-            bounds: all_bounds(scene),
+            bounds: all_bounds(scene, &spheres),
+            origin,
+            spheres,
             scene_counters: count_bits::scene_counters(scene),
             volumes,
             counters: vec![BTreeMap::new(); Variant::value_variants().len()],
@@ -202,15 +214,17 @@ impl Lesson for DepthBounds {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        // Per frame: the sphere → bounds and scissor of every light.
-        let bounds = frame.cpu("bounds", || variant.bounds(scene));
-        for (k, b) in bounds.iter().enumerate() {
-            if let Some(Some(b)) = b {
-                self.bounded.write_bounds(frame.gpu, k, b);
-            }
-        }
+        // Per frame (the lights may move): each light's range sphere →
+        // its bounds and scissor, uploaded.
+        let (gpu, bounded) = (frame.gpu, &self.bounded);
+        let (spheres, bounds) = frame.cpu("bounds", || {
+            let spheres = range_spheres(&scene.scene, self.origin);
+            let bounds = variant.bounds(scene, &spheres);
+            bounded.write_bounds(gpu, &bounds);
+            (spheres, bounds)
+        });
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        for b in bounded_lights(&bounds, self.limits[variant as usize]) {
+        for b in bounded_lights(&spheres, &bounds, self.limits[variant as usize]) {
             frame.pass("volume", |enc, ts| {
                 self.bounded
                     .volume_pass(enc, scene, targets, b, ts.render())
@@ -232,14 +246,14 @@ impl Lesson for DepthBounds {
                 scene.lit_pass(enc, targets, lit, ts.render())
             });
         }
-        self.bounds = bounds;
+        (self.spheres, self.bounds) = (spheres, bounds);
         // What the "buffer" view reads: this frame's stencil.
         self.depth_stencil = Some(targets.depth.clone());
         // The second call finds the first frame's depth in place: count then.
         let n = &mut self.frames[variant as usize];
         *n += 1;
         if *n == 2 {
-            self.count(frame.gpu, scene, targets, variant)?;
+            frame.untimed(|gpu| self.count(gpu, scene, targets, variant))?;
         }
         Ok(())
     }
@@ -329,7 +343,7 @@ impl DepthBounds {
         variant: Variant,
     ) -> Result<()> {
         let lim = self.limits[variant as usize];
-        let lights = bounded_lights(&self.bounds, lim);
+        let lights = bounded_lights(&self.spheres, &self.bounds, lim);
         let mut c = BTreeMap::new();
         let costs = self
             .tally
@@ -355,16 +369,10 @@ impl DepthBounds {
         // Which extreme cases this camera meets (range sphere in view space).
         let (view, near) = (scene.camera.view.as_dmat4(), scene.scene.camera.near);
         let (mut inside, mut crossing) = (0, 0);
-        for l in &scene.scene.lights {
-            if let LightKind::Point { position, range }
-            | LightKind::Spot {
-                position, range, ..
-            } = l.kind
-            {
-                let v = view.transform_point3(position - scene.scene.origin());
-                inside += (v.length() <= range) as u64;
-                crossing += (v.length() > range && v.z + range > -near) as u64;
-            }
+        for &(centre, range) in self.spheres.iter().flatten() {
+            let v = view.transform_point3(centre);
+            inside += (v.length() <= range) as u64;
+            crossing += (v.length() > range && v.z + range > -near) as u64;
         }
         c.insert("lights_around_camera".to_string(), inside);
         c.insert("lights_crossing_near_plane".to_string(), crossing);

@@ -182,31 +182,44 @@ pub fn light_bounds(
     Some(LightBounds { depth, scissor })
 }
 
+/// A light's range sphere: its centre (origin-relative world space) and
+/// radius; `None` for a light without a range (directional).
+pub type RangeSphere = Option<(DVec3, f64)>;
+
+/// Every light's [`RangeSphere`], relative to `origin`, the scene's
+/// ([`Scene::origin`](common::scene::Scene::origin), a pass over every
+/// vertex: found once, since objects do not move).
+pub fn range_spheres(scene: &common::scene::Scene, origin: DVec3) -> Vec<RangeSphere> {
+    let sphere = |l: &common::scene::Light| match l.kind {
+        LightKind::Directional { .. } => None,
+        LightKind::Point { position, range }
+        | LightKind::Spot {
+            position, range, ..
+        } => Some((position - origin, range)),
+    };
+    scene.lights.iter().map(sphere).collect()
+}
+
 // ANCHOR: light_bounds
-/// Per light: `None` for a directional light (no range, no limits), else
-/// the range sphere's bounds, `Some(None)` when it is off screen.
-pub fn all_bounds(scene: &SceneGpu) -> Vec<Option<Option<LightBounds>>> {
+/// Per light (`spheres`: [`range_spheres`]): `None` for a directional
+/// light (no range, no limits), else the range sphere's bounds,
+/// `Some(None)` when it is off screen.
+pub fn all_bounds(scene: &SceneGpu, spheres: &[RangeSphere]) -> Vec<Option<Option<LightBounds>>> {
     let (cam, s) = (&scene.camera, &scene.scene);
     let (view, proj) = (cam.view.as_dmat4(), cam.proj.as_dmat4());
-    s.lights
+    spheres
         .iter()
-        .map(|l| match l.kind {
-            LightKind::Directional { .. } => None,
-            LightKind::Point { position, range }
-            | LightKind::Spot {
-                position, range, ..
-            } => {
-                let centre = position - s.origin();
-                Some(light_bounds(
-                    view,
-                    proj,
-                    s.camera.near,
-                    centre,
-                    range,
-                    scene.width,
-                    scene.height,
-                ))
-            }
+        .map(|sphere| {
+            let &(centre, range) = sphere.as_ref()?;
+            Some(light_bounds(
+                view,
+                proj,
+                s.camera.near,
+                centre,
+                range,
+                scene.width,
+                scene.height,
+            ))
         })
         .collect()
 }
@@ -214,25 +227,17 @@ pub fn all_bounds(scene: &SceneGpu) -> Vec<Option<Option<LightBounds>>> {
 
 // ANCHOR: caster_reaches
 /// Whether a caster (its bounding sphere, origin-relative) can shadow
-/// anything inside light `light`'s range sphere. A point in range is
+/// anything inside a light's range sphere. A point in range is
 /// shadowed only by a caster on the segment from the light to it, and that
 /// segment lies inside the range sphere: a caster whose bounding sphere
 /// misses the range sphere casts nothing there. Its volume may still cross
 /// pixels beyond the range, which the lit pass discards in every variant,
 /// so leaving it out changes no pixel. A light without a range reaches
 /// every caster.
-pub fn caster_reaches(
-    scene: &common::scene::Scene,
-    light: usize,
-    center: DVec3,
-    radius: f64,
-) -> bool {
-    match scene.lights[light].kind {
-        LightKind::Point { position, range }
-        | LightKind::Spot {
-            position, range, ..
-        } => (position - scene.origin()).distance(center) <= range + radius,
-        _ => true,
+pub fn caster_reaches(light: RangeSphere, center: DVec3, radius: f64) -> bool {
+    match light {
+        Some((position, range)) => position.distance(center) <= range + radius,
+        None => true,
     }
 }
 // ANCHOR_END: caster_reaches
@@ -251,12 +256,13 @@ mod tests {
             [[objects]]\nmesh = \"cube\"\n";
         let scene = common::scene::Scene::parse(text, "test", std::path::Path::new(".")).unwrap();
         let at = |x: f64| DVec3::new(x, 0.0, 0.0) - scene.origin();
+        let spheres = range_spheres(&scene, scene.origin());
         assert!(
-            caster_reaches(&scene, 0, at(3.5), 1.0),
+            caster_reaches(spheres[0], at(3.5), 1.0),
             "centre out, sphere in"
         );
-        assert!(!caster_reaches(&scene, 0, at(4.5), 1.0), "sphere out");
-        assert!(caster_reaches(&scene, 1, at(100.0), 1.0), "directional");
+        assert!(!caster_reaches(spheres[0], at(4.5), 1.0), "sphere out");
+        assert!(caster_reaches(spheres[1], at(100.0), 1.0), "directional");
     }
 
     use super::*;

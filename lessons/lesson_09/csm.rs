@@ -3,15 +3,17 @@
 //! draws with, and what the lit pass reads to pick and sample a cascade
 //! (`shaders/lesson_09/csm.wgsl`).
 
-use common::glam::DVec3;
+use common::glam::{DVec3, Mat4};
 use common::gpu::bindings::{self, sampler_entry, storage_entry, texture_entry};
 use common::gpu::render::{SceneGpu, SCENE_BUFFER_USAGE};
 use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
-use common::scene::camera::{light_uniform, LightUniform};
+use common::scene::camera::LightUniform;
+use common::scene::Scene;
 
 use super::cascades::Cascade;
 use crate::lesson_01::shadow_map::{comparison_sampler, ShadowMap, SHADOW_FORMAT};
+use crate::lesson_04::faces::LightUniforms;
 
 /// The most cascades a variant may have (`Cascades` in `csm.wgsl`).
 pub const MAX_CASCADES: usize = 4;
@@ -67,6 +69,8 @@ impl CascadeMaps {
 pub struct CascadeLights {
     buffer: wgpu::Buffer,
     group: wgpu::BindGroup,
+    /// The light's own uniform, made again only when the light changes.
+    uniform: LightUniforms,
 }
 
 impl CascadeLights {
@@ -93,16 +97,30 @@ impl CascadeLights {
         });
         let resources = [camera.as_entire_binding(), light];
         let group = bindings::group(gpu, "cascade lights", &scene.frame_layout, &resources);
-        CascadeLights { buffer, group }
+        CascadeLights {
+            buffer,
+            group,
+            uniform: LightUniforms::default(),
+        }
+    }
+
+    /// Light `light`'s own matrix: lesson 01's one map over the scene.
+    pub fn light_view_proj(&mut self, scene: &Scene, light: usize) -> Mat4 {
+        Mat4::from_cols_array_2d(&self.uniform.get(scene, light).view_proj)
     }
 
     /// Writes light `light`'s uniform with each cascade's matrix.
-    pub fn write(&self, gpu: &Gpu, scene: &SceneGpu, light: usize, cascades: &[Cascade]) {
-        for (i, c) in cascades.iter().enumerate() {
-            let mut u = light_uniform(&scene.scene, light);
+    pub fn write(&mut self, gpu: &Gpu, scene: &SceneGpu, light: usize, cascades: &[Cascade]) {
+        let base = self.uniform.get(&scene.scene, light);
+        // Every cascade's slot in one write.
+        let mut slots = vec![0u8; cascades.len() * SLOT as usize];
+        for (slot, c) in slots.chunks_exact_mut(SLOT as usize).zip(cascades) {
+            let mut u = base;
             u.view_proj = c.view_proj.as_mat4().to_cols_array_2d();
-            let bytes = bytemuck::bytes_of(&u);
-            gpu.queue.write_buffer(&self.buffer, SLOT * i as u64, bytes);
+            slot[..std::mem::size_of::<LightUniform>()].copy_from_slice(bytemuck::bytes_of(&u));
+        }
+        if !slots.is_empty() {
+            gpu.queue.write_buffer(&self.buffer, 0, &slots);
         }
     }
 

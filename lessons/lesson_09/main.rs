@@ -29,6 +29,7 @@ use common::measure::timing::Frame;
 use common::run::app;
 use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
+use common::scene::camera::light_view_proj;
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowPassState};
@@ -131,6 +132,8 @@ struct Csm {
     layout: wgpu::BindGroupLayout,
     /// Per light: its cascades' matrices (shadow pass), its lit parameters.
     lights: Vec<CascadeLights>,
+    /// The scene's origin and bounds, found once ([`setup::SceneBox`]).
+    scene_box: setup::SceneBox,
     params: Vec<wgpu::Buffer>,
     /// The arrays, one per (size, count), with one group per light.
     maps: Vec<(CascadeMaps, Vec<wgpu::BindGroup>)>,
@@ -196,6 +199,7 @@ impl Lesson for Csm {
             lit_pipelines,
             tint_pipeline: extras::tint_pipeline(gpu, scene, &module, &layout),
             lights: (0..n).map(|_| CascadeLights::new(gpu, scene)).collect(),
+            scene_box: setup::SceneBox::new(&scene.scene),
             params: (0..n).map(|_| setup::params_buffer(gpu)).collect(),
             layout,
             maps: Vec::new(),
@@ -222,21 +226,26 @@ impl Lesson for Csm {
     ) -> Result<()> {
         let setup = self.setup(variant);
         let m = self.maps_for(frame.gpu, setup.resolution, setup.count);
-        // Fitted again every frame: the camera may have moved.
-        for light in 0..scene.scene.lights.len() {
-            let fit = setup.fit(&scene.scene, scene.width, scene.height, light)?;
-            self.lights[light].write(frame.gpu, scene, light, &fit);
-            let p = setup.params(&scene.scene, scene.width, scene.height, &fit);
-            frame
-                .gpu
-                .queue
-                .write_buffer(&self.params[light], 0, bytemuck::bytes_of(&p));
+        // Fitted again every frame (the camera may have moved), and uploaded.
+        let (b, size, gpu) = (&self.scene_box, (scene.width, scene.height), frame.gpu);
+        let lights = self.lights.iter_mut().zip(&self.params).enumerate();
+        for (light, (lights, params)) in lights {
+            let fit = frame.cpu("fit", || {
+                let single = lights.light_view_proj(&scene.scene, light);
+                let fit = setup.fit(&scene.scene, b, single, size, light)?;
+                lights.write(gpu, scene, light, &fit);
+                let p = setup.params(&scene.scene, b, size, &fit);
+                gpu.queue.write_buffer(params, 0, bytemuck::bytes_of(&p));
+                Ok::<_, anyhow::Error>(fit)
+            })?;
             if light == 0 {
                 self.fitted[variant as usize] = Some(fit);
             }
         }
         if self.texels_written[variant as usize].is_none() {
-            let n = self.count_texels(frame.gpu, scene, setup.resolution, setup.count)?;
+            // Once per variant, its own submits: left out of the frame's times.
+            let (size, k) = (setup.resolution, setup.count);
+            let n = frame.untimed(|gpu| self.count_texels(gpu, scene, size, k))?;
             self.texels_written[variant as usize] = Some(n);
         }
         let (maps, groups) = &self.maps[m];
@@ -267,7 +276,9 @@ impl Lesson for Csm {
         view_depth: &[f32],
     ) -> Option<(Vec<String>, Vec<u8>)> {
         let setup = self.setup(variant);
-        let fit = setup.fit(&scene.scene, scene.width, scene.height, 0).ok()?;
+        let single = light_view_proj(&scene.scene, 0)?;
+        let size = (scene.width, scene.height);
+        let fit = (setup.fit(&scene.scene, &self.scene_box, single, size, 0)).ok()?;
         let names = (0..fit.len()).map(|i| format!("cascade {i}")).collect();
         let classes = view_depth
             .iter()

@@ -3,10 +3,9 @@
 //! camera into cascades, every frame.
 
 use anyhow::Result;
-use common::glam::DVec2;
+use common::glam::{DVec2, DVec3, Mat4};
 use common::gpu::render::SCENE_BUFFER_USAGE;
 use common::gpu::Gpu;
-use common::scene::camera::directional_light_view_proj;
 use common::scene::{Far, LightKind, Scene};
 
 use super::cascades::{self, Cascade, Fit, FitOptions, LightBox, SplitScheme, ViewFrustum};
@@ -76,22 +75,22 @@ impl Setup {
     }
 
     /// Light `light`'s cascades for the scene's camera as it is now, for a
-    /// `width × height` image.
+    /// `width × height` image, in the scene's box `b`. The single map is
+    /// lesson 01's, `single` (the light's own `view_proj`).
     pub fn fit(
         &self,
         scene: &Scene,
-        width: u32,
-        height: u32,
+        b: &SceneBox,
+        single: Mat4,
+        (width, height): (u32, u32),
         light: usize,
     ) -> Result<Vec<Cascade>> {
         let Some(LightKind::Directional { direction }) = scene.lights.get(light).map(|l| l.kind)
         else {
             anyhow::bail!("lights[{light}]: lesson_09 cascades directional lights only");
         };
-        let view = view_frustum(scene, width, height);
-        let o = scene.origin();
-        let (lo, hi) = scene.bounds();
-        let corners = cascades::box_corners(lo - o, hi - o);
+        let view = view_frustum(scene, b.origin, width, height);
+        let corners = b.corners;
         let far = match scene.camera.far {
             Far::Finite(f) => Some(f),
             Far::Infinite => None,
@@ -99,7 +98,7 @@ impl Setup {
         let near = scene.camera.near;
         let reach = cascades::shadow_distance(&view, near, far, &corners);
         let Some(options) = self.options else {
-            let m = directional_light_view_proj(scene, direction).as_dmat4();
+            let m = single.as_dmat4();
             // An orthographic map: 2 NDC units are 2 / |row| metres.
             let side = |r: usize| 2.0 / m.row(r).truncate().length();
             return Ok(vec![Cascade {
@@ -131,8 +130,14 @@ impl Setup {
     }
 
     /// The lit pass's parameters for `fit`.
-    pub fn params(&self, scene: &Scene, width: u32, height: u32, fit: &[Cascade]) -> CsmParams {
-        let forward = view_frustum(scene, width, height).forward;
+    pub fn params(
+        &self,
+        scene: &Scene,
+        b: &SceneBox,
+        (width, height): (u32, u32),
+        fit: &[Cascade],
+    ) -> CsmParams {
+        let forward = view_frustum(scene, b.origin, width, height).forward;
         CsmParams::new(
             fit,
             self.resolution,
@@ -174,10 +179,29 @@ pub fn per_cascade_resolution(count: usize) -> u32 {
     (TOTAL_TEXELS as f64 / count.max(1) as f64).sqrt().floor() as u32
 }
 
-/// The scene camera's frustum, origin-relative.
-pub fn view_frustum(scene: &Scene, width: u32, height: u32) -> ViewFrustum {
+/// What every fit reads of the scene besides the camera: its origin and
+/// the corners of its bounds (origin-relative). Found once: each is a pass
+/// over every vertex, and objects do not move.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneBox {
+    pub origin: DVec3,
+    pub corners: [DVec3; 8],
+}
+
+impl SceneBox {
+    pub fn new(scene: &Scene) -> SceneBox {
+        let o = scene.origin();
+        let (lo, hi) = scene.bounds();
+        SceneBox {
+            origin: o,
+            corners: cascades::box_corners(lo - o, hi - o),
+        }
+    }
+}
+
+/// The scene camera's frustum, relative to `o` (the scene's origin).
+pub fn view_frustum(scene: &Scene, o: DVec3, width: u32, height: u32) -> ViewFrustum {
     let c = &scene.camera;
-    let o = scene.origin();
     let aspect = width as f64 / height as f64;
     ViewFrustum::new(c.eye - o, c.target - o, c.up, c.fov_y_deg, aspect)
 }

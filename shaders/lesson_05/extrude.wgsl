@@ -1,7 +1,9 @@
 // extrude.wgsl: shadow volumes built by a compute shader (lesson 05,
 // `Extrusion::Compute`, `lessons/lesson_05/compute.rs`).
 //
-// One invocation per edge and one per face of one caster, for one light.
+// One invocation per edge and one per face of one chunk of a caster (a
+// run of its edges and faces, `lessons/lesson_05/compute/chunks.rs`), for
+// one light.
 // It is the CPU route (`cpu_volume`) ported line for line: the same facing
 // test, the same silhouette rule, the same vertices `(position, w)`, so
 // `vs_volume_cpu` draws them unchanged. Only the order of the triangles
@@ -16,7 +18,7 @@ struct Params {
     reach_w: f32,
     edges: u32,
     faces: u32,
-    // This (light, caster)'s three draws in `args`: slot * 3 + 0, 1, 2.
+    // This (light, chunk)'s three draws in `args`: slot * 3 + 0, 1, 2.
     slot: u32,
     // Where each table starts in `mesh` (in u32 words).
     off_positions: u32,
@@ -39,11 +41,12 @@ struct DrawArgs {
 };
 
 @group(0) @binding(0) var<uniform> params: Params;
-// One caster's adjacency, uploaded once: positions (3 f32 bits), face
+// One chunk's adjacency, uploaded once: positions (3 f32 bits), face
 // normals (3 f32 bits), triangles (3 ids), edges (v0, v1, first face use,
-// uses), face uses (face << 1 | runs v0 → v1).
+// uses), face uses (face << 1 | runs v0 → v1). Ids are the chunk's own; its
+// `faces` own faces come first, the others are only tested for facing.
 @group(0) @binding(1) var<storage, read> mesh: array<u32>;
-// CpuVertex: (object-space position, w).
+// CpuVertex: (object-space position, w); this (light, chunk)'s own buffer.
 @group(0) @binding(2) var<storage, read_write> volume: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read_write> args: array<DrawArgs>;
 

@@ -8,7 +8,10 @@
 //! Beside the passes, every frame reports two more keys:
 //! - `cpu_total`: the CPU's time on the frame until it is submitted
 //!   (recording, uploads, the lesson's own CPU work such as silhouettes or
-//!   bounds), waits on the GPU left out;
+//!   bounds), waits on the GPU left out, and measurement work
+//!   ([`Frame::untimed`]: counters, readbacks) left out too. The lesson's
+//!   own CPU work is named (`cpu_<name>`, [`Frame::cpu`]); what no name
+//!   covers ([`unnamed_cpu_ms`]) is recording and submitting the passes;
 //! - `frame`: the wall-clock time from the start of the frame to the GPU
 //!   finishing it, the frame cost a user sees when each frame is waited for
 //!   (as here). It is at least `cpu_total`, and at least the GPU's `total`.
@@ -75,6 +78,7 @@ impl Timer {
             cpu: Vec::new(),
             start: Instant::now(),
             waited_ms: 0.0,
+            untimed_ms: 0.0,
         }
     }
 }
@@ -123,6 +127,8 @@ pub struct Frame<'a> {
     /// When recording began, and the time spent waiting on the GPU since.
     start: Instant,
     waited_ms: f64,
+    /// The time spent in [`Frame::untimed`] (also in `waited_ms`).
+    untimed_ms: f64,
 }
 
 /// The key of a frame's CPU time until submission.
@@ -181,6 +187,20 @@ impl<'a> Frame<'a> {
         r
     }
 
+    /// Measurement work inside a frame (counting a variant's costs, reading
+    /// back a count), in submits of its own: left out of the frame's
+    /// times. What it takes, CPU and waits, is counted out of both
+    /// `cpu_total` and `frame`, so a frame that counts is timed like one
+    /// that does not.
+    pub fn untimed<R>(&mut self, f: impl FnOnce(&Gpu) -> R) -> R {
+        let t = Instant::now();
+        let r = f(self.gpu);
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        self.waited_ms += ms;
+        self.untimed_ms += ms;
+        r
+    }
+
     /// Waits for the GPU, counting the wait out of the frame's CPU time.
     fn wait(&mut self) {
         let t = Instant::now();
@@ -203,7 +223,7 @@ impl<'a> Frame<'a> {
         let cpu_total = self.start.elapsed().as_secs_f64() * 1e3 - self.waited_ms;
         self.gpu.queue.submit([command_buffer]);
         self.gpu.wait()?;
-        let wall = self.start.elapsed().as_secs_f64() * 1e3;
+        let wall = self.start.elapsed().as_secs_f64() * 1e3 - self.untimed_ms;
         let mut ms: BTreeMap<String, f64> = BTreeMap::new();
         ms.insert(CPU_TOTAL.into(), cpu_total);
         ms.insert(FRAME.into(), wall);
@@ -234,6 +254,17 @@ impl<'a> Frame<'a> {
         }
         Ok(FrameTimes { ms })
     }
+}
+
+/// The CPU time of a frame (or of a report's medians) that no `cpu_*`
+/// pass names: `cpu_total` minus the named CPU passes. Recording and
+/// submitting the passes, and nothing a lesson computes per frame.
+pub fn unnamed_cpu_ms(ms: &BTreeMap<String, f64>) -> f64 {
+    let named: f64 = (ms.iter())
+        .filter(|(k, _)| k.starts_with("cpu_") && k.as_str() != CPU_TOTAL)
+        .map(|(_, v)| v)
+        .sum();
+    ms.get(CPU_TOTAL).copied().unwrap_or(0.0) - named
 }
 
 /// Every frame's milliseconds, key by key (a pass a frame skipped is 0).
@@ -298,6 +329,23 @@ mod tests {
             median_times(&[f(4.0), f(1.0), f(2.0), f(3.0)])["total"],
             2.5
         );
+    }
+
+    #[test]
+    fn unnamed_cpu_is_cpu_total_less_the_named_cpu_passes() {
+        let ms: BTreeMap<String, f64> = [
+            (CPU_TOTAL, 1.5),
+            ("cpu_silhouette", 0.75),
+            ("cpu_bounds", 0.5),
+            (TOTAL, 9.0),
+            (FRAME, 11.0),
+            ("volume", 3.0),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        assert_eq!(unnamed_cpu_ms(&ms), 0.25);
+        assert_eq!(unnamed_cpu_ms(&BTreeMap::new()), 0.0);
     }
 
     #[test]

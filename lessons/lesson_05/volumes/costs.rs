@@ -165,12 +165,13 @@ impl ShadowVolumes {
                     let (Some(cv), Some(n)) = (&self.compute, counts) else {
                         continue;
                     };
-                    let n = n[light * self.casters.len() + ci];
-                    for (at, _) in cv.draws(scene, light, ci, (d.front_cap, d.back_cap)) {
+                    for draw in cv.draws(scene, light, ci, (d.front_cap, d.back_cap)) {
                         s.calls += 1;
-                        s.triangles += n[(at / 16 % 3) as usize] as u64 / 3;
+                        s.triangles += n[draw.slot][draw.part] as u64 / 3;
                     }
-                    s.silhouette_edges += n[0] as u64 / per_side;
+                    for slot in cv.slots_of(light, ci) {
+                        s.silhouette_edges += n[slot][0] as u64 / per_side;
+                    }
                     continue;
                 }
             };

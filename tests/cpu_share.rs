@@ -1,0 +1,241 @@
+//! Every CPU millisecond of a frame is named.
+//!
+//! A report's `timing_ms` has the frame's CPU time (`cpu_total`) and the
+//! lesson's own CPU work by name (`cpu_silhouette`, `cpu_bounds`,
+//! `cpu_fit`). What no name covers is recording and submitting the
+//! passes, the same on any mesh. So the CPU time no `cpu_*` pass names
+//! must not grow with the mesh: each lesson runs on a scene with a small
+//! torus and on the same scene with a dense one (262 k triangles), and in
+//! every variant the unnamed time of the dense scene may exceed the small
+//! scene's by [`ALLOWED_GROWTH_MS`] only. Finding the scene's origin or
+//! bounds once per frame (a pass over every vertex) costs more than that
+//! here; lessons 04, 05 (`zpass_compute`), 08 (`cull*`) and 09 did it
+//! 6 to 16 times a frame.
+//!
+//! Measurement work (counting a variant's costs, reading back the compute
+//! route's counts) is left out of the frame's times (`Frame::untimed`),
+//! and the compute route's per-frame CPU work does not depend on the mesh:
+//! both are checked here too, by the same comparison.
+
+mod support;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The most the unnamed CPU time of a variant may grow from the small
+/// torus (1 k triangles) to the dense one (262 k), median against median.
+/// Run-to-run noise of a median of these frames is about ±0.05 ms on
+/// lavapipe with two busy cores; one pass over the dense torus's vertices
+/// in a frame (finding the scene's origin) is about 0.4 ms.
+const ALLOWED_GROWTH_MS: f64 = 0.1;
+/// Timed frames a run: the median of these.
+const FRAMES: &str = "15";
+
+/// A torus of `major × minor` quads (major radius 1, minor 0.35), two
+/// triangles each, as the book's scaling sweep writes it.
+fn write_torus(path: &Path, major: u32, minor: u32) {
+    let (big, small) = (1.0f64, 0.35f64);
+    let mut s = String::new();
+    for i in 0..major {
+        let u = std::f64::consts::TAU * i as f64 / major as f64;
+        for j in 0..minor {
+            let v = std::f64::consts::TAU * j as f64 / minor as f64;
+            let r = big + small * v.cos();
+            let (x, y, z) = (r * u.cos(), small * v.sin(), r * u.sin());
+            let _ = writeln!(s, "v {x:.6} {y:.6} {z:.6}");
+        }
+    }
+    let id = |i: u32, j: u32| (i % major) * minor + (j % minor) + 1;
+    for i in 0..major {
+        for j in 0..minor {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            let _ = writeln!(s, "f {a} {d} {c}\nf {a} {c} {b}");
+        }
+    }
+    std::fs::write(path, s).expect("write the torus");
+}
+
+/// A floor and a tilted torus (`torus.obj` beside the scene) under `light`.
+fn scene(light: &str) -> String {
+    format!(
+        "[camera]\neye = [3.6, 3.4, 5.2]\ntarget = [0.0, 0.6, 0.0]\nup = [0.0, 1.0, 0.0]\n\
+         fov_y_deg = 45.0\nnear = 0.1\nfar = \"infinite\"\n\n\
+         [[lights]]\n{light}\ncolor = [1.0, 0.97, 0.9]\n\n\
+         [[objects]]\nmesh = \"plane\"\nscale = [8.0, 1.0, 8.0]\n\n\
+         [[objects]]\nmesh = \"torus.obj\"\ntranslate = [0.0, 1.2, 0.0]\n\
+         rotate_deg = [55.0, 20.0, 0.0]\nscale = 1.2\n"
+    )
+}
+
+const POINT: &str = "type = \"point\"\nposition = [1.5, 4.0, 1.0]\nrange = 14.0";
+const DIRECTIONAL: &str = "type = \"directional\"\ndirection = [0.55, -0.75, 0.45]";
+
+/// Writes the scene with a torus of `minor` segments (2 × minor major)
+/// into its own folder; returns the scene's path.
+fn torus_scene(name: &str, minor: u32, light: &str) -> PathBuf {
+    let dir = support::out_dir(&format!("cpu_share_scene_{name}_{minor}"));
+    write_torus(&dir.join("torus.obj"), 2 * minor, minor);
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene(light)).expect("write the scene");
+    path
+}
+
+/// Per variant (and the baseline): the unnamed CPU milliseconds, frame
+/// by frame `cpu_total` less that frame's named `cpu_*` passes, and their
+/// median. (Not the medians' difference: a named pass that varies a lot,
+/// such as `cpu_silhouette` on a dense mesh, has its median in another
+/// frame than `cpu_total`'s.)
+fn unnamed(report: &serde_json::Value) -> Vec<(String, f64)> {
+    let of = |t: &serde_json::Value| {
+        let t = t.as_object().expect("timing_samples_ms");
+        let total: Vec<f64> = (t["cpu_total"].as_array().expect("cpu_total samples"))
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let mut unnamed = total.clone();
+        for (_, v) in t
+            .iter()
+            .filter(|(k, _)| k.starts_with("cpu_") && *k != "cpu_total")
+        {
+            for (u, x) in unnamed.iter_mut().zip(v.as_array().unwrap()) {
+                *u -= x.as_f64().unwrap();
+            }
+        }
+        unnamed.sort_by(f64::total_cmp);
+        assert!(!unnamed.is_empty(), "no timed frames");
+        unnamed[unnamed.len() / 2]
+    };
+    let mut out = vec![(
+        "baseline".to_string(),
+        of(&report["baseline"]["timing_samples_ms"]),
+    )];
+    for v in report["variants"].as_array().expect("variants") {
+        let name = v["name"].as_str().unwrap().to_string();
+        out.push((name, of(&v["timing_samples_ms"])));
+    }
+    out
+}
+
+/// Runs `lesson` on the small and the dense torus (`variants`, or all),
+/// and checks that no variant's unnamed CPU time grows by more than
+/// [`ALLOWED_GROWTH_MS`].
+fn check(bin: &str, lesson: &str, light: &str, variants: &[&str]) {
+    let mut runs = Vec::new();
+    for (size, minor) in [("small", 16), ("dense", 256)] {
+        let scene = torus_scene(lesson, minor, light);
+        let mut args = vec!["--width", "160", "--height", "90", "--frames", FRAMES];
+        for v in variants {
+            args.extend(["--variant", v]);
+        }
+        let s = scene.display().to_string();
+        args.extend(["--scene", s.as_str()]);
+        let name = format!("cpu_share_{lesson}_{size}");
+        // The tests skip the timed blocks unless asked (WORKBOOK_NO_TIMING).
+        let timed = [("WORKBOOK_NO_TIMING", "0")];
+        let Some(run) = support::run_lesson_env(bin, &name, &args, &timed) else {
+            return;
+        };
+        runs.push(unnamed(&run.report));
+    }
+    let mut lines = String::new();
+    let mut over = Vec::new();
+    for ((name, small), (_, dense)) in runs[0].iter().zip(&runs[1]) {
+        let growth = dense - small;
+        let _ = writeln!(
+            lines,
+            "{lesson} {name:<22} unnamed CPU {small:.3} ms (1 k triangles), {dense:.3} ms (262 k)"
+        );
+        if growth > ALLOWED_GROWTH_MS {
+            over.push(format!("{name} (+{growth:.3} ms)"));
+        }
+    }
+    eprint!("{lines}");
+    assert!(
+        over.is_empty(),
+        "{lesson}: CPU time that no cpu_* pass names grows with the mesh in {}: \
+         per-frame work that passes over the vertices (name it, or find it once)\n{lines}",
+        over.join(", ")
+    );
+}
+
+/// One lesson at a time: two at once would share the CPU and time each
+/// other.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+macro_rules! cpu_share_test {
+    ($test:ident, $bin:literal, $light:expr, $variants:expr) => {
+        #[test]
+        fn $test() {
+            let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+            check(
+                env!(concat!("CARGO_BIN_EXE_", $bin)),
+                $bin,
+                $light,
+                $variants,
+            );
+        }
+    };
+}
+
+cpu_share_test!(
+    lesson_04_unnamed_cpu_does_not_grow_with_the_mesh,
+    "lesson_04",
+    POINT,
+    &["depth_1024", "linear_1024"]
+);
+cpu_share_test!(
+    lesson_05_unnamed_cpu_does_not_grow_with_the_mesh,
+    "lesson_05",
+    POINT,
+    &[]
+);
+cpu_share_test!(
+    lesson_08_unnamed_cpu_does_not_grow_with_the_mesh,
+    "lesson_08",
+    POINT,
+    &["unbounded", "cull", "cull_bounds_scissor"]
+);
+cpu_share_test!(
+    lesson_09_unnamed_cpu_does_not_grow_with_the_mesh,
+    "lesson_09",
+    DIRECTIONAL,
+    &["single_2048", "k4", "k4_aabb"]
+);
+
+/// Work in [`Frame::untimed`](common::measure::timing::Frame::untimed)
+/// (counting, readbacks) is left out of the frame's times: a frame that
+/// waits 30 ms in it reports the CPU time and wall time of one that does
+/// not.
+#[test]
+fn untimed_work_is_left_out_of_the_frame() {
+    use common::gpu::Gpu;
+    use common::measure::timing::{Timer, CPU_TOTAL, FRAME};
+    let adapter = support::test_adapter();
+    let gpu = match Gpu::new(None, Some(&adapter), None) {
+        Ok(gpu) => gpu,
+        Err(e) if !support::gpu_required() => return eprintln!("SKIPPED: {e}"),
+        Err(e) => panic!("{e}"),
+    };
+    let mut timer = Timer::new(&gpu);
+    let mut frame = timer.frame(&gpu);
+    frame.cpu("named", || {
+        std::thread::sleep(std::time::Duration::from_millis(5))
+    });
+    frame
+        .untimed(|gpu| {
+            std::thread::sleep(std::time::Duration::from_millis(30));
+            gpu.wait()
+        })
+        .unwrap();
+    let ms = frame.finish().unwrap().ms;
+    let (cpu, wall, named) = (ms[CPU_TOTAL], ms[FRAME], ms["cpu_named"]);
+    assert!(named >= 5.0, "the named pass: {named:.3} ms");
+    assert!(
+        cpu >= named && cpu < named + 10.0,
+        "cpu_total {cpu:.3} ms: the untimed 30 ms left out"
+    );
+    assert!(
+        wall < named + 20.0,
+        "frame {wall:.3} ms: the untimed 30 ms left out"
+    );
+}
