@@ -24,10 +24,17 @@ use std::path::{Path, PathBuf};
 
 /// The most the unnamed CPU time of a variant may grow from the small
 /// torus (1 k triangles) to the dense one (262 k), median against median.
-/// Run-to-run noise of a median of these frames is about ±0.05 ms on
-/// lavapipe with two busy cores; one pass over the dense torus's vertices
-/// in a frame (finding the scene's origin) is about 0.4 ms.
-const ALLOWED_GROWTH_MS: f64 = 0.1;
+/// One pass over the dense torus's vertices in a frame (finding the
+/// scene's origin) is about 0.4 ms on lavapipe with two busy cores, and the
+/// lessons did it 6 to 16 times a frame. The noise is smaller but not
+/// small: the dense scene keeps lavapipe's threads busier on the same two
+/// cores, and CI saw `cull` of lesson 08 grow by 0.107 ms with no pass
+/// over the vertices in its frame. Hence half a pass, and [`ATTEMPTS`].
+const ALLOWED_GROWTH_MS: f64 = 0.2;
+/// A variant fails only if it grows by more than [`ALLOWED_GROWTH_MS`] in
+/// each of this many measurements (each a small and a dense run): a pass
+/// over the vertices is there every time, noise is not.
+const ATTEMPTS: usize = 3;
 /// Timed frames a run: the median of these.
 const FRAMES: &str = "15";
 
@@ -118,42 +125,57 @@ fn unnamed(report: &serde_json::Value) -> Vec<(String, f64)> {
 
 /// Runs `lesson` on the small and the dense torus (`variants`, or all),
 /// and checks that no variant's unnamed CPU time grows by more than
-/// [`ALLOWED_GROWTH_MS`].
+/// [`ALLOWED_GROWTH_MS`] (in the least of up to [`ATTEMPTS`] measurements).
 fn check(bin: &str, lesson: &str, light: &str, variants: &[&str]) {
-    let mut runs = Vec::new();
-    for (size, minor) in [("small", 16), ("dense", 256)] {
-        let scene = torus_scene(lesson, minor, light);
-        let mut args = vec!["--width", "160", "--height", "90", "--frames", FRAMES];
-        for v in variants {
-            args.extend(["--variant", v]);
+    // Per variant: the least growth seen, and the line that showed it.
+    let mut least: Vec<(String, f64, String)> = Vec::new();
+    for attempt in 0..ATTEMPTS {
+        let mut runs = Vec::new();
+        for (size, minor) in [("small", 16), ("dense", 256)] {
+            let scene = torus_scene(lesson, minor, light);
+            let mut args = vec!["--width", "160", "--height", "90", "--frames", FRAMES];
+            for v in variants {
+                args.extend(["--variant", v]);
+            }
+            let s = scene.display().to_string();
+            args.extend(["--scene", s.as_str()]);
+            let name = format!("cpu_share_{lesson}_{size}");
+            // The tests skip the timed blocks unless asked (WORKBOOK_NO_TIMING).
+            let timed = [("WORKBOOK_NO_TIMING", "0")];
+            let Some(run) = support::run_lesson_env(bin, &name, &args, &timed) else {
+                return;
+            };
+            runs.push(unnamed(&run.report));
         }
-        let s = scene.display().to_string();
-        args.extend(["--scene", s.as_str()]);
-        let name = format!("cpu_share_{lesson}_{size}");
-        // The tests skip the timed blocks unless asked (WORKBOOK_NO_TIMING).
-        let timed = [("WORKBOOK_NO_TIMING", "0")];
-        let Some(run) = support::run_lesson_env(bin, &name, &args, &timed) else {
-            return;
-        };
-        runs.push(unnamed(&run.report));
+        for (i, ((name, small), (_, dense))) in runs[0].iter().zip(&runs[1]).enumerate() {
+            let growth = dense - small;
+            let line = format!(
+                "{lesson} {name:<22} unnamed CPU {small:.3} ms (1 k triangles), {dense:.3} ms (262 k), attempt {}",
+                attempt + 1
+            );
+            match least.get_mut(i) {
+                Some(l) if growth < l.1 => *l = (name.clone(), growth, line),
+                Some(_) => {}
+                None => least.push((name.clone(), growth, line)),
+            }
+        }
+        if least.iter().all(|l| l.1 <= ALLOWED_GROWTH_MS) {
+            break;
+        }
     }
     let mut lines = String::new();
-    let mut over = Vec::new();
-    for ((name, small), (_, dense)) in runs[0].iter().zip(&runs[1]) {
-        let growth = dense - small;
-        let _ = writeln!(
-            lines,
-            "{lesson} {name:<22} unnamed CPU {small:.3} ms (1 k triangles), {dense:.3} ms (262 k)"
-        );
-        if growth > ALLOWED_GROWTH_MS {
-            over.push(format!("{name} (+{growth:.3} ms)"));
-        }
+    for (_, _, line) in &least {
+        let _ = writeln!(lines, "{line}");
     }
     eprint!("{lines}");
+    let over: Vec<String> = (least.iter())
+        .filter(|l| l.1 > ALLOWED_GROWTH_MS)
+        .map(|l| format!("{} (+{:.3} ms)", l.0, l.1))
+        .collect();
     assert!(
         over.is_empty(),
-        "{lesson}: CPU time that no cpu_* pass names grows with the mesh in {}: \
-         per-frame work that passes over the vertices (name it, or find it once)\n{lines}",
+        "{lesson}: CPU time that no cpu_* pass names grows with the mesh in {}, in each of \
+         {ATTEMPTS} measurements: per-frame work that passes over the vertices (name it, or find it once)\n{lines}",
         over.join(", ")
     );
 }
