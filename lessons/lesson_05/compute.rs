@@ -17,8 +17,6 @@
 //! The triangles are the CPU route's, in another order; the wrapping
 //! stencil count does not depend on the order, so the pixels are the same.
 
-use std::future::Future;
-
 use anyhow::{bail, Result};
 use common::glam::Mat4;
 use common::gpu::render::SceneGpu;
@@ -175,15 +173,9 @@ impl ComputeVolumes {
         if let Some(why) = unavailable(gpu) {
             bail!("{why}");
         }
-        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let built = ComputeVolumes::build(gpu, casters, lights, max_bytes);
-        // Native wgpu answers at once: no need to block on the future.
-        let mut pop = std::pin::pin!(scope.pop());
-        let waker = std::task::Waker::noop();
-        let popped = pop
-            .as_mut()
-            .poll(&mut std::task::Context::from_waker(waker));
-        if let std::task::Poll::Ready(Some(e)) = popped {
+        let (built, oom) =
+            gpu.out_of_memory_scope(|| ComputeVolumes::build(gpu, casters, lights, max_bytes));
+        if let Some(e) = oom {
             let bytes: u64 = (casters.iter())
                 .map(|a| VERTEX * lights as u64 * fit_vertices(a))
                 .sum();

@@ -351,6 +351,14 @@ impl Gpu {
         self.features.contains(f)
     }
 
+    /// Runs `f` inside an out-of-memory error scope: what `f` returned,
+    /// and the error the device reported for it, if any.
+    pub fn out_of_memory_scope<R>(&self, f: impl FnOnce() -> R) -> (R, Option<wgpu::Error>) {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let r = f();
+        (r, pollster::block_on(scope.pop()))
+    }
+
     /// `"llvmpipe (LLVM 15.0.6, 256 bits)"`, as the report names it.
     pub fn adapter_name(&self) -> String {
         self.info.name.clone()
