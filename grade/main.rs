@@ -32,6 +32,7 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context, Result};
 use clap::Parser;
+use workbook::ExerciseSet;
 
 #[derive(Parser, Debug)]
 #[command(about = "Grade the workbook's exercises against the exact reference")]
@@ -109,10 +110,15 @@ fn rebuild_lessons() -> Result<()> {
     let mut cmd = std::process::Command::new(cargo);
     cmd.args(["build", "--release", "--bins", "--quiet"])
         .current_dir(root());
-    if cfg!(feature = "solutions") {
-        cmd.args(["--features", "solutions"]);
-    } else if cfg!(feature = "chapter_copies") {
-        cmd.args(["--features", "chapter_copies"]);
+    let features: Vec<&str> = [
+        (cfg!(feature = "solutions"), "solutions"),
+        (cfg!(feature = "chapter_copies"), "chapter_copies"),
+    ]
+    .into_iter()
+    .filter_map(|(on, f)| on.then_some(f))
+    .collect();
+    if !features.is_empty() {
+        cmd.args(["--features", &features.join(",")]);
     }
     // cargo's messages pass through as they are, and are read for the files
     // that have errors.
@@ -189,15 +195,25 @@ fn strip_ansi(line: &str) -> String {
 }
 
 fn run(cli: Cli) -> Result<bool> {
-    if cli.check_starters && cfg!(feature = "solutions") {
-        bail!("--check-starters grades the starter code: build without --features solutions");
+    if cli.check_starters && cli.check_copies {
+        bail!("--check-starters and --check-copies: one check a run");
     }
-    if cli.check_copies && (cfg!(feature = "solutions") || !cfg!(feature = "chapter_copies")) {
-        bail!("--check-copies grades the chapters' copies: build with --features chapter_copies (and without solutions)");
-    }
-    if cli.check_starters && cfg!(feature = "chapter_copies") {
-        bail!("--check-starters grades the starter code: build without --features chapter_copies");
-    }
+    // The exercise set the lessons run with (`WORKBOOK_EXERCISES`, read by
+    // them): the checks name theirs; else the environment's, or the
+    // build's own (the solutions where it holds them, else your code).
+    let set = if cli.check_starters {
+        ExerciseSet::Starter
+    } else if cli.check_copies {
+        if !ExerciseSet::ChapterCopies.built() {
+            bail!(
+                "--check-copies grades the chapters' copies: build with --features chapter_copies"
+            );
+        }
+        ExerciseSet::ChapterCopies
+    } else {
+        ExerciseSet::from_env().map_err(anyhow::Error::msg)?
+    };
+    std::env::set_var(workbook::EXERCISES_ENV, set.name());
     let root = root();
     let lessons = if cli.lessons.is_empty() {
         chapters_with_exercises(&root)?
@@ -306,12 +322,10 @@ fn run(cli: Cli) -> Result<bool> {
         "graded {} exercises: {passed} passed, {} failed ({}; on {on}; results in {})",
         all.len(),
         all.len() - passed,
-        if cfg!(feature = "solutions") {
-            "reference solutions"
-        } else if cfg!(feature = "chapter_copies") {
-            "the chapters' own code, copied"
-        } else {
-            "your code"
+        match set {
+            ExerciseSet::Solutions => "reference solutions",
+            ExerciseSet::ChapterCopies => "the chapters' own code, copied",
+            ExerciseSet::Starter => "your code",
         },
         json.display()
     );

@@ -16,13 +16,12 @@ use common::gpu::Gpu;
 use common::scene::camera::{directional_light_view, light_view_proj};
 use common::scene::{LightKind, Scene};
 
-use super::exercises;
 use super::shadow_map;
 
 use super::view_frustum::CameraFrustum;
 
 /// Light `light`'s view-projection with the box the student fits
-/// ([`exercises::fit_light_box`]) to what the camera sees: every vertex of
+/// ([`exercises::fit_light_box`](super::exercises::fit_light_box)) to what the camera sees: every vertex of
 /// every object, and the camera's frustum for a `width × height` image. The
 /// light's view is the lesson's (`common::scene::camera::directional_light_view_proj`);
 /// only the box differs. Spot lights keep the lesson's matrix.
@@ -53,7 +52,7 @@ pub fn tight_light_view_proj(scene: &Scene, light: usize, width: u32, height: u3
         aspect: width.max(1) as f64 / height.max(1) as f64,
         near: c.near,
     };
-    let (a, b) = exercises::fit_light_box(view, &points, &camera);
+    let (a, b) = crate::exercise!(lesson_01::fit_light_box(view, &points, &camera));
     let proj = webgpu::orthographic(a.x, b.x, a.y, b.y, -b.z, -a.z);
     Some((proj * view).as_mat4())
 }
@@ -71,7 +70,10 @@ pub fn depth_compare_pipeline(
 ) -> anyhow::Result<wgpu::RenderPipeline> {
     let exercises_path = crate::exercises_wgsl_path("lesson_01");
     let files = [
-        (exercises_path.as_str(), exercises::EXERCISES_WGSL),
+        (
+            exercises_path.as_str(),
+            crate::exercise!(lesson_01::EXERCISES_WGSL),
+        ),
         (
             "shaders/lesson_01/exercise_lit.wgsl",
             include_str!("../../shaders/lesson_01/exercise_lit.wgsl"),

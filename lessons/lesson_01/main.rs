@@ -21,7 +21,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::knobs::{Knob, KnobRange};
 use common::run::lesson::{BufferView, Lesson};
 use common::scene::Scene;
@@ -335,5 +334,5 @@ fn texel_at_1(scene: &Scene, m: Option<common::glam::Mat4>) -> Option<(f64, f64)
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<DepthMap>()
+    workbook::lesson_main::<DepthMap>()
 }

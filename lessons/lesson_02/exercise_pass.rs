@@ -40,7 +40,10 @@ pub fn lit_pipeline(
             "shaders/lesson_02/bias.wgsl",
             include_str!("../../shaders/lesson_02/bias.wgsl"),
         ),
-        (exercises_path.as_str(), super::exercises::EXERCISES_WGSL),
+        (
+            exercises_path.as_str(),
+            crate::exercise!(lesson_02::EXERCISES_WGSL),
+        ),
         (
             "shaders/lesson_02/exercise_lit.wgsl",
             include_str!("../../shaders/lesson_02/exercise_lit.wgsl"),

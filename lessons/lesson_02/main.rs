@@ -23,7 +23,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
@@ -457,5 +456,5 @@ fn per_light<T>(
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<Bias>()
+    workbook::lesson_main::<Bias>()
 }

@@ -25,7 +25,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::Scene;
@@ -36,7 +35,6 @@ use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{
     ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
 };
-use workbook::lesson_03::exercises;
 use workbook::lesson_03::knobs;
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
@@ -229,7 +227,10 @@ impl Lesson for Pcf {
                 "shaders/lesson_03/pcf.wgsl",
                 include_str!("../../shaders/lesson_03/pcf.wgsl"),
             ),
-            (exercises_path.as_str(), exercises::EXERCISES_WGSL),
+            (
+                exercises_path.as_str(),
+                workbook::exercise!(lesson_03::EXERCISES_WGSL),
+            ),
         ];
         let module = shadow_map::shader_module_from_files(gpu, "lesson_03", &files)?;
         let layout = pcf::pcf_map_layout(gpu);
@@ -424,5 +425,5 @@ impl Lesson for Pcf {
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<Pcf>()
+    workbook::lesson_main::<Pcf>()
 }

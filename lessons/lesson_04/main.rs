@@ -23,7 +23,6 @@ use common::gpu::render::{shader_module_from_files, SceneGpu};
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::{LightKind, Scene};
 use common::Result;
@@ -32,7 +31,6 @@ use workbook::lesson_04::costs::{self, PCF3D_TAPS};
 use workbook::lesson_04::cross::{cross_view, write_cross_png};
 use workbook::lesson_04::cube_map::{self, CubeParams, CubeShadowMap, CubeStats, LitKey, Storage};
 use workbook::lesson_04::culling::{self, face_casters, FaceTest, Sphere};
-use workbook::lesson_04::exercises;
 use workbook::lesson_04::faces::{point_light, FaceUniforms};
 use workbook::lesson_04::peers::{self, Peer, Port};
 
@@ -174,10 +172,10 @@ fn sphere_test(centre: DVec3, radius: f64, _half: DVec3, face: usize) -> bool {
     culling::sphere_touches_face(centre, radius, face)
 }
 
-/// `exercise_cull_faces`: the student's [`exercises::faces_touched`], on
+/// `exercise_cull_faces`: the student's [`exercises::faces_touched`](workbook::lesson_04::exercises::faces_touched), on
 /// the box.
 fn exercise_face_test(centre: DVec3, _radius: f64, half: DVec3, face: usize) -> bool {
-    exercises::faces_touched(centre, half)[face]
+    workbook::exercise!(lesson_04::faces_touched(centre, half))[face]
 }
 
 /// One variant on this device: its pipeline, lit-pass bind group, map and planes.
@@ -247,7 +245,10 @@ impl Lesson for CubeShadows {
                 "shaders/lesson_04/peers.wgsl",
                 include_str!("../../shaders/lesson_04/peers.wgsl"),
             ),
-            (exercises_path.as_str(), exercises::EXERCISES_WGSL),
+            (
+                exercises_path.as_str(),
+                workbook::exercise!(lesson_04::EXERCISES_WGSL),
+            ),
         ];
         let module = shader_module_from_files(gpu, "lesson_04", &files)?;
         let params_size = std::mem::size_of::<CubeParams>() as u64;
@@ -476,5 +477,5 @@ impl CubeShadows {
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<CubeShadows>()
+    workbook::lesson_main::<CubeShadows>()
 }

@@ -23,12 +23,10 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::Result;
 use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::cull::kept_draws;
-use workbook::lesson_05::exercises;
 use workbook::lesson_05::extrusion::{CpuParts, Extrusion};
 use workbook::lesson_05::stencil::{self, Counting};
 use workbook::lesson_05::volumes::{
@@ -71,7 +69,7 @@ impl Variant {
     fn cpu_parts(self) -> CpuParts {
         match self {
             Variant::ExerciseEdgesInView => CpuParts {
-                sides: Some(exercises::silhouette_edges_in_view),
+                sides: Some(workbook::exercise!(lesson_05::silhouette_edges_in_view)),
                 caps: None,
             },
             _ => CpuParts::default(),
@@ -145,7 +143,11 @@ impl Lesson for ZPass {
     ) -> Result<()> {
         let ext = variant.extrusion();
         if variant == Variant::ExerciseSkipCasters {
-            self.kept = kept_draws(&self.volumes, scene, exercises::volume_can_matter);
+            self.kept = kept_draws(
+                &self.volumes,
+                scene,
+                workbook::exercise!(lesson_05::volume_can_matter),
+            );
         }
         let all = match variant {
             Variant::ExerciseSkipCasters => &self.kept,
@@ -223,5 +225,5 @@ impl Lesson for ZPass {
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<ZPass>()
+    workbook::lesson_main::<ZPass>()
 }

@@ -30,7 +30,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::{Far, LightKind};
 use common::Result;
@@ -41,7 +40,6 @@ use workbook::lesson_05::volumes::{
     base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes, VolumeCaster, VolumeCosts,
 };
 use workbook::lesson_06::caps::{self, zfail_counting};
-use workbook::lesson_06::exercises;
 use workbook::lesson_06::plan::{near_rectangle, plan, plan_with, PlanStats};
 use workbook::lesson_06::reach::volume_reach;
 
@@ -89,7 +87,7 @@ impl Variant {
         match self {
             Variant::ExerciseLightCap => CpuParts {
                 sides: None,
-                caps: Some(exercises::volume_caps),
+                caps: Some(workbook::exercise!(lesson_06::volume_caps)),
             },
             _ => CpuParts::default(),
         }
@@ -115,7 +113,7 @@ impl Variant {
                     let m = models[c.object].as_dmat4();
                     let p = c.adjacency.positions.iter();
                     let world: Vec<DVec3> = p.map(|p| m.transform_point3(p.as_dvec3())).collect();
-                    exercises::needs_zfail(&world, l, &near_rect)
+                    workbook::exercise!(lesson_06::needs_zfail(&world, l, &near_rect))
                 };
                 return plan_with(volumes, scene, light, student);
             }
@@ -327,5 +325,5 @@ impl Lesson for ZFail {
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<ZFail>()
+    workbook::lesson_main::<ZFail>()
 }

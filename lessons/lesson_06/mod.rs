@@ -6,16 +6,17 @@ pub mod caps;
 pub mod plan;
 pub mod reach;
 
-/// The chapter's exercises: the starter code a student fills in, or with
-/// `--features solutions`, the reference solutions (`solutions/lesson_06.rs`).
-#[cfg(not(any(feature = "solutions", feature = "chapter_copies")))]
+#[cfg(feature = "chapter_copies")]
+#[path = "../../tests/chapter_copies/lesson_06.rs"]
+pub mod chapter_copies;
+/// The chapter's exercises: the starter code a student fills in. A build
+/// with `--features solutions` also holds the reference solutions
+/// (`solutions/lesson_06.rs`), and CI's `--features chapter_copies` each
+/// exercise answered with the nearest code the chapter prints
+/// (`tests/chapter_copies/lesson_06.rs`, which `grade --check-copies` must see
+/// fail). Which set a run uses: [`crate::exercise_set`]; the lesson calls
+/// them through [`crate::exercise!`].
 pub mod exercises;
 #[cfg(feature = "solutions")]
 #[path = "../../solutions/lesson_06.rs"]
-pub mod exercises;
-/// With `--features chapter_copies` (CI only): each exercise answered with
-/// the nearest code the chapter prints, which the grade must fail
-/// (`tests/chapter_copies/lesson_06.rs`, `grade --check-copies`).
-#[cfg(all(feature = "chapter_copies", not(feature = "solutions")))]
-#[path = "../../tests/chapter_copies/lesson_06.rs"]
-pub mod exercises;
+pub mod solutions;

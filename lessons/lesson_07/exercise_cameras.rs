@@ -7,7 +7,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
 use common::scene::Camera;
 
-use super::exercises;
 use super::infinite_far::{
     infinite_perspective, projected_scene, scene_with_projection, INFINITE_EPSILON,
 };
@@ -36,7 +35,7 @@ pub fn infinite_projection_scene(gpu: &Gpu, scene: &SceneGpu) -> Result<SceneGpu
     let c = &scene.scene.camera;
     let aspect = scene.width as f64 / scene.height as f64;
     let [l, r, b, t] = near_rectangle(c, aspect).map(|x| x as f32);
-    let proj = exercises::infinite_frustum(l, r, b, t, c.near as f32).as_dmat4();
+    let proj = crate::exercise!(lesson_07::infinite_frustum(l, r, b, t, c.near as f32)).as_dmat4();
     scene_with_projection(gpu, scene, proj)
 }
 
@@ -48,7 +47,13 @@ pub fn adapted_near(scene: &SceneGpu) -> f64 {
     let (lo, hi) = s.bounds();
     let c = &s.camera;
     let forward = (c.target - c.eye).normalize();
-    exercises::adaptive_near(c.eye - o, forward, lo - o, hi - o, c.near)
+    crate::exercise!(lesson_07::adaptive_near(
+        c.eye - o,
+        forward,
+        lo - o,
+        hi - o,
+        c.near
+    ))
 }
 
 /// Exercise 2: the lesson's infinite projection (ε) with the adapted near.

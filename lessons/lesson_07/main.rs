@@ -30,7 +30,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::headless::save;
 use common::run::lesson::{is_exercise, BufferView, Lesson};
 use common::scene::{Far, Scene};
@@ -367,5 +366,5 @@ impl Lesson for DepthClamp {
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<DepthClamp>()
+    workbook::lesson_main::<DepthClamp>()
 }

@@ -5,7 +5,6 @@
 
 use common::gpu::render::SceneGpu;
 
-use super::exercises;
 use super::range_sphere::{
     all_bounds, sphere_depth_bounds, sphere_scissor, LightBounds, RangeSphere,
 };
@@ -49,7 +48,8 @@ pub fn exercise_bounds(
         let c = view.transform_point3(p);
         let (depth, scissor) = match student {
             Student::Scissor => {
-                let (centre, r) = exercises::cone_sphere(p, direction, range, half);
+                let (centre, r) =
+                    crate::exercise!(lesson_08::cone_sphere(p, direction, range, half));
                 let centre = view.transform_point3(centre);
                 (
                     sphere_depth_bounds(proj, near, c, range),
@@ -59,7 +59,9 @@ pub fn exercise_bounds(
             Student::DepthBounds => {
                 let axis = view.transform_vector3(direction);
                 (
-                    exercises::cone_depth_bounds(proj, near, c, axis, range, half),
+                    crate::exercise!(lesson_08::cone_depth_bounds(
+                        proj, near, c, axis, range, half
+                    )),
                     sphere_scissor(proj, near, c, range, w, h),
                 )
             }

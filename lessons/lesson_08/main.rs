@@ -39,7 +39,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::knobs::{Knob, KnobRange};
 use common::run::lesson::{BufferView, Lesson};
 use common::scene::Far;
@@ -390,5 +389,5 @@ impl DepthBounds {
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<DepthBounds>()
+    workbook::lesson_main::<DepthBounds>()
 }

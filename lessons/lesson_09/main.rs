@@ -26,7 +26,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::camera::light_view_proj;
@@ -435,5 +434,5 @@ impl Csm {
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<Csm>()
+    workbook::lesson_main::<Csm>()
 }

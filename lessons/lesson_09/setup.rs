@@ -10,7 +10,6 @@ use common::scene::{Far, LightKind, Scene};
 
 use super::cascades::{self, Cascade, Fit, FitOptions, LightBox, SplitScheme, ViewFrustum};
 use super::csm::CsmParams;
-use super::exercises;
 use crate::lesson_02::bias::SlopeScaledBias;
 
 /// The texels every variant spends: one 2048² map's worth.
@@ -113,8 +112,9 @@ impl Setup {
             Some(Exercise::PracticalSplits) => {
                 let lambda = cascades::PRACTICAL_LAMBDA;
                 let (eye, fwd) = (view.eye, view.forward);
-                let d =
-                    exercises::fitted_splits(eye, fwd, &corners, near, reach, self.count, lambda);
+                let d = crate::exercise!(lesson_09::fitted_splits(
+                    eye, fwd, &corners, near, reach, self.count, lambda
+                ));
                 check_splits(&d, self.count)?;
                 d
             }
@@ -151,7 +151,7 @@ impl Setup {
 /// The student's `snap_tight_box`, applied to a box as [`cascades::snap`] is.
 fn student_snap(b: LightBox, resolution: u32) -> LightBox {
     let xy = |v: common::glam::DVec3| DVec2::new(v.x, v.y);
-    let (min, w) = exercises::snap_tight_box(xy(b.min), xy(b.max), resolution);
+    let (min, w) = crate::exercise!(lesson_09::snap_tight_box(xy(b.min), xy(b.max), resolution));
     LightBox {
         min: min.extend(b.min.z),
         max: (min + DVec2::splat(w)).extend(b.max.z),

@@ -54,7 +54,7 @@ impl Module {
         let mut files = vec![
             (
                 lesson_03.as_str(),
-                crate::lesson_03::exercises::EXERCISES_WGSL,
+                crate::exercise!(lesson_03::EXERCISES_WGSL),
             ),
             (
                 "shaders/lesson_03/pcf.wgsl",
@@ -63,7 +63,10 @@ impl Module {
             ("shaders/lesson_10/soft.wgsl", soft.as_str()),
         ];
         if self != Module::Lesson {
-            files.push((exercises.as_str(), super::exercises::EXERCISES_WGSL));
+            files.push((
+                exercises.as_str(),
+                crate::exercise!(lesson_10::EXERCISES_WGSL),
+            ));
         }
         files.push(("shaders/lesson_10/exercise_hooks.wgsl", hooks.as_str()));
         files.push((

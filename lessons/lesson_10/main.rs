@@ -25,7 +25,6 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::app;
 use common::run::knobs::Knob;
 use common::run::lesson::{BufferView, Lesson};
 use common::scene::Scene;
@@ -479,5 +478,5 @@ impl Lesson for Soft {
 }
 
 fn main() -> std::process::ExitCode {
-    app::main::<Soft>()
+    workbook::lesson_main::<Soft>()
 }
