@@ -416,3 +416,37 @@ scale = [10.0, 1.0, 10.0]
         "{e}"
     );
 }
+
+/// `WORKBOOK_EXERCISES` (the exercise set a run uses) naming no set, or a
+/// set the build does not hold: one line naming the variable, exit 2, from
+/// a lesson and from the grader.
+#[test]
+fn bad_exercise_set_is_one_line() {
+    let mut cases = vec![("bogus", "not an exercise set")];
+    if !cfg!(feature = "chapter_copies") {
+        cases.push(("chapter_copies", "--features chapter_copies"));
+    }
+    for (value, want) in cases {
+        for (bin, args) in [
+            (BIN, &["--frames", "1"][..]),
+            (env!("CARGO_BIN_EXE_grade"), &["lesson_01"][..]),
+        ] {
+            let out = std::process::Command::new(bin)
+                .args(args)
+                .env("WORKBOOK_EXERCISES", value)
+                .env_remove("CARGO")
+                .output()
+                .expect("run");
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{bin} {value}: {stderr}");
+            let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+            assert_eq!(lines.len(), 1, "{bin} {value}: want one line, got {stderr}");
+            assert!(
+                lines[0].contains(&format!("WORKBOOK_EXERCISES={value}"))
+                    && lines[0].contains(want),
+                "{bin} {value}: {}",
+                lines[0]
+            );
+        }
+    }
+}
