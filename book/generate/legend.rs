@@ -114,6 +114,14 @@ pub const PASSES: &[(&str, &str)] = &[
         "cpu_bounds",
         "CPU time computing the lights' range-sphere bounds",
     ),
+    (
+        "cpu_camera",
+        "CPU time fitting a variant's own camera and uploading it",
+    ),
+    (
+        "cpu_record",
+        "CPU time recording the frame's passes (wgpu's encoders)",
+    ),
     ("cpu_total", "the CPU's time to record and submit the frame"),
     (
         "frame",

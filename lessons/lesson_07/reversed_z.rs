@@ -75,6 +75,7 @@ fn reversed_depth(
 pub struct ReversedZ {
     pub scene: SceneGpu,
     depth: wgpu::Texture,
+    depth_view: wgpu::TextureView,
     base: wgpu::RenderPipeline,
     /// `[mirrored][cap]`, z-fail with `Greater`.
     volumes: [[wgpu::RenderPipeline; 2]; 2],
@@ -164,6 +165,7 @@ impl ReversedZ {
         );
         Ok(ReversedZ {
             scene: s,
+            depth_view: depth.create_view(&Default::default()),
             depth,
             base,
             volumes,
@@ -185,8 +187,9 @@ impl ReversedZ {
         self.scene.scene.camera = scene.scene.camera.clone();
         self.scene.scene.lights = scene.scene.lights.clone();
         self.scene.jitter = scene.jitter;
-        set_reversed_camera(frame.gpu, &mut self.scene);
-        let t = with_depth(targets, &self.depth);
+        let gpu = frame.gpu;
+        frame.cpu("camera", || set_reversed_camera(gpu, &mut self.scene));
+        let t = with_depth(targets, &self.depth, &self.depth_view);
         let s = &self.scene;
         // Reversed: 0 is the farthest depth.
         frame.pass("base", |enc, ts| {
@@ -235,14 +238,14 @@ fn set_reversed_camera(gpu: &Gpu, s: &mut SceneGpu) {
 
 /// The runner's colour, id and visibility images with another depth buffer
 /// (handles: nothing is copied).
-fn with_depth(t: &FrameTargets, depth: &wgpu::Texture) -> FrameTargets {
+fn with_depth(t: &FrameTargets, depth: &wgpu::Texture, view: &wgpu::TextureView) -> FrameTargets {
     FrameTargets {
         width: t.width,
         height: t.height,
         color: t.color.clone(),
         color_view: t.color_view.clone(),
         depth: depth.clone(),
-        depth_view: depth.create_view(&Default::default()),
+        depth_view: view.clone(),
         id: t.id.clone(),
         id_view: t.id_view.clone(),
         visibility: t.visibility.clone(),

@@ -10,8 +10,11 @@
 //!   (recording, uploads, the lesson's own CPU work such as silhouettes or
 //!   bounds), waits on the GPU left out, and measurement work
 //!   ([`Frame::untimed`]: counters, readbacks) left out too. The lesson's
-//!   own CPU work is named (`cpu_<name>`, [`Frame::cpu`]); what no name
-//!   covers ([`unnamed_cpu_ms`]) is recording and submitting the passes;
+//!   own CPU work is named (`cpu_<name>`, [`Frame::cpu`]), and so is
+//!   recording the passes (`cpu_record`: the closures given to
+//!   [`Frame::pass`], and finishing the command buffer); what no name
+//!   covers ([`unnamed_cpu_ms`]) is the glue between them: uploads outside
+//!   a pass, and the lesson's bookkeeping;
 //! - `frame`: the wall-clock time from the start of the frame to the GPU
 //!   finishing it, the frame cost a user sees when each frame is waited for
 //!   (as here). It is at least `cpu_total`, and at least the GPU's `total`.
@@ -79,6 +82,7 @@ impl Timer {
             start: Instant::now(),
             waited_ms: 0.0,
             untimed_ms: 0.0,
+            record_ms: 0.0,
         }
     }
 }
@@ -129,10 +133,15 @@ pub struct Frame<'a> {
     waited_ms: f64,
     /// The time spent in [`Frame::untimed`] (also in `waited_ms`).
     untimed_ms: f64,
+    /// The CPU time spent recording passes ([`RECORD`]).
+    record_ms: f64,
 }
 
 /// The key of a frame's CPU time until submission.
 pub const CPU_TOTAL: &str = "cpu_total";
+/// The key of the CPU time spent recording a frame's passes: inside the
+/// closures given to [`Frame::pass`], and finishing the command buffer.
+pub const RECORD: &str = "cpu_record";
 /// The key of a frame's wall-clock cost, start to GPU completion.
 pub const FRAME: &str = "frame";
 /// The key of the GPU's time for the whole frame.
@@ -158,19 +167,26 @@ impl<'a> Frame<'a> {
                     slot: Some((set, self.names.len() as u32 * 2)),
                 };
                 self.names.push(name.to_string());
-                f(&mut self.encoder, &ts)
+                let t = Instant::now();
+                let r = f(&mut self.encoder, &ts);
+                self.record_ms += t.elapsed().as_secs_f64() * 1e3;
+                r
             }
-            Some(_) => f(&mut self.encoder, &PassTimestamps { slot: None }),
-            None => {
-                // CPU wall clock: submit what came before, then time this pass alone.
-                let before = std::mem::replace(&mut self.encoder, new_encoder(self.gpu));
-                self.gpu.queue.submit([before.finish()]);
-                self.wait();
+            Some(_) => {
                 let t = Instant::now();
                 let r = f(&mut self.encoder, &PassTimestamps { slot: None });
-                let this = std::mem::replace(&mut self.encoder, new_encoder(self.gpu));
-                self.gpu.queue.submit([this.finish()]);
-                self.wait();
+                self.record_ms += t.elapsed().as_secs_f64() * 1e3;
+                r
+            }
+            None => {
+                // CPU wall clock: submit what came before, then time this pass
+                // alone. These submits and waits are the measurement's, not
+                // the frame's: out of `cpu_total`, as waits are.
+                self.submit_and_wait();
+                let t = Instant::now();
+                let r = f(&mut self.encoder, &PassTimestamps { slot: None });
+                self.record_ms += t.elapsed().as_secs_f64() * 1e3;
+                self.submit_and_wait();
                 self.wall
                     .push((name.to_string(), t.elapsed().as_secs_f64() * 1e3));
                 r
@@ -201,9 +217,12 @@ impl<'a> Frame<'a> {
         r
     }
 
-    /// Waits for the GPU, counting the wait out of the frame's CPU time.
-    fn wait(&mut self) {
+    /// Submits what is recorded and waits for the GPU, both counted out
+    /// of the frame's CPU time (the wall-clock path's measurement).
+    fn submit_and_wait(&mut self) {
         let t = Instant::now();
+        let done = std::mem::replace(&mut self.encoder, new_encoder(self.gpu));
+        self.gpu.queue.submit([done.finish()]);
         let _ = self.gpu.wait();
         self.waited_ms += t.elapsed().as_secs_f64() * 1e3;
     }
@@ -216,10 +235,12 @@ impl<'a> Frame<'a> {
     /// Submits, waits, and returns the frame's milliseconds.
     pub fn finish(mut self) -> Result<FrameTimes> {
         let n = self.names.len() as u32 * 2;
+        let t = Instant::now();
         if let (Some((set, readback)), true) = (&self.timer.queries, n > 0) {
             readback.resolve(&mut self.encoder, set, n);
         }
         let command_buffer = self.encoder.finish();
+        self.record_ms += t.elapsed().as_secs_f64() * 1e3;
         let cpu_total = self.start.elapsed().as_secs_f64() * 1e3 - self.waited_ms;
         self.gpu.queue.submit([command_buffer]);
         self.gpu.wait()?;
@@ -227,6 +248,7 @@ impl<'a> Frame<'a> {
         let mut ms: BTreeMap<String, f64> = BTreeMap::new();
         ms.insert(CPU_TOTAL.into(), cpu_total);
         ms.insert(FRAME.into(), wall);
+        ms.insert(RECORD.into(), self.record_ms);
         for (k, v) in self.cpu {
             *ms.entry(k).or_default() += v;
         }
@@ -257,8 +279,9 @@ impl<'a> Frame<'a> {
 }
 
 /// The CPU time of a frame (or of a report's medians) that no `cpu_*`
-/// pass names: `cpu_total` minus the named CPU passes. Recording and
-/// submitting the passes, and nothing a lesson computes per frame.
+/// pass names: `cpu_total` minus the named CPU passes, recording
+/// ([`RECORD`]) among them. Uploads outside a pass and the lesson's
+/// bookkeeping between passes, and nothing a lesson computes per frame.
 pub fn unnamed_cpu_ms(ms: &BTreeMap<String, f64>) -> f64 {
     let named: f64 = (ms.iter())
         .filter(|(k, _)| k.starts_with("cpu_") && k.as_str() != CPU_TOTAL)
