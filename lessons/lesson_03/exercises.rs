@@ -2,7 +2,8 @@
 //! `shaders/lesson_03/exercises.wgsl`, appended to the lesson's shader. The
 //! variants `exercise_pcf_kernel` and `exercise_world_disk` call them;
 //! the lesson's own variants never do. With `--features solutions` the
-//! build reads `solutions/lesson_03.rs` instead.
+//! build also holds `solutions/lesson_03.rs` and runs it
+//! (`WORKBOOK_EXERCISES` picks the set).
 
 /// `exercise_pcf_kernel(s, radius, gradient)` and
 /// `exercise_world_disk(s, world, pixel, radius_m, gradient)`, to fill in.

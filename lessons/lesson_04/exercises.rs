@@ -2,7 +2,8 @@
 //! ([`faces_touched`], for `exercise_cull_faces`) and a WGSL function in
 //! `shaders/lesson_04/exercises.wgsl` (for `exercise_cube_faces`). The
 //! lesson's own variants never call them. With `--features solutions` the
-//! build reads `solutions/lesson_04.rs` instead.
+//! build also holds `solutions/lesson_04.rs` and runs it
+//! (`WORKBOOK_EXERCISES` picks the set).
 
 use common::glam::DVec3;
 

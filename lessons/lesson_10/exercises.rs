@@ -3,7 +3,8 @@
 //! variants `exercise_blocker_search` and `exercise_penumbra` run PCSS with
 //! one of them in place of the lesson's own, in a shader module without
 //! the lesson's own (`exercise_shaders.rs`). With `--features solutions`
-//! the build reads `solutions/lesson_10.rs` instead.
+//! the build also holds `solutions/lesson_10.rs` and runs it
+//! (`WORKBOOK_EXERCISES` picks the set).
 
 /// `exercise_blocker_search(s, radius, angle, gradient)` and
 /// `exercise_filter_radius(d_r, d_b)`, to fill in.
