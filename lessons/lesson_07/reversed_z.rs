@@ -11,7 +11,7 @@
 
 use anyhow::{bail, Result};
 use common::glam::dcamera::rh::view::look_at_mat4;
-use common::glam::{DMat4, DVec4};
+use common::glam::{DMat4, DVec3, DVec4};
 use common::gpu::lit::LitPass;
 use common::gpu::render::{base_pipeline, pipeline_layout_for, SceneGpu};
 use common::gpu::targets::{render_texture, FrameTargets};
@@ -76,6 +76,8 @@ pub struct ReversedZ {
     pub scene: SceneGpu,
     depth: wgpu::Texture,
     depth_view: wgpu::TextureView,
+    /// The scene's origin (`Scene::origin`), found once.
+    origin: DVec3,
     base: wgpu::RenderPipeline,
     /// `[mirrored][cap]`, z-fail with `Greater`.
     volumes: [[wgpu::RenderPipeline; 2]; 2],
@@ -102,7 +104,10 @@ impl ReversedZ {
             bail!("wgpu's GL backend rewrites clip z to 2z − w in f32, which discards reversed-Z's precision; run it with --backend vulkan (or metal, dx12)");
         }
         let mut s = SceneGpu::new(gpu, scene.scene.clone(), scene.width, scene.height)?;
-        set_reversed_camera(gpu, &mut s);
+        // The objects never move (a frame takes only the camera and the
+        // lights), so their origin is found once: a pass over every vertex.
+        let origin = s.scene.origin();
+        set_reversed_camera(gpu, &mut s, origin);
         let none = wgpu::TextureUsages::empty();
         let depth = render_texture(
             gpu,
@@ -166,6 +171,7 @@ impl ReversedZ {
         Ok(ReversedZ {
             scene: s,
             depth_view: depth.create_view(&Default::default()),
+            origin,
             depth,
             base,
             volumes,
@@ -188,7 +194,10 @@ impl ReversedZ {
         self.scene.scene.lights = scene.scene.lights.clone();
         self.scene.jitter = scene.jitter;
         let gpu = frame.gpu;
-        frame.cpu("camera", || set_reversed_camera(gpu, &mut self.scene));
+        let origin = self.origin;
+        frame.cpu("camera", || {
+            set_reversed_camera(gpu, &mut self.scene, origin)
+        });
         let t = with_depth(targets, &self.depth, &self.depth_view);
         let s = &self.scene;
         // Reversed: 0 is the farthest depth.
@@ -221,10 +230,10 @@ impl ReversedZ {
     // ANCHOR_END: reversed_render
 }
 
-/// Puts the reversed infinite projection into `s`'s camera and uploads it.
-fn set_reversed_camera(gpu: &Gpu, s: &mut SceneGpu) {
+/// Puts the reversed infinite projection into `s`'s camera, relative to
+/// the scene's origin `o`, and uploads it.
+fn set_reversed_camera(gpu: &Gpu, s: &mut SceneGpu, o: DVec3) {
     let c = &s.scene.camera;
-    let o = s.scene.origin();
     let view = look_at_mat4(c.eye - o, c.target - o, c.up);
     let aspect = s.width as f64 / s.height as f64;
     let proj = reversed_infinite_perspective(c.fov_y_deg.to_radians(), aspect, c.near);
