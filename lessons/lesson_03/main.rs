@@ -35,6 +35,7 @@ use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{
     ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
 };
+use workbook::lesson_03::adaptive_count::{self, AdaptivePaths, CountPass};
 use workbook::lesson_03::knobs;
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
@@ -61,6 +62,9 @@ enum Variant {
     Hw2x2,
     #[value(name = "poisson_16")]
     Poisson16,
+    /// 4 probes decide lit or umbra; the full poisson_16 only between.
+    #[value(name = "poisson_16_adaptive")]
+    Poisson16Adaptive,
     #[value(name = "depth_avg_3x3")]
     DepthAvg3x3,
     /// LearnOpenGL "Shadow Mapping": no bias in the shadow pass, `max(0.05
@@ -108,6 +112,10 @@ impl Variant {
             },
             Variant::Hw2x2 => Filter::Hardware2x2,
             Variant::Poisson16 => Filter::Poisson {
+                taps: 16,
+                radius: 2.5,
+            },
+            Variant::Poisson16Adaptive => Filter::AdaptivePoisson {
                 taps: 16,
                 radius: 2.5,
             },
@@ -186,6 +194,10 @@ struct Pcf {
     filters: Vec<Filter>,
     /// The layout of `filter_groups`, to make a variant's again.
     filter_layout: wgpu::BindGroupLayout,
+    /// The adaptive filter's counting copy (`fs_adaptive_count`) and, per
+    /// variant index, its paths counted once ([`adaptive_count`]).
+    adaptive_count: wgpu::RenderPipeline,
+    adaptive_paths: Vec<Option<AdaptivePaths>>,
 }
 
 /// A shadow map and its bind groups, sampled nearest and linear.
@@ -199,6 +211,38 @@ impl Pcf {
     /// The variant's shadow map.
     fn map(&self, v: Variant) -> &SizedMap {
         self.maps.get(v.map_size())
+    }
+
+    /// The variant's map, bound for its filter's sampler.
+    fn map_group(&self, v: Variant) -> &wgpu::BindGroup {
+        match v.filter().sampler() {
+            wgpu::FilterMode::Linear => &self.map(v).linear,
+            _ => &self.map(v).nearest,
+        }
+    }
+
+    /// The adaptive filter's paths ([`adaptive_count`]), counted once per
+    /// variant and knob setting in its own submit: untimed.
+    fn count_adaptive_once(
+        &mut self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        v: Variant,
+    ) -> Result<()> {
+        let adaptive = matches!(self.filters[v as usize], Filter::AdaptivePoisson { .. });
+        if !adaptive || self.adaptive_paths[v as usize].is_some() {
+            return Ok(());
+        }
+        let count = CountPass {
+            shadow_pipelines: &self.shadow_pipelines[v.pass()],
+            map: &self.map(v).map,
+            count_pipeline: &self.adaptive_count,
+            groups: &[self.map_group(v), &self.filter_groups[v as usize]],
+        };
+        let paths = adaptive_count::count_adaptive_paths(gpu, scene, targets, count)?;
+        self.adaptive_paths[v as usize] = Some(paths);
+        Ok(())
     }
 }
 
@@ -261,6 +305,14 @@ impl Lesson for Pcf {
                 ))
             })
             .collect();
+        let adaptive_count = scene.lit_pipeline_with_depth(
+            gpu,
+            &module,
+            "fs_adaptive_count",
+            &[&layout, &filter_layout],
+            scene.lit_depth_state(Default::default()),
+            &[],
+        );
         let sizes = Variant::value_variants().iter().map(|v| v.map_size());
         let maps = PerSize::new(sizes, |size| {
             let map = ShadowMap::new(gpu, size);
@@ -324,6 +376,8 @@ impl Lesson for Pcf {
                 .map(|v| v.filter())
                 .collect(),
             filter_layout,
+            adaptive_count,
+            adaptive_paths: vec![None; Variant::value_variants().len()],
         })
     }
 
@@ -343,15 +397,12 @@ impl Lesson for Pcf {
             })?;
             self.texels_written.push(((pass, size), n));
         }
+        self.count_adaptive_once(frame.gpu, scene, targets, variant)?;
         let filter_group = &self.filter_groups[variant as usize];
         let lit_pipeline = self.lit_pipelines[variant.lit_key() as usize]
             .as_ref()
             .expect("every variant's lit pipeline is built in new");
-        let map = self.map(variant);
-        let map_group = match variant.filter().sampler() {
-            wgpu::FilterMode::Linear => &map.linear,
-            _ => &map.nearest,
-        };
+        let (map, map_group) = (self.map(variant), self.map_group(variant));
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
             let shadow = &self.shadow_pipelines[pass][light];
@@ -387,6 +438,11 @@ impl Lesson for Pcf {
             c.insert("shadow_texels_written".into(), written);
             c.insert("shadow_fragments".into(), fragments);
         }
+        if let Some(paths) = self.adaptive_paths[variant as usize] {
+            c.insert("probed_pixels".into(), paths.probed);
+            c.insert("full_disk_pixels".into(), paths.full_disk);
+            c.insert("filter_taps".into(), paths.taps());
+        }
         c
     }
 
@@ -420,6 +476,7 @@ impl Lesson for Pcf {
         let bytes = bytemuck::bytes_of(&params);
         let group = params_group(gpu, &self.filter_layout, &variant_name(variant), bytes);
         self.filter_groups[variant as usize] = group;
+        self.adaptive_paths[variant as usize] = None;
         Ok(())
     }
 }

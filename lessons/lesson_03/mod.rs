@@ -4,6 +4,8 @@
 
 pub mod pcf;
 
+pub mod adaptive_count;
+
 pub mod knobs;
 
 pub mod port_cards;

@@ -31,6 +31,9 @@ pub enum Filter {
     /// Exercise 2 (`exercise_world_disk`): the student's 16 bilinear taps
     /// on a disk of `radius_m` metres (world units), rotated per pixel.
     ExerciseDisk { radius_m: f32 },
+    /// Adaptive: 4 bilinear probes on the disk's rim decide lit or umbra;
+    /// only where they disagree, the full `taps` Poisson disk.
+    AdaptivePoisson { taps: u32, radius: f32 },
     /// Bevy's default (`ShadowFilteringMethod::Gaussian`): Castaño's 5×5
     /// Gaussian from 9 bilinear comparisons (The Witness), ported from
     /// bevy_pbr/src/render/shadow_sampling.wgsl `sample_shadow_map_castano_thirteen`.
@@ -49,6 +52,8 @@ impl Filter {
             Filter::ExerciseGrid { n } => (((n + 1) * (n + 1)) as u64, ((n + 1) * (n + 1)) as u64),
             Filter::ExerciseDisk { .. } => (16, 64),
             Filter::Castano13 => (9, 36),
+            // At most: 4 probes, then the full disk.
+            Filter::AdaptivePoisson { taps, .. } => (4 + taps as u64, 4 * (4 + taps as u64)),
         }
     }
 
@@ -62,11 +67,12 @@ impl Filter {
             Filter::ExerciseGrid { .. } => 4,
             Filter::ExerciseDisk { .. } => 5,
             Filter::Castano13 => 6,
+            Filter::AdaptivePoisson { .. } => 7,
         }
     }
 
     /// Every `MODE` value, one lit pipeline each.
-    pub const MODES: u32 = 7;
+    pub const MODES: u32 = 8;
 
     /// Linear filtering for the taps that blend 2×2 texels.
     pub fn sampler(self) -> wgpu::FilterMode {
@@ -74,7 +80,8 @@ impl Filter {
             Filter::Hardware2x2
             | Filter::Poisson { .. }
             | Filter::ExerciseDisk { .. }
-            | Filter::Castano13 => wgpu::FilterMode::Linear,
+            | Filter::Castano13
+            | Filter::AdaptivePoisson { .. } => wgpu::FilterMode::Linear,
             _ => wgpu::FilterMode::Nearest,
         }
     }
@@ -143,12 +150,14 @@ impl From<Filter> for FilterUniform {
                 ..u
             },
             Filter::Hardware2x2 => u,
-            Filter::Poisson { taps, radius } => FilterUniform {
-                taps,
-                radius,
-                receiver_plane: 1,
-                ..u
-            },
+            Filter::Poisson { taps, radius } | Filter::AdaptivePoisson { taps, radius } => {
+                FilterUniform {
+                    taps,
+                    radius,
+                    receiver_plane: 1,
+                    ..u
+                }
+            }
             Filter::DepthAverage { n } => FilterUniform { n, ..u },
             Filter::ExerciseGrid { n } => FilterUniform {
                 n,

@@ -60,6 +60,10 @@ enum Variant {
     /// with the receiver's plane.
     #[value(name = "pcss")]
     Pcss,
+    /// The same PCSS with an adaptive filter: 4 probes on the filter
+    /// disk's rim decide lit or umbra, the 16 taps only where they disagree.
+    #[value(name = "pcss_adaptive")]
+    PcssAdaptive,
     /// A variance map (Donnelly and Lauritzen 2006), blurred 9×9 texels.
     #[value(name = "vsm")]
     Vsm,
@@ -134,6 +138,10 @@ impl Variant {
             Variant::PcfWide16 => disk(16),
             Variant::PcfWide32 => disk(32),
             Variant::Pcss => Technique::Pcss(ours),
+            Variant::PcssAdaptive => Technique::Pcss(Pcss {
+                adaptive: true,
+                ..ours
+            }),
             Variant::Vsm => variance(4, None, 1e-6, (0.0, 1.0)),
             Variant::VsmBleedCut => variance(4, None, 1e-6, (0.3, 1.0)),
             Variant::Evsm => Technique::Variance(Variance {
@@ -177,6 +185,7 @@ impl Variant {
             Variant::PcfWide16
                 | Variant::PcfWide32
                 | Variant::Pcss
+                | Variant::PcssAdaptive
                 | Variant::Vsm
                 | Variant::VsmBleedCut
                 | Variant::Evsm

@@ -35,6 +35,9 @@ pub struct Pcss {
     pub search: Search,
     /// The least filter radius, texels.
     pub min_filter_texels: f32,
+    /// Step 3 probes the filter disk's rim first (4 taps): where they
+    /// agree, the pixel is lit or in umbra without the full filter.
+    pub adaptive: bool,
     /// The chapter's exercises: 1 the student's blocker search, 2 the
     /// student's penumbra estimate, 0 neither.
     pub student: u32,
@@ -64,6 +67,7 @@ impl Technique {
         receiver_plane: true,
         search: Search::NearestCaster,
         min_filter_texels: 0.0,
+        adaptive: false,
         student: 0,
     };
 
@@ -74,11 +78,15 @@ impl Technique {
         match self {
             Technique::HardPcf => (0, 16, 64),
             Technique::FixedDisk { taps, .. } => (0, taps as u64, 4 * taps as u64),
-            Technique::Pcss(p) => (
-                p.search_taps as u64,
-                p.filter_taps as u64,
-                (p.search_taps + 4 * p.filter_taps) as u64,
-            ),
+            // Adaptive: at most 4 probes, then the full filter.
+            Technique::Pcss(p) => {
+                let filter = p.filter_taps + 4 * p.adaptive as u32;
+                (
+                    p.search_taps as u64,
+                    filter as u64,
+                    (p.search_taps + 4 * filter) as u64,
+                )
+            }
             // Four texels of the blurred moments; the blur reads its own.
             Technique::Variance(_) => (0, 1, 4),
             Technique::Peer(p) => p.taps(),
@@ -150,7 +158,9 @@ pub struct SoftUniform {
     pub exponent: f32,
     pub negative: f32,
     pub scale: f32,
-    pub _pad: [f32; 2],
+    /// 1: PCSS's step 3 probes the disk's rim first.
+    pub adaptive: u32,
+    pub _pad: f32,
 }
 
 impl SoftUniform {
@@ -177,7 +187,8 @@ impl SoftUniform {
             exponent: 0.0,
             negative: 0.0,
             scale: 0.0,
-            _pad: [0.0; 2],
+            adaptive: 0,
+            _pad: 0.0,
         };
         match t {
             Technique::HardPcf => u.receiver_plane = 1,
@@ -195,6 +206,7 @@ impl SoftUniform {
                 u.receiver_plane = p.receiver_plane as u32;
                 u.search_at_receiver = (p.search == Search::LightSizeAtReceiver) as u32;
                 u.min_filter_texels = p.min_filter_texels;
+                u.adaptive = p.adaptive as u32;
             }
             Technique::Variance(v) => u.set_variance(&v),
             Technique::Peer(p) => u.set_peer(p.params()),

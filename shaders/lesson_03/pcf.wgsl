@@ -19,6 +19,8 @@ override MODE: u32 = 0u;
 // A renderer's receiver bias (peer_receiver) in this pipeline: the
 // lesson's own filters compile without it (their bias fields are all 0).
 override RENDERER_BIAS: bool = false;
+// Set by pcf_adaptive where its probes disagreed (fs_adaptive_count).
+var<private> took_full_disk: bool = false;
 
 // Rust: lessons/lesson_03/pcf.rs `FilterUniform`.
 struct Filter {
@@ -126,6 +128,29 @@ fn pcf_poisson(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
 }
 // ANCHOR_END: poisson
 
+// ANCHOR: adaptive
+// Adaptive: 4 bilinear probes on the rotated disk's rim decide. All four
+// lit: the pixel is lit; all four in shadow: umbra. Only where they
+// disagree, a penumbra, the full 16-tap disk. Most pixels are far from an
+// edge, so most pay 4 taps instead of 16; a caster thinner than the disk
+// that falls between the probes is missed (the error the chapter measures).
+fn pcf_adaptive(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let a = rotation_angle(pixel);
+    var sum = 0.0;
+    for (var i = 0u; i < 4u; i++) {
+        let t = a + 1.5707963 * f32(i);
+        let o = vec2<f32>(cos(t), sin(t)) * pcf.radius * texel;
+        sum += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
+    }
+    if sum == 0.0 || sum == 4.0 {
+        return sum / 4.0;
+    }
+    took_full_disk = true;
+    return pcf_poisson(s, pixel, gradient);
+}
+// ANCHOR_END: adaptive
+
 // ANCHOR: depth_average
 // The wrong way: average the N×N stored depths, then compare once. Near a
 // shadow's edge the average is a depth where no surface is (between the
@@ -229,9 +254,30 @@ fn fs_lit(in: VertexOut) -> LitOut {
             case 4u: { v = exercise_pcf_kernel(s, i32(pcf.n) / 2, gradient); }
             case 5u: { v = exercise_world_disk(s, in.world, in.clip.xy, pcf.radius, gradient); }
             case 6u: { v = pcf_castano13(s); }
+            case 7u: { v = pcf_adaptive(s, in.clip.xy, gradient); }
             default: { v = depth_average(s, i32(pcf.n)); }
         }
     }
     return lit_output(in, v);
 }
 // ANCHOR_END: fs_lit
+
+// Harness, not the technique: which path the adaptive filter took at each
+// pixel its lit pass shades inside the map, as the visibility (1.0 the full
+// disk, 0.5 the probes alone, 0 outside the map). A pipeline of its own,
+// drawn once per variant in an untimed submit; the lesson sums the image
+// into its counters `probed_pixels` and `full_disk_pixels`.
+@fragment
+fn fs_adaptive_count(in: VertexOut) -> LitOut {
+    let s = shadow_coords(in.world);
+    var gradient = receiver_plane_gradient(in.world);
+    if pcf.receiver_plane == 0u {
+        gradient = vec2<f32>(0.0);
+    }
+    var v = 0.0;
+    if !outside_shadow_map(in.world, s) {
+        _ = pcf_adaptive(s, in.clip.xy, gradient);
+        v = select(0.5, 1.0, took_full_disk);
+    }
+    return lit_output(in, v);
+}
