@@ -259,3 +259,46 @@ fn lesson_03_renderer_defaults() {
     let blended = fractional_pixels(&run, "bevy");
     assert!(blended > 1000, "bevy: {blended} fractional pixels");
 }
+
+/// The adaptive filter (`poisson_16_adaptive`): its 4 probes decide most
+/// pixels, so only a small share takes the full disk, and where they decide
+/// they agree with the disk: its error is `poisson_16`'s. Its counters add
+/// up (4 taps per probed pixel, 16 more per full-disk pixel). Broken, it
+/// fails: probes that never agree send every pixel to the disk (the share
+/// is 1), probes that decide wrongly (a wrong early return) move the error.
+#[test]
+fn lesson_03_adaptive_filter_decides_most_pixels_with_four_taps() {
+    let Some(run) = run(
+        "lesson_03_adaptive",
+        None,
+        &[
+            "--variant",
+            "poisson_16",
+            "--variant",
+            "poisson_16_adaptive",
+        ],
+    ) else {
+        return;
+    };
+    let v = "poisson_16_adaptive";
+    let probed = support::counter(&run.report, v, "probed_pixels");
+    let full = support::counter(&run.report, v, "full_disk_pixels");
+    let taps = support::counter(&run.report, v, "filter_taps");
+    assert!(probed > 10_000, "{v}: the lit pass probed {probed} pixels");
+    assert_eq!(taps, 4 * probed + 16 * full, "{v}: filter_taps");
+    let share = full as f64 / probed as f64;
+    assert!(
+        share > 0.01 && share < 0.25,
+        "{v}: {full} of {probed} pixels took the full disk ({share:.3}): the penumbrae's share is a few %"
+    );
+    for figure in ["misclassified_pct", "false_shadow_pct", "false_lit_pct"] {
+        let (a, b) = (
+            support::error(&run.report, v, figure),
+            support::error(&run.report, "poisson_16", figure),
+        );
+        assert!(
+            (a - b).abs() <= 0.02,
+            "{v}: {figure} {a} against poisson_16's {b}: the probes decide wrongly"
+        );
+    }
+}

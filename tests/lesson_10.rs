@@ -320,3 +320,29 @@ fn earlier_lessons_refuse_area_lights() {
     );
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
 }
+
+/// PCSS with the adaptive filter (`pcss_adaptive`): its 4 rim probes
+/// decide only where all four agree, and there the disk agrees with them,
+/// so its error is PCSS's: penumbra |dV| within half a point, bleeding
+/// within a point. Probes that decide wrongly (a penumbra pixel returned
+/// as lit or umbra) move the penumbra's error first.
+#[test]
+fn lesson_10_adaptive_filter_keeps_pcss_error() {
+    let Some(run) = run(
+        "lesson_10_adaptive",
+        None,
+        &["--variant", "pcss", "--variant", "pcss_adaptive"],
+    ) else {
+        return;
+    };
+    let (a, b) = (penumbra(&run, "pcss_adaptive"), penumbra(&run, "pcss"));
+    assert!(
+        (a - b).abs() <= 0.005,
+        "pcss_adaptive penumbra |dV| {a:.4} against pcss's {b:.4}"
+    );
+    let (a, b) = (bleeding(&run, "pcss_adaptive"), bleeding(&run, "pcss"));
+    assert!(
+        (a - b).abs() <= 1.0,
+        "pcss_adaptive bleeding {a:.3} % against pcss's {b:.3} %"
+    );
+}

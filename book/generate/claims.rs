@@ -17,9 +17,10 @@
 //! - `<`, `>`, `<=`, `>=`, `==` compare the numbers;
 //! - between two times (a single key each side), `faster` and `slower` say
 //!   the left one is measurably faster or slower than the right (their
-//!   spreads do not overlap, the left median below or above), `apart` that
-//!   their spreads do not overlap, `overlap` that they do: the book's "no
-//!   measurable difference".
+//!   spreads do not overlap, the left median below or above), `nofaster`
+//!   that it is not measurably faster (slower, or the spreads overlap),
+//!   `apart` that their spreads do not overlap, `overlap` that they do: the
+//!   book's "no measurable difference".
 //!
 //! `workbook book` and `workbook tables` fail, naming the chapter's line and
 //! the claim, when a claim is false on the records they wrote;
@@ -37,7 +38,7 @@ pub const OPEN: &str = "<!--claim:";
 
 /// The comparisons a claim may make.
 const OPS: &[&str] = &[
-    "<=", ">=", "==", "<", ">", "faster", "slower", "apart", "overlap",
+    "<=", ">=", "==", "<", ">", "faster", "slower", "nofaster", "apart", "overlap",
 ];
 
 /// What a claim came to on the records.
@@ -189,6 +190,8 @@ fn comparison(text: &str, lookup: &mut dyn FnMut(&str) -> Result<Measured>) -> R
             match op {
                 "faster" => a.q75 < b.q25,
                 "slower" => a.q25 > b.q75,
+                // Not measurably faster: slower, or within each other's spread.
+                "nofaster" => a.q75 >= b.q25,
                 "apart" => a.differs_from(b),
                 _ => !a.differs_from(b),
             }

@@ -51,6 +51,9 @@ pub const COUNTERS: &[(&str, &str)] = &[
     ("blocker_search_taps", "the blocker search's depth reads per pixel and light, one texel each, before the filter (PCSS's first step; a pixel whose search finds no blocker stops there); 0 for a fixed filter or a variance map"),
     ("filter_taps_per_pixel", "depth comparisons the lit pass makes per pixel and light"),
     ("texels_read", "shadow-map texels one lookup reads (a bilinear comparison reads 2×2)"),
+    ("probed_pixels", "an adaptive filter's pixels: those its lit pass shaded inside the map, where its 4 probes ran (counted in one untimed draw)"),
+    ("full_disk_pixels", "of those, the pixels whose probes disagreed and that took the full disk"),
+    ("filter_taps", "the depth comparisons an adaptive filter made over the frame: 4 per probed pixel, 16 more per full-disk pixel"),
     // Shadow volumes: the casters, their meshes and silhouettes.
     ("casters_drawn", "caster-light pairs whose shadow volume is drawn"),
     ("casters_zpass", "caster-light pairs counted with z-pass (their volumes cannot reach the near plane)"),

@@ -16,6 +16,7 @@
 //! ([`claims`]): it fails, naming the chapter's line, when one is false.
 
 mod adapters;
+mod bounds;
 mod choosing;
 mod claims;
 mod diagrams;
@@ -77,6 +78,15 @@ enum Command {
         #[arg(long, default_value = manifest::ADAPTER)]
         adapter: String,
     },
+    /// Measure each committed record's bounds again (an untimed run of its
+    /// entry with `--fragile`) and write them into the record, its times
+    /// and tables untouched: how far each figure may move on another
+    /// adapter. `book` measures them with every run.
+    Bounds {
+        /// Only this lesson's records (`lesson_04`).
+        #[arg(long, value_name = "LESSON")]
+        only: Option<String>,
+    },
     /// Rewrite the tables, plots and README block that are made from the
     /// committed records, without running a lesson.
     Tables,
@@ -133,6 +143,7 @@ fn run(cli: Cli) -> Result<()> {
             backend,
             adapter,
         } => (only, backend, adapter),
+        Command::Bounds { only } => return bounds::write(&root(), only.as_deref()),
         Command::Tables => {
             let root = root();
             derive(
@@ -321,7 +332,7 @@ fn write_run_tables(dir: &Path, run: &Run, record: &Record) -> Result<()> {
 }
 
 /// The runner, building the lesson binaries first when one is missing.
-fn runner_or_build() -> Result<Runner> {
+pub fn runner_or_build() -> Result<Runner> {
     let exe = std::env::current_exe().context("cannot find the generator's own path")?;
     if Runner::beside(&exe).is_err() {
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
@@ -364,7 +375,9 @@ impl Measure<'_> {
             adapter: Some(self.adapter),
             // Untimed runs keep errors and counters only: no warm-up needed.
             warm_up_ms: (!run.timed).then_some(0.0),
-            fragile: false,
+            // The bounds once (they are deterministic), after the timed
+            // frames of the same process.
+            fragile: i == 0,
         };
         let bar = self.bar;
         bar.set_message(format!("{} ({}/{repeats})", run.id(), i + 1));
@@ -441,6 +454,7 @@ pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
                 camera_path: v.camera_path.clone(),
                 classes: record::ClassRecord::of(v),
                 soft: v.error.soft.clone(),
+                fragile: v.fragile.clone(),
             })
         })
         .collect::<Result<Vec<_>>>()?;

@@ -113,6 +113,12 @@ pub struct VariantRecord {
     /// when the scene's light has one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub soft: Option<SoftRecord>,
+    /// How far each figure and counter could move on another adapter, as
+    /// this run measured it (`--fragile`, `common::reference::fragile`):
+    /// the drift test allows a figure on another adapter to move by this
+    /// bound plus that adapter's own.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fragile: Option<common::reference::fragile::Fragile>,
 }
 
 /// A soft shadow's error (lesson 10): the penumbra's mean |ΔV|, the

@@ -546,6 +546,7 @@ mod tests {
             camera_path: None,
             classes: Vec::new(),
             soft: None,
+            fragile: None,
         };
         Record {
             lesson: lesson.into(),

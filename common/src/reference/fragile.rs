@@ -198,6 +198,31 @@ impl Tally {
     }
 }
 
+impl Fragile {
+    /// The bounds of two runs together (two adapters, each measured): how
+    /// far a figure may move between them. Each rasteriser flips only
+    /// pixels its own run found fragile, so the images differ by at most
+    /// both sets: every bound and counter move is the sum of the two (a key
+    /// one run lacks counts as 0 there).
+    pub fn plus(&self, other: &Fragile) -> Fragile {
+        let mut bounds = self.bounds.clone();
+        for (k, b) in &other.bounds {
+            *bounds.entry(k.clone()).or_insert(0.0) += b;
+        }
+        let mut counters = self.counters.clone();
+        for (k, n) in &other.counters {
+            *counters.entry(k.clone()).or_insert(0) += n;
+        }
+        Fragile {
+            jitter_px: self.jitter_px.max(other.jitter_px),
+            offsets: self.offsets + other.offsets,
+            flipped_pixels: self.flipped_pixels + other.flipped_pixels,
+            bounds,
+            counters,
+        }
+    }
+}
+
 /// Per counter, how far `moved` differ from `base`, summed over them (a
 /// counter missing from one side moved by its whole value).
 pub fn counter_moves(
@@ -221,4 +246,36 @@ pub fn counter_moves(
 pub fn jitter_matrix(px: [f64; 2], width: u32, height: u32) -> glam::Mat4 {
     let (tx, ty) = (2.0 * px[0] / width as f64, 2.0 * px[1] / height as f64);
     glam::Mat4::from_translation(glam::Vec3::new(tx as f32, ty as f32, 0.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Fragile;
+
+    #[test]
+    fn two_runs_bounds_add() {
+        let a = Fragile {
+            jitter_px: 0.0625,
+            offsets: 3,
+            flipped_pixels: 10,
+            bounds: [("misclassified_pct".to_string(), 0.1)].into(),
+            counters: [("stencil_updates".to_string(), 100)].into(),
+        };
+        let b = Fragile {
+            flipped_pixels: 4,
+            bounds: [
+                ("misclassified_pct".to_string(), 0.05),
+                ("mean_abs".to_string(), 0.01),
+            ]
+            .into(),
+            counters: [("draws".to_string(), 1)].into(),
+            ..a.clone()
+        };
+        let s = a.plus(&b);
+        assert!((s.bounds["misclassified_pct"] - 0.15).abs() < 1e-12);
+        assert_eq!(s.bounds["mean_abs"], 0.01);
+        assert_eq!(s.counters["stencil_updates"], 100);
+        assert_eq!(s.counters["draws"], 1);
+        assert_eq!((s.flipped_pixels, s.offsets), (14, 6));
+    }
 }
