@@ -36,11 +36,19 @@ pub struct Origin {
 
 /// The committed sets. Measuring a set again: give its new commit here and
 /// drop its [`CHANGES`] that came before that commit.
-pub const ORIGINS: &[Origin] = &[Origin {
-    set: "nvidia-h100-80gb-hbm3-vulkan",
-    commit: "d7678c5",
-    measured: "2026-11-26",
-}];
+pub const ORIGINS: &[Origin] = &[
+    Origin {
+        set: "nvidia-h100-80gb-hbm3-vulkan",
+        commit: "d7678c5",
+        measured: "2026-11-26",
+    },
+    // Lessons 03 and 10 only: the adaptive filters' first GPU run.
+    Origin {
+        set: "nvidia-h200-vulkan",
+        commit: "8768674",
+        measured: "2026-11-27",
+    },
+];
 
 /// A change, after the commit a measurement ran, to what it measured.
 pub struct Change {
@@ -167,6 +175,11 @@ const RASTERISED: &[&str] = &[
     "fragment_shader_invocations",
     "stencil_updates",
     "volume_fragments",
+    // Lesson 03's adaptive filter: which pixels' probes straddle an edge
+    // of the map, and so how many taps the frame made, is the rasteriser's.
+    "probed_pixels",
+    "full_disk_pixels",
+    "filter_taps",
 ];
 
 /// The origin of the set in folder `set`, when [`ORIGINS`] has it.

@@ -143,6 +143,14 @@ pub const KEYS: &[(&str, Class)] = &[
     ("pixels", Class::Fragments),
     ("stencil_updates", Class::DepthTested),
     ("shadow_texels_written", Class::DepthTested),
+    // Lesson 03's adaptive filter: the pixels it probed (the lit pass's
+    // coverage inside the map), and those whose 4 probes disagreed and the
+    // taps that made. Where a probe lands by a map's edge, the map's
+    // rasteriser decides: 14 883 full-disk pixels on lavapipe against
+    // 14 817 on an H200 (0.44 %), 989 824 taps against 988 768.
+    ("probed_pixels", Class::Fragments),
+    ("full_disk_pixels", Class::DepthTested),
+    ("filter_taps", Class::DepthTested),
     ("fragment_shader_invocations", Class::AdapterDefined),
     ("depth_gap_ppb_at_half_far", Class::AdapterDefined),
     ("depth_gap_ppb_at_sqrt_near_far", Class::AdapterDefined),
@@ -162,6 +170,18 @@ pub struct Override {
 /// of a line: the snapshots write its name, the drift test of the book's
 /// tables (`tests/generated.rs`) `run/name` (`deep_range/clamp`).
 pub const OVERRIDES: &[Override] = &[
+    Override {
+        variants: &["contact/godot_soft_low"],
+        keys: &["misclassified", "false shadow"],
+        tolerance: Tolerance { abs: 1.5, rel: 0.0 },
+        measured: "lesson 10's port of Godot's Soft Low on the contact scene \
+                   (lesson_10_contact.toml, 640x360), without Godot's own depth and \
+                   normal bias (its card's first departure): its untilted disk acnes \
+                   the floor, and which tap self-shadows is decided by the last bit of \
+                   a depth. Misclassified 0.988 % (lavapipe) against 1.872 % (an \
+                   NVIDIA H200, 2026-11-27), false shadow 0.749 against 1.844 %, \
+                   beyond both runs' bounds (0.458)",
+    },
     Override {
         variants: &["learnopengl_pcf20"],
         keys: &["misclassified"],
