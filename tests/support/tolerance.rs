@@ -37,7 +37,9 @@
 //!   fragment counts within [`FRAGMENTS`], depth-tested counts within
 //!   [`DEPTH_TESTED`], every other number (draws, triangles, taps, texels,
 //!   anything counted on the CPU, any key not listed) exactly, and a few
-//!   variants named in [`OVERRIDES`]. The snapshots carry bounds on every
+//!   variants named in [`OVERRIDES`], which keep their measured constant
+//!   even where a bound is smaller (acne, decided by a depth's last bit,
+//!   which the jitter does not move). The snapshots carry bounds on every
 //!   error figure and counter; the constants remain for the masks, for
 //!   lesson 09's shimmer (measured along a camera path, not jittered), and
 //!   for the texts recorded before the bounds (`tests/snapshot_replay/h100`
@@ -171,16 +173,21 @@ pub struct Override {
 /// tables (`tests/generated.rs`) `run/name` (`deep_range/clamp`).
 pub const OVERRIDES: &[Override] = &[
     Override {
-        variants: &["contact/godot_soft_low"],
+        variants: &["godot_soft_low"],
         keys: &["misclassified", "false shadow"],
-        tolerance: Tolerance { abs: 1.5, rel: 0.0 },
-        measured: "lesson 10's port of Godot's Soft Low on the contact scene \
-                   (lesson_10_contact.toml, 640x360), without Godot's own depth and \
+        tolerance: Tolerance {
+            abs: 10.0,
+            rel: 0.0,
+        },
+        measured: "lesson 10's port of Godot's Soft Low, without Godot's own depth and \
                    normal bias (its card's first departure): its untilted disk acnes \
                    the floor, and which tap self-shadows is decided by the last bit of \
-                   a depth. Misclassified 0.988 % (lavapipe) against 1.872 % (an \
-                   NVIDIA H200, 2026-11-27), false shadow 0.749 against 1.844 %, \
-                   beyond both runs' bounds (0.458)",
+                   a depth, over whole regions at once. At 640x360 on an NVIDIA H200 \
+                   (2026-11-27) against lavapipe: misclassified 1.872 against 0.988 % \
+                   on the contact scene, 8.338 against 2.274 % on the large light, \
+                   false shadow 1.844 against 0.749 and 8.335 against 2.246 %, beyond \
+                   both runs' bounds (0.458, 2.369). Its figures are checked exactly \
+                   on lavapipe",
     },
     Override {
         variants: &["learnopengl_pcf20"],
@@ -241,16 +248,21 @@ pub fn class_of(words: &str) -> (Class, &'static str) {
         .unwrap_or((Class::Exact, ""))
 }
 
-/// The tolerance of a number of `class` after `key` on a line of `variant`.
-pub fn tolerance_of(class: Class, key: &str, variant: &str) -> Tolerance {
+/// The [`OVERRIDES`] entry for `key` on a line of `variant`, if any.
+pub fn override_of(key: &str, variant: &str) -> Option<Tolerance> {
     // `run/variant` names one scene's variant; a bare name, every scene's.
     let named =
         |v: &&str| variant == *v || (!v.contains('/') && variant.ends_with(&format!("/{v}")));
-    if let Some(o) = OVERRIDES
+    OVERRIDES
         .iter()
         .find(|o| o.variants.iter().any(named) && o.keys.contains(&key))
-    {
-        return o.tolerance;
+        .map(|o| o.tolerance)
+}
+
+/// The tolerance of a number of `class` after `key` on a line of `variant`.
+pub fn tolerance_of(class: Class, key: &str, variant: &str) -> Tolerance {
+    if let Some(t) = override_of(key, variant) {
+        return t;
     }
     match class {
         Class::Exact => Tolerance::EXACT,
@@ -547,10 +559,17 @@ fn compare_line(a: &str, b: &str, line: usize, out: &mut Vec<Difference>) {
                         b.parse::<f64>().unwrap_or(f64::NAN)
                             + tolerance_of(class, key, variant).allowed(*va, *vb, 0.0)
                     }
+                    // A variant named in OVERRIDES keeps its measured
+                    // constant where the bound is smaller: what the jitter
+                    // cannot move (a depth's last bit under acne).
                     Some(b) => {
-                        b.parse::<f64>().unwrap_or(f64::NAN)
+                        let measured = b.parse::<f64>().unwrap_or(f64::NAN)
                             + rounding(b)
-                            + rounding(ta).max(rounding(tb))
+                            + rounding(ta).max(rounding(tb));
+                        match override_of(key, variant) {
+                            Some(t) => measured.max(t.allowed(*va, *vb, unit(ta).max(unit(tb)))),
+                            None => measured,
+                        }
                     }
                     None => {
                         tolerance_of(class, key, variant).allowed(*va, *vb, unit(ta).max(unit(tb)))
