@@ -19,6 +19,8 @@
 //! Beside the reference:
 //! - [`area`]: the soft shadow of an area light, by stratified rays.
 //! - [`bvh`]: the bounding-volume hierarchy the reference casts against.
+//! - [`cache`]: CI's cache of references on disk (off unless
+//!   `WORKBOOK_REFERENCE_CACHE` names a folder).
 //! - [`cone`]: the cone of an area light's rays, and what might block it.
 //! - [`fragile`]: the receivers a rasteriser could flip, found by drawing
 //!   the frame again with the camera moved by a sixteenth of a pixel.
@@ -30,6 +32,7 @@
 
 pub mod area;
 pub mod bvh;
+pub mod cache;
 pub mod cone;
 pub mod dv_view;
 pub mod fragile;

@@ -15,7 +15,7 @@ use crate::measure::report::VariantReport;
 use crate::measure::report::{combine, AdapterReport, BaselineReport, CameraPathReport, Report};
 use crate::measure::timing::{median_times, samples, spread_times, Timer};
 use crate::reference::metrics::{self, pixel_states, PixelState, ReferenceStates};
-use crate::reference::{dv_view, fragile, try_render_reference};
+use crate::reference::{cache, dv_view, fragile};
 use crate::run::cli::Args;
 use crate::run::lesson::{apply_cli_knobs, knob_values};
 use crate::run::lesson::{variant_name, Lesson};
@@ -112,7 +112,7 @@ pub fn run_headless<L: Lesson>(
     };
 
     // 2. The reference, then each variant's images and error (untimed).
-    let reference = try_render_reference(&sg.scene, sg.camera.view_proj, args.width, args.height)?;
+    let reference = cache::reference(&sg.scene, sg.camera.view_proj, args.width, args.height)?;
     check_receivers(&sg, &reference)?;
     let (w, h) = (args.width, args.height);
     let reference_states = ReferenceStates::new(&reference);
@@ -416,7 +416,7 @@ impl PathWalk<'_> {
         sg.scene.camera = camera.clone();
         sg.set_camera(self.gpu);
         if self.references.len() == i {
-            let r = try_render_reference(&sg.scene, sg.camera.view_proj, sg.width, sg.height)?;
+            let r = cache::reference(&sg.scene, sg.camera.view_proj, sg.width, sg.height)?;
             let seen = match next {
                 Some(next) => {
                     sg.scene.camera = next.clone();
