@@ -661,6 +661,14 @@ struct H100Failure {
     allowed: f64,
 }
 
+/// The figure a failure is of: `lesson/run/variant key`.
+impl std::fmt::Display for H100Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (l, r, v, k) = (&self.lesson, &self.run, &self.variant, &self.key);
+        write!(f, "{l}/{r}/{v} {k}")
+    }
+}
+
 fn h100_failures(log: &str) -> Vec<H100Failure> {
     let log = read(&root().join(log));
     let mut failures = Vec::new();
@@ -780,20 +788,12 @@ fn h100_2026_11_26_drift_failures_are_within_the_runs_bounds() {
         let (a, b) = (f.committed, f.h100);
         let bound = recorded_bound(f);
         eprintln!(
-            "{}/{}/{} {}: {a} -> {b} (by {:.4}), bound {bound:.4}",
-            f.lesson,
-            f.run,
-            f.variant,
-            f.key,
+            "{f}: {a} -> {b} (by {:.4}), bound {bound:.4}",
             (b - a).abs()
         );
         assert!(
             (b - a).abs() <= bound + 1e-4,
-            "{}/{}/{} {}: {a} -> {b} beyond the run's bound {bound}",
-            f.lesson,
-            f.run,
-            f.variant,
-            f.key
+            "{f}: {a} -> {b} beyond the run's bound {bound}"
         );
         replayed += 1;
     }
@@ -817,21 +817,13 @@ fn h100_2026_11_27_drift_failures_are_within_both_runs_bounds() {
         let (a, b) = (f.committed, f.h100);
         let bound = recorded_bound(f);
         eprintln!(
-            "{}/{}/{} {}: {a} -> {b} (by {:.4}), the H100's allowance {:.4} + the records' bound {bound:.4}",
-            f.lesson,
-            f.run,
-            f.variant,
-            f.key,
+            "{f}: {a} -> {b} (by {:.4}), the H100's allowance {:.4} + the records' bound {bound:.4}",
             (b - a).abs(),
             f.allowed
         );
         assert!(
             (b - a).abs() <= f.allowed + bound + 1e-4,
-            "{}/{}/{} {}: {a} -> {b} beyond both runs' bounds ({} + {bound})",
-            f.lesson,
-            f.run,
-            f.variant,
-            f.key,
+            "{f}: {a} -> {b} beyond both runs' bounds ({} + {bound})",
             f.allowed
         );
     }
