@@ -103,6 +103,8 @@ struct ZPass {
 
 impl Lesson for ZPass {
     const NAME: &'static str = "lesson_05";
+    /// Costs are counted on a variant's second frame ([`Lesson::count_again`]).
+    const COUNTED_ON_FRAME: u32 = 2;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_05.toml");
     type Variant = Variant;
 
@@ -205,9 +207,8 @@ impl Lesson for ZPass {
         Some(format!("{}: {why}", variant_name(variant)))
     }
 
-    fn count_again(&mut self, variant: Variant) -> u32 {
+    fn count_again(&mut self, variant: Variant) {
         self.frames[variant as usize] = 0;
-        2
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {

@@ -205,6 +205,8 @@ fn view_key(scene: &SceneGpu) -> Vec<f64> {
 
 impl Lesson for ZFail {
     const NAME: &'static str = "lesson_06";
+    /// Costs are counted on a variant's second frame ([`Lesson::count_again`]).
+    const COUNTED_ON_FRAME: u32 = 2;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_06.toml");
     type Variant = Variant;
 
@@ -301,9 +303,8 @@ impl Lesson for ZFail {
         Some(format!("{}: {why}", variant_name(variant)))
     }
 
-    fn count_again(&mut self, variant: Variant) -> u32 {
+    fn count_again(&mut self, variant: Variant) {
         self.frames[variant as usize] = 0;
-        2
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {

@@ -151,6 +151,8 @@ fn ppb(g: Option<f64>) -> u64 {
 
 impl Lesson for DepthClamp {
     const NAME: &'static str = "lesson_07";
+    /// Costs are counted on a variant's second frame ([`Lesson::count_again`]).
+    const COUNTED_ON_FRAME: u32 = 2;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_07.toml");
     type Variant = Variant;
 
@@ -330,10 +332,9 @@ impl Lesson for DepthClamp {
 
     /// The costs are counted once, on the frame after `casters_drawn` is
     /// first set: forget that key and they are counted again.
-    fn count_again(&mut self, variant: Variant) -> u32 {
+    fn count_again(&mut self, variant: Variant) {
         self.counters[variant as usize].remove("casters_drawn");
         self.pending[variant as usize] = false;
-        2
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {

@@ -149,6 +149,8 @@ struct DepthBounds {
 
 impl Lesson for DepthBounds {
     const NAME: &'static str = "lesson_08";
+    /// Costs are counted on a variant's second frame ([`Lesson::count_again`]).
+    const COUNTED_ON_FRAME: u32 = 2;
     // The scissor rectangles read only the projection's diagonal.
     const SUPPORTS_CAMERA_SHIFT: bool = false;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_08.toml");
@@ -258,9 +260,8 @@ impl Lesson for DepthBounds {
     }
     // ANCHOR_END: render
 
-    fn count_again(&mut self, variant: Variant) -> u32 {
+    fn count_again(&mut self, variant: Variant) {
         self.frames[variant as usize] = 0;
-        2
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {

@@ -28,10 +28,6 @@ pub struct HeadlessRun {
     pub out_dir: PathBuf,
 }
 
-/// Untimed frames of a variant before its images are read: its first
-/// frame after the others' (some lessons count on their second frame).
-const IMAGE_FRAMES: u32 = 2;
-
 // ANCHOR: run_headless
 /// Renders every variant offscreen, compares it with the exact reference,
 /// times it, and writes the outputs of INTERFACES.md to the output folder.
@@ -132,7 +128,9 @@ pub fn run_headless<L: Lesson>(
     for (i, &variant) in runnable.iter().enumerate() {
         let v = variant_name(variant);
         // The targets hold the last block's frame: render this variant's.
-        for _ in 0..IMAGE_FRAMES {
+        // Its frames up to the one the lesson counts on (the counters go
+        // with the images).
+        for _ in 0..L::COUNTED_ON_FRAME {
             let mut frame = timer.frame(&gpu);
             lesson.render(&mut frame, &sg, &targets, variant)?;
             frame.finish()?;
@@ -299,7 +297,8 @@ fn fragile_of<L: Lesson>(
         let px = [j[0] * fragile::JITTER_PX, j[1] * fragile::JITTER_PX];
         sg.set_jitter(gpu, fragile::jitter_matrix(px, w, h));
         // Some lessons count on their second frame.
-        for _ in 0..lesson.count_again(variant) {
+        lesson.count_again(variant);
+        for _ in 0..L::COUNTED_ON_FRAME {
             let mut frame = timer.frame(gpu);
             lesson.render(&mut frame, sg, targets, variant)?;
             frame.finish()?;

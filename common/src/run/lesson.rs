@@ -88,14 +88,18 @@ pub trait Lesson: Sized {
         BTreeMap::new()
     }
 
-    /// Forgets what `variant` counted once (lessons 05, 06 and 08 count
-    /// their volumes on a variant's second frame), so that its next frames
-    /// count again: the runner's `--fragile` frames, drawn with the camera
-    /// moved. Returns the frames to draw before the counters are new again:
-    /// 1 for a lesson that counts every frame (the default).
-    fn count_again(&mut self, _variant: Self::Variant) -> u32 {
-        1
-    }
+    /// The frame of a variant, from its first after another variant's, on
+    /// which the lesson has counted it: 1 for a lesson that counts every
+    /// frame (the default), 2 for lessons 05–08, which count a variant's
+    /// volumes on its second frame against the depth its first left. The
+    /// runner draws that many untimed frames before it reads a variant's
+    /// images and counters.
+    const COUNTED_ON_FRAME: u32 = 1;
+
+    /// Forgets what `variant` counted once (lessons 05–08), so that its
+    /// next [`Lesson::COUNTED_ON_FRAME`] frames count again: the runner's
+    /// `--fragile` frames, drawn with the camera moved.
+    fn count_again(&mut self, _variant: Self::Variant) {}
 
     /// The knobs `variant` exposes ([`crate::run::knobs`]), with the values
     /// it runs with now: the parameters its chapter discusses. None by
