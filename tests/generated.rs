@@ -37,6 +37,9 @@ mod lesson10;
 #[path = "../book/generate/manifest.rs"]
 #[allow(dead_code)]
 mod manifest;
+#[path = "../book/generate/origins.rs"]
+#[allow(dead_code)]
+mod origins;
 #[path = "../book/generate/plots/mod.rs"]
 #[allow(dead_code)]
 mod plots;
@@ -56,6 +59,9 @@ mod support;
 #[path = "../book/generate/table.rs"]
 #[allow(dead_code)]
 mod table;
+#[path = "../book/generate/taps.rs"]
+#[allow(dead_code)]
+mod taps;
 
 use std::path::{Path, PathBuf};
 
@@ -204,6 +210,13 @@ fn derived_tables_are_the_tables_their_records_make() {
         format!("lesson_10/{}", lesson10::TABLE),
         lesson10::table(&convergence, results),
     ));
+    let sets = origins::load_sets(&generated()).expect("the other adapters' sets");
+    for lesson in taps::LESSONS {
+        expected.push((
+            format!("{lesson}/{}", taps::TABLE),
+            taps::table(lesson, &records, &sets),
+        ));
+    }
     for (file, want) in expected {
         let got = read(&generated().join(&file));
         assert!(

@@ -22,8 +22,9 @@ use anyhow::{bail, Context, Result};
 use common::measure::report::{Report, VariantReport};
 
 use crate::manifest::{FAMILIES, VOLUME_BUILDS};
+use crate::origins::Origin;
 use crate::record::{Record, Stat};
-use crate::sets::{self, Origin};
+use crate::sets;
 use crate::table::{pct, row, stat};
 
 /// What a shadow technique may cost over the no-shadow frame on a GPU like

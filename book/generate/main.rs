@@ -27,6 +27,7 @@ mod legend;
 mod lesson09;
 mod lesson10;
 mod manifest;
+mod origins;
 mod plots;
 mod ports;
 mod prose;
@@ -38,6 +39,7 @@ mod soft_diagrams;
 mod stability;
 mod summary;
 mod table;
+mod taps;
 mod volume_diagrams;
 mod volumes_gpu;
 mod window_shots;
@@ -256,7 +258,9 @@ fn run(cli: Cli) -> Result<()> {
     }
     if !main_set {
         bar.finish_with_message("runs done");
-        sets::write_other_adapters(&generated, &sets::load_sets(&generated)?)?;
+        let sets = sets::load_sets(&generated)?;
+        sets::write_other_adapters(&generated, &sets)?;
+        taps::write_all(&generated, &load_records(&generated)?, &sets)?;
         println!(
             "another adapter's set written under {} in {:.0} s",
             generated.join(sets::SETS_DIR).display(),
@@ -295,7 +299,9 @@ fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     scaling::write_tables(root)?;
     lesson09::write_all(generated, figures, &records)?;
     adapters::write_all(root, generated, &records)?;
-    sets::write_other_adapters(generated, &sets::load_sets(generated)?)?;
+    let sets = sets::load_sets(generated)?;
+    sets::write_other_adapters(generated, &sets)?;
+    taps::write_all(generated, &records, &sets)?;
     let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
     write_plots(figures, &defaults)?;
     for chapter in prose::write_chapters(&root.join("book/src"), generated)? {

@@ -20,152 +20,7 @@ use anyhow::{bail, Context, Result};
 use crate::manifest::{self, HD, RUNS};
 use crate::record::Record;
 
-/// The folder of the other sets, under `book/src/generated/`.
-pub const SETS_DIR: &str = "sets";
-
-/// Where and when a committed set (or another measurement of the book's
-/// lessons) was made.
-pub struct Origin {
-    /// The set's folder name ([`slug`]).
-    pub set: &'static str,
-    /// The commit whose code it ran.
-    pub commit: &'static str,
-    /// The day it ran.
-    pub measured: &'static str,
-}
-
-/// The committed sets. Measuring a set again: give its new commit here and
-/// drop its [`CHANGES`] that came before that commit.
-pub const ORIGINS: &[Origin] = &[
-    Origin {
-        set: "nvidia-h100-80gb-hbm3-vulkan",
-        commit: "d7678c5",
-        measured: "2026-11-26",
-    },
-    // Lessons 03 and 10 only: the adaptive filters' first GPU run.
-    Origin {
-        set: "nvidia-h200-vulkan",
-        commit: "8768674",
-        measured: "2026-11-27",
-    },
-];
-
-/// A change, after the commit a measurement ran, to what it measured.
-pub struct Change {
-    /// The measurement's commit ([`Origin::commit`]).
-    pub since: &'static str,
-    pub lesson: &'static str,
-    /// The variant, by the name the measurement gives it; `None`: what
-    /// every variant of the lesson is measured against (the reference).
-    pub variant: Option<&'static str>,
-    /// The variant's name today, when it was renamed.
-    pub now: Option<&'static str>,
-    /// The commits that changed it.
-    pub commits: &'static [&'static str],
-    pub what: &'static str,
-}
-
-/// What changed since each measurement's commit, read from
-/// `git log d7678c5..HEAD -- lessons/ shaders/ common/src/reference/` and
-/// checked against the book's own records of those commits.
-pub const CHANGES: &[Change] = &[
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_03",
-        variant: Some("wgpu_example_hw2x2"),
-        now: None,
-        commits: &["b76feab"],
-        what: "the wgpu example's own 512² map (it ran on 1024²)",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_03",
-        variant: Some("bevy"),
-        now: None,
-        commits: &["b76feab"],
-        what: "Bevy's own 2048² map (it ran on 1024²)",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_04",
-        variant: Some("learnopengl_1tap"),
-        now: None,
-        commits: &["b76feab"],
-        what: "LearnOpenGL's near plane (1 m, clipped), depth stored as distance / 25, no range clamp (it ran with a 5 cm near plane, unclipped)",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_04",
-        variant: Some("learnopengl_pcf20"),
-        now: None,
-        commits: &["b76feab"],
-        what: "LearnOpenGL's near plane (1 m, clipped), depth stored as distance / 25, no range clamp (it ran with a 5 cm near plane, unclipped)",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_04",
-        variant: Some("bevy_point"),
-        now: None,
-        commits: &["b76feab"],
-        what: "Bevy's near plane (0.1 m, clipped), its flipped Gaussian basis and its interpolated normal (it ran with a 5 cm near plane, unclipped)",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_10",
-        variant: Some("filament_pcss"),
-        now: None,
-        commits: &["b4352d7"],
-        what: "Filament's first 16 Poisson points and its depth-averaged penumbra ratio",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_10",
-        variant: Some("filament_evsm"),
-        now: None,
-        commits: &["b4352d7"],
-        what: "Filament's EVSM floor with its exponent",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_10",
-        variant: Some("bevy_pcss"),
-        now: Some("bevy_pcss_or_pcf"),
-        commits: &["b4352d7"],
-        what: "Bevy's reversed infinite spot depth and its own width units; on a sun, Bevy's Castaño PCF",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_10",
-        variant: Some("godot_soft_low"),
-        now: None,
-        commits: &["b4352d7"],
-        what: "Godot's spot formula",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_10",
-        variant: Some("threejs_pcf_soft"),
-        now: None,
-        commits: &["9a542e5"],
-        what: "three.js's own 512² map (it ran on 1024²)",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_10",
-        variant: Some("threejs_vsm"),
-        now: None,
-        commits: &["b4352d7", "9a542e5"],
-        what: "three.js's VSM, the blur of its map's own depth, on its 512² map (it ran on 1024²)",
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_10",
-        variant: None,
-        now: None,
-        commits: &["0a5b04a"],
-        what: "the exact reference: an area light's rays now go wherever a conservative cone query finds a caster, so this set's errors are against the reference as it was (its times do not depend on it)",
-    },
-];
+pub use crate::origins::{changed, changes_note, load_sets, origin, CHANGES, SETS_DIR};
 
 /// Counters that count rasterised fragments: adapters differ by a few at
 /// triangle edges, so these alone do not say that a variant changed.
@@ -181,75 +36,6 @@ const RASTERISED: &[&str] = &[
     "full_disk_pixels",
     "filter_taps",
 ];
-
-/// The origin of the set in folder `set`, when [`ORIGINS`] has it.
-pub fn origin(set: &str) -> Option<&'static Origin> {
-    ORIGINS.iter().find(|o| o.set == set)
-}
-
-/// The changes since `commit` to `lesson`'s `variant` (by the name the
-/// measurement gives it).
-pub fn changed(commit: &str, lesson: &str, variant: &str) -> Option<&'static Change> {
-    CHANGES
-        .iter()
-        .find(|c| c.since == commit && c.lesson == lesson && c.variant == Some(variant))
-}
-
-/// The changes since `commit` to what every variant of `lesson` is
-/// measured against.
-fn lesson_wide_changes<'a>(
-    commit: &'a str,
-    lesson: &'a str,
-) -> impl Iterator<Item = &'static Change> + 'a {
-    CHANGES
-        .iter()
-        .filter(move |c| c.since == commit && c.lesson == lesson && c.variant.is_none())
-}
-
-/// The commits as the book names them: `` `a` `` or `` `a` and `b` ``.
-fn commits(c: &Change) -> String {
-    let named: Vec<String> = c.commits.iter().map(|h| format!("`{h}`")).collect();
-    named.join(" and ")
-}
-
-/// The note under a table of a measurement made at `commit`: the variants
-/// of `lesson` it left out (`left_out`, by the measurement's names) and
-/// why; with `lesson_wide`, also what changed since for every variant (the
-/// reference their errors are measured against). `whose` names the rows
-/// when the table holds other lessons too (`lesson 10's`).
-pub fn changes_note(
-    commit: &str,
-    lesson: &str,
-    left_out: &[&str],
-    lesson_wide: bool,
-    whose: Option<&str>,
-) -> String {
-    let mut s = String::new();
-    let named: Vec<(&str, &Change)> = left_out
-        .iter()
-        .filter_map(|n| Some((*n, changed(commit, lesson, n)?)))
-        .collect();
-    if !named.is_empty() {
-        let of = whose.map_or(String::new(), |w| format!(" of {w} rows"));
-        s += &format!(
-            "\nLeft out{of}: the variants changed since `{commit}`, whose figures here are of code the lesson no longer runs:\n\n"
-        );
-        for (name, c) in named {
-            let renamed = c.now.map_or(String::new(), |n| format!(", now `{n}`"));
-            s += &format!("- `{name}`{renamed} ({}): {}\n", commits(c), c.what);
-        }
-    }
-    if lesson_wide {
-        for c in lesson_wide_changes(commit, lesson) {
-            s += &format!(
-                "\nChanged since `{commit}`, for every variant ({}): {}.\n",
-                commits(c),
-                c.what
-            );
-        }
-    }
-    s
-}
 
 /// Fails when the set `name` (measured at `commit`) holds a variant that
 /// the book's own record of the same run (`main`) does not have, or one
@@ -346,37 +132,6 @@ pub fn slug(adapter: &str, backend: &str) -> String {
 /// The folder a set's records go to.
 pub fn set_dir(generated: &Path, adapter: &str, backend: &str) -> PathBuf {
     generated.join(SETS_DIR).join(slug(adapter, backend))
-}
-
-/// Every committed other set: its folder name and the records it has.
-pub fn load_sets(generated: &Path) -> Result<Vec<(String, Vec<Record>)>> {
-    let dir = generated.join(SETS_DIR);
-    let Ok(entries) = std::fs::read_dir(&dir) else {
-        return Ok(Vec::new());
-    };
-    let mut names: Vec<String> = entries
-        .flatten()
-        .filter(|e| e.path().is_dir())
-        .map(|e| e.file_name().to_string_lossy().to_string())
-        .collect();
-    names.sort();
-    let mut sets = Vec::new();
-    for name in names {
-        let mut records = Vec::new();
-        for r in RUNS {
-            let path = dir
-                .join(&name)
-                .join(r.lesson)
-                .join(format!("{}.json", r.name));
-            if let Ok(text) = std::fs::read_to_string(&path) {
-                let rec: Record = serde_json::from_str(&text)
-                    .with_context(|| format!("{}: not a record", path.display()))?;
-                records.push(rec);
-            }
-        }
-        sets.push((name, records));
-    }
-    Ok(sets)
 }
 
 /// A set's heading: its adapter and the commit it ran.
@@ -531,7 +286,7 @@ mod tests {
     fn every_change_is_of_a_known_measurement_and_names_its_commits() {
         for c in CHANGES {
             assert!(
-                ORIGINS.iter().any(|o| o.commit == c.since)
+                crate::origins::ORIGINS.iter().any(|o| o.commit == c.since)
                     || c.since == crate::gpu_costs::ORIGIN.commit,
                 "{}: since {}",
                 c.lesson,
