@@ -13,6 +13,7 @@
 //! arithmetic, a wider footprint's cache misses), and no arrangement of the
 //! same taps takes the floor away: only fewer taps do.
 
+use crate::legend::legend_own;
 use crate::origins::{changed, changes_note, origin};
 use crate::record::{Record, VariantRecord};
 use crate::table::{ms, row};
@@ -124,14 +125,15 @@ fn part(lesson: &str, records: &[Record], heading: &str, commit: Option<&str>) -
         rate.r2,
         f64::from(r03.width) * f64::from(r03.height) / rate.per_tap / 1e6,
     );
-    s += &row(&[
-        "variant".into(),
+    let columns = [
+        "variant".to_string(),
         "comparisons a pixel".into(),
         "lighting pass over the no-shadow one (ms)".into(),
-        "floor: comparisons × the rate (ms)".into(),
+        "floor, comparisons × the rate (ms)".into(),
         "floor's share".into(),
         format!("floor at {}×{} (ms)", FULL_HD.0, FULL_HD.1),
-    ]);
+    ];
+    s += &row(&columns);
     s += &row(&vec!["---".to_string(); 6]);
     let mut left_out = Vec::new();
     // Whether the floor at 1920×1080 alone is over half a millisecond.
@@ -184,6 +186,17 @@ fn part(lesson: &str, records: &[Record], heading: &str, commit: Option<&str>) -
             hd_cell,
         ]);
     }
+    s += &legend_own(
+        &columns,
+        &[
+            ("variant", "the lesson's variant (its `--variant` name)"),
+            ("comparisons a pixel", "depth comparisons the lit pass makes at a pixel: the blocker search's taps plus the filter's (`blocker_search_taps` + `filter_taps_per_pixel`), or, where the lesson counts each pixel's path, their mean over the probed pixels (`filter_taps` / `probed_pixels`); ≤: the most a pixel takes, where the lesson does not count the paths"),
+            ("lighting pass over the no-shadow one (ms)", "the variant's `lighting` pass, median, less the no-shadow frame's (the passes table): what the shadow lookup adds to the lit pass"),
+            ("floor, comparisons × the rate (ms)", "the comparisons a pixel times the rate above: what the comparisons alone cost at the best rate the adapter showed"),
+            ("floor's share", "the floor over the measured lookup cost: near 100 %, the variant is its comparisons; over 100 %, its comparison is cheaper than a grid's (a hardware 2×2 compare)"),
+            (&columns[5], "the floor times the pixels of 1920×1080 over this run's: the comparisons grow with the pixels (an extrapolation, not a run at that size)"),
+        ],
+    );
     let list = |names: &[String]| match names {
         [] => "none".to_string(),
         _ => names.join(", "),

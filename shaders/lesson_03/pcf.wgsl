@@ -128,6 +128,22 @@ fn pcf_poisson(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
 }
 // ANCHOR_END: poisson
 
+// ANCHOR: rim_probes
+// 4 bilinear comparisons a quarter turn apart on a disk's rim, the first
+// at angle `a`: the disk's radius is `radius` × `unit` in map coordinates
+// (lesson 03: texels and the texel's size; lesson 10's PCSS: map units
+// and 1). Returns how many of the 4 are lit: 0 or 4 where they agree.
+fn rim_probes(s: vec3<f32>, radius: vec2<f32>, unit: f32, a: f32, gradient: vec2<f32>) -> f32 {
+    var sum = 0.0;
+    for (var i = 0u; i < 4u; i++) {
+        let t = a + 1.5707963 * f32(i);
+        let o = vec2<f32>(cos(t), sin(t)) * radius * unit;
+        sum += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
+    }
+    return sum;
+}
+// ANCHOR_END: rim_probes
+
 // ANCHOR: adaptive
 // Adaptive: 4 bilinear probes on the rotated disk's rim decide. All four
 // lit: the pixel is lit; all four in shadow: umbra. Only where they
@@ -136,13 +152,7 @@ fn pcf_poisson(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
 // that falls between the probes is missed (the error the chapter measures).
 fn pcf_adaptive(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
     let texel = 1.0 / f32(textureDimensions(shadow_map).x);
-    let a = rotation_angle(pixel);
-    var sum = 0.0;
-    for (var i = 0u; i < 4u; i++) {
-        let t = a + 1.5707963 * f32(i);
-        let o = vec2<f32>(cos(t), sin(t)) * pcf.radius * texel;
-        sum += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
-    }
+    let sum = rim_probes(s, vec2<f32>(pcf.radius), texel, rotation_angle(pixel), gradient);
     if sum == 0.0 || sum == 4.0 {
         return sum / 4.0;
     }

@@ -174,18 +174,14 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>, student: u32) -> f32 {
 // ANCHOR_END: pcss
 
 // ANCHOR: penumbra_pcf
-// PCSS's filter. Adaptive: 4 bilinear probes on the disk's rim first; all
-// lit or all in shadow, and the pixel is lit or in umbra, for 4 taps
-// instead of the disk's 16. Only where they disagree, the full disk (a
-// caster thinner than the disk between the probes is missed).
+// PCSS's filter. Adaptive: lesson 03's 4 probes on the disk's rim first
+// (`rim_probes`, its radius already in map units); all lit or all in
+// shadow, and the pixel is lit or in umbra, for 4 taps instead of the
+// disk's 16. Only where they disagree, the full disk (a caster thinner
+// than the disk between the probes is missed).
 fn penumbra_pcf(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
     if soft.adaptive == 1u {
-        var sum = 0.0;
-        for (var i = 0u; i < 4u; i++) {
-            let t = angle + 1.5707963 * f32(i);
-            let o = vec2<f32>(cos(t), sin(t)) * radius;
-            sum += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
-        }
+        let sum = rim_probes(s, radius, 1.0, angle, gradient);
         if sum == 0.0 || sum == 4.0 {
             return sum / 4.0;
         }
