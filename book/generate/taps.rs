@@ -15,6 +15,7 @@
 
 use crate::legend::legend_own;
 use crate::origins::{changed, changes_note, origin};
+use crate::plots::{line_fit, Line};
 use crate::record::{Record, VariantRecord};
 use crate::table::{ms, row};
 
@@ -32,15 +33,6 @@ const LADDER: &[&str] = &["pcf_1x1", "pcf_3x3", "pcf_5x5", "pcf_7x7"];
 const FULL_HD: (u32, u32) = (1920, 1080);
 const HALF_MS: f64 = 0.5;
 
-/// A straight line through the grids' lighting passes: `intercept` ms plus
-/// `per_tap` ms for each comparison a pixel, and how well it fits (r²).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Rate {
-    pub per_tap: f64,
-    pub intercept: f64,
-    pub r2: f64,
-}
-
 /// The lighting pass's median, when the variant's times are quotable.
 fn lighting(t: Option<&crate::record::Timing>) -> Option<f64> {
     let t = t?;
@@ -53,32 +45,14 @@ fn lighting(t: Option<&crate::record::Timing>) -> Option<f64> {
 /// The least-squares line of the grids' lighting pass against their
 /// comparisons a pixel, from lesson 03's default run; `None` when the run
 /// lacks a grid or its times.
-pub fn rate(lesson_03: &Record) -> Option<Rate> {
+pub fn rate(lesson_03: &Record) -> Option<Line> {
     let mut points = Vec::new();
     for name in LADDER {
         let v = lesson_03.variants.iter().find(|v| v.name == *name)?;
         let taps = *v.counters.get("filter_taps_per_pixel")? as f64;
         points.push((taps, lighting(v.timing.as_ref())?));
     }
-    let n = points.len() as f64;
-    let (mx, my) = (
-        points.iter().map(|p| p.0).sum::<f64>() / n,
-        points.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let syy: f64 = points.iter().map(|p| (p.1 - my).powi(2)).sum();
-    let per_tap = sxy / sxx;
-    let intercept = my - per_tap * mx;
-    let residual: f64 = points
-        .iter()
-        .map(|p| (p.1 - intercept - per_tap * p.0).powi(2))
-        .sum();
-    Some(Rate {
-        per_tap,
-        intercept,
-        r2: 1.0 - residual / syy,
-    })
+    line_fit(&points)
 }
 
 /// A variant's comparisons a pixel: the mean where the lesson counts each
@@ -117,13 +91,13 @@ fn part(lesson: &str, records: &[Record], heading: &str, commit: Option<&str>) -
     let full_hd = f64::from(FULL_HD.0) * f64::from(FULL_HD.1) / pixels;
     let mut s = format!(
         "{heading}: each comparison a pixel costs the grids' lighting pass {} µs a frame at {}×{} (a line through `{}` … `{}`, r² {:.3}), {:.1} G comparisons a second.\n\n",
-        us(rate.per_tap),
+        ms(rate.slope * 1000.0),
         r03.width,
         r03.height,
         LADDER[0],
         LADDER[LADDER.len() - 1],
         rate.r2,
-        f64::from(r03.width) * f64::from(r03.height) / rate.per_tap / 1e6,
+        f64::from(r03.width) * f64::from(r03.height) / rate.slope / 1e6,
     );
     let columns = [
         "variant".to_string(),
@@ -147,7 +121,7 @@ fn part(lesson: &str, records: &[Record], heading: &str, commit: Option<&str>) -
             continue;
         };
         let over = lit - base;
-        let floor = n * rate.per_tap;
+        let floor = n * rate.slope;
         let share = if over > 0.0 {
             format!("{:.0} %", 100.0 * floor / over)
         } else {
@@ -224,18 +198,6 @@ fn fine_ms(x: f64) -> String {
     }
 }
 
-/// Microseconds at three significant figures.
-fn us(ms: f64) -> String {
-    let us = ms * 1000.0;
-    if us >= 100.0 {
-        format!("{us:.0}")
-    } else if us >= 10.0 {
-        format!("{us:.1}")
-    } else {
-        format!("{us:.2}")
-    }
-}
-
 /// Writes every [`LESSONS`]' [`TABLE`].
 pub fn write_all(
     generated: &std::path::Path,
@@ -308,7 +270,7 @@ mod tests {
             }
         }
         let rate = rate(&r).expect("a rate");
-        assert!((rate.per_tap - 0.5).abs() < 1e-12, "{rate:?}");
+        assert!((rate.slope - 0.5).abs() < 1e-12, "{rate:?}");
         assert!((rate.intercept - 2.0).abs() < 1e-12, "{rate:?}");
         assert!((rate.r2 - 1.0).abs() < 1e-12, "{rate:?}");
     }

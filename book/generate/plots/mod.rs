@@ -34,7 +34,7 @@ mod workbook;
 
 pub use bar_chart::bars;
 pub use chapter::error_vs_time;
-pub use scaling::{loglog_slope, scaling_plot, Curve};
+pub use scaling::{line_fit, loglog_slope, scaling_plot, Curve, Line};
 pub use tradeoff::{pareto_front, Metric, Point, Series};
 // Only main.rs draws it: tests/generated.rs, which includes this module
 // without main.rs, would call the re-export unused.

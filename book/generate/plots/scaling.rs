@@ -33,18 +33,44 @@ pub fn loglog_slope(xs: &[f64], ys: &[f64]) -> f64 {
         .filter(|(x, y)| x.is_finite() && y.is_finite() && **x > 0.0 && **y > 0.0)
         .map(|(x, y)| (x.ln(), y.ln()))
         .collect();
-    if logs.len() < 2 {
-        return f64::NAN;
+    line_fit(&logs).map_or(f64::NAN, |l| l.slope)
+}
+
+/// A least-squares line `y = intercept + slope · x` and how well it fits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Line {
+    pub slope: f64,
+    pub intercept: f64,
+    /// The share of y's variance the line explains (1: every point on it).
+    pub r2: f64,
+}
+
+/// The least-squares line through `points` (x, y); `None` when fewer than
+/// two remain or all their x are equal.
+pub fn line_fit(points: &[(f64, f64)]) -> Option<Line> {
+    if points.len() < 2 {
+        return None;
     }
-    let n = logs.len() as f64;
-    let mx = logs.iter().map(|p| p.0).sum::<f64>() / n;
-    let my = logs.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxx: f64 = logs.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
-    let sxy: f64 = logs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let n = points.len() as f64;
+    let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = points.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let syy: f64 = points.iter().map(|p| (p.1 - my) * (p.1 - my)).sum();
     if sxx <= 0.0 {
-        return f64::NAN;
+        return None;
     }
-    sxy / sxx
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let residual: f64 = points
+        .iter()
+        .map(|p| (p.1 - intercept - slope * p.0).powi(2))
+        .sum();
+    Some(Line {
+        slope,
+        intercept,
+        r2: 1.0 - residual / syy,
+    })
 }
 
 /// A log-log scaling plot: one line with markers per curve, legend entries
