@@ -15,6 +15,9 @@
 //!   lesson count as not its own, and included generated tables
 //!   (`book/src/generated/`) are results, not listings. Run with `--nocapture` to see the table
 //!   of every chapter's share;
+//! - a lesson chapter's technique listing holds a harness name (the exercise
+//!   switch, counters, timing, readbacks, the buffer view, the ports' model
+//!   switches: [`listings`]);
 //! - chapter 05 does not list `silhouette_edges`, or chapter 06 shows no
 //!   code of `lessons/lesson_06/`.
 //!
@@ -29,6 +32,7 @@
 //! - [`includes`]: includes and their anchors resolve, images exist.
 //! - [`summary`]: SUMMARY.md's links exist, every lesson has a listed chapter.
 //! - [`share`]: a lesson chapter shows mostly its own lesson's code.
+//! - [`listings`]: a lesson chapter's listings hold the technique, not the harness.
 //! - [`sources_and_links`]: pages name their sources, links land on a heading.
 //! - [`helpers`]: the files the checkers read (disk or memory), the failure message.
 
@@ -36,6 +40,8 @@
 mod helpers;
 #[path = "book/includes.rs"]
 mod includes;
+#[path = "book/listings.rs"]
+mod listings;
 #[path = "book/parse.rs"]
 mod parse;
 #[path = "book/share.rs"]

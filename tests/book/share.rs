@@ -16,7 +16,7 @@ const MIN_OWN_SHARE: f64 = 0.70;
 /// The lines a directive pulls in, as mdbook renders them: an anchor's
 /// body without marker lines (its own and any nested anchor's), or the
 /// line range, or the whole file. `None` when the anchor is not there.
-fn listing_lines<'a>(source: &'a str, part: &Part) -> Option<Vec<&'a str>> {
+pub(crate) fn listing_lines<'a>(source: &'a str, part: &Part) -> Option<Vec<&'a str>> {
     let lines = source.lines();
     match part {
         Part::Whole => Some(lines.collect()),
@@ -50,7 +50,7 @@ fn listing_lines<'a>(source: &'a str, part: &Part) -> Option<Vec<&'a str>> {
 }
 
 /// `lesson_NN` for a lesson chapter `.../lesson_NN.md`, else `None`.
-fn chapter_lesson(chapter: &Path) -> Option<String> {
+pub(crate) fn chapter_lesson(chapter: &Path) -> Option<String> {
     let stem = chapter.file_stem()?.to_str()?;
     let n = stem.strip_prefix("lesson_")?;
     let is_lesson = chapter.extension().is_some_and(|e| e == "md")
