@@ -354,7 +354,12 @@ impl Csm {
     /// Every light's cascades, fitted to the camera as it is now (it may
     /// have moved since the last frame) and uploaded: the shadow passes'
     /// matrices, and the lit pass's splits and matrices.
-    fn fit_cascades(&mut self, frame: &mut Frame, scene: &SceneGpu, setup: Setup) -> Result<Vec<Vec<Cascade>>> {
+    fn fit_cascades(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        setup: Setup,
+    ) -> Result<Vec<Vec<Cascade>>> {
         let (b, size, gpu) = (&self.scene_box, (scene.width, scene.height), frame.gpu);
         let mut fits = Vec::new();
         let lights = self.lights.iter_mut().zip(&self.params).enumerate();
@@ -376,7 +381,14 @@ impl Csm {
     // ANCHOR: cascade_passes
     /// A frame: per light, K shadow passes, one per layer of the array
     /// `m`; then one lit pass that picks a layer per pixel.
-    fn cascade_passes(&self, frame: &mut Frame, scene: &SceneGpu, targets: &FrameTargets, setup: Setup, m: usize) {
+    fn cascade_passes(
+        &self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        setup: Setup,
+        m: usize,
+    ) {
         let (maps, groups) = &self.maps[m];
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for (light, (lights, group)) in self.lights.iter().zip(groups).enumerate() {

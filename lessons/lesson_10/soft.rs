@@ -139,7 +139,7 @@ pub struct SoftUniform {
     pub receiver_plane: u32,
     pub perspective: u32,
     pub exponential: u32,
-    pub mean_and_deviation: u32,
+    pub _pad: u32,
     /// 1: PCSS's step 3 probes the disk's rim first.
     pub adaptive: u32,
     pub near: f32,
@@ -166,7 +166,7 @@ impl SoftUniform {
             receiver_plane: 0,
             perspective: g.perspective as u32,
             exponential: 0,
-            mean_and_deviation: 0,
+            _pad: 0,
             adaptive: 0,
             near: g.near,
             far: g.far,
@@ -217,7 +217,6 @@ impl SoftUniform {
         if let Some(v) = p.variance {
             self.set_variance(&v);
         }
-        self.mean_and_deviation = p.mean_and_deviation as u32;
     }
 
     /// A variance map's parameters.

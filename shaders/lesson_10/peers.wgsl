@@ -15,6 +15,7 @@ const BEVY_PCSS: u32 = 8u;
 const BEVY_CASTANO: u32 = 9u;
 const GODOT_SOFT: u32 = 10u;
 const THREEJS_PCF_SOFT: u32 = 5u;
+const THREEJS_VSM: u32 = 6u;
 
 fn peer(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
     switch soft.mode {
@@ -25,6 +26,8 @@ fn peer(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
         // default filter, lesson 03's Castaño 5×5.
         case BEVY_CASTANO: { return pcf_castano13(s); }
         case GODOT_SOFT: { return godot_soft(s, pixel); }
+        // Its moments from soft.wgsl's buffer, as three.js's blur left them.
+        case THREEJS_VSM: { return threejs_vsm(s, moments_at(s.xy)); }
         default: { return three_pcf_soft(s, gradient); }
     }
 }

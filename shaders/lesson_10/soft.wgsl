@@ -13,8 +13,8 @@
 // Rust: lessons/lesson_10/soft.rs `SoftUniform`, one per variant and light.
 struct Soft {
     // 0: lesson 03's Poisson PCF; 1: a fixed disk; 2: PCSS; 3: variance
-    // map; 4, 5 and from 7: PCSS searching the light's size at the
-    // receiver, and the renderers' ports (peers.wgsl).
+    // map; from 4: PCSS searching the light's size at the receiver, and
+    // the renderers' ports (peers.wgsl).
     mode: u32,
     search_taps: u32,
     filter_taps: u32,
@@ -24,9 +24,7 @@ struct Soft {
     perspective: u32,
     // Variance maps: 0 plain; 1 exponential (the moments of exp(c·z̃)).
     exponential: u32,
-    // Variance maps: 1 when the moments are (mean, standard deviation) of
-    // the map's own depth (three.js's), 0 for (z̃, z̃²) of the linear depth.
-    mean_and_deviation: u32,
+    _pad: u32,
     // 1: PCSS's step 3 probes the filter disk's rim first (penumbra_pcf).
     adaptive: u32,
     // Orthographic: world distance from the light's plane at depth 0 and 1.
@@ -187,6 +185,7 @@ fn chebyshev(m: vec2<f32>, t: f32, min_variance: f32) -> f32 {
     let d = t - m.x;
     return variance / (variance + d * d);
 }
+// ANCHOR_END: chebyshev
 
 // The moments of texel t (clamped to the map), from the blurred buffer.
 fn moments_texel(t: vec2<i32>) -> vec4<f32> {
@@ -209,6 +208,7 @@ fn moments_at(uv: vec2<f32>) -> vec4<f32> {
     return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
 }
 
+// ANCHOR: variance_map
 // Lauritzen's light-bleeding reduction: the tail of p below `lo` is cut,
 // the rest stretched to [0, 1] (three.js: lo 0.3, hi 0.95).
 fn linstep(lo: f32, hi: f32, p: f32) -> f32 {
@@ -219,9 +219,6 @@ fn variance_map(s: vec3<f32>) -> f32 {
     // The linear depth z̃ in [0, 1], as the moments hold it (moments.wgsl).
     let lin = linear_depth(s.z);
     let m = moments_at(s.xy);
-    if soft.mean_and_deviation == 1u {
-        return threejs_vsm(s, m);
-    }
     var p = 1.0;
     if soft.exponential == 0u {
         p = chebyshev(m.xy, lin, soft.min_variance);
@@ -241,7 +238,7 @@ fn variance_map(s: vec3<f32>) -> f32 {
 fn linear_depth(z: f32) -> f32 {
     return (light_distance(z) - soft.near) / (soft.far - soft.near);
 }
-// ANCHOR_END: chebyshev
+// ANCHOR_END: variance_map
 
 // ANCHOR: fs_soft
 @fragment
