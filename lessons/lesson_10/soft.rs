@@ -46,7 +46,8 @@ pub enum Search {
     /// Every blocker that can hide part of the emitter: the emitter seen
     /// from the receiver, on the plane of the nearest caster (ours).
     NearestCaster,
-    /// Only the light's size at the receiver (Filament's and Bevy's choice).
+    /// Only the light's size at the receiver (Filament's and Bevy's choice;
+    /// `pcss_search_at_receiver` in `peers.wgsl`).
     LightSizeAtReceiver,
 }
 

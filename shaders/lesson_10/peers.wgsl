@@ -57,7 +57,6 @@ fn depth_nearest(uv: vec2<f32>) -> f32 {
 // run: only the light's size at the receiver, not every blocker out to
 // the nearest caster (the knob search_at_receiver). Steps 2 and 3 are ours.
 fn pcss_search_at_receiver(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
-    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
     let d_r = light_distance(s.z);
     // The light's size in map units (per radian at the receiver's distance,
     // for a spot).
@@ -69,6 +68,7 @@ fn pcss_search_at_receiver(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32
     if b.count == 0u {
         return 1.0;
     }
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
     let radius = max(filter_radius(d_r, b.distance), vec2<f32>(soft.min_filter_texels * texel));
     return penumbra_pcf(s, radius, angle + 1.0, gradient);
 }

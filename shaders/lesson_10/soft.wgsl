@@ -137,7 +137,6 @@ fn disk_pcf(s: vec3<f32>, radius: vec2<f32>, taps: u32, angle: f32, gradient: ve
 // Percentage-closer soft shadows: find the blockers, estimate the
 // penumbra from their mean distance, filter that wide.
 fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
-    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
     let d_r = light_distance(s.z);
     // 1. Blocker search, wherever blockers can be: the emitter seen
     // through the receiver, on the nearest caster's plane.
@@ -147,6 +146,7 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
         return 1.0;
     }
     // 2. Penumbra estimate: the footprint on the blockers' mean plane.
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
     let radius = max(filter_radius(d_r, b.distance), vec2<f32>(soft.min_filter_texels * texel));
     // 3. Filter: a PCF that wide.
     return penumbra_pcf(s, radius, angle + 1.0, gradient);
