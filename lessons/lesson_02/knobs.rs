@@ -34,7 +34,7 @@ struct ReceiverKnob {
     field: fn(&mut ShadowBias) -> &mut f32,
 }
 
-const fn float(min: f64, max: f64, log: bool) -> KnobRange {
+pub const fn float(min: f64, max: f64, log: bool) -> KnobRange {
     KnobRange::Float { min, max, log }
 }
 

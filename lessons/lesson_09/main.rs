@@ -35,6 +35,7 @@ use workbook::lesson_01::shadow_map::{self, ShadowPassState};
 use workbook::lesson_01::tally::{Tally, TallyShader};
 use workbook::lesson_09::cascades::{self, Cascade, Fit, FitOptions, SplitScheme};
 use workbook::lesson_09::csm::{self, CascadeLights, CascadeMaps};
+use workbook::lesson_09::setup::{Exercise, Setup};
 use workbook::lesson_09::{extras, knobs, setup};
 
 // ANCHOR: variants
@@ -73,6 +74,8 @@ enum Variant {
     /// k4, fading into the next cascade over the last 10 % of each.
     #[value(name = "k4_blend")]
     K4Blend,
+    // Then the chapter's exercises.
+    // ANCHOR_END: variants
     /// Exercise 1: k4 with the student's `fitted_splits`.
     #[value(name = "exercise_practical_splits")]
     ExercisePracticalSplits,
@@ -81,9 +84,9 @@ enum Variant {
     ExerciseSnapTightBox,
 }
 
+// ANCHOR: setups
 impl Variant {
-    fn setup(self) -> setup::Setup {
-        use setup::{Exercise, Setup};
+    fn setup(self) -> Setup {
         let practical = SplitScheme::Practical {
             lambda: cascades::PRACTICAL_LAMBDA,
         };
@@ -106,18 +109,28 @@ impl Variant {
             Variant::K4AabbNoSnap => k4.with_fit(Fit::Aabb, false, true),
             Variant::K4NoExtend => k4.with_fit(Fit::Sphere, true, false),
             Variant::K4Blend => Setup { blend: 0.1, ..k4 },
-            Variant::ExercisePracticalSplits => Setup {
-                exercise: Some(Exercise::PracticalSplits),
-                ..k4
-            },
-            Variant::ExerciseSnapTightBox => Setup {
-                exercise: Some(Exercise::SnapTightBox),
-                ..k4.with_fit(Fit::Aabb, true, true)
-            },
+            // The chapter's exercises (below).
+            _ => self.exercise(),
         }
     }
 }
-// ANCHOR_END: variants
+// ANCHOR_END: setups
+
+impl Variant {
+    /// An exercise's setup: the lesson's variant it runs, with the
+    /// student's function in place of the lesson's.
+    fn exercise(self) -> Setup {
+        let (base, exercise) = match self {
+            Variant::ExercisePracticalSplits => (Variant::K4, Exercise::PracticalSplits),
+            Variant::ExerciseSnapTightBox => (Variant::K4Aabb, Exercise::SnapTightBox),
+            v => unreachable!("{v:?} is the lesson's own: Variant::setup has it"),
+        };
+        Setup {
+            exercise: Some(exercise),
+            ..base.setup()
+        }
+    }
+}
 
 /// The view depths the perspective-aliasing counters are taken at, metres.
 const ALIASING_AT: [u32; 4] = [2, 10, 50, 200];
@@ -144,7 +157,7 @@ struct Csm {
     objects: u64,
     casters: u64,
     /// Per variant, its setup with the knobs' values ([`Csm::setup`]).
-    setups: Vec<setup::Setup>,
+    setups: Vec<Setup>,
 }
 
 impl Lesson for Csm {
@@ -215,7 +228,6 @@ impl Lesson for Csm {
         })
     }
 
-    // ANCHOR: render
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -225,48 +237,18 @@ impl Lesson for Csm {
     ) -> Result<()> {
         let setup = self.setup(variant);
         let m = self.maps_for(frame.gpu, setup.resolution, setup.count);
-        // Fitted again every frame (the camera may have moved), and uploaded.
-        let (b, size, gpu) = (&self.scene_box, (scene.width, scene.height), frame.gpu);
-        let lights = self.lights.iter_mut().zip(&self.params).enumerate();
-        for (light, (lights, params)) in lights {
-            let fit = frame.cpu("fit", || {
-                let single = lights.light_view_proj(&scene.scene, light);
-                let fit = setup.fit(&scene.scene, b, single, size, light)?;
-                lights.write(gpu, scene, light, &fit);
-                let p = setup.params(&scene.scene, b, size, &fit);
-                gpu.queue.write_buffer(params, 0, bytemuck::bytes_of(&p));
-                Ok::<_, anyhow::Error>(fit)
-            })?;
-            if light == 0 {
-                self.fitted[variant as usize] = Some(fit);
-            }
-        }
+        let fits = self.fit_cascades(frame, scene, setup)?;
+        // Light 0's cascades, for the report.
+        self.fitted[variant as usize] = fits.into_iter().next();
         if self.texels_written[variant as usize].is_none() {
             // Once per variant, its own submits: left out of the frame's times.
             let (size, k) = (setup.resolution, setup.count);
             let n = frame.untimed(|gpu| self.count_texels(gpu, scene, size, k))?;
             self.texels_written[variant as usize] = Some(n);
         }
-        let (maps, groups) = &self.maps[m];
-        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        for (light, (lights, group)) in self.lights.iter().zip(groups).enumerate() {
-            // K shadow passes, one per layer; then one lit pass picks a layer per pixel.
-            for i in 0..setup.count {
-                frame.pass("shadow", |enc, ts| {
-                    let p = &self.shadow_pipeline;
-                    csm::cascade_pass(enc, scene, p, maps, lights, i, ts.render())
-                });
-            }
-            frame.pass("lighting", |enc, ts| {
-                let group = [group];
-                let pipeline = &self.lit_pipelines[(setup.blend > 0.0) as usize];
-                let lit = LitPass::new(light, pipeline, &group);
-                scene.lit_pass(enc, targets, lit, ts.render())
-            });
-        }
+        self.cascade_passes(frame, scene, targets, setup, m);
         Ok(())
     }
-    // ANCHOR_END: render
 
     fn pixel_classes(
         &self,
@@ -368,9 +350,67 @@ impl Lesson for Csm {
 }
 
 impl Csm {
+    // ANCHOR: fit_cascades
+    /// Every light's cascades, fitted to the camera as it is now (it may
+    /// have moved since the last frame) and uploaded: the shadow passes'
+    /// matrices, and the lit pass's splits and matrices.
+    fn fit_cascades(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        setup: Setup,
+    ) -> Result<Vec<Vec<Cascade>>> {
+        let (b, size, gpu) = (&self.scene_box, (scene.width, scene.height), frame.gpu);
+        let mut fits = Vec::new();
+        let lights = self.lights.iter_mut().zip(&self.params).enumerate();
+        for (light, (lights, params)) in lights {
+            let fit = frame.cpu("fit", || {
+                let single = lights.light_view_proj(&scene.scene, light);
+                let fit = setup.fit(&scene.scene, b, single, size, light)?;
+                lights.write(gpu, scene, light, &fit);
+                let p = setup.params(&scene.scene, b, size, &fit);
+                gpu.queue.write_buffer(params, 0, bytemuck::bytes_of(&p));
+                Ok::<_, anyhow::Error>(fit)
+            })?;
+            fits.push(fit);
+        }
+        Ok(fits)
+    }
+    // ANCHOR_END: fit_cascades
+
+    // ANCHOR: cascade_passes
+    /// A frame: per light, K shadow passes, one per layer of the array
+    /// `m`; then one lit pass that picks a layer per pixel.
+    fn cascade_passes(
+        &self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        setup: Setup,
+        m: usize,
+    ) {
+        let (maps, groups) = &self.maps[m];
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        for (light, (lights, group)) in self.lights.iter().zip(groups).enumerate() {
+            for i in 0..setup.count {
+                frame.pass("shadow", |enc, ts| {
+                    let p = &self.shadow_pipeline;
+                    csm::cascade_pass(enc, scene, p, maps, lights, i, ts.render())
+                });
+            }
+            frame.pass("lighting", |enc, ts| {
+                let group = [group];
+                let pipeline = &self.lit_pipelines[(setup.blend > 0.0) as usize];
+                let lit = LitPass::new(light, pipeline, &group);
+                scene.lit_pass(enc, targets, lit, ts.render())
+            });
+        }
+    }
+    // ANCHOR_END: cascade_passes
+
     /// `variant`'s cascades as it runs now: [`Variant::setup`] with the
     /// knobs' values.
-    fn setup(&self, variant: Variant) -> setup::Setup {
+    fn setup(&self, variant: Variant) -> Setup {
         self.setups[variant as usize]
     }
 

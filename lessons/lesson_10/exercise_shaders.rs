@@ -2,15 +2,15 @@
 //! leaves out the lesson's implementation of the function the exercise
 //! asks for, so that no exercise can be answered by calling it.
 //!
-//! All three are lesson 03's exercises and `pcf.wgsl`, `soft.wgsl`, a part
-//! of `exercise_hooks.wgsl` and `peers.wgsl`. The lesson's module has no
-//! student code: `exercise_blocker_search` and `exercise_filter_radius` are
-//! the lesson's own functions there. Exercise 1's module has the student's
-//! `exercises.wgsl` and soft.wgsl without its `blocker_search` (the listing
-//! between its anchors is blanked), and `blocker_search` is the student's
-//! function; exercise 2's likewise without `filter_radius`. An exercise
-//! that calls the lesson's function then calls itself, and the module does
-//! not compile: the grader fails that exercise with the compiler's line.
+//! All three are lesson 03's exercises and `pcf.wgsl`, `soft.wgsl` and
+//! `peers.wgsl`. The lesson's module has no student code. Exercise 1's
+//! module has the student's `exercises.wgsl`, soft.wgsl without its
+//! `blocker_search` (the listing between its anchors is blanked), and
+//! `exercise_hooks.wgsl`'s `blocker_search`, which calls the student's
+//! function: `pcss` runs the student's search under its own name.
+//! Exercise 2's likewise without `filter_radius`. An exercise that calls
+//! the lesson's function then calls itself, and the module does not
+//! compile: the grader fails that exercise with the compiler's line.
 
 use common::gpu::Gpu;
 use common::Result;
@@ -31,24 +31,23 @@ const HOOKS: &str = include_str!("../../shaders/lesson_10/exercise_hooks.wgsl");
 impl Module {
     pub const ALL: [Module; 3] = [Module::Lesson, Module::BlockerSearch, Module::Penumbra];
 
-    /// The anchor of `exercise_hooks.wgsl` this module takes, and of
-    /// `soft.wgsl` it leaves out (none for the lesson's).
-    fn anchors(self) -> (&'static str, Option<&'static str>) {
+    /// The anchor of `soft.wgsl` this module leaves out and of
+    /// `exercise_hooks.wgsl` it takes (none for the lesson's).
+    fn anchor(self) -> Option<&'static str> {
         match self {
-            Module::Lesson => ("lesson", None),
-            Module::BlockerSearch => ("blocker_search", Some("blocker_search")),
-            Module::Penumbra => ("penumbra", Some("penumbra")),
+            Module::Lesson => None,
+            Module::BlockerSearch => Some("blocker_search"),
+            Module::Penumbra => Some("penumbra"),
         }
     }
 
     /// The module, compiled: an error names its file and line.
     pub fn compile(self, gpu: &Gpu) -> Result<wgpu::ShaderModule> {
-        let (hook, cut) = self.anchors();
+        let cut = self.anchor();
         let soft = match cut {
             Some(a) => anchored(SOFT, a, false),
             None => SOFT.to_string(),
         };
-        let hooks = anchored(HOOKS, hook, true);
         let lesson_03 = crate::exercises_wgsl_path("lesson_03");
         let exercises = crate::exercises_wgsl_path("lesson_10");
         let mut files = vec![
@@ -62,13 +61,14 @@ impl Module {
             ),
             ("shaders/lesson_10/soft.wgsl", soft.as_str()),
         ];
-        if self != Module::Lesson {
+        let hooks = cut.map(|a| anchored(HOOKS, a, true));
+        if let Some(hooks) = &hooks {
             files.push((
                 exercises.as_str(),
                 crate::exercise!(lesson_10::EXERCISES_WGSL),
             ));
+            files.push(("shaders/lesson_10/exercise_hooks.wgsl", hooks.as_str()));
         }
-        files.push(("shaders/lesson_10/exercise_hooks.wgsl", hooks.as_str()));
         files.push((
             "shaders/lesson_10/peers.wgsl",
             include_str!("../../shaders/lesson_10/peers.wgsl"),
@@ -123,7 +123,6 @@ mod tests {
             assert_eq!(soft.lines().count(), SOFT.lines().count());
             let hook = anchored(HOOKS, cut, true);
             assert!(hook.contains(f), "{cut}");
-            assert!(!anchored(HOOKS, "lesson", true).contains(f));
         }
     }
 }

@@ -7,6 +7,7 @@ use anyhow::{bail, Result};
 use common::run::knobs::{Knob, KnobRange};
 
 use super::soft::{Search, Technique};
+use crate::lesson_02::knobs::float;
 
 /// The most taps a search or a filter may take.
 pub const MAX_TAPS: u32 = 64;
@@ -26,11 +27,7 @@ pub fn technique_knobs(t: Technique) -> Vec<Knob> {
         Technique::FixedDisk { radius_texels, .. } => vec![Knob {
             name: "kernel_radius_texels",
             doc: "the fixed disk's radius, in texels: one penumbra width for every blocker",
-            range: KnobRange::Float {
-                min: 0.5,
-                max: 64.0,
-                log: true,
-            },
+            range: float(0.5, 64.0, true),
             value: radius_texels as f64,
         }],
         Technique::Pcss(p) => vec![
@@ -39,11 +36,7 @@ pub fn technique_knobs(t: Technique) -> Vec<Knob> {
             Knob {
                 name: "min_filter_texels",
                 doc: "the least filter radius, in texels: above 0 the contact shadow blurs open",
-                range: KnobRange::Float {
-                    min: 0.0,
-                    max: 16.0,
-                    log: false,
-                },
+                range: float(0.0, 16.0, false),
                 value: p.min_filter_texels as f64,
             },
             Knob {
@@ -69,11 +62,7 @@ pub fn technique_knobs(t: Technique) -> Vec<Knob> {
             Knob {
                 name: "bleed_cut",
                 doc: "light-bleeding reduction: visibilities below it become 0, the rest stretch to [0, 1]",
-                range: KnobRange::Float {
-                    min: 0.0,
-                    max: 0.9,
-                    log: false,
-                },
+                range: float(0.0, 0.9, false),
                 value: v.bleed.0 as f64,
             },
         ],

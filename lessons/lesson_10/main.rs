@@ -11,7 +11,9 @@
 //! citing what it copies.
 //!
 //! The techniques are in [`soft`] and `shaders/lesson_10/soft.wgsl`, the
-//! variance map's passes in [`moments`], the knobs in [`knobs`].
+//! renderers' ports in [`peers`] and `peers.wgsl`, the variance map's
+//! passes in [`moments`], the maps of each size in [`map_sets`], the knobs
+//! in [`knobs`].
 //!
 //! Run: `cargo run --release --bin lesson_10 -- --headless`
 //! Book: chapter "10 Soft shadows" (`book/src/lesson_10.md`).
@@ -19,7 +21,7 @@
 use std::collections::BTreeMap;
 
 use clap::ValueEnum;
-use common::gpu::bindings::{self, float_texture_entry, storage_entry};
+use common::gpu::bindings::{self, storage_entry};
 use common::gpu::lit::LitPass;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
@@ -29,15 +31,12 @@ use common::run::knobs::Knob;
 use common::run::lesson::{BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
-use workbook::lesson_01::shadow_map::ShadowPassState;
-use workbook::lesson_01::shadow_map::{
-    self, comparison_sampler, shadow_map_entries, PerSize, ShadowMap,
-};
-use workbook::lesson_02::bias::SlopeScaledBias;
+use workbook::lesson_01::shadow_map::{self, PerSize};
 use workbook::lesson_03::pcf::{Filter, FilterUniform};
 use workbook::lesson_10::exercise_shaders::Module;
 use workbook::lesson_10::knobs;
-use workbook::lesson_10::moments::{MomentsMap, MomentsPasses};
+use workbook::lesson_10::map_sets::{self, MapSet};
+use workbook::lesson_10::moments::MomentsPasses;
 use workbook::lesson_10::peers::{self, Peer};
 use workbook::lesson_10::soft::{LightGeometry, Pcss, SoftUniform, Technique, Variance};
 
@@ -75,6 +74,8 @@ enum Variant {
     /// lower bound of the two (EVSM4).
     #[value(name = "evsm")]
     Evsm,
+    // Then the renderers' ports (peers.rs) and the chapter's exercises.
+    // ANCHOR_END: variants
     /// Filament's PCSS (`ShadowType::PCSS`, shaders/src/surface_shadowing.fs):
     /// the first 16 of its 64 Poisson points (all in one half of the
     /// disk) to search and to filter, turned per pixel; the blockers' mean
@@ -116,6 +117,7 @@ enum Variant {
     ExercisePenumbra,
 }
 
+// ANCHOR: techniques
 impl Variant {
     /// The variant's technique, for a light of geometry `g`.
     fn technique(self, g: &LightGeometry) -> Technique {
@@ -151,14 +153,20 @@ impl Variant {
                 min_variance: 1e-4,
                 bleed: (0.0, 1.0),
             }),
-            Variant::FilamentPcss
-            | Variant::FilamentEvsm
-            | Variant::BevyPcssOrPcf
-            | Variant::GodotSoftLow
-            | Variant::ThreejsPcfSoft
-            | Variant::ThreejsVsm => Technique::Peer(self.peer(g)),
-            Variant::ExerciseBlockerSearch => Technique::Pcss(Pcss { student: 1, ..ours }),
-            Variant::ExercisePenumbra => Technique::Pcss(Pcss { student: 2, ..ours }),
+            // The renderers' ports and the chapter's exercises (below).
+            _ => self.port_or_exercise(g),
+        }
+    }
+}
+// ANCHOR_END: techniques
+
+impl Variant {
+    /// A renderer's port ([`peers::port`]), or an exercise: our PCSS, whose
+    /// shader module holds the student's function ([`Variant::module`]).
+    fn port_or_exercise(self, g: &LightGeometry) -> Technique {
+        match self.module() {
+            Module::Lesson => Technique::Peer(self.peer(g)),
+            Module::BlockerSearch | Module::Penumbra => Technique::Pcss(Technique::PCSS),
         }
     }
 
@@ -192,7 +200,6 @@ impl Variant {
         )
     }
 }
-// ANCHOR_END: variants
 
 /// One variant's state for one light: its technique, its map, its
 /// parameters' group, and the variance map's passes if it has one.
@@ -202,53 +209,6 @@ struct PerLight {
     map: usize,
     group: wgpu::BindGroup,
     moments: Option<MomentsPasses>,
-}
-
-/// A shadow map of one size, its variance map, their bindings and the
-/// shadow pipelines that render it: the lesson's 1024², and each size a
-/// renderer's port runs (three.js 512², Bevy's cascade 2048²).
-struct MapSet {
-    size: u32,
-    map: ShadowMap,
-    moments: MomentsMap,
-    /// Group 2 with nearest and with linear comparisons.
-    nearest: wgpu::BindGroup,
-    linear: wgpu::BindGroup,
-    /// One pipeline per light: lesson 02's recommended bias.
-    shadow_pipelines: Vec<wgpu::RenderPipeline>,
-}
-
-impl MapSet {
-    fn new(
-        gpu: &Gpu,
-        scene: &SceneGpu,
-        module: &wgpu::ShaderModule,
-        layout: &wgpu::BindGroupLayout,
-        size: u32,
-    ) -> MapSet {
-        let map = ShadowMap::new(gpu, size);
-        let moments = MomentsMap::new(gpu, size);
-        let shadow_pipelines = (0..scene.scene.lights.len())
-            .map(|k| {
-                let b = SlopeScaledBias::RECOMMENDED;
-                let state = ShadowPassState {
-                    cull: None,
-                    ..b.pass_state(gpu, &scene.scene, k, size)
-                };
-                shadow_map::shadow_pipeline(gpu, scene, module, state)
-            })
-            .collect();
-        let nearest = map_group(gpu, layout, &map, &moments, wgpu::FilterMode::Nearest);
-        let linear = map_group(gpu, layout, &map, &moments, wgpu::FilterMode::Linear);
-        MapSet {
-            size,
-            map,
-            moments,
-            nearest,
-            linear,
-            shadow_pipelines,
-        }
-    }
 }
 
 struct Soft {
@@ -292,25 +252,6 @@ impl Soft {
     }
 }
 
-/// Lesson 03's map bindings (group 2) and binding 3, the variance map.
-fn map_group(
-    gpu: &Gpu,
-    layout: &wgpu::BindGroupLayout,
-    map: &ShadowMap,
-    moments: &MomentsMap,
-    filter: wgpu::FilterMode,
-) -> wgpu::BindGroup {
-    let sampler = comparison_sampler(gpu, filter);
-    let view = wgpu::BindingResource::TextureView(&map.view);
-    let resources = [
-        view.clone(),
-        wgpu::BindingResource::Sampler(&sampler),
-        view,
-        moments.buffer.as_entire_binding(),
-    ];
-    bindings::group(gpu, "soft shadow map", layout, &resources)
-}
-
 impl Lesson for Soft {
     const NAME: &'static str = "lesson_10";
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_10.toml");
@@ -336,10 +277,7 @@ impl Lesson for Soft {
         let [module, search, penumbra] = modules;
         let module = module?;
         let exercise_modules = [search?, penumbra?];
-        let mut entries = shadow_map_entries();
-        entries.push(float_texture_entry(2));
-        entries.push(storage_entry(3, wgpu::ShaderStages::FRAGMENT, false, None));
-        let map_layout = bindings::layout(gpu, "soft shadow map", &entries);
+        let map_layout = map_sets::map_layout(gpu);
         let stage = wgpu::ShaderStages::FRAGMENT;
         let params_layout = bindings::layout(
             gpu,
@@ -426,10 +364,7 @@ impl Lesson for Soft {
                     set.moments.record(enc, passes, true, ts.compute())
                 });
             }
-            let map_group = match state.technique.sampler() {
-                wgpu::FilterMode::Nearest => &set.nearest,
-                _ => &set.linear,
-            };
+            let map_group = set.group(state.technique.sampler());
             frame.pass("lighting", |enc, ts| {
                 let groups = [map_group, &state.group];
                 let pipeline = &self.lit_pipelines[variant.module() as usize];

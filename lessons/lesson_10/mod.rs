@@ -1,13 +1,16 @@
 //! Lesson 10, soft shadows from area lights: [`soft`], how a variant turns
 //! one shadow map into the visible fraction of a light with a size (PCF,
-//! PCSS, variance maps, the renderers' defaults); [`moments`], the variance
-//! map's passes; [`knobs`], their sizes and taps, as the window's widgets
-//! and `--knob`; [`exercise_shaders`], the shader modules, one per exercise
-//! without the lesson's function it asks for.
+//! PCSS, variance maps, the renderers' defaults); [`light_geometry`], the
+//! light as the shader needs it; [`moments`], the variance map's passes;
+//! [`map_sets`], the maps of each size a variant reads; [`peers`], the
+//! renderers' ports; [`knobs`], their sizes and taps, as the window's
+//! widgets and `--knob`; [`exercise_shaders`], the shader modules, one per
+//! exercise without the lesson's function it asks for.
 
 pub mod exercise_shaders;
 pub mod knobs;
 pub mod light_geometry;
+pub mod map_sets;
 pub mod moments;
 pub mod peers;
 pub mod port_cards;

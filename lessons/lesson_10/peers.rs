@@ -163,7 +163,9 @@ impl Peer {
             Peer::BevyPcss { .. } => 8,
             Peer::BevyCastano => 9,
             Peer::GodotSoft { .. } => 10,
-            Peer::FilamentEvsm(_) | Peer::ThreeVsm(..) => 3,
+            Peer::FilamentEvsm(_) => 3,
+            // (mean, standard deviation) of the map's own depth: its own.
+            Peer::ThreeVsm(..) => 6,
         }
     }
 
@@ -196,7 +198,6 @@ impl Peer {
             size: None,
             scale: 0.0,
             variance: None,
-            mean_and_deviation: false,
         };
         match self {
             Peer::FilamentPcss { bulb_radius } => PeerParams {
@@ -224,7 +225,6 @@ impl Peer {
             },
             Peer::ThreeVsm(v, _) => PeerParams {
                 variance: Some(v),
-                mean_and_deviation: true,
                 ..none
             },
         }
@@ -242,8 +242,6 @@ pub struct PeerParams {
     /// A second size (Godot's soft_shadow_scale).
     pub scale: f32,
     pub variance: Option<Variance>,
-    /// three.js's moments: (mean, standard deviation).
-    pub mean_and_deviation: bool,
 }
 
 /// Godot's soft-shadow size for light geometry `g`: a spot's

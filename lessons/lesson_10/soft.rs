@@ -38,9 +38,6 @@ pub struct Pcss {
     /// Step 3 probes the filter disk's rim first (4 taps): where they
     /// agree, the pixel is lit or in umbra without the full filter.
     pub adaptive: bool,
-    /// The chapter's exercises: 1 the student's blocker search, 2 the
-    /// student's penumbra estimate, 0 neither.
-    pub student: u32,
 }
 
 /// Where the blocker search looks.
@@ -49,7 +46,8 @@ pub enum Search {
     /// Every blocker that can hide part of the emitter: the emitter seen
     /// from the receiver, on the plane of the nearest caster (ours).
     NearestCaster,
-    /// Only the light's size at the receiver (Filament's and Bevy's choice).
+    /// Only the light's size at the receiver (Filament's and Bevy's choice;
+    /// `pcss_search_at_receiver` in `peers.wgsl`).
     LightSizeAtReceiver,
 }
 
@@ -68,7 +66,6 @@ impl Technique {
         search: Search::NearestCaster,
         min_filter_texels: 0.0,
         adaptive: false,
-        student: 0,
     };
 
     /// Depth comparisons per pixel and light (blocker-search taps and
@@ -98,8 +95,8 @@ impl Technique {
         match self {
             Technique::HardPcf => 0,
             Technique::FixedDisk { .. } => 1,
-            Technique::Pcss(p) if p.student == 1 => 4,
-            Technique::Pcss(p) if p.student == 2 => 6,
+            // With the renderers' search: peers.wgsl's.
+            Technique::Pcss(p) if p.search == Search::LightSizeAtReceiver => 4,
             Technique::Pcss(_) => 2,
             Technique::Variance(_) => 3,
             Technique::Peer(p) => p.mode(),
@@ -142,9 +139,10 @@ pub struct SoftUniform {
     pub filter_taps: u32,
     pub receiver_plane: u32,
     pub perspective: u32,
-    pub search_at_receiver: u32,
     pub exponential: u32,
-    pub mean_and_deviation: u32,
+    pub _pad: u32,
+    /// 1: PCSS's step 3 probes the disk's rim first.
+    pub adaptive: u32,
     pub near: f32,
     pub far: f32,
     pub size: f32,
@@ -158,9 +156,6 @@ pub struct SoftUniform {
     pub exponent: f32,
     pub negative: f32,
     pub scale: f32,
-    /// 1: PCSS's step 3 probes the disk's rim first.
-    pub adaptive: u32,
-    pub _pad: f32,
 }
 
 impl SoftUniform {
@@ -171,9 +166,9 @@ impl SoftUniform {
             filter_taps: 0,
             receiver_plane: 0,
             perspective: g.perspective as u32,
-            search_at_receiver: 0,
             exponential: 0,
-            mean_and_deviation: 0,
+            _pad: 0,
+            adaptive: 0,
             near: g.near,
             far: g.far,
             size: g.size,
@@ -187,8 +182,6 @@ impl SoftUniform {
             exponent: 0.0,
             negative: 0.0,
             scale: 0.0,
-            adaptive: 0,
-            _pad: 0.0,
         };
         match t {
             Technique::HardPcf => u.receiver_plane = 1,
@@ -204,7 +197,6 @@ impl SoftUniform {
                 u.search_taps = p.search_taps;
                 u.filter_taps = p.filter_taps;
                 u.receiver_plane = p.receiver_plane as u32;
-                u.search_at_receiver = (p.search == Search::LightSizeAtReceiver) as u32;
                 u.min_filter_texels = p.min_filter_texels;
                 u.adaptive = p.adaptive as u32;
             }
@@ -226,7 +218,6 @@ impl SoftUniform {
         if let Some(v) = p.variance {
             self.set_variance(&v);
         }
-        self.mean_and_deviation = p.mean_and_deviation as u32;
     }
 
     /// A variance map's parameters.

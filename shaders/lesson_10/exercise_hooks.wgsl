@@ -1,19 +1,8 @@
 // lesson_10/exercise_hooks.wgsl: how pcss (soft.wgsl) meets the chapter's
-// exercises. Each module takes one part of this file
-// (lessons/lesson_10/exercise_shaders.rs).
-
-// ANCHOR: lesson
-// The lesson's own module: no student code; the exercises' names are the
-// lesson's functions (pcss runs them only for the exercise variants, which
-// have modules of their own).
-fn exercise_blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
-    return blocker_search(s, radius, angle, gradient);
-}
-
-fn exercise_filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
-    return filter_radius(d_r, d_b);
-}
-// ANCHOR_END: lesson
+// exercises. pcss calls blocker_search and filter_radius; an exercise's
+// module leaves the lesson's one out of soft.wgsl and takes its part of
+// this file, which gives that name to the student's function
+// (lessons/lesson_10/exercise_shaders.rs). The lesson's module takes none.
 
 // ANCHOR: blocker_search
 // exercise_blocker_search's module: soft.wgsl without the lesson's

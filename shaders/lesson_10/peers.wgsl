@@ -7,21 +7,27 @@
 // exactly 1 − z (orthographic and perspective alike), so each port turns
 // our depths into its renderer's before its arithmetic.
 
-// The peer's mode in `soft.mode` (peers.rs `Peer::mode`).
+// The peer's mode in `soft.mode` (peers.rs `Peer::mode`; soft.rs
+// `Technique::mode` for our PCSS with Filament's and Bevy's search).
+const PCSS_SEARCH_AT_RECEIVER: u32 = 4u;
 const FILAMENT_PCSS: u32 = 7u;
 const BEVY_PCSS: u32 = 8u;
 const BEVY_CASTANO: u32 = 9u;
 const GODOT_SOFT: u32 = 10u;
 const THREEJS_PCF_SOFT: u32 = 5u;
+const THREEJS_VSM: u32 = 6u;
 
 fn peer(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
     switch soft.mode {
+        case PCSS_SEARCH_AT_RECEIVER: { return pcss_search_at_receiver(s, rotation_angle(pixel), gradient); }
         case FILAMENT_PCSS: { return filament_pcss(s, pixel, gradient); }
         case BEVY_PCSS: { return bevy_pcss(s, pixel); }
         // Bevy with soft_shadow_size None (its default on a sun): its
         // default filter, lesson 03's Castaño 5×5.
         case BEVY_CASTANO: { return pcf_castano13(s); }
         case GODOT_SOFT: { return godot_soft(s, pixel); }
+        // Its moments from soft.wgsl's buffer, as three.js's blur left them.
+        case THREEJS_VSM: { return threejs_vsm(s, moments_at(s.xy)); }
         default: { return three_pcf_soft(s, gradient); }
     }
 }
@@ -45,6 +51,26 @@ fn depth_nearest(uv: vec2<f32>) -> f32 {
     let size = vec2<i32>(textureDimensions(shadow_depths));
     let t = clamp(vec2<i32>(floor(uv * vec2<f32>(size))), vec2<i32>(0), size - 1);
     return textureLoad(shadow_depths, t, 0).r;
+}
+
+// Our PCSS (soft.wgsl's pcss) with the blocker search Filament and Bevy
+// run: only the light's size at the receiver, not every blocker out to
+// the nearest caster (the knob search_at_receiver). Steps 2 and 3 are ours.
+fn pcss_search_at_receiver(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
+    let d_r = light_distance(s.z);
+    // The light's size in map units (per radian at the receiver's distance,
+    // for a spot).
+    var search = soft.size * soft.uv_per;
+    if soft.perspective == 1u {
+        search = search / d_r;
+    }
+    let b = blocker_search(s, search, angle, gradient);
+    if b.count == 0u {
+        return 1.0;
+    }
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let radius = max(filter_radius(d_r, b.distance), vec2<f32>(soft.min_filter_texels * texel));
+    return penumbra_pcf(s, radius, angle + 1.0, gradient);
 }
 
 // ANCHOR: filament_pcss

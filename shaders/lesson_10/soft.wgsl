@@ -1,7 +1,9 @@
 // lesson_10/soft.wgsl: soft shadows from one shadow map. Compiled after
 // common.wgsl, shadow_map.wgsl, lesson 03's exercises.wgsl and pcf.wgsl
-// (its receiver_plane_gradient, rotation_angle and pcf_poisson), then this
-// lesson's exercises.wgsl, then peers.wgsl (the renderers' ports). Group 2:
+// (its receiver_plane_gradient, rotation_angle and pcf_poisson); then, in
+// an exercise's module, this lesson's exercises.wgsl and the exercise's
+// part of exercise_hooks.wgsl; then peers.wgsl (the renderers' ports,
+// and PCSS with their search). Group 2:
 // the map (lesson 03's bindings) and
 // binding 3, the blurred moments of the filterable maps (moments.wgsl).
 // Group 3: lesson 03's `pcf` filter at binding 0 and `soft` at binding 1.
@@ -11,8 +13,8 @@
 // Rust: lessons/lesson_10/soft.rs `SoftUniform`, one per variant and light.
 struct Soft {
     // 0: lesson 03's Poisson PCF; 1: a fixed disk; 2: PCSS; 3: variance
-    // map; 4: PCSS with exercise 1's blocker search; 6: PCSS with exercise
-    // 2's penumbra; 5 and from 7: a renderer's port (peers.wgsl).
+    // map; from 4: PCSS searching the light's size at the receiver, and
+    // the renderers' ports (peers.wgsl).
     mode: u32,
     search_taps: u32,
     filter_taps: u32,
@@ -20,15 +22,11 @@ struct Soft {
     receiver_plane: u32,
     // The light: 0 orthographic (directional), 1 perspective (spot).
     perspective: u32,
-    // How far the blocker search looks: 0: every blocker between the
-    // nearest caster and the receiver (ours); 1: the light's size at the
-    // receiver (Filament's and Bevy's choice, as a knob of ours).
-    search_at_receiver: u32,
     // Variance maps: 0 plain; 1 exponential (the moments of exp(c·z̃)).
     exponential: u32,
-    // Variance maps: 1 when the moments are (mean, standard deviation) of
-    // the map's own depth (three.js's), 0 for (z̃, z̃²) of the linear depth.
-    mean_and_deviation: u32,
+    _pad: u32,
+    // 1: PCSS's step 3 probes the filter disk's rim first (penumbra_pcf).
+    adaptive: u32,
     // Orthographic: world distance from the light's plane at depth 0 and 1.
     // Perspective: the near and far planes.
     near: f32,
@@ -54,9 +52,6 @@ struct Soft {
     negative: f32,
     // A port's second size (Godot's soft_shadow_scale).
     scale: f32,
-    // 1: PCSS's step 3 probes the filter disk's rim first (penumbra_pcf).
-    adaptive: u32,
-    _pad: f32,
 };
 @group(3) @binding(1) var<storage, read> soft: Soft;
 
@@ -141,34 +136,19 @@ fn disk_pcf(s: vec3<f32>, radius: vec2<f32>, taps: u32, angle: f32, gradient: ve
 // ANCHOR: pcss
 // Percentage-closer soft shadows: find the blockers, estimate the
 // penumbra from their mean distance, filter that wide.
-// `student`: 1 searches with exercise_blocker_search, 2 estimates with
-// exercise_filter_radius (exercises.wgsl), 0 neither.
-fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>, student: u32) -> f32 {
-    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
     let d_r = light_distance(s.z);
-    // 1. Where blockers can be: the emitter seen through the receiver.
-    var search = filter_radius(d_r, min(soft.nearest_caster, d_r));
-    if soft.search_at_receiver == 1u {
-        // Only the light's size at the receiver (a knob: Filament's choice).
-        search = soft.size * soft.uv_per;
-        if soft.perspective == 1u {
-            search = search / d_r;
-        }
-    }
-    var b = blocker_search(s, search, angle, gradient);
-    if student == 1u {
-        b = exercise_blocker_search(s, search, angle, gradient);
-    }
+    // 1. Blocker search, wherever blockers can be: the emitter seen
+    // through the receiver, on the nearest caster's plane.
+    let search = filter_radius(d_r, min(soft.nearest_caster, d_r));
+    let b = blocker_search(s, search, angle, gradient);
     if b.count == 0u {
         return 1.0;
     }
-    // 2. How wide the penumbra is.
-    var radius = filter_radius(d_r, b.distance);
-    if student == 2u {
-        radius = exercise_filter_radius(d_r, b.distance);
-    }
-    radius = max(radius, vec2<f32>(soft.min_filter_texels * texel));
-    // 3. A PCF that wide.
+    // 2. Penumbra estimate: the footprint on the blockers' mean plane.
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let radius = max(filter_radius(d_r, b.distance), vec2<f32>(soft.min_filter_texels * texel));
+    // 3. Filter: a PCF that wide.
     return penumbra_pcf(s, radius, angle + 1.0, gradient);
 }
 // ANCHOR_END: pcss
@@ -205,6 +185,7 @@ fn chebyshev(m: vec2<f32>, t: f32, min_variance: f32) -> f32 {
     let d = t - m.x;
     return variance / (variance + d * d);
 }
+// ANCHOR_END: chebyshev
 
 // The moments of texel t (clamped to the map), from the blurred buffer.
 fn moments_texel(t: vec2<i32>) -> vec4<f32> {
@@ -227,6 +208,7 @@ fn moments_at(uv: vec2<f32>) -> vec4<f32> {
     return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
 }
 
+// ANCHOR: variance_map
 // Lauritzen's light-bleeding reduction: the tail of p below `lo` is cut,
 // the rest stretched to [0, 1] (three.js: lo 0.3, hi 0.95).
 fn linstep(lo: f32, hi: f32, p: f32) -> f32 {
@@ -237,9 +219,6 @@ fn variance_map(s: vec3<f32>) -> f32 {
     // The linear depth z̃ in [0, 1], as the moments hold it (moments.wgsl).
     let lin = linear_depth(s.z);
     let m = moments_at(s.xy);
-    if soft.mean_and_deviation == 1u {
-        return threejs_vsm(s, m);
-    }
     var p = 1.0;
     if soft.exponential == 0u {
         p = chebyshev(m.xy, lin, soft.min_variance);
@@ -259,7 +238,7 @@ fn variance_map(s: vec3<f32>) -> f32 {
 fn linear_depth(z: f32) -> f32 {
     return (light_distance(z) - soft.near) / (soft.far - soft.near);
 }
-// ANCHOR_END: chebyshev
+// ANCHOR_END: variance_map
 
 // ANCHOR: fs_soft
 @fragment
@@ -279,10 +258,8 @@ fn fs_soft(in: VertexOut) -> LitOut {
                 let texel = 1.0 / f32(textureDimensions(shadow_map).x);
                 v = disk_pcf(s, vec2<f32>(soft.fixed_radius_texels * texel), soft.filter_taps, angle, gradient);
             }
-            case 2u: { v = pcss(s, angle, gradient, 0u); }
+            case 2u: { v = pcss(s, angle, gradient); }
             case 3u: { v = variance_map(s); }
-            case 4u: { v = pcss(s, angle, gradient, 1u); }
-            case 6u: { v = pcss(s, angle, gradient, 2u); }
             default: { v = peer(s, in.clip.xy, gradient); }
         }
     }
