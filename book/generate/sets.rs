@@ -213,7 +213,7 @@ fn set_part(name: &str, records: &[Record], lesson: &str) -> Result<(String, Vec
 /// Fails when a set differs from the book's records in a way
 /// [`CHANGES`] does not explain ([`check_set`]).
 pub fn write_other_adapters(generated: &Path, sets: &[(String, Vec<Record>)]) -> Result<()> {
-    let main = crate::load_records(generated)?;
+    let main = crate::derive::load_records(generated)?;
     for (name, records) in sets {
         check_set(name, origin(name).map(|o| o.commit), records, &main)?;
     }

@@ -82,7 +82,10 @@ pub const REPEATABILITY: &str = "protocol/repeatability.md";
 /// Prints the comparison of two generated folders; with `write`, also the
 /// introduction's table of it.
 pub fn compare(a: &Path, b: &Path, write: Option<&Path>) -> Result<()> {
-    let (ra, rb) = (crate::load_records(a)?, crate::load_records(b)?);
+    let (ra, rb) = (
+        crate::derive::load_records(a)?,
+        crate::derive::load_records(b)?,
+    );
     let cells = cells(&ra, &rb);
     if cells.is_empty() {
         bail!(
