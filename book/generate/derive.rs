@@ -31,6 +31,10 @@ pub(super) fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()
     choosing::write_all(generated, &records, Some(&convergence.errors_by_scene()))?;
     volumes_gpu::write(root, generated)?;
     gpu_costs::write(root, generated, &records)?;
+    write(
+        &generated.join("choosing/volumes_build_sets.md"),
+        &sets::volumes_build_sets(generated)?,
+    )?;
     scaling::write_tables(root)?;
     lesson09::write_all(generated, figures, &records)?;
     adapters::write_all(root, generated, &records)?;

@@ -27,6 +27,12 @@ fn filter_radius(g: &LightGeometry, d_r: f64, d_b: f64) -> [f64; 2] {
     [k * g.uv_per[0] as f64, k * g.uv_per[1] as f64]
 }
 
+/// The receiver's mark: a `+` at `c`, its arms `r` long.
+fn plus(s: &mut Svg, c: P, r: f64) {
+    s.line(add(c, -r, 0.0), add(c, r, 0.0), &stroke("#000", 2.0, ""));
+    s.line(add(c, 0.0, -r), add(c, 0.0, r), &stroke("#000", 2.0, ""));
+}
+
 /// `vogel` of `soft.wgsl`: point `i` of an `n`-point golden-angle spiral.
 fn vogel(i: u32, n: u32, angle: f64) -> P {
     let r = ((i as f64 + 0.5) / n as f64).sqrt();
@@ -180,16 +186,7 @@ pub(super) fn blocker_search(scene: &Scene, u: &Setup) -> Result<String> {
         }
     }
     let sp = to_px((su, sv));
-    s.line(
-        add(sp, -7.0, 0.0),
-        add(sp, 7.0, 0.0),
-        &stroke("#000", 2.0, ""),
-    );
-    s.line(
-        add(sp, 0.0, -7.0),
-        add(sp, 0.0, 7.0),
-        &stroke("#000", 2.0, ""),
-    );
+    plus(&mut s, sp, 7.0);
     // 2. The mean blocker distance, and the filter disk it gives.
     let mean = found.iter().sum::<f64>() / found.len().max(1) as f64;
     let filter = filter_radius(&g, d_r, mean);
@@ -233,18 +230,7 @@ pub(super) fn blocker_search(scene: &Scene, u: &Setup) -> Result<String> {
     for (i, (_, t)) in marks.iter().enumerate() {
         let c = (lx + 8.0, y - 4.0);
         match i {
-            0 => {
-                s.line(
-                    add(c, -6.0, 0.0),
-                    add(c, 6.0, 0.0),
-                    &stroke("#000", 2.0, ""),
-                );
-                s.line(
-                    add(c, 0.0, -6.0),
-                    add(c, 0.0, 6.0),
-                    &stroke("#000", 2.0, ""),
-                );
-            }
+            0 => plus(&mut s, c, 6.0),
             1 => s.circle(c, 4.5, &fill(RAY, "#fff")),
             2 => s.line(
                 add(c, -8.0, 0.0),
