@@ -149,8 +149,7 @@ fn table(a: &[Record], cells: &[Cell]) -> Result<String> {
         "1st inside the 2nd's".into(),
         "spreads overlap".into(),
     ];
-    s += &crate::table::row(&head);
-    s += &crate::table::row(&vec!["---".to_string(); head.len()]);
+    s += &crate::table::header(&head);
     for (kind, name) in [("frame", "frame cost"), ("GPU", "GPU total")] {
         let of: Vec<&Cell> = cells.iter().filter(|c| c.id.ends_with(kind)).collect();
         if of.is_empty() {

@@ -8,7 +8,7 @@ use super::costs::{rows, Cost, FullHd, Verdict};
 use super::{BUDGET_MS, ORIGIN};
 use crate::record::Record;
 use crate::sets;
-use crate::table::{pct, row, stat};
+use crate::table::{header, pct, row, stat};
 
 /// Why a row measures another variant than its lesson's most accurate:
 /// `(lesson, variant, why)`.
@@ -108,8 +108,7 @@ pub fn table(full: &FullHd, records: &[Record]) -> Result<String> {
         "CPU ms".into(),
         "why this variant".into(),
     ];
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     let mut notes = String::new();
     for r in &full.reports {
         let (rows, left_out) = rows(r);

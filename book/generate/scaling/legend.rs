@@ -97,7 +97,7 @@ pub(super) fn points_legend(
 }
 
 /// The legend of a sweep's slopes table.
-pub(super) fn slopes_legend(sweep: &Sweep, top: usize) -> String {
+pub(super) fn slopes_legend(sweep: &Sweep, head: &[String], top: usize) -> String {
     let axis = &sweep.axis;
     let x = axis_definition(sweep).1;
     let multi = distinct_variants(sweep).len() > 1;
@@ -109,13 +109,6 @@ pub(super) fn slopes_legend(sweep: &Sweep, top: usize) -> String {
             ""
         }
     );
-    let head = [
-        "curve".to_string(),
-        "expected order".into(),
-        "expected slope".into(),
-        "measured slope (all points)".into(),
-        format!("measured slope (largest {top})"),
-    ];
     let own = [
         ("curve", curve),
         (
@@ -137,4 +130,29 @@ pub(super) fn slopes_legend(sweep: &Sweep, top: usize) -> String {
     ];
     let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (*a, b.as_str())).collect();
     crate::legend::legend_own(&head, &own)
+}
+
+/// The legend of a sweep's stops table.
+pub(super) fn stops_legend(sweep: &Sweep, head: &[String]) -> String {
+    let axis = &sweep.axis;
+    let own = [
+        (
+            "variant".to_string(),
+            format!("{}'s variant (its `--variant` name)", sweep.lesson.replace('_', " ")),
+        ),
+        (
+            head[1].clone(),
+            format!("the largest size (the {axis} column's) at which the variant ran (— where it ran at none)"),
+        ),
+        (
+            "left out at".into(),
+            format!("the smallest size (the {axis} column's) at which the lesson refused to run the variant (— where it ran every size)"),
+        ),
+        (
+            "why".into(),
+            "the lesson's own line: the buffer the variant would need there, its size, and the adapter's limit it passes".into(),
+        ),
+    ];
+    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+    crate::legend::legend_own(head, &own)
 }

@@ -99,27 +99,15 @@ pub(super) fn measure(
     let Some(first) = first else {
         bail!("scaling sweep {} has no points", plan.name);
     };
-    let present = |k: &str, counter: bool| {
-        points.iter().any(|p| {
-            if counter {
-                p.counters.contains_key(k)
-            } else {
-                p.passes.contains_key(k)
-            }
-        })
+    // The plan's passes and counters that some point reports.
+    let reported = |keys: &[&str], has: fn(&SweepPoint, &str) -> bool| -> Vec<String> {
+        (keys.iter())
+            .filter(|k| points.iter().any(|p| has(p, k)))
+            .map(|k| k.to_string())
+            .collect()
     };
-    let passes: Vec<String> = plan
-        .passes
-        .iter()
-        .filter(|k| present(k, false))
-        .map(|k| k.to_string())
-        .collect();
-    let counters: Vec<String> = plan
-        .counters
-        .iter()
-        .filter(|k| present(k, true))
-        .map(|k| k.to_string())
-        .collect();
+    let passes = reported(plan.passes, |p, k| p.passes.contains_key(k));
+    let counters = reported(plan.counters, |p, k| p.counters.contains_key(k));
     let variants: Vec<String> = plan.variants.iter().map(|v| v.to_string()).collect();
     let mut curves = Vec::new();
     for &(variant, key, unit, expected, expected_slope) in &plan.curves {

@@ -5,9 +5,9 @@ use std::fmt::Write as _;
 
 use common::measure::timing::FRAME;
 
-use super::legend::{points_legend, slopes_legend};
+use super::legend::{points_legend, slopes_legend, stops_legend};
 use super::sweep::{distinct_variants, Sweep, SweepCurve, Unit, SIZES_TOP};
-use crate::table::{count, pct, row, stat};
+use crate::table::{count, header, pct, row, stat};
 
 /// The .md file name of a sweep's table (in `book/src/generated/scaling/`).
 pub fn table_file(sweep: &Sweep) -> String {
@@ -68,8 +68,7 @@ pub fn table(sweep: &Sweep) -> String {
     head.extend(passes.iter().map(|p| format!("`{p}` ms")));
     head.extend(counters.iter().map(|c| format!("`{c}`")));
     head.push("misclassified %".into());
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     for p in &sweep.points {
         let mut cells = vec![p.label.clone()];
         if multi {
@@ -99,14 +98,14 @@ pub fn table(sweep: &Sweep) -> String {
         "\n*Log-log slopes against {}: least squares over every point, and over the largest {top}.*\n\n",
         sweep.axis
     );
-    s += &row(&[
-        "curve".into(),
+    let head = [
+        "curve".to_string(),
         "expected order".into(),
         "expected slope".into(),
         "measured slope (all points)".into(),
         format!("measured slope (largest {top})"),
-    ]);
-    s += &row(&vec!["---".to_string(); 5]);
+    ];
+    s += &header(&head);
     for c in &sweep.curves {
         s += &row(&[
             curve_name(sweep, c),
@@ -116,7 +115,7 @@ pub fn table(sweep: &Sweep) -> String {
             slope_cell(c.slope_top),
         ]);
     }
-    s += &slopes_legend(sweep, top);
+    s += &slopes_legend(sweep, &head, top);
     s
 }
 
@@ -130,13 +129,13 @@ fn stops_table(sweep: &Sweep) -> String {
         "\n*Where each variant stops on {} ({}): the largest {} it ran, and the lesson's line where it left the variant out.*\n\n",
         sweep.adapter, sweep.backend, sweep.axis
     );
-    s += &row(&[
-        "variant".into(),
+    let head = [
+        "variant".to_string(),
         format!("largest {} run", sweep.axis),
         "left out at".into(),
         "why".into(),
-    ]);
-    s += &row(&vec!["---".to_string(); 4]);
+    ];
+    s += &header(&head);
     let mut variants = distinct_variants(sweep);
     for t in &sweep.stops {
         if !variants.contains(&t.variant) {
@@ -156,32 +155,6 @@ fn stops_table(sweep: &Sweep) -> String {
         });
         s += &row(&[format!("`{v}`"), largest, at, why]);
     }
-    let axis = &sweep.axis;
-    let head = [
-        "variant".to_string(),
-        format!("largest {axis} run"),
-        "left out at".into(),
-        "why".into(),
-    ];
-    let own = [
-        (
-            "variant".to_string(),
-            format!("{}'s variant (its `--variant` name)", sweep.lesson.replace('_', " ")),
-        ),
-        (
-            head[1].clone(),
-            format!("the largest size (the {axis} column's) at which the variant ran (— where it ran at none)"),
-        ),
-        (
-            "left out at".into(),
-            format!("the smallest size (the {axis} column's) at which the lesson refused to run the variant (— where it ran every size)"),
-        ),
-        (
-            "why".into(),
-            "the lesson's own line: the buffer the variant would need there, its size, and the adapter's limit it passes".into(),
-        ),
-    ];
-    let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
-    s += &crate::legend::legend_own(&head, &own);
+    s += &stops_legend(sweep, &head);
     s
 }
