@@ -3,7 +3,9 @@
 //! records and tables under `book/src/generated/sets/<adapter>-<backend>/`,
 //! leaving the book's own set (lavapipe, Vulkan) as it is. Each chapter
 //! then shows the other sets' tables beside lavapipe's
-//! (`generated/<lesson>/results_other_adapters.md`).
+//! (`generated/<lesson>/results_other_adapters.md`), and the closing
+//! chapter their tables of lesson 05's volume routes
+//! (`choosing/volumes_build_sets.md`, [`volumes_build_sets`]).
 //!
 //! A set is measured at one commit ([`ORIGINS`]), and the code moves on.
 //! A variant changed since that commit ([`CHANGES`]) is left out of the
