@@ -129,7 +129,7 @@ pub(super) fn slopes_legend(sweep: &Sweep, head: &[String], top: usize) -> Strin
         ),
     ];
     let own: Vec<(&str, &str)> = own.iter().map(|(a, b)| (*a, b.as_str())).collect();
-    crate::legend::legend_own(&head, &own)
+    crate::legend::legend_own(head, &own)
 }
 
 /// The legend of a sweep's stops table.
