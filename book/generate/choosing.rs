@@ -10,7 +10,7 @@ use anyhow::Result;
 
 use crate::manifest::{Peer, FAMILIES, PEERS, VOLUME_BUILDS};
 use crate::record::{Record, VariantRecord};
-use crate::table::{count, pct, row, stat, time_cells};
+use crate::table::{count, header, pct, row, stat, time_cells};
 
 /// Writes `generated/choosing/{families,peers,volumes_build}.md`.
 /// `reference_error`: the soft reference's own sampling error, in % of V
@@ -97,8 +97,7 @@ pub fn families(records: &[Record]) -> String {
         "misclassified % there".into(),
         "penumbra \\|ΔV\\| % there".into(),
     ];
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     let opt = |x: Option<f64>| x.map_or("—".into(), pct);
     for (family, lessons) in FAMILIES {
         for lesson in *lessons {
@@ -177,8 +176,7 @@ pub fn peers(
         "peer − ours".into(),
         "better".into(),
     ];
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     for p in PEERS {
         let runs = default_of(records, p.lesson)
             .into_iter()
@@ -288,8 +286,7 @@ pub fn volumes_build(records: &[Record]) -> String {
         "M edges/s".into(),
         "volume fragments".into(),
     ];
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     for (run, variants) in VOLUME_BUILDS {
         let Some(r) = records.iter().find(|r| r.id() == *run) else {
             continue;

@@ -168,18 +168,7 @@ fn definition(column: &str) -> Option<String> {
 /// the others taken from the standard ones. A column defined nowhere gets
 /// an empty entry, which `tests/book_legends.rs` reports.
 pub fn legend_own(columns: &[String], own: &[(&str, &str)]) -> String {
-    let mut s = String::from("\n<details><summary>What each column means</summary>\n\n");
-    for c in columns {
-        let d = own
-            .iter()
-            .find(|(n, _)| *n == c.as_str())
-            .map(|(_, d)| d.to_string())
-            .or_else(|| definition(c))
-            .unwrap_or_default();
-        s += &format!("- {c}: {d}\n");
-    }
-    s += "\n</details>\n";
-    s
+    details(&definitions(columns, own))
 }
 
 /// The legend of a table with `columns`: every column defined, in order.
@@ -190,18 +179,36 @@ pub fn legend(columns: &[String]) -> Result<String> {
 /// The legend, with the definitions of a table's own columns (`own`) taking
 /// precedence over the standard ones.
 pub fn legend_with(columns: &[String], own: &[(&str, &str)]) -> Result<String> {
+    let defined = definitions(columns, own);
+    if let Some((c, _)) = defined.iter().find(|(_, d)| d.is_none()) {
+        bail!("the column {c:?} has no definition: add it to book/generate/legend.rs");
+    }
+    Ok(details(&defined))
+}
+
+/// Each column with its definition: the table's own (`own`) first, then
+/// the standard one; `None` where neither defines it.
+fn definitions<'a>(
+    columns: &'a [String],
+    own: &[(&str, &str)],
+) -> Vec<(&'a String, Option<String>)> {
+    let own_definition = |c: &String| own.iter().find(|(n, _)| *n == c.as_str());
+    (columns.iter())
+        .map(|c| {
+            let d = own_definition(c).map(|(_, d)| d.to_string());
+            (c, d.or_else(|| definition(c)))
+        })
+        .collect()
+}
+
+/// The legend block: one `- column: definition` line a column (empty
+/// where it has none), folded under "What each column means".
+fn details(defined: &[(&String, Option<String>)]) -> String {
     let mut s = String::from("\n<details><summary>What each column means</summary>\n\n");
-    for c in columns {
-        let d = own
-            .iter()
-            .find(|(n, _)| *n == c.as_str())
-            .map(|(_, d)| d.to_string())
-            .or_else(|| definition(c));
-        let Some(d) = d else {
-            bail!("the column {c:?} has no definition: add it to book/generate/legend.rs");
-        };
+    for (c, d) in defined {
+        let d = d.as_deref().unwrap_or_default();
         s += &format!("- {c}: {d}\n");
     }
     s += "\n</details>\n";
-    Ok(s)
+    s
 }

@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 
 use crate::plots::{self, Curve};
 use crate::record::Record;
-use crate::table::{count, pct, row};
+use crate::table::{count, header, pct, row};
 
 /// The counters `texels_per_100m_at_<D>m`, by distance D.
 const ALIASING_PREFIX: &str = "texels_per_100m_at_";
@@ -71,8 +71,7 @@ pub fn shimmer_table(r: &Record) -> String {
         "reference flips %".into(),
         "misclassified % per frame (min–max)".into(),
     ];
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     for v in &r.variants {
         let Some(p) = &v.camera_path else {
             continue;
@@ -143,8 +142,7 @@ pub fn cascades_table(r: &Record) -> String {
             format!("{which}: the misclassified % of the receiver pixels whose view depth selects it (as the lit pass picks the cascade), in % of those pixels, and in parentheses how many they are; — where the variant has fewer cascades"),
         )
     }));
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     for v in r.variants.iter().filter(|v| !v.classes.is_empty()) {
         let mut cells = vec![format!("`{}`", v.name), pct(v.misclassified_pct)];
         for i in 0..k {
@@ -192,8 +190,7 @@ pub fn aliasing_table(r: &Record) -> String {
             format!("shadow-map texels per 100 m of scene in the cascade that holds view depth {m} m (the counter `{k}`): 100 × the map's side in texels ÷ that cascade's width in metres, rounded; more is finer; — where the variant does not report it"),
         )
     }));
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     for v in &r.variants {
         if !d.iter().any(|(_, k)| v.counters.contains_key(k)) {
             continue;

@@ -20,7 +20,7 @@ use common::scene::Scene;
 use serde::{Deserialize, Serialize};
 
 use crate::record::Record;
-use crate::table::{count, ms, pct, row};
+use crate::table::{count, header, ms, pct, row};
 
 /// The scenes the convergence is measured on: every scene chapter 10
 /// runs, with their titles; each scene's ranking threshold is its own row.
@@ -264,8 +264,7 @@ pub fn table(c: &Convergence, results: Option<&Record>) -> String {
         "N ms".into(),
         "4N ms".into(),
     ];
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     for r in &c.rows {
         s += &row(&[
             format!("{} (`{}`)", r.title, r.scene),

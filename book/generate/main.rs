@@ -14,12 +14,18 @@
 //! The chapters' measured figures are markers it fills ([`prose`]); the
 //! sentences comparing them carry claims it checks on the same records
 //! ([`claims`]): it fails, naming the chapter's line, when one is false.
+//!
+//! This file is the command line and each command's course; the `book`
+//! command's runs are in [`runs`], what it makes from the records in
+//! [`derive`].
 
 mod adapters;
 mod bounds;
 mod choosing;
 mod claims;
+mod derive;
 mod diagrams;
+mod error_plots;
 mod figures;
 mod gpu_costs;
 mod grade_times;
@@ -33,6 +39,7 @@ mod ports;
 mod prose;
 mod record;
 mod runner;
+mod runs;
 mod scaling;
 mod sets;
 mod soft_diagrams;
@@ -44,7 +51,6 @@ mod volume_diagrams;
 mod volumes_gpu;
 mod window_shots;
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
@@ -52,9 +58,10 @@ use clap::{Parser, Subcommand};
 use common::measure::report::Report;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use manifest::{Run, FIGURES, RUNS, TEXTS};
-use record::{pool, Record, VariantRecord};
-use runner::{RunArgs, Runner};
+use derive::{derive, load_records, write_run_tables};
+use manifest::{Run, RUNS};
+use runner::Runner;
+use runs::{copy_outputs, to_record, Measure};
 
 #[derive(Parser)]
 #[command(about = "The shadow workbook's book generator")]
@@ -279,64 +286,6 @@ fn run(cli: Cli) -> Result<()> {
     Ok(())
 }
 
-/// Everything made from the committed records: the scenes' tables, the
-/// closing chapter's, chapter 09's, the adapters' comparison, the plots
-/// and the README's results block; and chapter 10's convergence of the
-/// reference, rendered again on the CPU (seconds).
-fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
-    let records = load_records(generated)?;
-    for (run, record) in RUNS.iter().zip(&records) {
-        write_run_tables(&generated.join(run.lesson), run, record)?;
-    }
-    write_scenes_tables(generated, &records)?;
-    ports::write_all(generated)?;
-    // Chapter 10's convergence first: the peers table reads its figure.
-    let convergence =
-        lesson10::write_all(root, generated, &records, manifest::WIDTH, manifest::HEIGHT)?;
-    choosing::write_all(generated, &records, Some(&convergence.errors_by_scene()))?;
-    volumes_gpu::write(root, generated)?;
-    gpu_costs::write(root, generated, &records)?;
-    scaling::write_tables(root)?;
-    lesson09::write_all(generated, figures, &records)?;
-    adapters::write_all(root, generated, &records)?;
-    let sets = sets::load_sets(generated)?;
-    sets::write_other_adapters(generated, &sets)?;
-    taps::write_all(generated, &records, &sets)?;
-    let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
-    write_plots(figures, &defaults)?;
-    for chapter in prose::write_chapters(&root.join("book/src"), generated)? {
-        println!("figures in prose rewritten: {chapter}");
-    }
-    claims::check_book(root, generated)?;
-    diagrams::write_all(root, &figures.join("diagrams"))?;
-    volume_diagrams::write_all(root, &figures.join("diagrams"))?;
-    soft_diagrams::write_all(root, &figures.join("diagrams"))?;
-    let readme = root.join("README.md");
-    let text = std::fs::read_to_string(&readme).context("cannot read README.md")?;
-    let text = summary::splice(&text, &summary::readme_block(&defaults))
-        .with_context(|| format!("README.md has no line {}", summary::BEGIN))?;
-    write(&readme, &text)
-}
-
-/// A run's results table and, for a timed run, its passes table.
-fn write_run_tables(dir: &Path, run: &Run, record: &Record) -> Result<()> {
-    let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
-    write(
-        &dir.join(format!("{}.md", run.name)),
-        &record.table(mean_abs)?,
-    )?;
-    if run.timed {
-        write(
-            &dir.join(format!("{}_passes.md", run.name)),
-            &record.passes_table()?,
-        )?;
-    }
-    if let Some(classes) = record.soft_classes_table()? {
-        write(&dir.join(format!("{}_classes.md", run.name)), &classes)?;
-    }
-    Ok(())
-}
-
 /// The runner, building the lesson binaries first when one is missing.
 pub fn runner_or_build() -> Result<Runner> {
     let exe = std::env::current_exe().context("cannot find the generator's own path")?;
@@ -356,279 +305,6 @@ pub fn runner_or_build() -> Result<Runner> {
     Runner::beside(&exe)
 }
 
-/// What one run of a lesson needs.
-struct Measure<'a> {
-    runner: &'a Runner,
-    backend: &'a str,
-    adapter: &'a str,
-    work: &'a Path,
-    bar: &'a ProgressBar,
-}
-
-impl Measure<'_> {
-    /// Runs repeat `i` of one manifest entry and returns its report.
-    fn once(&self, run: &Run, i: u32) -> Result<Report> {
-        let repeats = if run.timed { manifest::REPEATS } else { 1 };
-        let scene = run.scene.map(|s| root().join(s));
-        let args = RunArgs {
-            lesson: run.lesson,
-            scene: scene.as_deref(),
-            width: run.size.0,
-            height: run.size.1,
-            frames: if run.timed { run.frames } else { 1 },
-            variants: run.variants,
-            backend: Some(self.backend),
-            adapter: Some(self.adapter),
-            // Untimed runs keep errors and counters only: no warm-up needed.
-            warm_up_ms: (!run.timed).then_some(0.0),
-            // The bounds once (they are deterministic), after the timed
-            // frames of the same process.
-            fragile: i == 0,
-        };
-        let bar = self.bar;
-        bar.set_message(format!("{} ({}/{repeats})", run.id(), i + 1));
-        let out = self
-            .work
-            .join(run.lesson)
-            .join(run.name)
-            .join(format!("r{i}"));
-        let t = std::time::Instant::now();
-        let report = self.runner.run(&args, &out)?;
-        bar.inc(1);
-        if bar.is_hidden() {
-            // Not a terminal (a log): one line a run instead of the bar.
-            eprintln!(
-                "[{}/{}] {} run {}: {:.1} s",
-                bar.position(),
-                bar.length().unwrap_or(0),
-                run.id(),
-                i + 1,
-                t.elapsed().as_secs_f64()
-            );
-        }
-        Ok(report)
-    }
-}
-
-/// What the book keeps of a run. Errors and counters must agree between
-/// the repeats (they are deterministic); times are pooled.
-pub fn to_record(run: &Run, reports: &[Report]) -> Result<Record> {
-    let first = &reports[0];
-    let variants = first
-        .variants
-        .iter()
-        .map(|v| {
-            let same: Vec<&common::measure::report::VariantReport> = reports
-                .iter()
-                .filter_map(|r| r.variants.iter().find(|w| w.name == v.name))
-                .collect();
-            if same.iter().any(|w| {
-                w.error != v.error
-                    || w.counters != v.counters
-                    || w.camera_path != v.camera_path
-                    || w.classes != v.classes
-            }) {
-                bail!(
-                    "{}: variant {} gave different errors, counters or shimmer in repeated runs",
-                    run.id(),
-                    v.name
-                );
-            }
-            let runs: Vec<RunTimes> = same
-                .iter()
-                .zip(1..)
-                .map(|(w, i)| {
-                    let base = w.timing_check.as_ref().and_then(|c| c.base_ms);
-                    let why = format!(
-                        "base pass {} ms in run {i}",
-                        base.map_or("—".into(), |b| format!("{b:.3}"))
-                    );
-                    (&w.timing_samples_ms, w.timing_stable(), why)
-                })
-                .collect();
-            let timing = pool_stable(&runs);
-            Ok(VariantRecord {
-                name: v.name.clone(),
-                receiver_pixels: v.error.receiver_pixels,
-                misclassified_pct: v.error.misclassified_pct,
-                false_shadow_pct: v.error.false_shadow_pct,
-                false_lit_pct: v.error.false_lit_pct,
-                mean_abs: v.error.mean_abs,
-                coverage_mismatch_pct: v.error.coverage_mismatch_pct,
-                counters: v.counters.clone(),
-                timing: if run.timed { timing } else { None },
-                camera_path: v.camera_path.clone(),
-                classes: record::ClassRecord::of(v),
-                soft: v.error.soft.clone(),
-                fragile: v.fragile.clone(),
-            })
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let baselines: Vec<RunTimes> = reports
-        .iter()
-        .zip(1..)
-        .filter_map(|(r, i)| {
-            let b = r.baseline.as_ref()?;
-            Some((
-                &b.timing_samples_ms,
-                b.stable(),
-                format!("every baseline block of run {i}"),
-            ))
-        })
-        .collect();
-    let baseline = pool_stable(&baselines);
-    Ok(Record {
-        lesson: run.lesson.to_string(),
-        run: run.name.to_string(),
-        scene: run.scene.unwrap_or("default").to_string(),
-        title: run.title.to_string(),
-        adapter: first.adapter.name.clone(),
-        backend: first.adapter.backend.clone(),
-        width: first.width,
-        height: first.height,
-        repeats: reports.len() as u32,
-        frames: if run.timed { first.frames } else { 0 },
-        timing_source: record::timing_source(first),
-        variants,
-        warm_up_ms: first
-            .timing_protocol
-            .as_ref()
-            .filter(|_| run.timed)
-            .map(|p| p.warm_up_min_ms),
-        baseline: if run.timed { baseline } else { None },
-    })
-}
-
-/// One run's samples of a timed cell, whether its block was stable, and
-/// why not.
-type RunTimes<'a> = (&'a BTreeMap<String, Vec<f64>>, bool, String);
-
-/// Pools the runs whose times were stable; a run that was not is left out
-/// and named (`left_out`). When no run was stable, every run is pooled and
-/// the timing is `unstable`, with the reasons.
-fn pool_stable(runs: &[RunTimes]) -> Option<record::Timing> {
-    let stable: Vec<&BTreeMap<String, Vec<f64>>> =
-        runs.iter().filter(|r| r.1).map(|r| r.0).collect();
-    let why: Vec<&str> = runs.iter().filter(|r| !r.1).map(|r| r.2.as_str()).collect();
-    let why = (!why.is_empty()).then(|| why.join(", "));
-    if stable.is_empty() {
-        let all: Vec<&BTreeMap<String, Vec<f64>>> = runs.iter().map(|r| r.0).collect();
-        return pool(&all).map(|t| record::Timing { unstable: why, ..t });
-    }
-    pool(&stable).map(|t| record::Timing { left_out: why, ..t })
-}
-
-/// Copies the figures and lesson-written tables of the manifest; a PNG
-/// figure is made ready for the page on the way ([`figures::prepare`]),
-/// and its count goes to `generated/figures.json`.
-fn copy_outputs(work: &Path, figures: &Path, generated: &Path, only: Option<&str>) -> Result<()> {
-    let mut counts = figures::load_counts(generated)?;
-    for (list, dest_root, is_figure) in [(FIGURES, figures, true), (TEXTS, generated, false)] {
-        for f in list
-            .iter()
-            .filter(|f| only.is_none_or(|l| f.run.starts_with(l)))
-        {
-            let src = work.join(f.run).join("r0").join(f.file);
-            let dest = dest_root.join(f.dest);
-            std::fs::create_dir_all(dest.parent().context("figure path")?)?;
-            if is_figure && f.dest.ends_with(".png") {
-                figures::prepare_file(&src, f.dest, &dest, &mut counts)
-                    .with_context(|| format!("figure {}", f.dest))?;
-                continue;
-            }
-            std::fs::copy(&src, &dest)
-                .with_context(|| format!("figure {}: cannot copy {}", f.dest, src.display()))?;
-        }
-    }
-    figures::write_counts(generated, &counts)
-}
-
-/// Every committed record, by lesson then manifest order.
-pub fn load_records(generated: &Path) -> Result<Vec<Record>> {
-    RUNS.iter()
-        .map(|r| {
-            let path = generated.join(r.lesson).join(format!("{}.json", r.name));
-            let text = std::fs::read_to_string(&path)
-                .with_context(|| format!("{} is missing: run `workbook book`", path.display()))?;
-            serde_json::from_str(&text).with_context(|| format!("{}: not a record", path.display()))
-        })
-        .collect()
-}
-
-/// Below this, an error is drawn on the plots' floor (log axis).
-const ERROR_FLOOR_PCT: f64 = 1e-3;
-
-/// One error-vs-time plot a chapter, and the workbook-wide one.
-fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
-    let mut all = Vec::new();
-    for r in defaults {
-        let series = summary::series(r);
-        let title = format!(
-            "{}: error against time ({}, {}×{}, {} runs × {} frames)",
-            r.lesson.replace('_', " "),
-            r.adapter,
-            r.width,
-            r.height,
-            r.repeats,
-            r.frames
-        );
-        let path = figures.join(&r.lesson).join("error_vs_time.svg");
-        std::fs::create_dir_all(path.parent().context("plot path")?)?;
-        let base = r
-            .baseline
-            .as_ref()
-            .filter(|b| b.stable())
-            .map(|b| b.frame().median);
-        plots::error_vs_time(&path, &title, &series, base, ERROR_FLOOR_PCT)?;
-        all.push(series);
-    }
-    let dir = figures.join("workbook");
-    std::fs::create_dir_all(&dir)?;
-    let title = format!(
-        "Every lesson's variants: error against time ({}, {}×{}, {} runs × {} frames)",
-        defaults.first().map_or("", |r| r.adapter.as_str()),
-        manifest::WIDTH,
-        manifest::HEIGHT,
-        manifest::REPEATS,
-        manifest::FRAMES
-    );
-    plots::workbook_plot(
-        &dir.join("error_vs_time.svg"),
-        &title,
-        &all,
-        ERROR_FLOOR_PCT,
-    )
-}
-
-/// Each lesson's extreme cases side by side (`scenes.md`).
-fn write_scenes_tables(generated: &Path, records: &[Record]) -> Result<()> {
-    let mut lessons: Vec<&str> = records.iter().map(|r| r.lesson.as_str()).collect();
-    lessons.dedup();
-    for l in lessons {
-        let cases: Vec<&Record> = records
-            .iter()
-            // The extreme cases: not the default scene, at either size.
-            .filter(|r| r.lesson == l && r.run != "results" && r.run != manifest::HD)
-            .collect();
-        if cases.is_empty() {
-            continue;
-        }
-        let error = table::Cell::error_of(&cases);
-        write(
-            &generated.join(l).join("scenes.md"),
-            &table::scenes_table(&cases, error)?,
-        )?;
-        // A soft shadow's other failure: light in the umbra.
-        if error == table::Cell::Penumbra {
-            write(
-                &generated.join(l).join("scenes_bleeding.md"),
-                &table::scenes_table(&cases, table::Cell::Bleeding)?,
-            )?;
-        }
-    }
-    Ok(())
-}
-
-fn write(path: &Path, text: &str) -> Result<()> {
+pub fn write(path: &Path, text: &str) -> Result<()> {
     std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
 }

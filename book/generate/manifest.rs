@@ -51,6 +51,7 @@ impl Run {
     }
 }
 
+/// A lesson on its default scene, timed: its `results` table.
 const fn default(lesson: &'static str) -> Run {
     Run {
         lesson,
@@ -64,6 +65,8 @@ const fn default(lesson: &'static str) -> Run {
     }
 }
 
+/// An extreme case: another scene, errors and counters only; the other
+/// fields as [`default`]'s.
 const fn case(
     lesson: &'static str,
     name: &'static str,
@@ -71,14 +74,11 @@ const fn case(
     title: &'static str,
 ) -> Run {
     Run {
-        lesson,
         name,
         scene: Some(scene),
         title,
         timed: false,
-        variants: &[],
-        size: (WIDTH, HEIGHT),
-        frames: FRAMES,
+        ..default(lesson)
     }
 }
 
@@ -91,14 +91,9 @@ const fn timed_case(
     variants: &'static [&'static str],
 ) -> Run {
     Run {
-        lesson,
-        name,
-        scene: Some(scene),
-        title,
         timed: true,
         variants,
-        size: (WIDTH, HEIGHT),
-        frames: FRAMES,
+        ..case(lesson, name, scene, title)
     }
 }
 
@@ -115,14 +110,12 @@ pub const HD: &str = "hd";
 /// [`INTERACTIVE`] size (`book/src/generated/<lesson>/hd.md`).
 const fn interactive(lesson: &'static str, variants: &'static [&'static str]) -> Run {
     Run {
-        lesson,
         name: HD,
-        scene: None,
         title: "default scene at 1280×720",
-        timed: true,
         variants,
         size: INTERACTIVE,
         frames: INTERACTIVE_FRAMES,
+        ..default(lesson)
     }
 }
 

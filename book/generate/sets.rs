@@ -3,7 +3,9 @@
 //! records and tables under `book/src/generated/sets/<adapter>-<backend>/`,
 //! leaving the book's own set (lavapipe, Vulkan) as it is. Each chapter
 //! then shows the other sets' tables beside lavapipe's
-//! (`generated/<lesson>/results_other_adapters.md`).
+//! (`generated/<lesson>/results_other_adapters.md`), and the closing
+//! chapter their tables of lesson 05's volume routes
+//! (`choosing/volumes_build_sets.md`, [`volumes_build_sets`]).
 //!
 //! A set is measured at one commit ([`ORIGINS`]), and the code moves on.
 //! A variant changed since that commit ([`CHANGES`]) is left out of the
@@ -17,7 +19,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 
-use crate::manifest::{self, HD, RUNS};
+use crate::manifest::{self, HD, RUNS, VOLUME_BUILDS};
 use crate::record::Record;
 
 pub use crate::origins::{changed, changes_note, load_sets, origin, CHANGES, SETS_DIR};
@@ -213,7 +215,7 @@ fn set_part(name: &str, records: &[Record], lesson: &str) -> Result<(String, Vec
 /// Fails when a set differs from the book's records in a way
 /// [`CHANGES`] does not explain ([`check_set`]).
 pub fn write_other_adapters(generated: &Path, sets: &[(String, Vec<Record>)]) -> Result<()> {
-    let main = crate::load_records(generated)?;
+    let main = crate::derive::load_records(generated)?;
     for (name, records) in sets {
         check_set(name, origin(name).map(|o| o.commit), records, &main)?;
     }
@@ -262,6 +264,54 @@ pub fn write_other_adapters(generated: &Path, sets: &[(String, Vec<Record>)]) ->
         std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(())
+}
+
+/// Every other set's table of the three ways to build the volumes
+/// ([`crate::choosing::volumes_build`] on the set's records), less the
+/// variants changed since the set's commit.
+pub fn volumes_build_sets(generated: &Path) -> Result<String> {
+    let mut s = String::new();
+    for (name, records) in load_sets(generated)? {
+        let commit = origin(&name).map(|o| o.commit);
+        let mut left_out = Vec::new();
+        let mine: Vec<Record> = records
+            .iter()
+            .filter(|r| VOLUME_BUILDS.iter().any(|(id, _)| *id == r.id()))
+            .map(|r| {
+                let mut r = r.clone();
+                r.variants.retain(|v| {
+                    let gone = commit.is_some_and(|c| changed(c, &r.lesson, &v.name).is_some());
+                    if gone && !left_out.contains(&v.name) {
+                        left_out.push(v.name.clone());
+                    }
+                    !gone
+                });
+                r
+            })
+            .collect();
+        if mine.is_empty() {
+            continue;
+        }
+        if !s.is_empty() {
+            s += "\n";
+        }
+        s += &match origin(&name) {
+            Some(o) => format!(
+                "**The code of commit `{}`** (measured {})\n\n",
+                o.commit, o.measured
+            ),
+            None => String::new(),
+        };
+        s += &crate::choosing::volumes_build(&mine);
+        if let Some(c) = commit {
+            let names: Vec<&str> = left_out.iter().map(String::as_str).collect();
+            s += &changes_note(c, "lesson_05", &names, false, None);
+        }
+    }
+    if s.is_empty() {
+        s = "*No set of another adapter has lesson 05's runs.*\n".into();
+    }
+    Ok(s)
 }
 
 #[cfg(test)]

@@ -82,7 +82,10 @@ pub const REPEATABILITY: &str = "protocol/repeatability.md";
 /// Prints the comparison of two generated folders; with `write`, also the
 /// introduction's table of it.
 pub fn compare(a: &Path, b: &Path, write: Option<&Path>) -> Result<()> {
-    let (ra, rb) = (crate::load_records(a)?, crate::load_records(b)?);
+    let (ra, rb) = (
+        crate::derive::load_records(a)?,
+        crate::derive::load_records(b)?,
+    );
     let cells = cells(&ra, &rb);
     if cells.is_empty() {
         bail!(
@@ -146,8 +149,7 @@ fn table(a: &[Record], cells: &[Cell]) -> Result<String> {
         "1st inside the 2nd's".into(),
         "spreads overlap".into(),
     ];
-    s += &crate::table::row(&head);
-    s += &crate::table::row(&vec!["---".to_string(); head.len()]);
+    s += &crate::table::header(&head);
     for (kind, name) in [("frame", "frame cost"), ("GPU", "GPU total")] {
         let of: Vec<&Cell> = cells.iter().filter(|c| c.id.ends_with(kind)).collect();
         if of.is_empty() {

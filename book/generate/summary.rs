@@ -3,7 +3,7 @@
 
 use crate::plots::{pareto_front, Metric, Point, Series};
 use crate::record::Record;
-use crate::table::{pct, row, stat};
+use crate::table::{header, pct, row, stat};
 
 /// The README's table sits between these two lines.
 pub const BEGIN: &str =
@@ -56,7 +56,7 @@ pub fn readme_block(defaults: &[&Record]) -> String {
     // A soft shadow's error is its penumbra's mean |ΔV|: the header says
     // so when a lesson has one, and so does each of its cells.
     let soft = defaults.iter().any(|r| r.soft());
-    s += &row(&[
+    s += &header(&[
         "lesson".into(),
         match soft {
             false => "Pareto-optimal variants: misclassified %, frame cost ms [spread]".into(),
@@ -65,7 +65,6 @@ pub fn readme_block(defaults: &[&Record]) -> String {
         "no shadows, frame ms".into(),
         "chapter".into(),
     ]);
-    s += &row(&vec!["---".to_string(); 4]);
     for r in defaults {
         let ser = series(r);
         let front: Vec<String> = pareto_front(&ser.points)

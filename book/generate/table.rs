@@ -153,8 +153,7 @@ impl Record {
             .min_by(|a, b| a.1.median.total_cmp(&b.1.median));
         let baseline = self.baseline.as_ref().filter(stable);
         let mut s = format!("{}\n\n", self.header());
-        s += &row(&head);
-        s += &row(&vec!["---".to_string(); head.len()]);
+        s += &header(&head);
         if let (true, Some(base)) = (timed, &self.baseline) {
             let n = head.len() - 6;
             let mut cells = vec!["no shadows (baseline)".to_string()];
@@ -242,8 +241,7 @@ impl Record {
         let mut head = vec!["variant".to_string()];
         head.extend(keys.iter().map(|k| format!("`{k}` ms")));
         let mut s = format!("{}\n\n", self.header());
-        s += &row(&head);
-        s += &row(&vec!["---".to_string(); head.len()]);
+        s += &header(&head);
         let mut line = |name: String, t: &Timing| {
             let mut cells = vec![name];
             for k in &keys {
@@ -285,6 +283,11 @@ pub fn time_cells(t: &Timing) -> [String; 3] {
 /// A markdown table row.
 pub fn row(cells: &[String]) -> String {
     format!("| {} |\n", cells.join(" | "))
+}
+
+/// A table's header: its columns' row and the `---` row under it.
+pub fn header(columns: &[String]) -> String {
+    row(columns) + &row(&vec!["---".to_string(); columns.len()])
 }
 
 /// What a scenes table's cells show.
@@ -359,8 +362,7 @@ pub fn scenes_table(records: &[&Record], cell: Cell) -> Result<String> {
     );
     let mut head = vec!["scene".to_string()];
     head.extend(names.iter().map(|n| format!("`{n}`")));
-    s += &row(&head);
-    s += &row(&vec!["---".to_string(); head.len()]);
+    s += &header(&head);
     for r in records {
         let mut cells = vec![format!("{} (`{}`)", r.title, r.scene)];
         for n in &names {
@@ -419,8 +421,7 @@ impl Record {
             .map(|(n, _)| n.to_string())
             .collect();
         let mut s = format!("{}\n\n", self.header());
-        s += &row(&head);
-        s += &row(&vec!["---".to_string(); head.len()]);
+        s += &header(&head);
         for v in &self.variants {
             let Some(e) = &v.soft else { continue };
             let width = e

@@ -17,7 +17,7 @@ use crate::legend::legend_own;
 use crate::origins::{changed, changes_note, origin};
 use crate::plots::{line_fit, Line};
 use crate::record::{Record, VariantRecord};
-use crate::table::{ms, row};
+use crate::table::{header, ms, row};
 
 /// The file each chapter includes, under `generated/<lesson>/`.
 pub const TABLE: &str = "tap_floor.md";
@@ -107,8 +107,7 @@ fn part(lesson: &str, records: &[Record], heading: &str, commit: Option<&str>) -
         "floor's share".into(),
         format!("floor at {}×{} (ms)", FULL_HD.0, FULL_HD.1),
     ];
-    s += &row(&columns);
-    s += &row(&vec!["---".to_string(); 6]);
+    s += &header(&columns);
     let mut left_out = Vec::new();
     // Whether the floor at 1920×1080 alone is over half a millisecond.
     let (mut over_half, mut under_half) = (Vec::new(), Vec::new());

@@ -9,7 +9,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use common::measure::report::Report;
 
-use crate::table::{count, row};
+use crate::table::{count, header, row};
 
 /// The measured reports, relative to the repository's root.
 pub const DIR: &str = "book/measured/h100-631f993";
@@ -43,8 +43,7 @@ pub fn table(root: &Path) -> Result<String> {
                 "*{}, {} · {}×{} · measured elsewhere with the protocol of commit `631f993` (2 warm-up frames; median of the frames of one process): `{DIR}/README.md` gives the commands · GPU ms from timestamps, CPU ms from the CPU's clock*\n\n",
                 r.adapter.name, r.adapter.backend, r.width, r.height
             );
-            s += &row(&HEAD.map(String::from));
-            s += &row(&vec!["---".to_string(); HEAD.len()]);
+            s += &header(&HEAD.map(String::from));
             head_done = true;
         }
         let fastest = ROUTES

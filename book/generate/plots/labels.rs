@@ -2,6 +2,7 @@
 //! or, where points crowd, in a column with leader lines.
 
 use super::draw::Rect;
+use super::{max_of, min_of};
 
 /// Within this distance (px) of each other, points whose labels cannot
 /// touch them unambiguously are labelled together in one column.
@@ -182,22 +183,10 @@ fn place_column(
     let n = group.len();
     let col_h = row * n as f64 - 3.0;
     let col_w = group.iter().map(|&k| widths[k]).fold(0.0, f64::max);
-    let gx0 = group
-        .iter()
-        .map(|&k| pts[k].0)
-        .fold(f64::INFINITY, f64::min);
-    let gx1 = group
-        .iter()
-        .map(|&k| pts[k].0)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let gy0 = group
-        .iter()
-        .map(|&k| pts[k].1)
-        .fold(f64::INFINITY, f64::min);
-    let gy1 = group
-        .iter()
-        .map(|&k| pts[k].1)
-        .fold(f64::NEG_INFINITY, f64::max);
+    let xs = || group.iter().map(|&k| pts[k].0);
+    let ys = || group.iter().map(|&k| pts[k].1);
+    let (gx0, gx1) = (min_of(xs()), max_of(xs()));
+    let (gy0, gy1) = (min_of(ys()), max_of(ys()));
     let cy = (gy0 + gy1) / 2.0;
     // Row k's box and its leader end, for a column at x0 (its left edge)
     // and top y0.

@@ -1,3 +1,6 @@
+//! The plots' unit tests: the Pareto front, the log-log slope, the axes'
+//! ticks and labels, and a plot written twice byte for byte the same.
+
 use super::*;
 
 use super::axis::{fmt_exact, Axis};

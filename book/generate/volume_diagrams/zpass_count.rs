@@ -1,0 +1,242 @@
+//! Picture (c), the z-pass count (`volume_zpass_count.svg`): a cross-section
+//! of lesson 05's volume of a long box, and the count of its faces along
+//! two view rays.
+
+use anyhow::{bail, Result};
+use common::glam::{DMat4, DVec3, Vec3};
+use common::scene::mesh::builtin;
+use workbook::lesson_05::adjacency::Adjacency;
+use workbook::lesson_05::silhouette::{
+    face_facing, light_facing_triangles_for, silhouette_edges_for, LightDir,
+};
+
+use super::draw::BLUE;
+use crate::diagrams::crossings::{crossings, inside, signed, Face};
+use crate::diagrams::svg::{add, fill, stroke, Svg, P};
+
+/// The cross-section: lesson 05's functions on a long box (a prism along
+/// z) lit from a point in the plane z = 0, then cut by that plane.
+const LIGHT_2D: P = (-2.6, 6.4);
+const EYE_2D: P = (7.6, 4.6);
+const FAR_Y: f64 = -2.6;
+
+/// A segment of the cross-section.
+type Segment = (P, P);
+
+/// The prism's cross-section: (front cap segments, silhouette points).
+fn prism_section() -> Result<(Vec<Segment>, Vec<P>)> {
+    let model = DMat4::from_translation(DVec3::new(0.2, 2.7, 0.0))
+        * DMat4::from_rotation_z(20f64.to_radians())
+        * DMat4::from_scale(DVec3::new(1.8, 0.8, 4.0));
+    let cube = builtin("cube")?;
+    let world: Vec<Vec3> = cube
+        .positions
+        .iter()
+        .map(|p| model.transform_point3(p.as_dvec3()).as_vec3())
+        .collect();
+    let adj = Adjacency::from_triangles(&world, &cube.indices);
+    let light = LightDir::Point(Vec3::new(LIGHT_2D.0 as f32, LIGHT_2D.1 as f32, 0.0));
+    let facing = face_facing(&adj, light);
+    let xy = |i: u32| {
+        let p = adj.positions[i as usize];
+        (p.x as f64, p.y as f64)
+    };
+    let close = |a: P, b: P| (a.0 - b.0).abs() + (a.1 - b.1).abs() < 1e-5;
+    // Silhouette edges along z cut the plane in one point each.
+    let points: Vec<P> = silhouette_edges_for(&adj, &facing)
+        .iter()
+        .filter(|e| close(xy(e.a), xy(e.b)))
+        .map(|e| xy(e.a))
+        .collect();
+    let mut caps: Vec<(P, P)> = Vec::new();
+    for t in light_facing_triangles_for(&adj, &facing) {
+        let mut ends: Vec<P> = Vec::new();
+        for p in t.map(xy) {
+            if !ends.iter().any(|q| close(*q, p)) {
+                ends.push(p);
+            }
+        }
+        let [a, b] = ends[..] else { continue };
+        if !caps
+            .iter()
+            .any(|&(c, d)| (close(a, c) && close(b, d)) || (close(a, d) && close(b, c)))
+        {
+            caps.push((a, b));
+        }
+    }
+    if points.len() != 2 || caps.is_empty() {
+        bail!(
+            "prism section: {} silhouette points, {} cap segments",
+            points.len(),
+            caps.len()
+        );
+    }
+    Ok((caps, points))
+}
+
+/// A silhouette point pushed away from the light to y = `y`.
+fn extrude_to(p: P, y: f64) -> P {
+    let t = (y - p.1) / (p.1 - LIGHT_2D.1);
+    (p.0 + t * (p.0 - LIGHT_2D.0), y)
+}
+
+/// The volume's section as faces: front cap segments, two sides, back cap.
+fn section_faces(caps: &[(P, P)], sil: &[P]) -> (Vec<P>, Vec<Face>) {
+    // The section is convex: its hull, counter-clockwise.
+    let mut pts: Vec<P> = caps.iter().flat_map(|&(a, b)| [a, b]).collect();
+    pts.extend(sil.iter().map(|&p| extrude_to(p, FAR_Y)));
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    pts.dedup_by(|a, b| (a.0 - b.0).abs() + (a.1 - b.1).abs() < 1e-9);
+    let cross = |o: P, a: P, b: P| (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0);
+    let mut hull: Vec<P> = Vec::new();
+    for pass in [pts.clone(), pts.iter().rev().copied().collect()] {
+        let start = hull.len();
+        for p in pass {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    let n = hull.len() as f64;
+    let c = hull
+        .iter()
+        .fold((0.0, 0.0), |s, p| (s.0 + p.0 / n, s.1 + p.1 / n));
+    let far = |p: P| (p.1 - FAR_Y).abs() < 1e-9;
+    let faces = (0..hull.len())
+        .map(|i| {
+            let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
+            let name = match (far(a), far(b)) {
+                (true, true) => "back cap (∞)",
+                (false, false) => "front cap",
+                _ => "side",
+            };
+            let mut out = (b.1 - a.1, a.0 - b.0);
+            if out.0 * (a.0 - c.0) + out.1 * (a.1 - c.1) < 0.0 {
+                out = (-out.0, -out.1);
+            }
+            Face { a, b, name, out }
+        })
+        .collect();
+    (hull, faces)
+}
+
+pub(super) fn zpass_count() -> Result<String> {
+    let (caps, sil) = prism_section()?;
+    let (hull, faces) = section_faces(&caps, &sil);
+    let floor: Vec<f64> = sil.iter().map(|&p| extrude_to(p, 0.0).0).collect();
+    let (x0, x1) = (floor[0].min(floor[1]), floor[0].max(floor[1]));
+    let targets = [
+        ("a lit point", (x0 - 1.4, 0.0)),
+        ("a shadowed point", ((x0 + x1) / 2.0, 0.0)),
+    ];
+    let title = "Z-pass: counting volume faces along two view rays (a cross-section)";
+    let mut s = Svg::new(800.0, 0.0, title);
+    let (wx, wy) = ((-3.6, 9.0), (FAR_Y - 0.2, 7.0));
+    let k = 740.0 / (wx.1 - wx.0);
+    let at = |p: P| (30.0 + (p.0 - wx.0) * k, 50.0 + (wy.1 - p.1) * k);
+    let region: Vec<P> = hull.iter().map(|&p| at(p)).collect();
+    s.poly(&region, true, &fill("#ddd", "none"));
+    for f in &faces {
+        let style = match f.name {
+            "front cap" => stroke("#a80", 3.0, ""),
+            "side" => stroke("#555", 2.0, ""),
+            _ => stroke("#9467bd", 2.0, "6,4"),
+        };
+        s.line(at(f.a), at(f.b), &style);
+    }
+    for p in &sil {
+        s.line(at(LIGHT_2D), at(*p), &stroke("#a80", 1.0, "3,3"));
+    }
+    s.line(
+        at((wx.0, 0.0)),
+        at((wx.1, 0.0)),
+        &stroke("#8b5a2b", 3.0, ""),
+    );
+    s.text(
+        add(at((wx.0, 0.0)), 4.0, -6.0),
+        12.0,
+        "start",
+        "floor (the receiver)",
+    );
+    s.circle(at(LIGHT_2D), 9.0, &fill("#ffd400", "#a80"));
+    s.text(add(at(LIGHT_2D), 13.0, 4.0), 12.0, "start", "light");
+    s.circle(at(EYE_2D), 6.0, &fill(BLUE, "none"));
+    s.text(add(at(EYE_2D), 0.0, -12.0), 12.0, "middle", "eye");
+    let names = [
+        ("front cap", "front cap (the lit faces)"),
+        ("side", "side"),
+        ("back cap (∞)", "back cap (∞, lesson 06)"),
+    ];
+    let mut labelled = Vec::new();
+    for f in &faces {
+        if labelled.contains(&f.name) {
+            continue;
+        }
+        labelled.push(f.name);
+        let label = names.iter().find(|n| n.0 == f.name).map_or(f.name, |n| n.1);
+        let m = ((f.a.0 + f.b.0) / 2.0, (f.a.1 + f.b.1) / 2.0);
+        let (anchor, d) = if f.out.0 < -1e-9 {
+            ("end", -8.0)
+        } else {
+            ("start", 8.0)
+        };
+        let dy = match f.name {
+            "front cap" => -6.0,
+            "side" => 4.0,
+            _ => 16.0,
+        };
+        s.text(add(at(m), d, dy), 12.0, anchor, label);
+    }
+    let colours = ["#2ca02c", BLUE];
+    let mut lines = Vec::new();
+    for ((what, target), colour) in targets.iter().zip(colours) {
+        s.line(at(EYE_2D), at(*target), &stroke(colour, 2.0, ""));
+        s.circle(at(*target), 5.0, &fill("#fff", colour));
+        let d = (target.0 - EYE_2D.0, target.1 - EYE_2D.1);
+        let mut count = 0;
+        let mut steps = Vec::new();
+        for (t, sign, _) in crossings(EYE_2D, *target, &faces) {
+            if t >= 1.0 {
+                continue;
+            }
+            count += sign;
+            let p = at((EYE_2D.0 + t * d.0, EYE_2D.1 + t * d.1));
+            s.circle(p, 5.0, &fill(colour, "none"));
+            let label = format!("{} → {count}", signed(sign));
+            s.text(add(p, 2.0, -9.0), 13.0, "start", &label);
+            steps.push(signed(sign));
+        }
+        let shadow = inside(&hull, *target);
+        if (count != 0) != shadow {
+            bail!("z-pass count {count} disagrees with the section for {what}");
+        }
+        let verdict = ["lit", "in shadow"][(count != 0) as usize];
+        let sum = if steps.is_empty() {
+            "no crossing".into()
+        } else {
+            steps.join(" ")
+        };
+        s.text(
+            add(at(*target), 0.0, 18.0),
+            12.0,
+            "middle",
+            &format!("count {count}"),
+        );
+        lines.push(format!(
+            "Ray to {what}: {sum} = {count} at the surface → {verdict}."
+        ));
+    }
+    let mut y = at((0.0, FAR_Y)).1 + 30.0;
+    y = s.texts((30.0, y), 13.0, "start", &lines) + 4.0;
+    let note = "Each face crossed in front of the surface adds +1 where the ray enters the volume \
+                (a face turned towards the eye) and −1 where it leaves; the number after the arrow \
+                is the running count. The lesson's cube, extended along z into a long box, cut \
+                through the light: its silhouette edges and lit faces are silhouette_edges and \
+                light_facing_triangles.";
+    s.h = s.para((30.0, y), 12.0, "start", 740.0, note);
+    Ok(s.finish())
+}
