@@ -43,7 +43,6 @@ use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 /// renderer's default runs at its renderer's size ([`Variant::map_size`]).
 const MAP_SIZE: u32 = 1024;
 
-// ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Variant {
     #[value(name = "pcf_1x1")]
@@ -94,6 +93,7 @@ enum Variant {
     ExerciseWorldDisk,
 }
 
+// ANCHOR: variants
 impl Variant {
     /// How the variant turns the shadow map into a visibility.
     fn filter(self) -> Filter {
@@ -120,13 +120,15 @@ impl Variant {
                 radius: 2.5,
             },
             Variant::DepthAvg3x3 => Filter::DepthAverage { n: 3 },
+            Variant::LearnOpenGlPcf => pcf::LEARNOPENGL_3X3,
+            Variant::WgpuExampleHw2x2 => pcf::WGPU_EXAMPLE_HW2X2,
+            Variant::Bevy => pcf::BEVY_GAUSSIAN,
+            // ... then the two exercises' filters (the chapter's end).
+            // ANCHOR_END: variants
             // Graded against pcf_5x5 and poisson_16 (exercises.toml).
             Variant::ExercisePcfKernel => Filter::ExerciseGrid { n: 5 },
             // 2.5 cm: about poisson_16's 2.5 texels on the default scene.
             Variant::ExerciseWorldDisk => Filter::ExerciseDisk { radius_m: 0.025 },
-            Variant::LearnOpenGlPcf => pcf::LEARNOPENGL_3X3,
-            Variant::WgpuExampleHw2x2 => pcf::WGPU_EXAMPLE_HW2X2,
-            Variant::Bevy => pcf::BEVY_GAUSSIAN,
         }
     }
 
@@ -173,7 +175,6 @@ const PASSES: [(Option<SlopeScaledBias>, Option<wgpu::Face>); 3] = [
     (None, None),
     (Some(SlopeScaledBias::WGPU_EXAMPLE), Some(WGPU_EXAMPLE_CULL)),
 ];
-// ANCHOR_END: variants
 
 struct Pcf {
     /// Each variant's filter parameters (group 3), in variant order.

@@ -29,7 +29,7 @@ use common::Result;
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_04::costs::{self, PCF3D_TAPS};
 use workbook::lesson_04::cross::{cross_view, write_cross_png};
-use workbook::lesson_04::cube_map::{self, CubeParams, CubeShadowMap, CubeStats, LitKey, Storage};
+use workbook::lesson_04::cube_map::{self, CubeParams, CubeShadowMap, LitKey, Storage};
 use workbook::lesson_04::culling::{self, face_casters, FaceTest, Sphere};
 use workbook::lesson_04::faces::{point_light, FaceUniforms};
 use workbook::lesson_04::peers::{self, Peer, Port};
@@ -360,7 +360,9 @@ impl Lesson for CubeShadows {
         })
     }
 
-    // ANCHOR: render
+    /// The harness around [`CubeShadows::draw`]: the face passes' depth
+    /// writes counted once per variant (their own submits, left out of the
+    /// frame's times), and the faces and draws the frame's passes made.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -369,44 +371,18 @@ impl Lesson for CubeShadows {
         variant: Variant,
     ) -> Result<()> {
         if self.texels_written[variant as usize].is_none() {
-            // Once per variant, its own submits: left out of the frame's times.
             let n = frame.untimed(|gpu| self.count_texels(gpu, scene, variant))?;
             self.texels_written[variant as usize] = Some(n);
         }
-        let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
-        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        self.stats = CubeStats::default();
-        for light in 0..scene.scene.lights.len() {
-            self.faces
-                .write(frame.gpu, &scene.scene, light, p.near, p.far);
-            let at = point_light(&scene.scene, self.faces.origin, light)
-                .expect("check_scene allows point and spot lights");
-            let casters = |face| face_casters(scene, &self.spheres, at, v.cull, face);
-            let map = &mut self.maps[p.map];
-            let s = cube_map::cube_shadow_passes(
-                frame,
-                scene,
-                &self.shadow_pipelines[p.pipeline],
-                map,
-                &self.faces,
-                light,
-                casters,
-            );
-            self.stats.faces_rendered += s.faces_rendered;
-            self.stats.caster_draws += s.caster_draws;
-            frame.pass("lighting", |enc, ts| {
-                scene.lit_pass(
-                    enc,
-                    targets,
-                    LitPass::new(light, &self.lit_pipelines[p.lit], &[&p.group]),
-                    ts.render(),
-                )
-            });
-        }
+        let drawn = self.draw(frame, scene, targets, variant);
+        let faces = drawn.iter().flatten();
+        self.stats = CubeStats {
+            faces_rendered: faces.clone().filter(|&&d| d > 0).count() as u64,
+            caster_draws: faces.map(|&d| u64::from(d)).sum(),
+        };
         self.draws = costs::frame_draws(scene, self.stats.caster_draws);
         Ok(())
     }
-    // ANCHOR_END: render
 
     /// Also the standard costs: the face passes' depth writes and
     /// fragments, the lit pass's taps per pixel, the frame's draw calls.
@@ -447,7 +423,54 @@ impl Lesson for CubeShadows {
     }
 }
 
+/// What a frame's face passes drew.
+#[derive(Clone, Copy, Debug, Default)]
+struct CubeStats {
+    faces_rendered: u64,
+    caster_draws: u64,
+}
+
 impl CubeShadows {
+    // ANCHOR: render
+    /// One frame: per light, the six faces' matrices for where it is, the
+    /// face passes (each face's casters culled as the variant says), then
+    /// the lit pass. Returns each light's draws per face.
+    fn draw(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+    ) -> Vec<[u32; 6]> {
+        let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        let mut drawn = Vec::new();
+        for light in 0..scene.scene.lights.len() {
+            self.faces
+                .write(frame.gpu, &scene.scene, light, p.near, p.far);
+            let at = point_light(&scene.scene, self.faces.origin, light)
+                .expect("check_scene allows point and spot lights");
+            let casters = |face| face_casters(scene, &self.spheres, at, v.cull, face);
+            let map = &mut self.maps[p.map];
+            let pipeline = &self.shadow_pipelines[p.pipeline];
+            let faces = &self.faces;
+            drawn.push(cube_map::cube_shadow_passes(
+                frame, scene, pipeline, map, faces, light, casters,
+            ));
+            let lit = &self.lit_pipelines[p.lit];
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(
+                    enc,
+                    targets,
+                    LitPass::new(light, lit, &[&p.group]),
+                    ts.render(),
+                )
+            });
+        }
+        drawn
+    }
+    // ANCHOR_END: render
+
     /// Every light's face passes for `variant`, counted ([`costs::count_light_texels`]).
     fn count_texels(
         &mut self,
