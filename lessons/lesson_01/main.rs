@@ -109,10 +109,7 @@ impl Lesson for DepthMap {
 
     /// The variant's shadow map, as its last shadow pass left it.
     fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
-            return Ok(None); // no light: no shadow pass
-        };
-        self.maps[v as usize].0.buffer_view(gpu, last).map(Some)
+        self.maps[v as usize].0.last_light_view(gpu, scene)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {

@@ -90,6 +90,15 @@ impl ShadowMap {
         );
         Ok(BufferView { title, image })
     }
+
+    /// [`ShadowMap::buffer_view`] of the scene's last light, the one the map
+    /// holds after a frame; `None` when there is no light (no shadow pass).
+    pub fn last_light_view(&self, gpu: &Gpu, scene: &SceneGpu) -> Result<Option<BufferView>> {
+        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
+            return Ok(None);
+        };
+        self.buffer_view(gpu, last).map(Some)
+    }
 }
 
 /// The colour of a texel no caster wrote, in [`ShadowMap::buffer_view`].

@@ -32,8 +32,10 @@ use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{
     ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
 };
-use workbook::lesson_02::exercise_pass::{self, Exercise};
+use workbook::lesson_02::exercise_pass::Exercise;
 use workbook::lesson_02::knobs;
+
+mod harness;
 
 /// One map size for the lesson's variants: they differ only in the bias.
 /// A renderer's default runs at its renderer's size ([`Variant::map_size`]).
@@ -233,10 +235,7 @@ impl Lesson for Bias {
 
     /// The shadow map, as the variant's last shadow pass left it.
     fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
-            return Ok(None); // no light: no shadow pass
-        };
-        self.map(v).0.buffer_view(gpu, last).map(Some)
+        self.map(v).0.last_light_view(gpu, scene)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -333,29 +332,9 @@ impl Lesson for Bias {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        if self.texels_written[variant as usize].is_none() {
-            let tally_slope = &self.tally_slope[variant as usize];
-            let size = variant.map_size();
-            let n = shadow_map::count_shadow_texels(frame.gpu, scene, size, |k| {
-                match (variant.fix(), tally_slope) {
-                    (Fix::CullFrontFaces, _) => &self.tally_cull,
-                    (_, Some(hw)) => &hw[k],
-                    _ => &self.tally_plain,
-                }
-            })?;
-            self.texels_written[variant as usize] = Some(n);
-        }
-        let exercise = variant.exercise();
-        if let Some(e) = exercise {
-            if !self.exercise_lit.iter().any(|(x, _)| *x == e) {
-                let [map, bias] = &self.layouts;
-                let p = exercise_pass::lit_pipeline(frame.gpu, scene, e, &[map, bias])?;
-                self.exercise_lit.push((e, p));
-            }
-        }
-        let lit = (self.exercise_lit.iter())
-            .find(|(x, _)| Some(*x) == exercise)
-            .map_or(&self.lit_pipeline, |(_, p)| p);
+        self.count_texels_once(frame.gpu, scene, variant)?;
+        self.compile_exercise(frame.gpu, scene, variant)?;
+        let lit = self.lit_for(variant);
         let drawn = self.draw(frame, scene, targets, variant, lit);
         self.casters_drawn = drawn as u64;
         Ok(())

@@ -34,6 +34,9 @@ use workbook::lesson_04::culling::{self, face_casters, FaceTest, Sphere};
 use workbook::lesson_04::faces::{point_light, FaceUniforms};
 use workbook::lesson_04::peers::{self, Peer, Port};
 
+mod harness;
+use harness::CubeStats;
+
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Variant {
@@ -370,17 +373,9 @@ impl Lesson for CubeShadows {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        if self.texels_written[variant as usize].is_none() {
-            let n = frame.untimed(|gpu| self.count_texels(gpu, scene, variant))?;
-            self.texels_written[variant as usize] = Some(n);
-        }
+        self.count_texels_once(frame, scene, variant)?;
         let drawn = self.draw(frame, scene, targets, variant);
-        let faces = drawn.iter().flatten();
-        self.stats = CubeStats {
-            faces_rendered: faces.clone().filter(|&&d| d > 0).count() as u64,
-            caster_draws: faces.map(|&d| u64::from(d)).sum(),
-        };
-        self.draws = costs::frame_draws(scene, self.stats.caster_draws);
+        self.record_draws(scene, &drawn);
         Ok(())
     }
 
@@ -423,13 +418,6 @@ impl Lesson for CubeShadows {
     }
 }
 
-/// What a frame's face passes drew.
-#[derive(Clone, Copy, Debug, Default)]
-struct CubeStats {
-    faces_rendered: u64,
-    caster_draws: u64,
-}
-
 impl CubeShadows {
     // ANCHOR: render
     /// One frame: per light, the six faces' matrices for where it is, the
@@ -470,33 +458,6 @@ impl CubeShadows {
         drawn
     }
     // ANCHOR_END: render
-
-    /// Every light's face passes for `variant`, counted ([`costs::count_light_texels`]).
-    fn count_texels(
-        &mut self,
-        gpu: &Gpu,
-        scene: &SceneGpu,
-        variant: Variant,
-    ) -> Result<(u64, u64)> {
-        let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
-        let mut total = (0, 0);
-        for light in 0..scene.scene.lights.len() {
-            self.faces.write(gpu, &scene.scene, light, p.near, p.far);
-            let at = point_light(&scene.scene, self.faces.origin, light)
-                .expect("check_scene allows point and spot lights");
-            let (written, fragments) = costs::count_light_texels(
-                gpu,
-                scene,
-                &self.tally_pipelines[p.pipeline],
-                &self.faces,
-                v.size,
-                light,
-                |face| face_casters(scene, &self.spheres, at, v.cull, face),
-            )?;
-            total = (total.0 + written, total.1 + fragments);
-        }
-        Ok(total)
-    }
 }
 
 fn main() -> std::process::ExitCode {
