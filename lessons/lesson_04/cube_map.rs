@@ -267,7 +267,7 @@ pub fn cube_shadow_passes(
     casters: impl Fn(usize) -> Vec<usize>,
 ) -> [u32; 6] {
     let mut drawn = [0; 6];
-    for face in 0..6 {
+    for (face, draws) in drawn.iter_mut().enumerate() {
         let list = casters(face);
         if list.is_empty() && map.empty[face] {
             continue;
@@ -288,7 +288,7 @@ pub fn cube_shadow_passes(
             });
             pass.set_pipeline(pipeline);
             faces.bind(&mut pass, light, face);
-            drawn[face] = scene.draw_objects(&mut pass, |i| list.contains(&i));
+            *draws = scene.draw_objects(&mut pass, |i| list.contains(&i));
         });
         map.empty[face] = list.is_empty();
     }
