@@ -37,14 +37,8 @@ pub const BEVY_POINT: PortCard = PortCard {
             file: "crates/bevy_render/src/maths.wgsl",
             commit: BEVY_AT_E85A706,
         },
-        Source {
-            file: "crates/bevy_core_pipeline/src/core_3d/mod.rs",
-            commit: BEVY_AT_E85A706,
-        },
-        Source {
-            file: "crates/bevy_pbr/src/pbr_material.rs",
-            commit: BEVY_AT_E85A706,
-        },
+        l02::BEVY_SOURCES[4],
+        l02::BEVY_SOURCES[5],
         Source {
             file: "crates/bevy_pbr/src/render/pbr_functions.wgsl",
             commit: BEVY_AT_E85A706,
