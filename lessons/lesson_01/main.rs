@@ -43,6 +43,8 @@ enum Variant {
     Res2048,
     #[value(name = "res_4096")]
     Res4096,
+    // ... then the two exercises' variants, at 1024² (the chapter's end).
+    // ANCHOR_END: variants
     /// Exercise 1: the student's light box (`exercises::fit_light_box`), 1024².
     #[value(name = "exercise_tight_frustum")]
     ExerciseTightFrustum,
@@ -64,7 +66,6 @@ impl Variant {
         }
     }
 }
-// ANCHOR_END: variants
 
 struct DepthMap {
     shadow_pipeline: wgpu::RenderPipeline,
@@ -108,10 +109,7 @@ impl Lesson for DepthMap {
 
     /// The variant's shadow map, as its last shadow pass left it.
     fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
-            return Ok(None); // no light: no shadow pass
-        };
-        self.maps[v as usize].0.buffer_view(gpu, last).map(Some)
+        self.maps[v as usize].0.last_light_view(gpu, scene)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -167,7 +165,9 @@ impl Lesson for DepthMap {
         })
     }
 
-    // ANCHOR: render
+    /// The harness around [`DepthMap::draw`]: the exercises' setup, the
+    /// shadow pass's depth writes counted once per variant (their own
+    /// submits, before the frame), and the lit pipeline the variant uses.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -177,7 +177,6 @@ impl Lesson for DepthMap {
     ) -> Result<()> {
         self.exercise_setup(frame.gpu, scene, variant)?;
         if self.texels_written[variant as usize].is_none() {
-            // Once per variant, its own submit: untimed.
             let n = shadow_map::count_shadow_texels(
                 frame.gpu,
                 scene,
@@ -187,28 +186,13 @@ impl Lesson for DepthMap {
             self.texels_written[variant as usize] = Some(n);
         }
         let (map, group) = &self.maps[variant as usize];
-        let lit = match variant {
-            Variant::ExerciseDepthCompare => self.exercise_lit.as_ref(),
-            _ => None,
-        }
-        .unwrap_or(&self.lit_pipeline);
-        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        for light in 0..scene.scene.lights.len() {
-            // Pass 1: depth from the light. Pass 2: compare and add the light.
-            frame.pass("shadow", |enc, ts| {
-                shadow_map::shadow_pass(enc, scene, &self.shadow_pipeline, map, light, ts.render())
-            });
-            let groups = match (variant, &self.exercise_depths) {
-                (Variant::ExerciseDepthCompare, Some(depths)) => vec![group, depths],
-                _ => vec![group],
-            };
-            frame.pass("lighting", |enc, ts| {
-                scene.lit_pass(enc, targets, LitPass::new(light, lit, &groups), ts.render())
-            });
-        }
+        let (lit, groups) = match (variant, &self.exercise_lit, &self.exercise_depths) {
+            (Variant::ExerciseDepthCompare, Some(lit), Some(depths)) => (lit, vec![group, depths]),
+            _ => (&self.lit_pipeline, vec![group]),
+        };
+        self.draw(frame, scene, targets, map, lit, &groups);
         Ok(())
     }
-    // ANCHOR_END: render
 
     /// The texel's two sides, in micrometres: the acne's depth error, up to
     /// half a texel × tan θ (chapter 01), scales with them.
@@ -281,6 +265,31 @@ impl Lesson for DepthMap {
 }
 
 impl DepthMap {
+    // ANCHOR: render
+    /// One frame: the base pass, then per light the shadow pass into `map`
+    /// and the lit pass, whose `groups` start with the map's (group 2).
+    fn draw(
+        &self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        map: &ShadowMap,
+        lit: &wgpu::RenderPipeline,
+        groups: &[&wgpu::BindGroup],
+    ) {
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        for light in 0..scene.scene.lights.len() {
+            // Pass 1: depth from the light. Pass 2: compare and add the light.
+            frame.pass("shadow", |enc, ts| {
+                shadow_map::shadow_pass(enc, scene, &self.shadow_pipeline, map, light, ts.render())
+            });
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(enc, targets, LitPass::new(light, lit, groups), ts.render())
+            });
+        }
+    }
+    // ANCHOR_END: render
+
     /// The side of `variant`'s map now: [`Variant::resolution`], or the
     /// `map_size_log2` knob's.
     fn resolution(&self, variant: Variant) -> u32 {

@@ -90,6 +90,15 @@ impl ShadowMap {
         );
         Ok(BufferView { title, image })
     }
+
+    /// [`ShadowMap::buffer_view`] of the scene's last light, the one the map
+    /// holds after a frame; `None` when there is no light (no shadow pass).
+    pub fn last_light_view(&self, gpu: &Gpu, scene: &SceneGpu) -> Result<Option<BufferView>> {
+        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
+            return Ok(None);
+        };
+        self.buffer_view(gpu, last).map(Some)
+    }
 }
 
 /// The colour of a texel no caster wrote, in [`ShadowMap::buffer_view`].
@@ -162,8 +171,39 @@ pub fn shadow_pipeline(
     module: &wgpu::ShaderModule,
     state: ShadowPassState,
 ) -> wgpu::RenderPipeline {
-    shadow_pipeline_with(gpu, scene, module, state, None)
+    let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
+    let descriptor = shadow_pipeline_descriptor(&layout, module, state);
+    gpu.device.create_render_pipeline(&descriptor)
 }
+
+/// Depth kept where a fragment is nearer (`Less`), no colour at all.
+pub fn shadow_pipeline_descriptor<'a>(
+    layout: &'a wgpu::PipelineLayout,
+    module: &'a wgpu::ShaderModule,
+    state: ShadowPassState,
+) -> wgpu::RenderPipelineDescriptor<'a> {
+    wgpu::RenderPipelineDescriptor {
+        label: Some("shadow pass"),
+        layout: Some(layout),
+        vertex: vertex_state(module, "vs_light_depth"),
+        primitive: wgpu::PrimitiveState {
+            cull_mode: state.cull,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: SHADOW_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: state.bias,
+        }),
+        multisample: Default::default(),
+        fragment: None,
+        multiview_mask: None,
+        cache: None,
+    }
+}
+// ANCHOR_END: shadow_pipeline
 
 /// The two counting copies of the shadow pipeline of `state`: `[0]` tests
 /// `Less` as the shadow pass does (its depth writes), `[1]` tests nothing
@@ -175,53 +215,20 @@ pub fn shadow_tally_pipelines(
     state: ShadowPassState,
     tally: &TallyShader,
 ) -> [wgpu::RenderPipeline; 2] {
+    let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
     let with = |compare| {
-        let f = Some((tally.fragment(), compare));
-        shadow_pipeline_with(gpu, scene, module, state, f)
+        let mut copy = shadow_pipeline_descriptor(&layout, module, state);
+        copy.fragment = Some(tally.fragment());
+        if let Some(depth) = copy.depth_stencil.as_mut() {
+            depth.depth_compare = Some(compare);
+        }
+        gpu.device.create_render_pipeline(&copy)
     };
     [
         with(wgpu::CompareFunction::Less),
         with(wgpu::CompareFunction::Always),
     ]
 }
-
-/// [`shadow_pipeline`] with a fragment stage and depth test: a counting
-/// copy ([`shadow_tally_pipelines`]).
-fn shadow_pipeline_with(
-    gpu: &Gpu,
-    scene: &SceneGpu,
-    module: &wgpu::ShaderModule,
-    state: ShadowPassState,
-    tally: Option<(wgpu::FragmentState<'_>, wgpu::CompareFunction)>,
-) -> wgpu::RenderPipeline {
-    let (fragment, compare) = match tally {
-        Some((f, c)) => (Some(f), c),
-        None => (None, wgpu::CompareFunction::Less),
-    };
-    let layout = pipeline_layout_for(gpu, &scene.frame_layout, &scene.object_layout, &[]);
-    gpu.device
-        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("shadow pass"),
-            layout: Some(&layout),
-            vertex: vertex_state(module, "vs_light_depth"),
-            primitive: wgpu::PrimitiveState {
-                cull_mode: state.cull,
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: SHADOW_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(compare),
-                stencil: Default::default(),
-                bias: state.bias,
-            }),
-            multisample: Default::default(),
-            fragment,
-            multiview_mask: None,
-            cache: None,
-        })
-}
-// ANCHOR_END: shadow_pipeline
 
 // ANCHOR: shadow_pass
 /// Renders every shadow caster's depth from light `light` into `map`.
@@ -349,7 +356,9 @@ pub fn shadow_map_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
 pub fn shadow_map_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
     bindings::layout(gpu, "shadow map", &shadow_map_entries())
 }
+// ANCHOR_END: shadow_map_layout
 
+// ANCHOR: shadow_map_group
 /// The comparison sampler: the hardware answers `receiver <= stored` per
 /// texel. `filter` Linear blends the 4 nearest answers (lesson 03's 2×2).
 pub fn comparison_sampler(gpu: &Gpu, filter: wgpu::FilterMode) -> wgpu::Sampler {
@@ -378,7 +387,7 @@ pub fn shadow_map_group(
     ];
     bindings::group(gpu, "shadow map", layout, &resources)
 }
-// ANCHOR_END: shadow_map_layout
+// ANCHOR_END: shadow_map_group
 
 const DEPTH_TO_BYTES_WGSL: &str = r#"
 // The depth texture bound as unfilterable float: GLSL has no textureLoad on

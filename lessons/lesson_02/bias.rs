@@ -119,7 +119,10 @@ impl SlopeScaledBias {
         slope_scale: 1.5,
         clamp_texels: 16.0,
     };
+}
+// ANCHOR_END: slope_scaled_bias
 
+impl SlopeScaledBias {
     /// The wgpu shadow example's (its `shadow_pass` pipeline's
     /// `depth_stencil`): `DepthBiasState { constant: 2, // corresponds to
     /// bilinear filtering`, `slope_scale: 2.0, clamp: 0.0 }`. A clamp of 0
@@ -129,7 +132,10 @@ impl SlopeScaledBias {
         slope_scale: 2.0,
         clamp_texels: 0.0,
     };
+}
 
+// ANCHOR: pass_state
+impl SlopeScaledBias {
     /// The shadow pass's state for `light` and a `map_size` map: the clamp
     /// converted to depth units at the scene's centre, and left out where
     /// the adapter cannot clamp (GL), so there the bias is unclamped.
@@ -155,7 +161,7 @@ impl SlopeScaledBias {
         }
     }
 }
-// ANCHOR_END: slope_scaled_bias
+// ANCHOR_END: pass_state
 
 /// How much depth one texel-width step along the light's ray is, at the
 /// scene's centre (the depth is not linear for a spot light, so only there).

@@ -32,14 +32,16 @@ use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_02::bias::{
     ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
 };
-use workbook::lesson_02::exercise_pass::{self, Exercise};
+use workbook::lesson_02::exercise_pass::Exercise;
 use workbook::lesson_02::knobs;
+
+mod harness;
 
 /// One map size for the lesson's variants: they differ only in the bias.
 /// A renderer's default runs at its renderer's size ([`Variant::map_size`]).
 const MAP_SIZE: u32 = 1024;
 
-// ANCHOR: variants
+// ANCHOR: fixes
 /// Where a variant fights acne.
 #[derive(Clone, Copy, Debug)]
 enum Fix {
@@ -52,10 +54,28 @@ enum Fix {
     Hardware(SlopeScaledBias, Option<wgpu::Face>),
     /// In the shadow pass: store the back faces, not the lit front faces.
     CullFrontFaces,
-    /// The chapter's exercise: the student's WGSL in the lit pass
-    /// (`shaders/lesson_02/exercises.wgsl`), the plain shadow pass.
-    Exercise(Exercise),
 }
+
+/// Receiver moved `t` texels towards the light: a constant bias. A texel is
+/// measured along the receiver's depth gradient; a receiver at θ needs tan θ / 2.
+const fn toward(t: f32) -> Fix {
+    Fix::Receiver(ShadowBias {
+        toward_light: t,
+        ..ShadowBias::NONE
+    })
+}
+
+/// Receiver moved 0.1 texel plus tan θ texels towards the light, at most
+/// `max`: a slope-scaled bias in the shader.
+const fn slope_scaled(max: f32) -> Fix {
+    Fix::Receiver(ShadowBias {
+        toward_light: 0.1,
+        slope: 1.0,
+        slope_max: max,
+        ..ShadowBias::NONE
+    })
+}
+// ANCHOR_END: fixes
 
 /// The usual fixes, and a sweep of constant biases in texels: acne falls,
 /// Peter Panning rises.
@@ -112,16 +132,9 @@ enum Variant {
     ExerciseGrazingBias,
 }
 
-/// Receiver moved `t` texels towards the light: a constant bias. A texel is
-/// measured along the receiver's depth gradient; a receiver at θ needs tan θ / 2.
-const fn toward(t: f32) -> Fix {
-    Fix::Receiver(ShadowBias {
-        toward_light: t,
-        ..ShadowBias::NONE
-    })
-}
-
+// ANCHOR: variants
 impl Variant {
+    /// What the variant changes: where it fights acne, and by how much.
     fn fix(self) -> Fix {
         match self {
             Variant::None => Fix::Receiver(ShadowBias::NONE),
@@ -137,18 +150,8 @@ impl Variant {
             Variant::Bias16 => toward(16.0),
             Variant::Bias64 => toward(64.0),
             Variant::SlopeHw => Fix::Hardware(SlopeScaledBias::RECOMMENDED, None),
-            Variant::SlopeShader => Fix::Receiver(ShadowBias {
-                toward_light: 0.1,
-                slope: 1.0,
-                slope_max: 4.0,
-                ..ShadowBias::NONE
-            }),
-            Variant::SlopeUnclamped => Fix::Receiver(ShadowBias {
-                toward_light: 0.1,
-                slope: 1.0,
-                slope_max: f32::MAX,
-                ..ShadowBias::NONE
-            }),
+            Variant::SlopeShader => slope_scaled(4.0),
+            Variant::SlopeUnclamped => slope_scaled(f32::MAX),
             Variant::NormalOffset => Fix::Receiver(ShadowBias {
                 toward_light: 0.3,
                 normal: 2.0,
@@ -160,11 +163,14 @@ impl Variant {
                 Fix::Hardware(SlopeScaledBias::WGPU_EXAMPLE, Some(WGPU_EXAMPLE_CULL))
             }
             Variant::BevyBias => Fix::Receiver(ShadowBias::BEVY),
-            Variant::ExerciseSlopeBias => Fix::Exercise(Exercise::SlopeBias),
-            Variant::ExerciseGrazingBias => Fix::Exercise(Exercise::GrazingBias),
+            // The exercises: lesson 01's map, no bias here (their WGSL biases).
+            _ => Fix::Receiver(ShadowBias::NONE),
         }
     }
+}
+// ANCHOR_END: variants
 
+impl Variant {
     /// The shadow map's size: the lesson's, or a renderer's default.
     fn map_size(self) -> u32 {
         match self {
@@ -173,8 +179,16 @@ impl Variant {
             _ => MAP_SIZE,
         }
     }
+
+    /// The exercise whose WGSL the variant's lit pass runs, if it is one.
+    fn exercise(self) -> Option<Exercise> {
+        match self {
+            Variant::ExerciseSlopeBias => Some(Exercise::SlopeBias),
+            Variant::ExerciseGrazingBias => Some(Exercise::GrazingBias),
+            _ => None,
+        }
+    }
 }
-// ANCHOR_END: variants
 
 struct Bias {
     /// Each variant's receiver bias, bound at group 3 (zeros for the
@@ -221,10 +235,7 @@ impl Lesson for Bias {
 
     /// The shadow map, as the variant's last shadow pass left it.
     fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
-            return Ok(None); // no light: no shadow pass
-        };
-        self.map(v).0.buffer_view(gpu, last).map(Some)
+        self.map(v).0.last_light_view(gpu, scene)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -311,7 +322,9 @@ impl Lesson for Bias {
         })
     }
 
-    // ANCHOR: render
+    /// The harness around [`Bias::draw`]: the shadow pass's depth writes
+    /// counted once per variant (their own submits, before the frame), an
+    /// exercise's lit pipeline, and the casters the frame drew.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -319,64 +332,13 @@ impl Lesson for Bias {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        let (fix, bias_group) = (variant.fix(), &self.bias_groups[variant as usize]);
-        let (slope, tally_slope) = (
-            &self.slope_shadow[variant as usize],
-            &self.tally_slope[variant as usize],
-        );
-        if self.texels_written[variant as usize].is_none() {
-            // Once per variant, its own submit: untimed.
-            let size = variant.map_size();
-            let n = shadow_map::count_shadow_texels(frame.gpu, scene, size, |k| {
-                match (fix, tally_slope) {
-                    (Fix::CullFrontFaces, _) => &self.tally_cull,
-                    (_, Some(hw)) => &hw[k],
-                    _ => &self.tally_plain,
-                }
-            })?;
-            self.texels_written[variant as usize] = Some(n);
-        }
-        if let Fix::Exercise(e) = fix {
-            if !self.exercise_lit.iter().any(|(x, _)| *x == e) {
-                let [map, bias] = &self.layouts;
-                let p = exercise_pass::lit_pipeline(frame.gpu, scene, e, &[map, bias])?;
-                self.exercise_lit.push((e, p));
-            }
-        }
-        let lit = match fix {
-            Fix::Exercise(e) => self
-                .exercise_lit
-                .iter()
-                .find(|(x, _)| *x == e)
-                .map(|(_, p)| p),
-            _ => None,
-        }
-        .unwrap_or(&self.lit_pipeline);
-        let (map, map_group) = self.map(variant);
-        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        let mut drawn = 0;
-        for light in 0..scene.scene.lights.len() {
-            let shadow = match (fix, slope) {
-                (Fix::CullFrontFaces, _) => &self.cull_shadow,
-                (_, Some(hw)) => &hw[light],
-                _ => &self.plain_shadow,
-            };
-            drawn += frame.pass("shadow", |enc, ts| {
-                shadow_map::shadow_pass(enc, scene, shadow, map, light, ts.render())
-            });
-            frame.pass("lighting", |enc, ts| {
-                scene.lit_pass(
-                    enc,
-                    targets,
-                    LitPass::new(light, lit, &[map_group, bias_group]),
-                    ts.render(),
-                )
-            });
-        }
+        self.count_texels_once(frame.gpu, scene, variant)?;
+        self.compile_exercise(frame.gpu, scene, variant)?;
+        let lit = self.lit_for(variant);
+        let drawn = self.draw(frame, scene, targets, variant, lit);
         self.casters_drawn = drawn as u64;
         Ok(())
     }
-    // ANCHOR_END: render
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let mut c = BTreeMap::from([
@@ -393,6 +355,9 @@ impl Lesson for Bias {
     }
 
     fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        if variant.exercise().is_some() {
+            return Vec::new();
+        }
         match (variant.fix(), self.fixes[variant as usize]) {
             (Fix::Receiver(named), Fix::Receiver(now)) => knobs::receiver_knobs(named, now),
             (_, Fix::Hardware(now, _)) => knobs::hardware_knobs(now),
@@ -412,6 +377,9 @@ impl Lesson for Bias {
         value: f64,
     ) -> Result<()> {
         let i = variant as usize;
+        if variant.exercise().is_some() {
+            anyhow::bail!("--knob {name}: {} has no knobs", variant_name(variant));
+        }
         match &mut self.fixes[i] {
             Fix::Receiver(b) => {
                 knobs::set_receiver(b, name, value)?;
@@ -440,6 +408,42 @@ impl Lesson for Bias {
 }
 
 impl Bias {
+    // ANCHOR: render
+    /// One frame: per light, the shadow pass with the variant's pipeline
+    /// (front faces culled, its hardware bias for that light, or lesson
+    /// 01's plain one), then the lit pass with its bias at group 3.
+    /// Returns the casters drawn.
+    fn draw(
+        &self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        variant: Variant,
+        lit: &wgpu::RenderPipeline,
+    ) -> u32 {
+        let slope = &self.slope_shadow[variant as usize];
+        let bias_group = &self.bias_groups[variant as usize];
+        let (map, map_group) = self.map(variant);
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        let mut drawn = 0;
+        for light in 0..scene.scene.lights.len() {
+            let shadow = match (variant.fix(), slope) {
+                (Fix::CullFrontFaces, _) => &self.cull_shadow,
+                (_, Some(hw)) => &hw[light],
+                _ => &self.plain_shadow,
+            };
+            drawn += frame.pass("shadow", |enc, ts| {
+                shadow_map::shadow_pass(enc, scene, shadow, map, light, ts.render())
+            });
+            let groups = [map_group, bias_group];
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(enc, targets, LitPass::new(light, lit, &groups), ts.render())
+            });
+        }
+        drawn
+    }
+    // ANCHOR_END: render
+
     /// The variant's shadow map and its bind group.
     fn map(&self, v: Variant) -> &(ShadowMap, wgpu::BindGroup) {
         self.maps.get(v.map_size())

@@ -11,7 +11,7 @@ use common::ports::{Constant, Departure, PortCard, Source, Value};
 const LEARNOPENGL_AT_85530AB: &str = "85530ab9976154133a21cfd228f642c47b0c88da";
 /// The snapshot of gfx-rs/wgpu that was read (its trunk, 2024-10-23).
 const WGPU_AT_64A61EE: &str = "64a61ee5c69569bbb3db03563997e88a229eba17";
-const BEVY_AT_E85A706: &str = "e85a706c30d78f877ea865c1af943f54e94ece33";
+pub const BEVY_AT_E85A706: &str = "e85a706c30d78f877ea865c1af943f54e94ece33";
 
 // LearnOpenGL "Shadow Mapping": sources 0 and 1 of its cards.
 

@@ -24,13 +24,6 @@ pub enum Filter {
     Poisson { taps: u32, radius: f32 },
     /// Average N×N stored depths, then compare once: filtering depth.
     DepthAverage { n: u32 },
-    /// Exercise 1 (`exercise_pcf_kernel` in `exercises.wgsl`): the
-    /// student's smooth N×N grid with the receiver plane, radius N / 2:
-    /// (N + 1)² comparisons at texel centres, bilinearly weighted.
-    ExerciseGrid { n: u32 },
-    /// Exercise 2 (`exercise_world_disk`): the student's 16 bilinear taps
-    /// on a disk of `radius_m` metres (world units), rotated per pixel.
-    ExerciseDisk { radius_m: f32 },
     /// Adaptive: 4 bilinear probes on the disk's rim decide lit or umbra;
     /// only where they disagree, the full `taps` Poisson disk.
     AdaptivePoisson { taps: u32, radius: f32 },
@@ -38,6 +31,15 @@ pub enum Filter {
     /// Gaussian from 9 bilinear comparisons (The Witness), ported from
     /// bevy_pbr/src/render/shadow_sampling.wgsl `sample_shadow_map_castano_thirteen`.
     Castano13,
+    // ... then the two exercises' filters (the chapter's end).
+    // ANCHOR_END: filter
+    /// Exercise 1 (`exercise_pcf_kernel` in `exercises.wgsl`): the
+    /// student's smooth N×N grid with the receiver plane, radius N / 2:
+    /// (N + 1)² comparisons at texel centres, bilinearly weighted.
+    ExerciseGrid { n: u32 },
+    /// Exercise 2 (`exercise_world_disk`): the student's 16 bilinear taps
+    /// on a disk of `radius_m` metres (world units), rotated per pixel.
+    ExerciseDisk { radius_m: f32 },
 }
 
 impl Filter {
@@ -86,7 +88,6 @@ impl Filter {
         }
     }
 }
-// ANCHOR_END: filter
 
 /// LearnOpenGL's 3×3 (`learnopengl_pcf`): nearest taps one texel apart,
 /// all compared with the centre's depth (no receiver plane).

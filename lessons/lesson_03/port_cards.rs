@@ -101,20 +101,25 @@ pub const WGPU_EXAMPLE_HW2X2: PortCard = PortCard {
 
 const fn bevy_sources() -> [Source; 7] {
     let b = l02::BEVY_SOURCES;
-    [
-        b[0],
-        b[1],
-        b[2],
-        b[3],
-        b[4],
-        b[5],
-        Source {
-            file: "crates/bevy_pbr/src/render/shadow_sampling.wgsl",
-            commit: BEVY_AT_3971912,
-        },
-    ]
+    [b[0], b[1], b[2], b[3], b[4], b[5], BEVY_SHADOW_SAMPLING]
 }
 const BEVY_SOURCES: [Source; 7] = bevy_sources();
+
+/// Bevy's shadow sampling (its Castaño 13 and the point light's filters).
+pub const BEVY_SHADOW_SAMPLING: Source = Source {
+    file: "crates/bevy_pbr/src/render/shadow_sampling.wgsl",
+    commit: BEVY_AT_3971912,
+};
+
+/// Bevy's default filter; `source: 1` is `crates/bevy_pbr/src/light/mod.rs`
+/// in this card and in lesson 04's `bevy_point`.
+pub const BEVY_FILTER_DEFAULT: Constant = Constant {
+    name: "ShadowFilteringMethod::default()",
+    value: Value::Text("Gaussian"),
+    unit: "",
+    source: 1,
+    lines: "483-484",
+};
 
 /// Bevy's Castaño 13, as its source writes it (source 6).
 const fn castano(name: &'static str, text: &'static str, lines: &'static str) -> Constant {
@@ -146,13 +151,7 @@ pub const BEVY: PortCard = PortCard {
         l02::BEVY_SAMPLER,
         l02::BEVY_FORMAT,
         l02::BEVY_CULL,
-        Constant {
-            name: "ShadowFilteringMethod::default()",
-            value: Value::Text("Gaussian"),
-            unit: "",
-            source: 1,
-            lines: "483-484",
-        },
+        BEVY_FILTER_DEFAULT,
         castano(
             "sample_shadow_map (SHADOW_FILTER_METHOD_GAUSSIAN)",
             "sample_shadow_map_castano_thirteen(light_local, depth, array_index)",

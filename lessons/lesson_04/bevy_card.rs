@@ -5,8 +5,8 @@
 
 use common::ports::{Constant, Departure, PortCard, Source, Value};
 
-const BEVY_AT_E85A706: &str = "e85a706c30d78f877ea865c1af943f54e94ece33";
-const BEVY_AT_3971912: &str = "3971912a7857f8603fc5703f4b6dc514322feff2";
+use crate::lesson_02::port_cards::{self as l02, BEVY_AT_E85A706};
+use crate::lesson_03::port_cards as l03;
 
 /// Bevy's D3D 8×MSAA sample positions, (x, y) pairs.
 const D3D_SAMPLE_POINT_POSITIONS: &[f64] = &[
@@ -28,34 +28,17 @@ pub const BEVY_POINT: PortCard = PortCard {
             file: "crates/bevy_pbr/src/light/point_light.rs",
             commit: BEVY_AT_E85A706,
         },
-        Source {
-            file: "crates/bevy_pbr/src/light/mod.rs",
-            commit: BEVY_AT_E85A706,
-        },
-        Source {
-            file: "crates/bevy_pbr/src/render/light.rs",
-            commit: BEVY_AT_E85A706,
-        },
-        Source {
-            file: "crates/bevy_pbr/src/render/shadows.wgsl",
-            commit: BEVY_AT_E85A706,
-        },
-        Source {
-            file: "crates/bevy_pbr/src/render/shadow_sampling.wgsl",
-            commit: BEVY_AT_3971912,
-        },
+        // The files lesson 02's Bevy card (and lesson 03's) cites too.
+        l02::BEVY_SOURCES[1],
+        l02::BEVY_SOURCES[2],
+        l02::BEVY_SOURCES[3],
+        l03::BEVY_SHADOW_SAMPLING,
         Source {
             file: "crates/bevy_render/src/maths.wgsl",
             commit: BEVY_AT_E85A706,
         },
-        Source {
-            file: "crates/bevy_core_pipeline/src/core_3d/mod.rs",
-            commit: BEVY_AT_E85A706,
-        },
-        Source {
-            file: "crates/bevy_pbr/src/pbr_material.rs",
-            commit: BEVY_AT_E85A706,
-        },
+        l02::BEVY_SOURCES[4],
+        l02::BEVY_SOURCES[5],
         Source {
             file: "crates/bevy_pbr/src/render/pbr_functions.wgsl",
             commit: BEVY_AT_E85A706,
@@ -83,13 +66,7 @@ pub const BEVY_POINT: PortCard = PortCard {
             source: 1,
             lines: "97",
         },
-        Constant {
-            name: "ShadowFilteringMethod::default()",
-            value: Value::Text("Gaussian"),
-            unit: "",
-            source: 1,
-            lines: "483-484",
-        },
+        l03::BEVY_FILTER_DEFAULT,
         Constant {
             name: "point_light_sampler",
             value: Value::Text("Linear, compare GreaterEqual"),

@@ -88,12 +88,15 @@ pub enum Storage {
     Depth,
     /// Hardware depth compared with |v| instead: the naive mistake.
     DepthEuclid,
+    // ... then the exercise's (the chapter's end).
+    // ANCHOR_END: storage
     /// Hardware depth, read without a cube: the face and texel chosen by
     /// the chapter's exercise (`exercise_cube_texel` in `exercises.wgsl`)
     /// in the six layers seen as a 2D array.
     DepthExercise,
 }
 
+// ANCHOR: storage_pass
 impl Storage {
     /// The shadow pass that fills the cube for this storage.
     pub fn pass(self) -> DepthStorage {
@@ -102,13 +105,12 @@ impl Storage {
                 vs_entry: "vs_cube_linear",
                 fs_entry: "fs_cube_linear",
             },
-            Storage::Depth | Storage::DepthEuclid | Storage::DepthExercise => {
-                DepthStorage::Hardware
-            }
+            // Every other storage keeps the face's hardware depth.
+            _ => DepthStorage::Hardware,
         }
     }
 }
-// ANCHOR_END: storage
+// ANCHOR_END: storage_pass
 
 /// The lit pass's parameters (`CubeParams` in `shaders/lesson_04/cube_map.wgsl`).
 #[repr(C)]
@@ -251,17 +253,10 @@ pub(crate) fn cube_pipeline_with(
         })
 }
 
-/// What the shadow passes drew.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct CubeStats {
-    pub faces_rendered: u64,
-    pub caster_draws: u64,
-}
-
 // ANCHOR: cube_shadow_passes
-/// Renders light `light`'s six faces, one render pass each (timed as
-/// "shadow"). `casters(face)` lists the objects to draw into a face; a face
-/// with none is skipped (it is cleared once, then left alone).
+/// Renders light `light`'s six faces, one render pass each. `casters(face)`
+/// lists the objects to draw into a face; a face with none is skipped (it
+/// is cleared once, then left alone). Returns each face's draws.
 pub fn cube_shadow_passes(
     frame: &mut Frame,
     scene: &SceneGpu,
@@ -270,9 +265,9 @@ pub fn cube_shadow_passes(
     faces: &super::faces::FaceUniforms,
     light: usize,
     casters: impl Fn(usize) -> Vec<usize>,
-) -> CubeStats {
-    let mut stats = CubeStats::default();
-    for face in 0..6 {
+) -> [u32; 6] {
+    let mut drawn = [0; 6];
+    for (face, draws) in drawn.iter_mut().enumerate() {
         let list = casters(face);
         if list.is_empty() && map.empty[face] {
             continue;
@@ -280,7 +275,6 @@ pub fn cube_shadow_passes(
         frame.pass("shadow", |enc, ts| {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("cube face"),
-                color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &map.face_views[face],
                     depth_ops: Some(wgpu::Operations {
@@ -290,17 +284,15 @@ pub fn cube_shadow_passes(
                     stencil_ops: None,
                 }),
                 timestamp_writes: ts.render(),
-                occlusion_query_set: None,
-                multiview_mask: None,
+                ..Default::default()
             });
             pass.set_pipeline(pipeline);
             faces.bind(&mut pass, light, face);
-            stats.caster_draws += scene.draw_objects(&mut pass, |i| list.contains(&i)) as u64;
+            *draws = scene.draw_objects(&mut pass, |i| list.contains(&i));
         });
         map.empty[face] = list.is_empty();
-        stats.faces_rendered += u64::from(!list.is_empty());
     }
-    stats
+    drawn
 }
 // ANCHOR_END: cube_shadow_passes
 

@@ -29,10 +29,13 @@ use common::Result;
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_04::costs::{self, PCF3D_TAPS};
 use workbook::lesson_04::cross::{cross_view, write_cross_png};
-use workbook::lesson_04::cube_map::{self, CubeParams, CubeShadowMap, CubeStats, LitKey, Storage};
+use workbook::lesson_04::cube_map::{self, CubeParams, CubeShadowMap, LitKey, Storage};
 use workbook::lesson_04::culling::{self, face_casters, FaceTest, Sphere};
 use workbook::lesson_04::faces::{point_light, FaceUniforms};
 use workbook::lesson_04::peers::{self, Peer, Port};
+
+mod harness;
+use harness::CubeStats;
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -360,7 +363,9 @@ impl Lesson for CubeShadows {
         })
     }
 
-    // ANCHOR: render
+    /// The harness around [`CubeShadows::draw`]: the face passes' depth
+    /// writes counted once per variant (their own submits, left out of the
+    /// frame's times), and the faces and draws the frame's passes made.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -368,45 +373,11 @@ impl Lesson for CubeShadows {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        if self.texels_written[variant as usize].is_none() {
-            // Once per variant, its own submits: left out of the frame's times.
-            let n = frame.untimed(|gpu| self.count_texels(gpu, scene, variant))?;
-            self.texels_written[variant as usize] = Some(n);
-        }
-        let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
-        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        self.stats = CubeStats::default();
-        for light in 0..scene.scene.lights.len() {
-            self.faces
-                .write(frame.gpu, &scene.scene, light, p.near, p.far);
-            let at = point_light(&scene.scene, self.faces.origin, light)
-                .expect("check_scene allows point and spot lights");
-            let casters = |face| face_casters(scene, &self.spheres, at, v.cull, face);
-            let map = &mut self.maps[p.map];
-            let s = cube_map::cube_shadow_passes(
-                frame,
-                scene,
-                &self.shadow_pipelines[p.pipeline],
-                map,
-                &self.faces,
-                light,
-                casters,
-            );
-            self.stats.faces_rendered += s.faces_rendered;
-            self.stats.caster_draws += s.caster_draws;
-            frame.pass("lighting", |enc, ts| {
-                scene.lit_pass(
-                    enc,
-                    targets,
-                    LitPass::new(light, &self.lit_pipelines[p.lit], &[&p.group]),
-                    ts.render(),
-                )
-            });
-        }
-        self.draws = costs::frame_draws(scene, self.stats.caster_draws);
+        self.count_texels_once(frame, scene, variant)?;
+        let drawn = self.draw(frame, scene, targets, variant);
+        self.record_draws(scene, &drawn);
         Ok(())
     }
-    // ANCHOR_END: render
 
     /// Also the standard costs: the face passes' depth writes and
     /// fragments, the lit pass's taps per pixel, the frame's draw calls.
@@ -448,32 +419,45 @@ impl Lesson for CubeShadows {
 }
 
 impl CubeShadows {
-    /// Every light's face passes for `variant`, counted ([`costs::count_light_texels`]).
-    fn count_texels(
+    // ANCHOR: render
+    /// One frame: per light, the six faces' matrices for where it is, the
+    /// face passes (each face's casters culled as the variant says), then
+    /// the lit pass. Returns each light's draws per face.
+    fn draw(
         &mut self,
-        gpu: &Gpu,
+        frame: &mut Frame,
         scene: &SceneGpu,
+        targets: &FrameTargets,
         variant: Variant,
-    ) -> Result<(u64, u64)> {
+    ) -> Vec<[u32; 6]> {
         let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
-        let mut total = (0, 0);
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        let mut drawn = Vec::new();
         for light in 0..scene.scene.lights.len() {
-            self.faces.write(gpu, &scene.scene, light, p.near, p.far);
+            self.faces
+                .write(frame.gpu, &scene.scene, light, p.near, p.far);
             let at = point_light(&scene.scene, self.faces.origin, light)
                 .expect("check_scene allows point and spot lights");
-            let (written, fragments) = costs::count_light_texels(
-                gpu,
-                scene,
-                &self.tally_pipelines[p.pipeline],
-                &self.faces,
-                v.size,
-                light,
-                |face| face_casters(scene, &self.spheres, at, v.cull, face),
-            )?;
-            total = (total.0 + written, total.1 + fragments);
+            let casters = |face| face_casters(scene, &self.spheres, at, v.cull, face);
+            let map = &mut self.maps[p.map];
+            let pipeline = &self.shadow_pipelines[p.pipeline];
+            let faces = &self.faces;
+            drawn.push(cube_map::cube_shadow_passes(
+                frame, scene, pipeline, map, faces, light, casters,
+            ));
+            let lit = &self.lit_pipelines[p.lit];
+            frame.pass("lighting", |enc, ts| {
+                scene.lit_pass(
+                    enc,
+                    targets,
+                    LitPass::new(light, lit, &[&p.group]),
+                    ts.render(),
+                )
+            });
         }
-        Ok(total)
+        drawn
     }
+    // ANCHOR_END: render
 }
 
 fn main() -> std::process::ExitCode {

@@ -65,7 +65,7 @@ impl Peer {
     }
 }
 
-// ANCHOR: ports
+// ANCHOR: port
 /// What a renderer's point shadow is made of, as lesson 04 runs it: its
 /// cube (size, storage, near and far planes, clipping), its bias and its
 /// lookup. `main.rs` turns each into the variant's settings.
@@ -89,7 +89,9 @@ pub struct Port {
     pub clamp_range: bool,
     pub lookup: Peer,
 }
+// ANCHOR_END: port
 
+// ANCHOR: ports
 /// LearnOpenGL "Point Shadows" (`learnopengl_1tap`): 1024² faces of
 /// distance / far_plane, near 1 and far 25 clipped, one `GL_NEAREST` tap,
 /// `bias = 0.05` world units.

@@ -24,7 +24,9 @@ struct ShadowBias {
     toward_light_world: f32,
     normal_flat: f32,
 };
+// ANCHOR_END: shadow_bias
 
+// ANCHOR: biased_receiver
 // The point whose depth is compared: the receiver moved off its surface.
 // `n` is the unit normal on the side the light sees.
 fn biased_receiver(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> vec3<f32> {
@@ -48,7 +50,7 @@ fn depth_bias(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> f32 {
     let cos_t = clamp(dot(n, to_light(world)), 0.0, 1.0);
     return max(b.depth_slope * (1.0 - cos_t), b.depth);
 }
-// ANCHOR_END: shadow_bias
+// ANCHOR_END: biased_receiver
 
 // The receiver's normal on the light's side (open meshes are two-sided).
 fn light_side_normal(in: VertexOut) -> vec3<f32> {

@@ -261,8 +261,8 @@ fn fs_lit(in: VertexOut) -> LitOut {
             // One tap; the sampler compares the 4 nearest texels and blends.
             case 1u: { v = textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z); }
             case 2u: { v = pcf_poisson(s, in.clip.xy, gradient); }
-            case 4u: { v = exercise_pcf_kernel(s, i32(pcf.n) / 2, gradient); }
-            case 5u: { v = exercise_world_disk(s, in.world, in.clip.xy, pcf.radius, gradient); }
+            // 4 and 5: the chapter's exercises (exercises.wgsl).
+            case 4u, 5u: { v = coursework_filter(s, in, gradient); }
             case 6u: { v = pcf_castano13(s); }
             case 7u: { v = pcf_adaptive(s, in.clip.xy, gradient); }
             default: { v = depth_average(s, i32(pcf.n)); }
@@ -271,6 +271,15 @@ fn fs_lit(in: VertexOut) -> LitOut {
     return lit_output(in, v);
 }
 // ANCHOR_END: fs_lit
+
+// The exercises' filters, MODE 4 and 5: the student's functions in
+// exercises.wgsl, called as fs_lit would call a filter of the lesson.
+fn coursework_filter(s: vec3<f32>, in: VertexOut, gradient: vec2<f32>) -> f32 {
+    if MODE == 4u {
+        return exercise_pcf_kernel(s, i32(pcf.n) / 2, gradient);
+    }
+    return exercise_world_disk(s, in.world, in.clip.xy, pcf.radius, gradient);
+}
 
 // Harness, not the technique: which path the adaptive filter took at each
 // pixel its lit pass shades inside the map, as the visibility (1.0 the full

@@ -3,7 +3,7 @@
 // shaders/lesson_02/exercises.wgsl.
 
 // ANCHOR: slope_bias
-// Copies the chapter's `bias.wgsl:shadow_bias` listing (its `biased_receiver`) with slope_shader's settings
+// Copies the chapter's `bias.wgsl:biased_receiver` listing with slope_shader's settings
 // (Slope scaling: b0 = 0.1, k = 1, b_max = 4).
 fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let l = to_light(world);
@@ -16,7 +16,7 @@ fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
 // ANCHOR_END: slope_bias
 
 // ANCHOR: grazing_bias
-// Copies the chapter's `bias.wgsl:shadow_bias` listing (its `biased_receiver`) with slope_shader's settings.
+// Copies the chapter's `bias.wgsl:biased_receiver` listing with slope_shader's settings.
 fn grazing_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let l = to_light(world);
     let cos_t = clamp(dot(n, l), 0.0, 1.0);
@@ -31,7 +31,7 @@ fn grazing_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
 // The second pass of grade --check-copies (WORKBOOK_CHAPTER_COPY=calls):
 // each exercise answered with a call of the lesson's own function.
 
-// Calls the chapter's `bias.wgsl:shadow_bias` listing, its
+// Calls the chapter's `bias.wgsl:biased_receiver` listing, its
 // `biased_receiver`, with slope_shader's settings (b0 = 0.1, k = 1,
 // b_max = 4).
 fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
@@ -39,7 +39,7 @@ fn slope_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     return shadow_coords(biased_receiver(world, n, b));
 }
 
-// Calls the chapter's `bias.wgsl:shadow_bias` listing, its
+// Calls the chapter's `bias.wgsl:biased_receiver` listing, its
 // `biased_receiver` and `depth_bias`, with normal_offset's settings.
 fn grazing_bias(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let b = ShadowBias(0.0, 0.3, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0);
