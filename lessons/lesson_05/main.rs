@@ -30,7 +30,7 @@ use workbook::lesson_05::cull::kept_draws;
 use workbook::lesson_05::extrusion::{CpuParts, Extrusion};
 use workbook::lesson_05::stencil::{self, Counting};
 use workbook::lesson_05::volumes::{
-    base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes, VolumeCosts,
+    base_and_lit_draws, CasterDraw, SecondFrameCounts, ShadowVolumes,
 };
 
 // ANCHOR: variants
@@ -47,6 +47,7 @@ enum Variant {
     /// Silhouettes and sides written by a compute shader, drawn indirectly.
     #[value(name = "zpass_compute")]
     ZpassCompute,
+    // ANCHOR_END: variants
     /// Exercise 1: `zpass_cpu` with your `silhouette_edges_in_view`.
     #[value(name = "exercise_edges_in_view")]
     ExerciseEdgesInView,
@@ -76,10 +77,6 @@ impl Variant {
         }
     }
 }
-// ANCHOR_END: variants
-
-/// How many variants (exercises included): the per-variant arrays.
-const VARIANTS: usize = 5;
 
 struct ZPass {
     volumes: ShadowVolumes,
@@ -90,11 +87,8 @@ struct ZPass {
     kept: Vec<Vec<CasterDraw>>,
     /// Computed once: mesh validation and the largest stencil count.
     scene_counters: BTreeMap<String, u64>,
-    /// Per variant: fragment-shader invocations (pipeline statistics,
-    /// Vulkan only), the exact volume costs, and frames rendered.
-    invocations: [Option<u64>; VARIANTS],
-    costs: [Option<VolumeCosts>; VARIANTS],
-    frames: [u32; VARIANTS],
+    /// Per variant: the volumes' counts, taken on its second frame.
+    counts: SecondFrameCounts,
     casters_drawn: u64,
     base_draws: u64,
     /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
@@ -126,16 +120,15 @@ impl Lesson for ZPass {
             volumes,
             draws,
             kept: Vec::new(),
-            invocations: [None; VARIANTS],
-            costs: [None; VARIANTS],
-            frames: [0; VARIANTS],
+            counts: SecondFrameCounts::new(Variant::value_variants().len()),
             casters_drawn: 0,
             base_draws: base_and_lit_draws(scene),
             depth_stencil: None,
         })
     }
 
-    // ANCHOR: render
+    /// The frame is [`ShadowVolumes::shadow_frame`]; around it, the
+    /// exercises' code and the counts.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -144,61 +137,24 @@ impl Lesson for ZPass {
         variant: Variant,
     ) -> Result<()> {
         let ext = variant.extrusion();
-        if variant == Variant::ExerciseSkipCasters {
-            self.kept = kept_draws(
-                &self.volumes,
-                scene,
-                workbook::exercise!(lesson_05::volume_can_matter),
-            );
-        }
-        let all = match variant {
-            Variant::ExerciseSkipCasters => &self.kept,
+        let draws = match variant {
+            Variant::ExerciseSkipCasters => {
+                let can_matter = workbook::exercise!(lesson_05::volume_can_matter);
+                self.kept = kept_draws(&self.volumes, scene, can_matter);
+                &self.kept
+            }
             _ => &self.draws,
         };
-        if ext == Extrusion::Cpu {
-            // Doom 3's way: find every silhouette on the CPU, every frame.
-            (self.volumes).prepare_cpu_with(frame, scene, all, variant.cpu_parts());
-        }
-        if ext == Extrusion::Compute {
-            // The same silhouettes, found by a compute shader on the GPU.
-            self.volumes.prepare_compute(frame, scene, all)?;
-        }
-        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        let mut drawn = 0;
-        for (light, draws) in all.iter().enumerate() {
-            let volumes = LightVolumes {
-                light,
-                extrusion: ext,
-                draws,
-            };
-            // Clear the stencil, count the volumes into it, and add the
-            // light where the count is 0.
-            drawn += self
-                .volumes
-                .light_passes(frame, scene, targets, volumes, &self.lit_pipeline);
-        }
+        self.volumes.set_cpu_parts(variant.cpu_parts());
+        let lit = &self.lit_pipeline;
+        let drawn = (self.volumes).shadow_frame(frame, scene, targets, ext, draws, lit)?;
         self.casters_drawn = drawn as u64;
-        // What the "buffer" view reads: this frame's stencil.
         self.depth_stencil = Some(targets.depth.clone());
-        // The second call finds the first frame's depth in place: count
-        // then, once, in submits of their own, left out of the frame's times.
-        let n = &mut self.frames[variant as usize];
-        *n += 1;
-        if *n == 2 {
-            let (v, volumes) = (variant as usize, &self.volumes);
-            let (invocations, costs) = frame.untimed(|gpu| {
-                let invocations = volumes.count_fragments(gpu, scene, ext, all);
-                (
-                    invocations,
-                    volumes.count_costs(gpu, scene, targets, ext, all),
-                )
-            });
-            self.invocations[v] = invocations;
-            self.costs[v] = Some(costs?);
-        }
-        Ok(())
+        let volumes = &self.volumes;
+        (self.counts).after_frame(frame, variant as usize, |gpu| {
+            volumes.count_all(gpu, scene, targets, ext, draws)
+        })
     }
-    // ANCHOR_END: render
 
     /// A route whose buffers would pass the adapter's limits
     /// ([`fit`](workbook::lesson_05::fit)) is left out; the others run.
@@ -208,19 +164,13 @@ impl Lesson for ZPass {
     }
 
     fn count_again(&mut self, variant: Variant) {
-        self.frames[variant as usize] = 0;
+        self.counts.again(variant as usize);
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let mut c = self.scene_counters.clone();
         c.insert("casters_drawn".into(), self.casters_drawn);
-        if let Some(f) = self.invocations[variant as usize] {
-            // llvmpipe counts 16 per 4×4 block: not the fragment count.
-            c.insert("fragment_shader_invocations".into(), f);
-        }
-        if let Some(costs) = self.costs[variant as usize] {
-            costs.insert_into(&mut c, self.base_draws);
-        }
+        (self.counts).insert_into(variant as usize, &mut c, self.base_draws);
         c
     }
 }
