@@ -25,13 +25,11 @@ use common::gpu::Gpu;
 use common::measure::timing::Frame;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::Result;
-use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::cull::kept_draws;
 use workbook::lesson_05::extrusion::{CpuParts, Extrusion};
+use workbook::lesson_05::harness::{StencilLesson, VariantFrame};
 use workbook::lesson_05::stencil::{self, Counting};
-use workbook::lesson_05::volumes::{
-    base_and_lit_draws, CasterDraw, SecondFrameCounts, ShadowVolumes,
-};
+use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, ShadowVolumes};
 
 // ANCHOR: variants
 /// The variants differ in how the volume geometry is built, not in what
@@ -79,20 +77,16 @@ impl Variant {
 }
 
 struct ZPass {
-    volumes: ShadowVolumes,
-    lit_pipeline: wgpu::RenderPipeline,
+    /// The volumes, the lit pipeline, the counts and the buffer view.
+    shadow: StencilLesson,
     /// `draws[light]`: every caster, z-pass, sides only.
     draws: Vec<Vec<CasterDraw>>,
     /// The same, of the casters `exercise_skip_casters` keeps (per frame).
     kept: Vec<Vec<CasterDraw>>,
     /// Computed once: mesh validation and the largest stencil count.
     scene_counters: BTreeMap<String, u64>,
-    /// Per variant: the volumes' counts, taken on its second frame.
-    counts: SecondFrameCounts,
     casters_drawn: u64,
     base_draws: u64,
-    /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
-    depth_stencil: Option<wgpu::Texture>,
 }
 
 impl Lesson for ZPass {
@@ -104,31 +98,26 @@ impl Lesson for ZPass {
 
     /// The stencil: light N's z-pass count, N the last light.
     fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
-        let (Some(ds), Some(last)) = (&self.depth_stencil, scene.scene.lights.len().checked_sub(1))
-        else {
-            return Ok(None);
-        };
-        count_view(gpu, ds, last, 0xff, "z-pass count").map(Some)
+        self.shadow.buffer_view(gpu, scene, "z-pass count")
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let volumes = ShadowVolumes::new(gpu, scene, &Counting::zpass())?;
         let draws = vec![volumes.all(CasterDraw::zpass); scene.scene.lights.len()];
+        let lit = stencil::stencil_lit_pipeline(gpu, scene);
         Ok(ZPass {
-            lit_pipeline: stencil::stencil_lit_pipeline(gpu, scene),
+            shadow: StencilLesson::new(volumes, lit, Variant::value_variants().len()),
             scene_counters: stencil::scene_counters(scene),
-            volumes,
             draws,
             kept: Vec::new(),
-            counts: SecondFrameCounts::new(Variant::value_variants().len()),
             casters_drawn: 0,
             base_draws: base_and_lit_draws(scene),
-            depth_stencil: None,
         })
     }
 
-    /// The frame is [`ShadowVolumes::shadow_frame`]; around it, the
-    /// exercises' code and the counts.
+    /// The frame is [`ShadowVolumes::shadow_frame`] (in
+    /// [`StencilLesson::frame`]); around it, the exercises' code and the
+    /// counts.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -136,41 +125,38 @@ impl Lesson for ZPass {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
-        let ext = variant.extrusion();
         let draws = match variant {
             Variant::ExerciseSkipCasters => {
                 let can_matter = workbook::exercise!(lesson_05::volume_can_matter);
-                self.kept = kept_draws(&self.volumes, scene, can_matter);
+                self.kept = kept_draws(&self.shadow.volumes, scene, can_matter);
                 &self.kept
             }
             _ => &self.draws,
         };
-        self.volumes.set_cpu_parts(variant.cpu_parts());
-        let lit = &self.lit_pipeline;
-        let drawn = (self.volumes).shadow_frame(frame, scene, targets, ext, draws, lit)?;
+        let v = VariantFrame {
+            variant: variant as usize,
+            extrusion: variant.extrusion(),
+            parts: variant.cpu_parts(),
+        };
+        let drawn = self.shadow.frame(frame, scene, targets, v, draws)?;
         self.casters_drawn = drawn as u64;
-        self.depth_stencil = Some(targets.depth.clone());
-        let volumes = &self.volumes;
-        (self.counts).after_frame(frame, variant as usize, |gpu| {
-            volumes.count_all(gpu, scene, targets, ext, draws)
-        })
+        Ok(())
     }
 
     /// A route whose buffers would pass the adapter's limits
     /// ([`fit`](workbook::lesson_05::fit)) is left out; the others run.
     fn unavailable(&self, variant: Variant) -> Option<String> {
-        let why = self.volumes.unfit(variant.extrusion())?;
-        Some(format!("{}: {why}", variant_name(variant)))
+        (self.shadow).unavailable(&variant_name(variant), variant.extrusion())
     }
 
     fn count_again(&mut self, variant: Variant) {
-        self.counts.again(variant as usize);
+        self.shadow.count_again(variant as usize);
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let mut c = self.scene_counters.clone();
         c.insert("casters_drawn".into(), self.casters_drawn);
-        (self.counts).insert_into(variant as usize, &mut c, self.base_draws);
+        (self.shadow).insert_counts(variant as usize, &mut c, self.base_draws);
         c
     }
 }

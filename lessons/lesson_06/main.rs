@@ -33,12 +33,10 @@ use common::measure::timing::Frame;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::{Far, LightKind};
 use common::Result;
-use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::extrusion::{world_light, CpuParts, Extrusion};
+use workbook::lesson_05::harness::{StencilLesson, VariantFrame};
 use workbook::lesson_05::stencil::{self, Counting, Method};
-use workbook::lesson_05::volumes::{
-    base_and_lit_draws, CasterDraw, SecondFrameCounts, ShadowVolumes, VolumeCaster,
-};
+use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, ShadowVolumes, VolumeCaster};
 use workbook::lesson_06::caps::{self, zfail_counting};
 use workbook::lesson_06::plan::{near_rectangle, plan, plan_with};
 use workbook::lesson_06::reach::volume_reach;
@@ -161,19 +159,16 @@ impl Chosen {
 }
 
 struct ZFail {
-    volumes: ShadowVolumes,
-    lit_pipeline: wgpu::RenderPipeline,
+    /// The volumes, the lit pipeline, the counts and the buffer view
+    /// (lesson 05's harness).
+    shadow: StencilLesson,
     scene_counters: BTreeMap<String, u64>,
     /// Per variant, in variant order: `draws[light]`, and what was chosen.
     plans: Vec<(Vec<Vec<CasterDraw>>, Chosen)>,
-    /// Per variant: the volumes' counts, taken on its second frame.
-    counts: SecondFrameCounts,
     /// Draw calls of the base and lit passes.
     base_draws: u64,
     /// The camera and lights the reach and plans were made for.
     view: Vec<f64>,
-    /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
-    depth_stencil: Option<wgpu::Texture>,
 }
 
 /// Every variant's draws for every light, in variant order.
@@ -226,12 +221,8 @@ impl Lesson for ZFail {
 
     /// The stencil: light N's count, N the last light.
     fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
-        let (Some(ds), Some(last)) = (&self.depth_stencil, scene.scene.lights.len().checked_sub(1))
-        else {
-            return Ok(None);
-        };
         let what = "volume count (z-pass and z-fail leave the same)";
-        count_view(gpu, ds, last, 0xff, what).map(Some)
+        self.shadow.buffer_view(gpu, scene, what)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -246,20 +237,19 @@ impl Lesson for ZFail {
         let reach = volume_reach(scene, &volumes.casters)?;
         volumes.set_reach(gpu, reach);
         // ANCHOR_END: reach
+        let lit = stencil::stencil_lit_pipeline(gpu, scene);
         Ok(ZFail {
-            lit_pipeline: stencil::stencil_lit_pipeline(gpu, scene),
             scene_counters: stencil::scene_counters(scene),
             plans: plans(&volumes, scene),
-            volumes,
-            counts: SecondFrameCounts::new(Variant::value_variants().len()),
+            shadow: StencilLesson::new(volumes, lit, Variant::value_variants().len()),
             base_draws: base_and_lit_draws(scene),
             view: view_key(scene),
-            depth_stencil: None,
         })
     }
 
-    /// The frame is lesson 05's [`ShadowVolumes::shadow_frame`], each
-    /// caster with its own method; around it, the plans and the counts.
+    /// The frame is lesson 05's [`ShadowVolumes::shadow_frame`] (in
+    /// [`StencilLesson::frame`]), each caster with its own method; around
+    /// it, the plans and the counts.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -268,34 +258,31 @@ impl Lesson for ZFail {
         variant: Variant,
     ) -> Result<()> {
         let key = view_key(scene);
+        let volumes = &mut self.shadow.volumes;
         if key != self.view {
             // The window moved the camera or a light: redo reach and plans
             // (a reach that no longer fits the far plane ends the run).
-            self.volumes
-                .set_reach(frame.gpu, volume_reach(scene, &self.volumes.casters)?);
-            self.plans = plans(&self.volumes, scene);
+            volumes.set_reach(frame.gpu, volume_reach(scene, &volumes.casters)?);
+            self.plans = plans(volumes, scene);
             self.view = key;
         }
         let (draws, _) = &self.plans[variant as usize];
-        let ext = variant.extrusion();
-        self.volumes.set_cpu_parts(variant.cpu_parts());
-        let lit = &self.lit_pipeline;
-        (self.volumes).shadow_frame(frame, scene, targets, ext, draws, lit)?;
-        self.depth_stencil = Some(targets.depth.clone());
-        let volumes = &self.volumes;
-        (self.counts).after_frame(frame, variant as usize, |gpu| {
-            volumes.count_all(gpu, scene, targets, ext, draws)
-        })
+        let v = VariantFrame {
+            variant: variant as usize,
+            extrusion: variant.extrusion(),
+            parts: variant.cpu_parts(),
+        };
+        self.shadow.frame(frame, scene, targets, v, draws)?;
+        Ok(())
     }
 
     /// A route whose buffers would pass the adapter's limits is left out.
     fn unavailable(&self, variant: Variant) -> Option<String> {
-        let why = self.volumes.unfit(variant.extrusion())?;
-        Some(format!("{}: {why}", variant_name(variant)))
+        (self.shadow).unavailable(&variant_name(variant), variant.extrusion())
     }
 
     fn count_again(&mut self, variant: Variant) {
-        self.counts.again(variant as usize);
+        self.shadow.count_again(variant as usize);
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
@@ -305,7 +292,7 @@ impl Lesson for ZFail {
         c.insert("casters_zfail".into(), s.zfail);
         c.insert("casters_skipped".into(), s.skipped);
         c.insert("casters_drawn".into(), s.zpass + s.zfail);
-        (self.counts).insert_into(variant as usize, &mut c, self.base_draws);
+        (self.shadow).insert_counts(variant as usize, &mut c, self.base_draws);
         c
     }
 }
