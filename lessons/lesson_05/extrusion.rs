@@ -70,24 +70,74 @@ pub struct VolumeRanges {
     pub back: Range<u32>,
 }
 
-// ANCHOR: cpu_volume
 /// The CPU path: one caster's volume for one light (object space), appended
 /// to `out`. Sides from the silhouette; caps from the light-facing faces.
 pub fn cpu_volume(adj: &Adjacency, light: LightDir, out: &mut Vec<CpuVertex>) -> VolumeRanges {
     cpu_volume_reaching(adj, light, 0.0, out)
 }
 
-/// [`cpu_volume`] with its far vertices at `w = reach_w` instead of 0:
-/// `0 < reach_w < 1` moves them `1 / reach_w` times as far from the light
-/// (lesson 06's finite extrusion, [`REACH_VERTEX_LAYOUT`](super::quads::REACH_VERTEX_LAYOUT)); 0 is infinity.
+// ANCHOR: cpu_volume
+/// The CPU path: one caster's volume for one light (object space), its far
+/// vertices at `w = reach_w` (0 is infinity; lesson 06's finite reach moves
+/// them `1 / reach_w` times as far from the light), appended to `out`.
 pub fn cpu_volume_reaching(
     adj: &Adjacency,
     light: LightDir,
     reach_w: f32,
     out: &mut Vec<CpuVertex>,
 ) -> VolumeRanges {
-    cpu_volume_parts(adj, light, reach_w, CpuParts::default(), &[], out)
+    // One facing test serves the sides and the caps.
+    let facing = face_facing(adj, light);
+    let edges = silhouette_edges_for(adj, &facing);
+    // The front cap: the light-facing triangles. The back cap: the same
+    // triangles at infinity, reversed.
+    let front = light_facing_triangles_for(adj, &facing);
+    let back: Vec<[u32; 3]> = front.iter().map(|t| [t[0], t[2], t[1]]).collect();
+    volume_vertices(adj, light, reach_w, &edges, (&front, &back), out)
 }
+// ANCHOR_END: cpu_volume
+
+// ANCHOR: volume_vertices
+/// One volume's `(position, w)` vertices, appended to `out`: the sides
+/// over `edges`, then the front cap, then the back cap (w = 0 goes to
+/// `reach_w`).
+pub fn volume_vertices(
+    adj: &Adjacency,
+    light: LightDir,
+    reach_w: f32,
+    edges: &[SilhouetteEdge],
+    (front, back): (&[[u32; 3]], &[[u32; 3]]),
+    out: &mut Vec<CpuVertex>,
+) -> VolumeRanges {
+    let v = |i: u32, w: f32| CpuVertex {
+        position: adj.positions[i as usize].to_array(),
+        w: if w == 0.0 { reach_w } else { w },
+    };
+    let directional = matches!(light, LightDir::Directional(_));
+    let start = out.len() as u32;
+    for e in edges {
+        // The lit face runs a → b; its side of the volume, seen from
+        // outside, runs b → a → a∞ → b∞ (counter-clockwise, like the caps).
+        out.extend([v(e.a, 1.0), v(e.b, 0.0), v(e.b, 1.0)]);
+        if !directional {
+            // Directional: a∞ = b∞, the second triangle would have no area.
+            out.extend([v(e.a, 1.0), v(e.a, 0.0), v(e.b, 0.0)]);
+        }
+    }
+    let sides_end = out.len() as u32;
+    out.extend(front.iter().flat_map(|t| t.map(|i| v(i, 1.0))));
+    let front_end = out.len() as u32;
+    if !directional {
+        // Directional: the back cap shrinks to a point at infinity.
+        out.extend(back.iter().flat_map(|t| t.map(|i| v(i, 0.0))));
+    }
+    VolumeRanges {
+        sides: start..sides_end,
+        front: sides_end..front_end,
+        back: front_end..out.len() as u32,
+    }
+}
+// ANCHOR_END: volume_vertices
 
 /// [`cpu_volume_reaching`], with the sides or the caps found by `parts`
 /// where it says so (an exercise's code), else by the lesson's own.
@@ -101,30 +151,14 @@ pub fn cpu_volume_parts(
     view: &[(DVec3, f64)],
     out: &mut Vec<CpuVertex>,
 ) -> VolumeRanges {
+    if parts.sides.is_none() && parts.caps.is_none() {
+        return cpu_volume_reaching(adj, light, reach_w, out);
+    }
     let facing = face_facing(adj, light);
-    let v = |i: u32, w: f32| CpuVertex {
-        position: adj.positions[i as usize].to_array(),
-        // w = 0 marks "extruded"; it becomes reach_w (0 stays infinity).
-        w: if w == 0.0 { reach_w } else { w },
-    };
-    let directional = matches!(light, LightDir::Directional(_));
-    let start = out.len() as u32;
     let edges = match parts.sides {
         Some(sides) => sides(adj, light, view),
         None => silhouette_edges_for(adj, &facing),
     };
-    for e in edges {
-        // The lit face runs a → b; its side of the volume, seen from
-        // outside, runs b → a → a∞ → b∞ (counter-clockwise, like the caps).
-        out.extend([v(e.a, 1.0), v(e.b, 0.0), v(e.b, 1.0)]);
-        if !directional {
-            // Directional: a∞ = b∞, the second triangle would have no area.
-            out.extend([v(e.a, 1.0), v(e.a, 0.0), v(e.b, 0.0)]);
-        }
-    }
-    let sides_end = out.len() as u32;
-    // The front cap: the light-facing triangles. The back cap: the same
-    // triangles at infinity, reversed.
     let (front, back) = match parts.caps {
         Some(caps) => caps(adj, light, view),
         None => {
@@ -133,23 +167,8 @@ pub fn cpu_volume_parts(
             (lit, back)
         }
     };
-    for t in &front {
-        out.extend(t.map(|i| v(i, 1.0)));
-    }
-    let front_end = out.len() as u32;
-    if !directional {
-        // Directional: the back cap shrinks to a point at infinity.
-        for t in &back {
-            out.extend(t.map(|i| v(i, 0.0)));
-        }
-    }
-    VolumeRanges {
-        sides: start..sides_end,
-        front: sides_end..front_end,
-        back: front_end..out.len() as u32,
-    }
+    volume_vertices(adj, light, reach_w, &edges, (&front, &back), out)
 }
-// ANCHOR_END: cpu_volume
 
 /// A silhouette finder: the edges to extrude, as
 /// [`silhouette_edges`](super::silhouette::silhouette_edges) gives them,

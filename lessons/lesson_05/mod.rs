@@ -9,6 +9,7 @@ pub mod cull;
 pub mod extrusion;
 pub mod fit;
 pub mod frustum;
+pub mod harness;
 pub mod quads;
 pub mod silhouette;
 pub mod stencil;

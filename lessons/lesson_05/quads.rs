@@ -43,7 +43,9 @@ pub struct QuadVertex {
 
 /// Bytes per quad vertex.
 pub const QUAD_VERTEX_BYTES: u64 = std::mem::size_of::<QuadVertex>() as u64;
+// ANCHOR_END: quad_vertex
 
+// ANCHOR: quad_flags
 /// The small fields of a [`QuadVertex`], packed into one `u32` (the
 /// shader's `quad_flags` unpacks them): bit 0 `far`, bits 1–3 `copy`,
 /// bits 4–5 and 6–7 `runs[k] + 1`, bits 8 and 9 `two_sided[k]`.
@@ -84,7 +86,7 @@ impl QuadFlags {
         }
     }
 }
-// ANCHOR_END: quad_vertex
+// ANCHOR_END: quad_flags
 
 /// How many faces one quad vertex carries. A manifold edge has two, and so
 /// has a two-sided caster's interior edge once each face is paired with

@@ -42,7 +42,7 @@ pub struct SilhouetteEdge {
     pub b: u32,
 }
 
-// ANCHOR: silhouette_edges
+// ANCHOR: face_facing
 /// For every face: does it face the light? The test uses the
 /// *unnormalised* normal n, so it never divides and never makes a NaN:
 ///
@@ -62,36 +62,20 @@ pub fn face_facing(adj: &Adjacency, light: LightDir) -> Vec<bool> {
         })
         .collect()
 }
+// ANCHOR_END: face_facing
 
+// ANCHOR: silhouette_edges
 /// The silhouette edges to extrude into the sides of the shadow volume.
 ///
 /// Each light-facing face contributes its three edges, in its own
-/// winding order: they are the sides of that one face's shadow volume.
-/// An edge's contributions are summed, +1 for each facing face that runs
-/// `v[0] → v[1]` and −1 for each that runs `v[1] → v[0]`, and the edge
-/// is emitted |sum| times, oriented by the sign. Faces that do not face
-/// the light contribute nothing. What is left is the boundary of the lit
-/// region:
-///
-/// - Manifold edge (2 faces): a silhouette when exactly one face faces
-///   the light, oriented like that face. Two lit faces cancel.
-/// - Open (boundary) edge (1 face): a silhouette when its face faces the
-///   light. So open meshes, even a single quad, still cast.
-/// - Non-manifold edge (k > 2 faces): the sum of its faces'
-///   contributions. Lit faces that run along it in opposite directions
-///   cancel pairwise; the rest are emitted, so the edge may appear
-///   twice, in the same direction.
-///
-/// Because the result is the boundary of a set of faces, it is always
-/// closed loops: at every vertex as many edges arrive as leave, for any
-/// mesh, open or closed. Together with caps made of
-/// [`light_facing_triangles`], each
-/// light-facing face's volume is closed, and the stencil counts how
-/// many of them cover a pixel.
-///
-/// (The other consistent choice is to also add each non-facing face,
-/// reversed. That doubles every count and needs the non-facing
-/// triangles as caps too; we do not use it.)
+/// winding: +1 for each facing face that runs `v[0] → v[1]`, −1 for each
+/// that runs back. The edge is emitted |sum| times, oriented by the sign:
+/// a manifold edge with one lit face, an open edge whose face is lit, and
+/// what is left of a non-manifold edge once opposite lit faces cancel.
+/// The result is the boundary of the lit faces, so it is closed loops for
+/// any mesh; with caps made of [`light_facing_triangles`] each lit face's
+/// volume is closed. (Adding the unlit faces reversed would also be
+/// consistent, but doubles every count; we do not.)
 pub fn silhouette_edges(adj: &Adjacency, light: LightDir) -> Vec<SilhouetteEdge> {
     silhouette_edges_for(adj, &face_facing(adj, light))
 }
@@ -116,7 +100,6 @@ pub fn silhouette_edges_for(adj: &Adjacency, facing: &[bool]) -> Vec<SilhouetteE
     }
     out
 }
-
 // ANCHOR_END: silhouette_edges
 
 /// The light-facing triangles (welded ids, in their own winding): the

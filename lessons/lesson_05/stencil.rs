@@ -72,7 +72,9 @@ pub fn zpass_stencil() -> wgpu::StencilState {
         count_face(DecrementWrap, Keep),
     )
 }
+// ANCHOR_END: stencil_states
 
+// ANCHOR: lit_stencil
 /// The lit pass adds the light only where the count is 0.
 pub fn lit_stencil() -> wgpu::StencilState {
     let face = wgpu::StencilFaceState {
@@ -88,7 +90,7 @@ pub fn lit_stencil() -> wgpu::StencilState {
         write_mask: 0,
     }
 }
-// ANCHOR_END: stencil_states
+// ANCHOR_END: lit_stencil
 
 /// What the volume pipelines count with: the stencil state of each
 /// [`Method`], the depth bias of caps, and whether depth is clamped instead

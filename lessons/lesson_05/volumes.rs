@@ -58,7 +58,7 @@ mod casters;
 mod costs;
 use casters::build_casters;
 pub use casters::VolumeCaster;
-pub use costs::{base_and_lit_draws, VolumeCosts};
+pub use costs::{base_and_lit_draws, SecondFrameCounts, VolumeCosts};
 
 /// Which pipelines [`ShadowVolumes::draw_casters`] draws with: the volume
 /// pass's own, or a counting copy.
@@ -141,6 +141,9 @@ pub struct ShadowVolumes {
     /// `None` unless the counting has `finite_reach`.
     reach_buffer: Option<wgpu::Buffer>,
     cpu: CpuGeometry,
+    /// Which parts of the CPU route's volumes an exercise's code builds
+    /// (the lesson's own by default; [`ShadowVolumes::set_cpu_parts`]).
+    cpu_parts: CpuParts,
     /// The compute route's buffers, made when it first runs.
     compute: Option<ComputeVolumes>,
     /// Per route (cpu, quads, compute): why its buffers would not fit the
@@ -194,6 +197,7 @@ impl ShadowVolumes {
             reach,
             reach_buffer,
             cpu: CpuGeometry::default(),
+            cpu_parts: CpuParts::default(),
             compute: None,
             unfit,
             cpu_pipelines: VolumePipelines::new(gpu, scene, Extrusion::Cpu, counting)?,
@@ -256,19 +260,7 @@ impl ShadowVolumes {
     /// and the casters in `draws[light]`, uploaded in one write. Timed as
     /// `cpu_silhouette`.
     pub fn prepare_cpu(&mut self, frame: &mut Frame, scene: &SceneGpu, draws: &[Vec<CasterDraw>]) {
-        self.prepare_cpu_with(frame, scene, draws, CpuParts::default());
-    }
-
-    /// [`prepare_cpu`](Self::prepare_cpu) with the sides or caps built by
-    /// `parts` (an exercise's code, [`CpuParts`]).
-    pub fn prepare_cpu_with(
-        &mut self,
-        frame: &mut Frame,
-        scene: &SceneGpu,
-        draws: &[Vec<CasterDraw>],
-        parts: CpuParts,
-    ) {
-        let gpu = frame.gpu;
+        let (gpu, parts) = (frame.gpu, self.cpu_parts);
         let (cpu, origin) = (&mut self.cpu, self.origin);
         let casters = &self.casters;
         let reach = &self.reach;
@@ -337,6 +329,12 @@ impl ShadowVolumes {
         });
     }
     // ANCHOR_END: prepare_cpu
+
+    /// The sides or caps the CPU route builds from here on: an exercise's
+    /// code ([`CpuParts`]), or the lesson's own (the default).
+    pub fn set_cpu_parts(&mut self, parts: CpuParts) {
+        self.cpu_parts = parts;
+    }
 
     // ANCHOR: prepare_compute
     /// The compute route's per-frame work ([`ComputeVolumes::extrude`]),
@@ -479,6 +477,42 @@ impl ShadowVolumes {
         drawn
     }
     // ANCHOR_END: light_passes
+
+    // ANCHOR: shadow_frame
+    /// A frame of stencil shadows: build this frame's volumes (the CPU and
+    /// compute routes), draw the base pass, then for each light clear the
+    /// stencil, count its volumes (`draws[light]`) and add the light where
+    /// the count is 0. Returns the casters drawn.
+    pub fn shadow_frame(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        extrusion: Extrusion,
+        draws: &[Vec<CasterDraw>],
+        lit_pipeline: &wgpu::RenderPipeline,
+    ) -> Result<u32> {
+        match extrusion {
+            // Doom 3's way: find every silhouette on the CPU, every frame.
+            Extrusion::Cpu => self.prepare_cpu(frame, scene, draws),
+            // The same silhouettes, found by a compute shader on the GPU.
+            Extrusion::Compute => self.prepare_compute(frame, scene, draws)?,
+            // Built once: the vertex shader extrudes them.
+            Extrusion::Quads => {}
+        }
+        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
+        let mut drawn = 0;
+        for (light, draws) in draws.iter().enumerate() {
+            let volumes = LightVolumes {
+                light,
+                extrusion,
+                draws,
+            };
+            drawn += self.light_passes(frame, scene, targets, volumes, lit_pipeline);
+        }
+        Ok(drawn)
+    }
+    // ANCHOR_END: shadow_frame
 
     /// The fragment counter (lesson 08 counts its own volumes with it).
     pub fn counter(&self) -> Option<&FragmentCounter> {

@@ -33,14 +33,12 @@ use common::measure::timing::Frame;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::{Far, LightKind};
 use common::Result;
-use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::extrusion::{world_light, CpuParts, Extrusion};
+use workbook::lesson_05::harness::{StencilLesson, VariantFrame};
 use workbook::lesson_05::stencil::{self, Counting, Method};
-use workbook::lesson_05::volumes::{
-    base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes, VolumeCaster, VolumeCosts,
-};
+use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, ShadowVolumes, VolumeCaster};
 use workbook::lesson_06::caps::{self, zfail_counting};
-use workbook::lesson_06::plan::{near_rectangle, plan, plan_with, PlanStats};
+use workbook::lesson_06::plan::{near_rectangle, plan, plan_with};
 use workbook::lesson_06::reach::volume_reach;
 
 // ANCHOR: variants
@@ -65,6 +63,7 @@ enum Variant {
     /// nothing where the volume cannot reach the view.
     #[value(name = "zfail_selective")]
     ZfailSelective,
+    // ANCHOR_END: variants
     /// Exercise 1: `zfail_selective` with your `needs_zfail`.
     #[value(name = "exercise_choose_method")]
     ExerciseChooseMethod,
@@ -72,6 +71,24 @@ enum Variant {
     #[value(name = "exercise_light_cap")]
     ExerciseLightCap,
 }
+
+// ANCHOR: variant_draws
+impl Variant {
+    /// The draws of one light: which casters, counted how.
+    fn draws(self, volumes: &ShadowVolumes, scene: &SceneGpu, light: usize) -> Vec<CasterDraw> {
+        let mut draws = volumes.all(caps::zfail);
+        match self {
+            Variant::ZpassQuads => return volumes.all(CasterDraw::zpass),
+            Variant::ZfailSelective => return plan(volumes, scene, light),
+            Variant::ZfailNoFrontCap => draws.iter_mut().for_each(|d| d.front_cap = false),
+            Variant::ZfailNoBackCap => draws.iter_mut().for_each(|d| d.back_cap = false),
+            // Z-fail everywhere, both caps.
+            _ => {}
+        }
+        draws
+    }
+}
+// ANCHOR_END: variant_draws
 
 impl Variant {
     fn extrusion(self) -> Extrusion {
@@ -93,92 +110,84 @@ impl Variant {
         }
     }
 
-    /// The draws of one light: which casters, counted how.
-    fn draws(
+    /// [`Variant::draws`], with the first exercise's `needs_zfail` in
+    /// `zfail_selective`'s plan.
+    fn draws_or_exercise(
         self,
         volumes: &ShadowVolumes,
         scene: &SceneGpu,
         light: usize,
-    ) -> (Vec<CasterDraw>, PlanStats) {
-        let n = volumes.casters.len() as u32;
-        let mut draws = volumes.all(caps::zfail);
-        match self {
-            Variant::ZfailSelective => return plan(volumes, scene, light),
-            Variant::ExerciseChooseMethod => {
-                let near_rect = near_rectangle(scene.camera.view_proj.as_dmat4());
-                let l = world_light(scene, light);
-                let models = scene.scene.relative_models();
-                // The caster's vertices in world space (origin-relative).
-                let student = |c: &VolumeCaster| {
-                    let m = models[c.object].as_dmat4();
-                    let p = c.adjacency.positions.iter();
-                    let world: Vec<DVec3> = p.map(|p| m.transform_point3(p.as_dvec3())).collect();
-                    workbook::exercise!(lesson_06::needs_zfail(&world, l, &near_rect))
-                };
-                return plan_with(volumes, scene, light, student);
-            }
-            Variant::ZpassQuads => {
-                let stats = PlanStats {
-                    zpass: n,
-                    ..Default::default()
-                };
-                return (volumes.all(CasterDraw::zpass), stats);
-            }
-            Variant::ZfailNoFrontCap => draws.iter_mut().for_each(|d| d.front_cap = false),
-            Variant::ZfailNoBackCap => draws.iter_mut().for_each(|d| d.back_cap = false),
-            Variant::ZfailCpu
-            | Variant::ZfailQuads
-            | Variant::ZfailCompute
-            | Variant::ExerciseLightCap => {}
+    ) -> Vec<CasterDraw> {
+        if self != Variant::ExerciseChooseMethod {
+            return self.draws(volumes, scene, light);
         }
-        let stats = PlanStats {
-            zfail: n,
-            ..Default::default()
+        let near_rect = near_rectangle(scene.camera.view_proj.as_dmat4());
+        let l = world_light(scene, light);
+        let models = scene.scene.relative_models();
+        // The caster's vertices in world space (origin-relative).
+        let needs_zfail = |c: &VolumeCaster| {
+            let m = models[c.object].as_dmat4();
+            let p = c.adjacency.positions.iter();
+            let world: Vec<DVec3> = p.map(|p| m.transform_point3(p.as_dvec3())).collect();
+            workbook::exercise!(lesson_06::needs_zfail(&world, l, &near_rect))
         };
-        (draws, stats)
+        plan_with(volumes, scene, light, needs_zfail)
     }
 }
-// ANCHOR_END: variants
+
+/// What a variant's draws chose, over every light: casters counted with
+/// z-pass, with z-fail, and left out.
+#[derive(Clone, Copy, Debug, Default)]
+struct Chosen {
+    zpass: u64,
+    zfail: u64,
+    skipped: u64,
+}
+
+impl Chosen {
+    /// Counted from the draws, `casters` casters per light.
+    fn of(per_light: &[Vec<CasterDraw>], casters: usize) -> Chosen {
+        let mut c = Chosen::default();
+        for draws in per_light {
+            let method = |m| draws.iter().filter(|d| d.method == m).count() as u64;
+            c.zpass += method(Method::ZPass);
+            c.zfail += method(Method::ZFail);
+            c.skipped += (casters - draws.len()) as u64;
+        }
+        c
+    }
+}
 
 struct ZFail {
-    volumes: ShadowVolumes,
-    lit_pipeline: wgpu::RenderPipeline,
+    /// The volumes, the lit pipeline, the counts and the buffer view
+    /// (lesson 05's harness).
+    shadow: StencilLesson,
     scene_counters: BTreeMap<String, u64>,
-    /// Per variant, in variant order: `draws[light]`, and what was left out.
-    plans: Vec<(Vec<Vec<CasterDraw>>, PlanStats)>,
-    /// Per variant, in variant order: fragment-shader invocations (pipeline
-    /// statistics, Vulkan only), the exact volume costs, frames rendered.
-    invocations: Vec<Option<u64>>,
-    costs: Vec<Option<VolumeCosts>>,
-    frames: Vec<u32>,
+    /// Per variant, in variant order: `draws[light]`, and what was chosen.
+    plans: Vec<(Vec<Vec<CasterDraw>>, Chosen)>,
     /// Draw calls of the base and lit passes.
     base_draws: u64,
     /// The camera and lights the reach and plans were made for.
     view: Vec<f64>,
-    /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
-    depth_stencil: Option<wgpu::Texture>,
 }
 
 /// Every variant's draws for every light, in variant order.
-fn plans(volumes: &ShadowVolumes, scene: &SceneGpu) -> Vec<(Vec<Vec<CasterDraw>>, PlanStats)> {
+fn plans(volumes: &ShadowVolumes, scene: &SceneGpu) -> Vec<(Vec<Vec<CasterDraw>>, Chosen)> {
     // A finite reach puts the back cap where a view ray can cross it in
     // front of the surface: z-pass must then count it too.
     let finite = matches!(scene.scene.camera.far, Far::Finite(_));
     let mut plans = Vec::new();
     for v in Variant::value_variants() {
-        let mut total = PlanStats::default();
         let mut per_light = Vec::new();
         for light in 0..scene.scene.lights.len() {
-            let (mut d, s) = v.draws(volumes, scene, light);
+            let mut d = v.draws_or_exercise(volumes, scene, light);
             for d in d.iter_mut().filter(|d| d.method == Method::ZPass) {
                 d.back_cap |= finite;
             }
-            total.zpass += s.zpass;
-            total.zfail += s.zfail;
-            total.skipped += s.skipped;
             per_light.push(d);
         }
-        plans.push((per_light, total));
+        let chosen = Chosen::of(&per_light, volumes.casters.len());
+        plans.push((per_light, chosen));
     }
     plans
 }
@@ -212,12 +221,8 @@ impl Lesson for ZFail {
 
     /// The stencil: light N's count, N the last light.
     fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
-        let (Some(ds), Some(last)) = (&self.depth_stencil, scene.scene.lights.len().checked_sub(1))
-        else {
-            return Ok(None);
-        };
         let what = "volume count (z-pass and z-fail leave the same)";
-        count_view(gpu, ds, last, 0xff, what).map(Some)
+        self.shadow.buffer_view(gpu, scene, what)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -232,21 +237,19 @@ impl Lesson for ZFail {
         let reach = volume_reach(scene, &volumes.casters)?;
         volumes.set_reach(gpu, reach);
         // ANCHOR_END: reach
+        let lit = stencil::stencil_lit_pipeline(gpu, scene);
         Ok(ZFail {
-            lit_pipeline: stencil::stencil_lit_pipeline(gpu, scene),
             scene_counters: stencil::scene_counters(scene),
             plans: plans(&volumes, scene),
-            volumes,
-            invocations: vec![None; Variant::value_variants().len()],
-            costs: vec![None; Variant::value_variants().len()],
-            frames: vec![0; Variant::value_variants().len()],
+            shadow: StencilLesson::new(volumes, lit, Variant::value_variants().len()),
             base_draws: base_and_lit_draws(scene),
             view: view_key(scene),
-            depth_stencil: None,
         })
     }
 
-    // ANCHOR: render
+    /// The frame is lesson 05's [`ShadowVolumes::shadow_frame`] (in
+    /// [`StencilLesson::frame`]), each caster with its own method; around
+    /// it, the plans and the counts.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -255,72 +258,41 @@ impl Lesson for ZFail {
         variant: Variant,
     ) -> Result<()> {
         let key = view_key(scene);
+        let volumes = &mut self.shadow.volumes;
         if key != self.view {
             // The window moved the camera or a light: redo reach and plans
             // (a reach that no longer fits the far plane ends the run).
-            self.volumes
-                .set_reach(frame.gpu, volume_reach(scene, &self.volumes.casters)?);
-            self.plans = plans(&self.volumes, scene);
+            volumes.set_reach(frame.gpu, volume_reach(scene, &volumes.casters)?);
+            self.plans = plans(volumes, scene);
             self.view = key;
         }
         let (draws, _) = &self.plans[variant as usize];
-        let ext = variant.extrusion();
-        if ext == Extrusion::Cpu {
-            (self.volumes).prepare_cpu_with(frame, scene, draws, variant.cpu_parts());
-        }
-        if ext == Extrusion::Compute {
-            self.volumes.prepare_compute(frame, scene, draws)?;
-        }
-        frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        for (light, draws) in draws.iter().enumerate() {
-            // Each caster carries its own method: the stencil ops differ,
-            // the count they leave is the same.
-            let volumes = LightVolumes {
-                light,
-                extrusion: ext,
-                draws,
-            };
-            self.volumes
-                .light_passes(frame, scene, targets, volumes, &self.lit_pipeline);
-        }
-        // What the "buffer" view reads: this frame's stencil.
-        self.depth_stencil = Some(targets.depth.clone());
-        // The second call finds the first frame's depth in place: count
-        // then, once, in submits of their own (untimed).
-        let (v, gpu) = (variant as usize, frame.gpu);
-        self.frames[v] += 1;
-        if self.frames[v] == 2 {
-            self.invocations[v] = self.volumes.count_fragments(gpu, scene, ext, draws);
-            self.costs[v] = Some(self.volumes.count_costs(gpu, scene, targets, ext, draws)?);
-        }
+        let v = VariantFrame {
+            variant: variant as usize,
+            extrusion: variant.extrusion(),
+            parts: variant.cpu_parts(),
+        };
+        self.shadow.frame(frame, scene, targets, v, draws)?;
         Ok(())
     }
-    // ANCHOR_END: render
 
     /// A route whose buffers would pass the adapter's limits is left out.
     fn unavailable(&self, variant: Variant) -> Option<String> {
-        let why = self.volumes.unfit(variant.extrusion())?;
-        Some(format!("{}: {why}", variant_name(variant)))
+        (self.shadow).unavailable(&variant_name(variant), variant.extrusion())
     }
 
     fn count_again(&mut self, variant: Variant) {
-        self.frames[variant as usize] = 0;
+        self.shadow.count_again(variant as usize);
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let mut c = self.scene_counters.clone();
         let (_, s) = &self.plans[variant as usize];
-        c.insert("casters_zpass".into(), s.zpass as u64);
-        c.insert("casters_zfail".into(), s.zfail as u64);
-        c.insert("casters_skipped".into(), s.skipped as u64);
-        c.insert("casters_drawn".into(), (s.zpass + s.zfail) as u64);
-        if let Some(f) = self.invocations[variant as usize] {
-            // llvmpipe counts 16 per 4×4 block: not the fragment count.
-            c.insert("fragment_shader_invocations".into(), f);
-        }
-        if let Some(costs) = self.costs[variant as usize] {
-            costs.insert_into(&mut c, self.base_draws);
-        }
+        c.insert("casters_zpass".into(), s.zpass);
+        c.insert("casters_zfail".into(), s.zfail);
+        c.insert("casters_skipped".into(), s.skipped);
+        c.insert("casters_drawn".into(), s.zpass + s.zfail);
+        (self.shadow).insert_counts(variant as usize, &mut c, self.base_draws);
         c
     }
 }

@@ -13,24 +13,11 @@ use crate::lesson_05::extrusion::world_light;
 use crate::lesson_05::silhouette::LightDir;
 use crate::lesson_05::volumes::{CasterDraw, ShadowVolumes, VolumeCaster};
 
-/// What [`plan`] chose: casters counted with z-pass, with z-fail, and
-/// left out.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct PlanStats {
-    pub zpass: u32,
-    pub zfail: u32,
-    pub skipped: u32,
-}
-
 // ANCHOR: plan
 /// Which casters need z-fail, which z-pass, and which can be skipped,
 /// for light `light` (see the module doc). The counts are the same as
 /// with z-fail everywhere.
-pub fn plan(
-    volumes: &ShadowVolumes,
-    scene: &SceneGpu,
-    light: usize,
-) -> (Vec<CasterDraw>, PlanStats) {
+pub fn plan(volumes: &ShadowVolumes, scene: &SceneGpu, light: usize) -> Vec<CasterDraw> {
     let view_proj = scene.camera.view_proj.as_dmat4();
     let near_rect = near_rectangle(view_proj);
     let l = world_light(scene, light);
@@ -45,21 +32,23 @@ pub fn plan(
     };
     plan_with(volumes, scene, light, |c| reaches_near(c.center, c.radius))
 }
+// ANCHOR_END: plan
 
-/// [`plan`] with the choice of z-fail made by `needs_zfail(caster)`
-/// (lesson 06's exercise puts the student's test there).
+// ANCHOR: plan_with
+/// [`plan`] with the choice of z-fail made by `needs_zfail(caster)`: skip
+/// the casters whose volume cannot reach the view frustum, and draw the
+/// others with z-fail or z-pass as `needs_zfail` says.
 pub fn plan_with(
     volumes: &ShadowVolumes,
     scene: &SceneGpu,
     light: usize,
     needs_zfail: impl Fn(&VolumeCaster) -> bool,
-) -> (Vec<CasterDraw>, PlanStats) {
+) -> Vec<CasterDraw> {
     let frustum = frustum_planes(scene.camera.view_proj.as_dmat4());
     let (l_point, l_dir) = match world_light(scene, light) {
         LightDir::Point(p) => (Some(p.as_dvec3()), None),
         LightDir::Directional(d) => (None, Some(d.as_dvec3())),
     };
-    let mut stats = PlanStats::default();
     let mut out = Vec::new();
     for c in &volumes.casters {
         let outside = |(n, d): &(DVec3, f64)| {
@@ -75,20 +64,17 @@ pub fn plan_with(
             }
         };
         if frustum.iter().any(outside) {
-            stats.skipped += 1;
-            continue;
+            continue; // its volume cannot reach the view: skipped
         }
         if needs_zfail(c) {
-            stats.zfail += 1;
             out.push(zfail(c.object));
         } else {
-            stats.zpass += 1;
             out.push(CasterDraw::zpass(c.object));
         }
     }
-    (out, stats)
+    out
 }
-// ANCHOR_END: plan
+// ANCHOR_END: plan_with
 
 /// The four world corners of the near-plane rectangle.
 pub fn near_rectangle(vp: DMat4) -> [DVec3; 4] {

@@ -48,7 +48,6 @@ pub fn volume_reach(scene: &SceneGpu, casters: &[VolumeCaster]) -> Result<Vec<Ve
         Far::Infinite => return Ok(vec![vec![0.0; casters.len()]; lights.len()]),
         Far::Finite(f) => f,
     };
-    let view = scene.camera.view.as_dmat4();
     let origin = scene.scene.origin();
     let mut reach = Vec::new();
     for (k, light) in lights.iter().enumerate() {
@@ -70,36 +69,7 @@ pub fn volume_reach(scene: &SceneGpu, casters: &[VolumeCaster]) -> Result<Vec<Ve
                 .iter()
                 .map(|p| model.transform_point3(p.as_dvec3()))
                 .collect();
-            let d = c
-                .adjacency
-                .triangles
-                .iter()
-                .map(|t| point_triangle_distance(l, t.map(|i| world[i as usize])))
-                .fold(f64::INFINITY, f64::min);
-            if d <= 0.0 {
-                bail!(
-                    "camera.far = {far}: light {k} touches object {} ({}), so its shadow volume must reach infinity, past the far plane; use far = \"infinite\", or lesson_07 (depth clamp)",
-                    c.object,
-                    scene.scene.objects[c.object].mesh_name,
-                );
-            }
-            let s = reach_factor(range, d);
-            // Depth is affine along the extrusion: the deepest point of the
-            // volume is a vertex of its back cap (or of the caster).
-            let deepest = world
-                .iter()
-                .map(|x| view_depth(view, l + (*x - l) * s).max(view_depth(view, *x)))
-                .fold(f64::NEG_INFINITY, f64::max);
-            if !(s.is_finite() && deepest <= far * (1.0 - FAR_MARGIN)) {
-                bail!(
-                    "camera.far = {far}: the shadow volume of object {} ({}) for light {k}, extruded to cover the light's range ({range} / distance {} = {}x), reaches depth {}, past the far plane (and to infinity it is clipped too); use far = \"infinite\", or lesson_07 (depth clamp)",
-                    c.object,
-                    scene.scene.objects[c.object].mesh_name,
-                    short(d),
-                    short(s),
-                    short(deepest),
-                );
-            }
+            let s = caster_reach(scene, far, (k, l, range), c, &world)?;
             per_caster.push((1.0 / s) as f32);
         }
         reach.push(per_caster);
@@ -107,6 +77,52 @@ pub fn volume_reach(scene: &SceneGpu, casters: &[VolumeCaster]) -> Result<Vec<Ve
     Ok(reach)
 }
 // ANCHOR_END: volume_reach
+
+// ANCHOR: caster_reach
+/// The factor *s* of caster `c` (its vertices `world`) for light `k` at
+/// `l` of range `range`: its volume covers the range, and its deepest
+/// vertex stays inside the far plane `far`, or an error says why not.
+fn caster_reach(
+    scene: &SceneGpu,
+    far: f64,
+    (k, l, range): (usize, DVec3, f64),
+    c: &VolumeCaster,
+    world: &[DVec3],
+) -> Result<f64> {
+    let d = c
+        .adjacency
+        .triangles
+        .iter()
+        .map(|t| point_triangle_distance(l, t.map(|i| world[i as usize])))
+        .fold(f64::INFINITY, f64::min);
+    if d <= 0.0 {
+        bail!(
+                "camera.far = {far}: light {k} touches object {} ({}), so its shadow volume must reach infinity, past the far plane; use far = \"infinite\", or lesson_07 (depth clamp)",
+                c.object,
+                scene.scene.objects[c.object].mesh_name,
+            );
+    }
+    let s = reach_factor(range, d);
+    // Depth is affine along the extrusion: the deepest point of the
+    // volume is a vertex of its back cap (or of the caster).
+    let view = scene.camera.view.as_dmat4();
+    let deepest = world
+        .iter()
+        .map(|x| view_depth(view, l + (*x - l) * s).max(view_depth(view, *x)))
+        .fold(f64::NEG_INFINITY, f64::max);
+    if !(s.is_finite() && deepest <= far * (1.0 - FAR_MARGIN)) {
+        bail!(
+                "camera.far = {far}: the shadow volume of object {} ({}) for light {k}, extruded to cover the light's range ({range} / distance {} = {}x), reaches depth {}, past the far plane (and to infinity it is clipped too); use far = \"infinite\", or lesson_07 (depth clamp)",
+                c.object,
+                scene.scene.objects[c.object].mesh_name,
+                short(d),
+                short(s),
+                short(deepest),
+            );
+    }
+    Ok(s)
+}
+// ANCHOR_END: caster_reach
 
 /// A number for a message: 3 decimals, or 4 significant digits in e-form
 /// when very large or small.

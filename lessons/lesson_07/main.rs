@@ -37,7 +37,7 @@ use common::{anyhow, Result};
 use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::extrusion::Extrusion;
 use workbook::lesson_05::stencil::{self, Counting};
-use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, LightVolumes, ShadowVolumes};
+use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, ShadowVolumes};
 use workbook::lesson_06::caps::{self, zfail_counting};
 use workbook::lesson_07::exercise_cameras as cameras;
 use workbook::lesson_07::infinite_far::{infinite_scene, DepthMapping};
@@ -61,6 +61,7 @@ enum Variant {
     /// Reversed-Z in Depth32Float, far plane at infinity.
     #[value(name = "reversed_z")]
     ReversedZ,
+    // ANCHOR_END: variants
     /// Exercise 1: your off-centre infinite projection (`exercises::infinite_frustum`).
     #[value(name = "exercise_infinite_projection")]
     ExerciseInfiniteProjection,
@@ -92,7 +93,6 @@ impl Variant {
         }
     }
 }
-// ANCHOR_END: variants
 
 /// Makes an exercise's camera: a second `SceneGpu` with its projection.
 type ExerciseCamera = fn(&Gpu, &SceneGpu) -> Result<SceneGpu>;
@@ -102,6 +102,26 @@ struct Route {
     volumes: ShadowVolumes,
     lit: wgpu::RenderPipeline,
 }
+
+// ANCHOR: render
+/// One frame of lesson 06's z-fail with pre-built quads, both caps for
+/// every caster, seen through `sg`'s camera and drawn with `route`'s
+/// volumes: lesson 05's frame. Returns the draws, per light.
+fn zfail_frame(
+    frame: &mut Frame,
+    sg: &SceneGpu,
+    targets: &FrameTargets,
+    route: &mut Route,
+) -> Result<Vec<Vec<CasterDraw>>> {
+    // Z-fail everywhere, both caps: the back cap is the one at infinity.
+    let draws: Vec<Vec<CasterDraw>> = (0..sg.scene.lights.len())
+        .map(|_| route.volumes.all(caps::zfail))
+        .collect();
+    let (ext, lit) = (Extrusion::Quads, &route.lit);
+    (route.volumes).shadow_frame(frame, sg, targets, ext, &draws, lit)?;
+    Ok(draws)
+}
+// ANCHOR_END: render
 
 impl Route {
     /// Z-fail volumes; `unclipped_depth` clamps depth instead of clipping.
@@ -239,7 +259,8 @@ impl Lesson for DepthClamp {
         }
     }
 
-    // ANCHOR: render
+    /// The variant's camera and volumes drawn by [`zfail_frame`]; around
+    /// it, the exercises' cameras and the counts.
     fn render(
         &mut self,
         frame: &mut Frame,
@@ -275,36 +296,22 @@ impl Lesson for DepthClamp {
         for (sg, _) in self.exercises.iter_mut().flatten() {
             sg.set_jitter(frame.gpu, scene.jitter);
         }
-        let (sg, route) = match variant {
+        let (sg, route): (&SceneGpu, &mut Route) = match variant {
             Variant::ReversedZ => unreachable!("drawn above"),
             Variant::ExerciseInfiniteProjection | Variant::ExerciseAdaptiveNear => {
                 let (sg, route) = self.exercises[variant.exercise().expect("an exercise").0]
-                    .as_ref()
+                    .as_mut()
                     .expect("made above");
                 (sg, route)
             }
-            Variant::Neither => (scene, &self.finite),
+            Variant::Neither => (scene, &mut self.finite),
             Variant::Clamp => (
                 scene,
-                self.clamp.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?,
+                self.clamp.as_mut().map_err(|e| anyhow::anyhow!("{e}"))?,
             ),
-            Variant::Infinite => (&self.infinite_scene, &self.infinite),
+            Variant::Infinite => (&self.infinite_scene, &mut self.infinite),
         };
-        // Z-fail everywhere, both caps: the back cap is the one at infinity.
-        let draws: Vec<Vec<CasterDraw>> = (0..sg.scene.lights.len())
-            .map(|_| route.volumes.all(caps::zfail))
-            .collect();
-        frame.pass("base", |enc, ts| sg.base_pass(enc, targets, ts.render()));
-        for (light, draws) in draws.iter().enumerate() {
-            let volumes = LightVolumes {
-                light,
-                extrusion: Extrusion::Quads,
-                draws,
-            };
-            route
-                .volumes
-                .light_passes(frame, sg, targets, volumes, &route.lit);
-        }
+        let draws = zfail_frame(frame, sg, targets, route)?;
         let c = &mut self.counters[variant as usize];
         if !c.contains_key("casters_drawn") {
             c.insert(
@@ -328,7 +335,6 @@ impl Lesson for DepthClamp {
         }
         Ok(())
     }
-    // ANCHOR_END: render
 
     /// The costs are counted once, on the frame after `casters_drawn` is
     /// first set: forget that key and they are counted again.

@@ -189,6 +189,55 @@ pub fn min_resolvable_gap(row: &[f64], gaps: &[f64]) -> Option<f64> {
 /// The probe quads (`shaders/lesson_07/depth_probe.wgsl`).
 const PROBE_WGSL: &str = include_str!("../../shaders/lesson_07/depth_probe.wgsl");
 
+// ANCHOR: probe_quads
+/// The probe's quads, one pixel each: column `c` is the gap `gaps[c]`,
+/// row `r` the `r`-th jittered distance d ([`SAMPLES`] per distance).
+/// All the far quads at d·(1 + gap) first (value 0), then the near ones
+/// at d (value 1).
+fn probe_quads(dists: &[f64], gaps: &[f64]) -> Vec<[f32; 4]> {
+    let mut inst = Vec::new();
+    for (value, far_side) in [(0.0, true), (1.0, false)] {
+        for (r, d) in dists
+            .iter()
+            .flat_map(|&d| (0..SAMPLES).map(move |j| jittered(d, j)))
+            .enumerate()
+        {
+            for (c, &g) in gaps.iter().enumerate() {
+                let dist = if far_side { d * (1.0 + g) } else { d };
+                inst.push([c as f32, r as f32, dist as f32, value]);
+            }
+        }
+    }
+    inst
+}
+// ANCHOR_END: probe_quads
+
+/// The probe's shader, and its uniform (`rows`, the image size `size`)
+/// bound at group 0.
+fn probe_program(
+    gpu: &Gpu,
+    rows: [f32; 4],
+    (w, h): (u32, u32),
+) -> (wgpu::ShaderModule, wgpu::BindGroupLayout, wgpu::BindGroup) {
+    let device = &gpu.device;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("depth precision probe"),
+        source: wgpu::ShaderSource::Wgsl(PROBE_WGSL.into()),
+    });
+    let uniform: [f32; 8] = [
+        rows[0], rows[1], rows[2], rows[3], w as f32, h as f32, 0.0, 0.0,
+    ];
+    let ubuf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe"),
+        contents: bytemuck::cast_slice(&uniform),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let entry = uniform_entry(0, wgpu::ShaderStages::VERTEX, false, None);
+    let layout = bindings::layout(gpu, "probe", &[entry]);
+    let group = bindings::group(gpu, "probe", &layout, &[ubuf.as_entire_binding()]);
+    (module, layout, group)
+}
+
 // ANCHOR: measure_gpu
 /// The GPU measurement: `result[row][column]` is the share of the
 /// [`SAMPLES`] jittered distances d around `distances[row]` where the near
@@ -203,37 +252,10 @@ pub fn measure_gpu(
     let (gaps, dists) = (gaps(), distances(near, far));
     // One pixel row per jittered sample: SAMPLES rows per distance.
     let (w, h) = (gaps.len() as u32, (dists.len() * SAMPLES) as u32);
-    let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("depth precision probe"),
-        source: wgpu::ShaderSource::Wgsl(PROBE_WGSL.into()),
-    });
+    // The mapping's rows and the image size, for the probe's vertex shader.
     let rows = m.rows(near, far).map(|r| r as f32);
-    let uniform: [f32; 8] = [
-        rows[0], rows[1], rows[2], rows[3], w as f32, h as f32, 0.0, 0.0,
-    ];
-    let ubuf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probe"),
-        contents: bytemuck::cast_slice(&uniform),
-        usage: wgpu::BufferUsages::UNIFORM,
-    });
-    // The far quads first (value 0), then the near ones (value 1).
-    let mut inst: Vec<[f32; 4]> = Vec::new();
-    for (value, far_side) in [(0.0, true), (1.0, false)] {
-        for (r, d) in dists
-            .iter()
-            .flat_map(|&d| (0..SAMPLES).map(move |j| jittered(d, j)))
-            .enumerate()
-        {
-            for (c, &g) in gaps.iter().enumerate() {
-                let dist = if far_side { d * (1.0 + g) } else { d };
-                inst.push([c as f32, r as f32, dist as f32, value]);
-            }
-        }
-    }
-    let entry = uniform_entry(0, wgpu::ShaderStages::VERTEX, false, None);
-    let layout = bindings::layout(gpu, "probe", &[entry]);
-    let group = bindings::group(gpu, "probe", &layout, &[ubuf.as_entire_binding()]);
+    let (module, layout, group) = probe_program(gpu, rows, (w, h));
+    let inst = probe_quads(&dists, &gaps);
     // The far quads first, then the near ones, with the mapping's test.
     let px = depth_probe::draw_probe(
         gpu,
@@ -248,22 +270,26 @@ pub fn measure_gpu(
             group: Some((&layout, &group)),
         },
     )?;
-    // Share of each distance's SAMPLES rows where the near quad (255) won.
-    Ok(px
-        .chunks(w as usize * SAMPLES)
+    Ok(near_won(&px, w as usize))
+}
+// ANCHOR_END: measure_gpu
+
+// ANCHOR: near_won
+/// Per distance and gap, the share of its [`SAMPLES`] pixel rows where the
+/// near quad (255) won: `px` is the probe's image, `w` pixels wide.
+fn near_won(px: &[u8], w: usize) -> Vec<Vec<f64>> {
+    px.chunks(w * SAMPLES)
         .map(|cell| {
-            (0..w as usize)
+            (0..w)
                 .map(|c| {
-                    let won = (0..SAMPLES)
-                        .filter(|&j| cell[j * w as usize + c] > 127)
-                        .count();
+                    let won = (0..SAMPLES).filter(|&j| cell[j * w + c] > 127).count();
                     won as f64 / SAMPLES as f64
                 })
                 .collect()
         })
-        .collect())
+        .collect()
 }
-// ANCHOR_END: measure_gpu
+// ANCHOR_END: near_won
 
 /// The CPU model over the same grid and samples as [`measure_gpu`].
 pub fn model_cpu(s: DepthStorage, m: DepthMapping, near: f64, far: f64) -> Vec<Vec<f64>> {

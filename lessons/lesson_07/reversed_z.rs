@@ -207,20 +207,7 @@ impl ReversedZ {
         for light in 0..s.scene.lights.len() {
             frame.pass("volume", |enc, ts| {
                 let mut pass = t.stencil_pass(enc, "reversed volume pass", ts.render(), None);
-                s.bind_frame(&mut pass, light);
-                for c in &shadow.casters {
-                    let (vb, ib, _) = c.quad_buffers();
-                    s.bind_object(&mut pass, c.object);
-                    pass.set_vertex_buffer(0, vb.slice(..));
-                    pass.set_index_buffer(ib.slice(..), wgpu::IndexFormat::Uint32);
-                    let r = &c.quad_ranges;
-                    for (range, cap) in [(&r.sides, false), (&r.front, true), (&r.back, true)] {
-                        if !range.is_empty() {
-                            pass.set_pipeline(&self.volumes[c.mirrored as usize][cap as usize]);
-                            pass.draw_indexed(range.clone(), 0, 0..1);
-                        }
-                    }
-                }
+                self.draw_volumes(&mut pass, light, shadow);
             });
             frame.pass("lighting", |enc, ts| {
                 s.lit_pass(enc, &t, LitPass::new(light, &self.lit, &[]), ts.render())
@@ -228,6 +215,28 @@ impl ReversedZ {
         }
     }
     // ANCHOR_END: reversed_render
+
+    // ANCHOR: reversed_volumes
+    /// Light `light`'s z-fail volumes: every caster's pre-built quads,
+    /// sides and both caps, through this variant's reversed pipelines.
+    fn draw_volumes(&self, pass: &mut wgpu::RenderPass<'_>, light: usize, shadow: &ShadowVolumes) {
+        let s = &self.scene;
+        s.bind_frame(pass, light);
+        for c in &shadow.casters {
+            let (vb, ib, _) = c.quad_buffers();
+            s.bind_object(pass, c.object);
+            pass.set_vertex_buffer(0, vb.slice(..));
+            pass.set_index_buffer(ib.slice(..), wgpu::IndexFormat::Uint32);
+            let r = &c.quad_ranges;
+            for (range, cap) in [(&r.sides, false), (&r.front, true), (&r.back, true)] {
+                if !range.is_empty() {
+                    pass.set_pipeline(&self.volumes[c.mirrored as usize][cap as usize]);
+                    pass.draw_indexed(range.clone(), 0, 0..1);
+                }
+            }
+        }
+    }
+    // ANCHOR_END: reversed_volumes
 }
 
 /// Puts the reversed infinite projection into `s`'s camera, relative to

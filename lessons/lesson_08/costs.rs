@@ -108,7 +108,6 @@ impl VolumeTally {
         }
     }
 
-    // ANCHOR: count_costs
     /// The costs of `lights`' volume passes against the frame's depth in
     /// `targets` ([`BoundedCosts`]). Per light: the bounds marks first (a
     /// stencil pass of their own, as the volume pass draws them), then
@@ -164,5 +163,4 @@ impl VolumeTally {
         }
         Ok(costs)
     }
-    // ANCHOR_END: count_costs
 }

@@ -14,9 +14,10 @@ use crate::lesson_05::stencil::caster_counters;
 /// The count's modulus: 128 (bits 0–6).
 pub const COUNT_MODULUS: u32 = COUNT_BITS + 1;
 
-/// Lesson 05's scene counters (mesh validation, `max_volume_overlap` on a
-/// 64 × 36 pixel grid), with the warning where *this* lesson's count
-/// wraps: at 128 overlapping volumes.
+/// Lesson 05's checks of the scene (mesh validation, and
+/// `max_volume_overlap`: the most volumes over one point of a 64 × 36
+/// pixel grid), with the warning where *this* lesson's count wraps: at
+/// 128 overlapping volumes.
 pub fn scene_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
     let c = caster_counters(scene);
     let overlap = c["max_volume_overlap"];

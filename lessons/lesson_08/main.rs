@@ -72,6 +72,7 @@ enum Variant {
     /// The cull, the depth bounds and the scissor together.
     #[value(name = "cull_bounds_scissor")]
     CullBoundsScissor,
+    // ANCHOR_END: variants
     /// Exercise 1: spot lights scissored to `exercises::cone_sphere`.
     #[value(name = "exercise_scissor_rect")]
     ExerciseScissorRect,
@@ -80,20 +81,33 @@ enum Variant {
     ExerciseDepthBounds,
 }
 
+// ANCHOR: variant_limits
 impl Variant {
     /// Which of the three limits the variant's volume pass uses.
     fn limits(self) -> Limits {
         use Variant::*;
         Limits {
-            scissor: matches!(
-                self,
-                Scissor | BoundsScissor | CullBoundsScissor | ExerciseScissorRect
-            ),
-            depth_bounds: matches!(
-                self,
-                DepthBounds | BoundsScissor | CullBoundsScissor | ExerciseDepthBounds
-            ),
+            scissor: matches!(self, Scissor | BoundsScissor | CullBoundsScissor),
+            depth_bounds: matches!(self, DepthBounds | BoundsScissor | CullBoundsScissor),
             cull: matches!(self, Cull | CullBoundsScissor),
+        }
+    }
+}
+// ANCHOR_END: variant_limits
+
+impl Variant {
+    /// [`Variant::limits`]; an exercise's are those its code bounds.
+    fn limits_or_exercise(self) -> Limits {
+        match self {
+            Variant::ExerciseScissorRect => Limits {
+                scissor: true,
+                ..Limits::default()
+            },
+            Variant::ExerciseDepthBounds => Limits {
+                depth_bounds: true,
+                ..Limits::default()
+            },
+            _ => self.limits(),
         }
     }
 
@@ -107,7 +121,6 @@ impl Variant {
         }
     }
 }
-// ANCHOR_END: variants
 
 /// Each light's bounded volume pass for a variant.
 fn bounded_lights(
@@ -202,7 +215,7 @@ impl Lesson for DepthBounds {
             depth_stencil: None,
             limits: Variant::value_variants()
                 .iter()
-                .map(|v| v.limits())
+                .map(|v| v.limits_or_exercise())
                 .collect(),
         })
     }
@@ -330,7 +343,6 @@ impl Lesson for DepthBounds {
 }
 
 impl DepthBounds {
-    // ANCHOR: count
     /// The counters: the volume passes' exact costs (fragments rasterised,
     /// reaching the stencil, writing it; triangles; draw calls: a tally, on
     /// every backend), fragment-shader invocations (pipeline statistics,
@@ -386,7 +398,6 @@ impl DepthBounds {
         self.counters[variant as usize] = c;
         Ok(())
     }
-    // ANCHOR_END: count
 }
 
 fn main() -> std::process::ExitCode {

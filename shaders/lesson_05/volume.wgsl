@@ -109,7 +109,7 @@ fn face_count(runs: i32, two_sided: u32, n: vec3<f32>, p0: vec3<f32>) -> i32 {
 }
 // ANCHOR_END: faces_light
 
-// ANCHOR: vs_volume_quads
+// ANCHOR: quad_in
 // Every vertex of an edge's quad carries the edge's faces (two at most), so
 // all four add up the same count, as the CPU's silhouette_edges does.
 // Copy k of the quad is drawn where |count| > k: its near corners stay,
@@ -140,7 +140,9 @@ fn quad_runs(flags: u32, k: u32) -> i32 {
 fn quad_two_sided(flags: u32, k: u32) -> u32 {
     return (flags >> (8u + k)) & 1u;
 }
+// ANCHOR_END: quad_in
 
+// ANCHOR: vs_volume_quads
 @vertex
 fn vs_volume_quads(v: QuadIn) -> VolumeOut {
     return volume_quad_vertex(v, 0.0);

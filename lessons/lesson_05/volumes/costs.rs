@@ -3,10 +3,13 @@
 //! copy of the volume pass ([`Tally`](crate::lesson_01::tally::Tally)): exact on one adapter; rasterisers
 //! differ by a few edge fragments, and where a depth test ties.
 
+use std::collections::BTreeMap;
+
 use anyhow::Result;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
+use common::measure::timing::Frame;
 
 use super::super::compute::ComputeVolumes;
 use super::super::extrusion::Extrusion;
@@ -37,7 +40,7 @@ impl VolumeCosts {
     /// The standard report keys (`volume_fragments`, `stencil_updates`,
     /// `volume_triangles`) into `c`, and `draws`: `other_draws` (base and
     /// lit passes) plus the volume passes'.
-    pub fn insert_into(&self, c: &mut std::collections::BTreeMap<String, u64>, other_draws: u64) {
+    pub fn insert_into(&self, c: &mut BTreeMap<String, u64>, other_draws: u64) {
         c.insert("volume_fragments".into(), self.fragments);
         c.insert("stencil_updates".into(), self.stencil_updates);
         c.insert("volume_triangles".into(), self.triangles);
@@ -81,7 +84,23 @@ impl ShadowVolumes {
             .ok()
     }
 
-    // ANCHOR: count_costs
+    /// [`count_fragments`](Self::count_fragments) and
+    /// [`count_costs`](Self::count_costs) of one frame's `draws`.
+    pub fn count_all(
+        &self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        targets: &FrameTargets,
+        extrusion: Extrusion,
+        draws: &[Vec<CasterDraw>],
+    ) -> Result<(Option<u64>, VolumeCosts)> {
+        let invocations = self.count_fragments(gpu, scene, extrusion, draws);
+        Ok((
+            invocations,
+            self.count_costs(gpu, scene, targets, extrusion, draws)?,
+        ))
+    }
+
     /// The volumes' costs for `draws[light]`, every light ([`VolumeCosts`]),
     /// counted by a [`Tally`](crate::lesson_01::tally::Tally) against the frame's depth in `targets`: call
     /// it after a frame (and after `prepare_cpu` for the CPU path). Exact
@@ -136,7 +155,6 @@ impl ShadowVolumes {
         costs.stencil_updates = tally(zpass, true)? + zfail_all;
         Ok(costs)
     }
-    // ANCHOR_END: count_costs
 
     /// What one light's volume pass submits. `counts`: the compute
     /// route's vertex counts ([`ComputeVolumes::read_counts`]).
@@ -182,6 +200,61 @@ impl ShadowVolumes {
             }
         }
         s
+    }
+}
+
+/// The volumes' counts per variant, taken once, on a variant's second
+/// frame: the first frame's depth is then in place, and the counting
+/// submits of its own are left out of the frame's times (lessons 05 and
+/// 06's harness; their `Lesson::COUNTED_ON_FRAME` is 2).
+pub struct SecondFrameCounts {
+    frames: Vec<u32>,
+    /// Fragment-shader invocations (pipeline statistics, Vulkan only).
+    invocations: Vec<Option<u64>>,
+    costs: Vec<Option<VolumeCosts>>,
+}
+
+impl SecondFrameCounts {
+    /// Nothing counted yet, for `variants` variants.
+    pub fn new(variants: usize) -> SecondFrameCounts {
+        SecondFrameCounts {
+            frames: vec![0; variants],
+            invocations: vec![None; variants],
+            costs: vec![None; variants],
+        }
+    }
+
+    /// After a frame of variant `v`: on its second, `count` (untimed).
+    pub fn after_frame(
+        &mut self,
+        frame: &mut Frame,
+        v: usize,
+        count: impl FnOnce(&Gpu) -> Result<(Option<u64>, VolumeCosts)>,
+    ) -> Result<()> {
+        self.frames[v] += 1;
+        if self.frames[v] == 2 {
+            let (invocations, costs) = frame.untimed(count)?;
+            self.invocations[v] = invocations;
+            self.costs[v] = Some(costs);
+        }
+        Ok(())
+    }
+
+    /// Count variant `v` again on its second frame from now.
+    pub fn again(&mut self, v: usize) {
+        self.frames[v] = 0;
+    }
+
+    /// Variant `v`'s counts into `c` ([`VolumeCosts::insert_into`]), with
+    /// `other_draws` the base and lit passes' draw calls.
+    pub fn insert_into(&self, v: usize, c: &mut BTreeMap<String, u64>, other_draws: u64) {
+        if let Some(f) = self.invocations[v] {
+            // llvmpipe counts 16 per 4×4 block: not the fragment count.
+            c.insert("fragment_shader_invocations".into(), f);
+        }
+        if let Some(costs) = self.costs[v] {
+            costs.insert_into(c, other_draws);
+        }
     }
 }
 
