@@ -349,7 +349,6 @@ impl Lesson for DepthClamp {
         c
     }
 
-    // ANCHOR: precision_study
     /// The depth-precision study, once per run: both formats, four
     /// mappings, far/near from 1e2 to 1e8 (near = 1e-3).
     fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, _: Variant, out: &Path) -> Result<()> {
@@ -369,7 +368,6 @@ impl Lesson for DepthClamp {
             &out.join("depth_precision.png"),
         )
     }
-    // ANCHOR_END: precision_study
 }
 
 fn main() -> std::process::ExitCode {

@@ -379,7 +379,10 @@ pub fn study_one(
     })
 }
 
-/// The whole study: both formats, four mappings, far/near = 1e2 … 1e8.
+// ANCHOR: study
+/// The whole study: both formats, four mappings, far/near = 1e2 … 1e8:
+/// each cell measured on the GPU, modelled on the CPU and bounded
+/// analytically (`study_one`).
 pub fn study(gpu: &Gpu, near: f64, ratios: &[f64]) -> Result<Vec<PrecisionRow>> {
     let mut rows = Vec::new();
     let formats = FORMATS.iter().map(|&f| Ok((f, storage_of(gpu, f)?)));
@@ -393,6 +396,7 @@ pub fn study(gpu: &Gpu, near: f64, ratios: &[f64]) -> Result<Vec<PrecisionRow>> 
     }
     Ok(rows)
 }
+// ANCHOR_END: study
 
 #[cfg(test)]
 #[path = "unit_tests/precision_study.rs"]
