@@ -240,11 +240,25 @@ pub fn shadow_pass(
     light: usize,
     ts: Option<wgpu::RenderPassTimestampWrites>,
 ) -> u32 {
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("shadow pass"),
+    let mut pass = begin_shadow_pass(encoder, "shadow pass", &map.view, ts);
+    pass.set_pipeline(pipeline);
+    scene.bind_frame(&mut pass, light);
+    scene.draw_objects(&mut pass, |i| scene.casts_shadow(i))
+}
+
+/// A depth-only pass into `view`: no colour target, the depth cleared to
+/// 1.0 (the far plane) and stored for the lighting pass to read.
+pub fn begin_shadow_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    view: &wgpu::TextureView,
+    ts: Option<wgpu::RenderPassTimestampWrites<'_>>,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
         color_attachments: &[],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: &map.view,
+            view,
             depth_ops: Some(wgpu::Operations {
                 load: wgpu::LoadOp::Clear(1.0),
                 store: wgpu::StoreOp::Store,
@@ -254,10 +268,7 @@ pub fn shadow_pass(
         timestamp_writes: ts,
         occlusion_query_set: None,
         multiview_mask: None,
-    });
-    pass.set_pipeline(pipeline);
-    scene.bind_frame(&mut pass, light);
-    scene.draw_objects(&mut pass, |i| scene.casts_shadow(i))
+    })
 }
 // ANCHOR_END: shadow_pass
 

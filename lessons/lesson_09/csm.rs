@@ -12,7 +12,9 @@ use common::scene::camera::LightUniform;
 use common::scene::Scene;
 
 use super::cascades::Cascade;
-use crate::lesson_01::shadow_map::{comparison_sampler, ShadowMap, SHADOW_FORMAT};
+use crate::lesson_01::shadow_map::{
+    begin_shadow_pass, comparison_sampler, ShadowMap, SHADOW_FORMAT,
+};
 use crate::lesson_04::faces::LightUniforms;
 
 /// The most cascades a variant may have (`Cascades` in `csm.wgsl`).
@@ -142,21 +144,8 @@ pub fn cascade_pass(
     i: usize,
     ts: Option<wgpu::RenderPassTimestampWrites>,
 ) -> u32 {
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("cascade shadow pass"),
-        color_attachments: &[],
-        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: &maps.layer_views[i],
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(1.0),
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: None,
-        }),
-        timestamp_writes: ts,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
+    let view = &maps.layer_views[i];
+    let mut pass = begin_shadow_pass(encoder, "cascade shadow pass", view, ts);
     pass.set_pipeline(pipeline);
     lights.bind(&mut pass, i);
     scene.draw_objects(&mut pass, |o| scene.casts_shadow(o))
