@@ -12,7 +12,8 @@
 //!
 //! The math is in [`cascades`], the GPU side in [`csm`] and
 //! `shaders/lesson_09/csm.wgsl`; the cascade count and the split's λ are
-//! knobs ([`knobs`]).
+//! knobs ([`knobs`]). What the report counts around the frame (draw calls,
+//! the shadow passes' texels) is in `harness.rs`.
 //!
 //! Run: `cargo run --release --bin lesson_09 -- --headless`
 //! Book: chapter "09 cascaded shadow maps" (`book/src/lesson_09.md`).
@@ -32,11 +33,13 @@ use common::scene::camera::light_view_proj;
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowPassState};
-use workbook::lesson_01::tally::{Tally, TallyShader};
+use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_09::cascades::{self, Cascade, Fit, FitOptions, SplitScheme};
 use workbook::lesson_09::csm::{self, CascadeLights, CascadeMaps};
 use workbook::lesson_09::setup::{Exercise, Setup};
 use workbook::lesson_09::{extras, knobs, setup};
+
+mod harness;
 
 // ANCHOR: variants
 /// Every variant spends about 2048² texels: K maps of 2048 / √K.
@@ -434,42 +437,6 @@ impl Csm {
             .collect();
         self.maps.push((maps, groups));
         self.maps.len() - 1
-    }
-
-    /// Draw calls of a frame: the base pass, then per light K shadow passes
-    /// (every caster) and the lit pass (every object).
-    fn draws(&self, variant: Variant) -> u64 {
-        let k = self.setup(variant).count as u64;
-        let lights = self.lights.len() as u64;
-        self.objects + lights * (k * self.casters + self.objects)
-    }
-
-    /// The shadow passes' depth writes and rasterised fragments over every
-    /// light and cascade, counted through lesson 01's tally. Untimed.
-    fn count_texels(&self, gpu: &Gpu, scene: &SceneGpu, size: u32, k: usize) -> Result<(u64, u64)> {
-        let scratch = CascadeMaps::new(gpu, size, 1);
-        let tally = Tally::new(gpu, size, size);
-        let mut total = [0u64; 2];
-        for (which, total) in total.iter_mut().enumerate() {
-            for lights in &self.lights {
-                for i in 0..k {
-                    let depth = wgpu::RenderPassDepthStencilAttachment {
-                        view: &scratch.layer_views[0],
-                        depth_ops: Some(wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(1.0),
-                            store: wgpu::StoreOp::Discard,
-                        }),
-                        stencil_ops: None,
-                    };
-                    *total += tally.count(gpu, Some(depth), |pass| {
-                        pass.set_pipeline(&self.tally_pipeline[which]);
-                        lights.bind(pass, i);
-                        scene.draw_objects(pass, |o| scene.casts_shadow(o));
-                    })?;
-                }
-            }
-        }
-        Ok((total[0], total[1]))
     }
 }
 
