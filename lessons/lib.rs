@@ -123,11 +123,20 @@ macro_rules! exercise {
 /// A lesson binary's `main`: checks [`EXERCISES_ENV`] (one line and exit
 /// code 2 if it names no set of this build), then runs the lesson.
 pub fn lesson_main<L: common::run::lesson::Lesson>() -> std::process::ExitCode {
-    if let Err(e) = ExerciseSet::from_env() {
-        eprintln!("error: {}: {e}", L::NAME);
-        return std::process::ExitCode::from(2);
+    // In a web page (the web build): the window on the page's canvas.
+    #[cfg(target_arch = "wasm32")]
+    {
+        common::run::web::start::<L>();
+        std::process::ExitCode::SUCCESS
     }
-    common::run::app::main::<L>()
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        if let Err(e) = ExerciseSet::from_env() {
+            eprintln!("error: {}: {e}", L::NAME);
+            return std::process::ExitCode::from(2);
+        }
+        common::run::app::main::<L>()
+    }
 }
 
 /// The file that a chapter's `EXERCISES_WGSL` is read from in this run

@@ -49,6 +49,8 @@ mod table;
 mod taps;
 mod volume_diagrams;
 mod volumes_gpu;
+mod web;
+mod web_sources;
 mod window_shots;
 
 use std::path::{Path, PathBuf};
@@ -121,6 +123,11 @@ enum Command {
         #[arg(long, default_value = manifest::ADAPTER)]
         adapter: String,
     },
+    /// Build the lessons for the web (WebAssembly, the browser's WebGPU)
+    /// and place them in the book: `book/src/web/` and each chapter's
+    /// live bar, `generated/web/` (needs `rustup target add
+    /// wasm32-unknown-unknown` and wasm-bindgen-cli at the lock's version).
+    Web,
     /// Time `grade --adapter software` once per chapter and write the
     /// coursework page's table (`generated/coursework/grade_times.md`).
     GradeTimes,
@@ -186,6 +193,7 @@ fn run(cli: Cli) -> Result<()> {
             println!("window screenshots written");
             return Ok(());
         }
+        Command::Web => return web::build(&root()),
         Command::GradeTimes => {
             return grade_times::run(&root(), &root().join("book/src/generated"));
         }
@@ -278,6 +286,7 @@ fn run(cli: Cli) -> Result<()> {
     if only.is_none() {
         scaling::run(&runner, &root, &work, &backend, &bar, None)?;
         window_shots::write_all(&runner, &figures, &generated, &backend, &adapter, None)?;
+        web::build(&root)?;
     }
     bar.finish_with_message("runs done");
     copy_outputs(&work, &figures, &generated, only.as_deref())?;

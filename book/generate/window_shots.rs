@@ -20,14 +20,15 @@ const FRAMES: u32 = 5;
 
 /// One chapter's shot: the lesson, the variant, the view, and what the
 /// caption says the view shows.
-struct Shot {
-    lesson: &'static str,
-    variant: &'static str,
-    view: &'static str,
+pub struct Shot {
+    pub lesson: &'static str,
+    pub variant: &'static str,
+    pub view: &'static str,
     shows: &'static str,
 }
 
-const SHOTS: [Shot; 10] = [
+/// The same views live in the book's pages ([`crate::web`]).
+pub const SHOTS: [Shot; 10] = [
     Shot { lesson: "lesson_01", variant: "res_1024", view: "diff", shows: "the difference against the exact reference: red false shadow, green false lit" },
     Shot { lesson: "lesson_02", variant: "bias_1tx", view: "diff", shows: "the difference against the exact reference: red false shadow (acne), green false lit (Peter Panning)" },
     Shot { lesson: "lesson_03", variant: "pcf_3x3", view: "diff", shows: "the difference against the exact reference along the filtered edges" },

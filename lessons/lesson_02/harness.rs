@@ -19,7 +19,7 @@ impl Bias {
         scene: &SceneGpu,
         variant: Variant,
     ) -> Result<()> {
-        if self.texels_written[variant as usize].is_some() {
+        if self.texels_written[variant as usize].is_some() || !gpu.can_wait() {
             return Ok(());
         }
         let tally_slope = &self.tally_slope[variant as usize];

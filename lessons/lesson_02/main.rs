@@ -459,6 +459,6 @@ fn per_light<T>(
     states.iter().map(|s| s.as_ref().map(each)).collect()
 }
 
-fn main() -> std::process::ExitCode {
+pub(crate) fn main() -> std::process::ExitCode {
     workbook::lesson_main::<Bias>()
 }

@@ -22,7 +22,8 @@ impl Pcf {
         variant: Variant,
     ) -> Result<()> {
         let (pass, size) = (variant.pass(), variant.map_size());
-        if !self.texels_written.iter().any(|(k, _)| *k == (pass, size)) {
+        let counted = self.texels_written.iter().any(|(k, _)| *k == (pass, size));
+        if !counted && gpu.can_wait() {
             let n = shadow_map::count_shadow_texels(gpu, scene, size, |k| {
                 &self.tally_pipelines[pass][k]
             })?;
@@ -41,7 +42,7 @@ impl Pcf {
         v: Variant,
     ) -> Result<()> {
         let adaptive = matches!(self.filters[v as usize], Filter::AdaptivePoisson { .. });
-        if !adaptive || self.adaptive_paths[v as usize].is_some() {
+        if !adaptive || self.adaptive_paths[v as usize].is_some() || !gpu.can_wait() {
             return Ok(());
         }
         let count = CountPass {

@@ -451,6 +451,6 @@ impl Lesson for Pcf {
     }
 }
 
-fn main() -> std::process::ExitCode {
+pub(crate) fn main() -> std::process::ExitCode {
     workbook::lesson_main::<Pcf>()
 }

@@ -29,7 +29,7 @@ impl CubeShadows {
         scene: &SceneGpu,
         variant: Variant,
     ) -> Result<()> {
-        if self.texels_written[variant as usize].is_none() {
+        if self.texels_written[variant as usize].is_none() && frame.gpu.can_wait() {
             let n = frame.untimed(|gpu| self.count_texels(gpu, scene, variant))?;
             self.texels_written[variant as usize] = Some(n);
         }

@@ -460,6 +460,6 @@ impl CubeShadows {
     // ANCHOR_END: render
 }
 
-fn main() -> std::process::ExitCode {
+pub(crate) fn main() -> std::process::ExitCode {
     workbook::lesson_main::<CubeShadows>()
 }

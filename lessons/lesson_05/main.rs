@@ -161,6 +161,6 @@ impl Lesson for ZPass {
     }
 }
 
-fn main() -> std::process::ExitCode {
+pub(crate) fn main() -> std::process::ExitCode {
     workbook::lesson_main::<ZPass>()
 }

@@ -297,6 +297,6 @@ impl Lesson for ZFail {
     }
 }
 
-fn main() -> std::process::ExitCode {
+pub(crate) fn main() -> std::process::ExitCode {
     workbook::lesson_main::<ZFail>()
 }

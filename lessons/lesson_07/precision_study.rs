@@ -57,9 +57,11 @@ impl DepthFormat {
 }
 
 /// What `f` stores on this adapter, measured ([`depth_probe`]). Where the
-/// adapter lacks the format, or the probe cannot tell, what the name says.
+/// adapter lacks the format, or the probe cannot tell or run (a web
+/// page), what the name says.
 pub fn storage_of(gpu: &Gpu, f: DepthFormat) -> Result<DepthStorage> {
     let has = f == DepthFormat::D24 || gpu.has(wgpu::Features::DEPTH32FLOAT_STENCIL8);
+    let has = has && gpu.can_wait();
     let probed = match has {
         true => depth_probe::probe(gpu, f.wgpu())?.storage,
         false => DepthStorage::Unknown,

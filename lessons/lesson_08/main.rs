@@ -266,7 +266,7 @@ impl Lesson for DepthBounds {
         // The second call finds the first frame's depth in place: count then.
         let n = &mut self.frames[variant as usize];
         *n += 1;
-        if *n == 2 {
+        if *n == 2 && frame.gpu.can_wait() {
             frame.untimed(|gpu| self.count(gpu, scene, targets, variant))?;
         }
         Ok(())
@@ -400,6 +400,6 @@ impl DepthBounds {
     }
 }
 
-fn main() -> std::process::ExitCode {
+pub(crate) fn main() -> std::process::ExitCode {
     workbook::lesson_main::<DepthBounds>()
 }

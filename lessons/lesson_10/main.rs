@@ -421,6 +421,6 @@ impl Lesson for Soft {
     }
 }
 
-fn main() -> std::process::ExitCode {
+pub(crate) fn main() -> std::process::ExitCode {
     workbook::lesson_main::<Soft>()
 }

@@ -8,6 +8,12 @@ use crate::gpu::Gpu;
 /// Maps the first `bytes` of a `MAP_READ` buffer and copies them out.
 /// `what` names the data in the error ("timestamps", ...).
 pub fn read_buffer(gpu: &Gpu, buf: &wgpu::Buffer, bytes: u64, what: &str) -> Result<Vec<u8>> {
+    if cfg!(target_arch = "wasm32") {
+        anyhow::bail!(
+            "{what} readback: a web page cannot wait for the GPU; the web build reads back only the error figure's images ({})",
+            "PendingRead"
+        );
+    }
     let slice = buf.slice(..bytes);
     slice.map_async(wgpu::MapMode::Read, |_| {});
     gpu.wait()?;
@@ -64,38 +70,104 @@ impl QueryReadback {
 
 /// Copies a 2D texture (layer 0) to the CPU, tightly packed.
 pub fn read_texture(gpu: &Gpu, tex: &wgpu::Texture, bytes_per_pixel: u32) -> Result<Vec<u8>> {
-    let (w, h) = (tex.width(), tex.height());
-    let row = w * bytes_per_pixel;
-    let padded =
-        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    let buf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: padded as u64 * h as u64,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut enc = gpu.device.create_command_encoder(&Default::default());
-    enc.copy_texture_to_buffer(
-        tex.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buf,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded),
-                rows_per_image: Some(h),
+    let pending = PendingRead::start(gpu, tex, bytes_per_pixel);
+    let data = read_buffer(gpu, &pending.buf, pending.size(), "texture")?;
+    Ok(pending.unpad(&data))
+}
+
+/// A texture's copy on its way to the CPU, read without blocking: what a
+/// web page does, where nothing may wait for the GPU. [`PendingRead::start`]
+/// submits the copy, [`PendingRead::map`] asks for the mapping, and
+/// [`PendingRead::take`] gives the bytes once the browser has mapped them
+/// (poll it once a frame).
+pub struct PendingRead {
+    buf: wgpu::Buffer,
+    row: u32,
+    padded: u32,
+    height: u32,
+    state: std::sync::Arc<std::sync::Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>,
+}
+
+impl PendingRead {
+    /// Submits the copy of `tex` (`bytes_per_pixel` per texel) to a buffer
+    /// the CPU maps; [`PendingRead::map`] asks for the mapping.
+    pub fn start(gpu: &Gpu, tex: &wgpu::Texture, bytes_per_pixel: u32) -> PendingRead {
+        let (w, h) = (tex.width(), tex.height());
+        let row = w * bytes_per_pixel;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: padded as u64 * h as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        enc.copy_texture_to_buffer(
+            tex.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buf,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(h),
+                },
             },
-        },
-        wgpu::Extent3d {
-            width: w,
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+        gpu.queue.submit([enc.finish()]);
+        PendingRead {
+            buf,
+            row,
+            padded,
             height: h,
-            depth_or_array_layers: 1,
-        },
-    );
-    gpu.queue.submit([enc.finish()]);
-    let data = read_buffer(gpu, &buf, padded as u64 * h as u64, "texture")?;
-    Ok(data
-        .chunks_exact(padded as usize)
-        .flat_map(|r| &r[..row as usize])
-        .copied()
-        .collect())
+            state: Default::default(),
+        }
+    }
+
+    fn size(&self) -> u64 {
+        self.padded as u64 * self.height as u64
+    }
+
+    /// Asks for the mapping; the browser (or `Gpu::wait` on the desktop)
+    /// answers later.
+    pub fn map(&self) {
+        let state = self.state.clone();
+        self.buf
+            .slice(..self.size())
+            .map_async(wgpu::MapMode::Read, move |r| {
+                *state.lock().expect("readback state") = Some(r);
+            });
+    }
+
+    /// The texels, row by row without padding, once mapped; `None` while
+    /// the mapping is under way.
+    pub fn take(&self) -> Option<Result<Vec<u8>>> {
+        let done = self.state.lock().expect("readback state").take()?;
+        Some(match done {
+            Err(e) => Err(anyhow!("texture readback: {e}")),
+            Ok(()) => {
+                let data = {
+                    let view = self.buf.slice(..self.size()).get_mapped_range();
+                    match view {
+                        Ok(v) => Ok(self.unpad(&v)),
+                        Err(e) => Err(anyhow!("texture readback: {e}")),
+                    }
+                };
+                self.buf.unmap();
+                data
+            }
+        })
+    }
+
+    fn unpad(&self, data: &[u8]) -> Vec<u8> {
+        data.chunks_exact(self.padded as usize)
+            .flat_map(|r| &r[..self.row as usize])
+            .copied()
+            .collect()
+    }
 }

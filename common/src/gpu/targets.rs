@@ -3,7 +3,7 @@
 
 use anyhow::Result;
 
-use crate::gpu::readback::read_texture;
+use crate::gpu::readback::{read_texture, PendingRead};
 use crate::gpu::Gpu;
 
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
@@ -189,6 +189,71 @@ impl FrameTargets {
             id,
             visibility,
         })
+    }
+}
+
+/// [`FrameTargets::read`]'s images on their way to the CPU, without
+/// blocking (the web build: [`crate::gpu::readback::PendingRead`]).
+pub struct PendingFrame {
+    width: u32,
+    height: u32,
+    color: PendingRead,
+    id: PendingRead,
+    visibility: Vec<PendingRead>,
+    done: Vec<Option<Vec<u8>>>,
+}
+
+impl FrameTargets {
+    /// Starts reading the frame back: colour, ids and visibility.
+    pub fn start_read(&self, gpu: &Gpu) -> PendingFrame {
+        let color = PendingRead::start(gpu, &self.color, 4);
+        let id = PendingRead::start(gpu, &self.id, 4);
+        let visibility: Vec<_> = (self.visibility.iter())
+            .map(|t| PendingRead::start(gpu, t, 1))
+            .collect();
+        for r in [&color, &id].into_iter().chain(&visibility) {
+            r.map();
+        }
+        PendingFrame {
+            width: self.width,
+            height: self.height,
+            done: vec![None; 2 + visibility.len()],
+            color,
+            id,
+            visibility,
+        }
+    }
+}
+
+impl PendingFrame {
+    /// The frame once every image is mapped; `None` while one is not.
+    pub fn take(&mut self) -> Option<Result<FrameImages>> {
+        let reads = [&self.color, &self.id].into_iter().chain(&self.visibility);
+        for (slot, r) in self.done.iter_mut().zip(reads) {
+            if slot.is_none() {
+                match r.take() {
+                    Some(Ok(bytes)) => *slot = Some(bytes),
+                    Some(Err(e)) => return Some(Err(e)),
+                    None => {}
+                }
+            }
+        }
+        if self.done.iter().any(Option::is_none) {
+            return None;
+        }
+        let mut images = self.done.drain(..).map(|b| b.expect("checked above"));
+        let color = images.next().expect("colour");
+        let id = bytemuck::cast_slice(&images.next().expect("ids")).to_vec();
+        let visibility = images
+            .map(|b| b.iter().map(|&v| v as f32 / 255.0).collect())
+            .collect();
+        Some(Ok(FrameImages {
+            width: self.width,
+            height: self.height,
+            color,
+            id,
+            visibility,
+        }))
     }
 }
 

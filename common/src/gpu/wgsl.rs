@@ -5,7 +5,7 @@
 
 use std::fmt;
 
-use wgpu::naga;
+use naga;
 
 use crate::gpu::Gpu;
 

@@ -20,7 +20,8 @@
 //!   (as here). It is at least `cpu_total`, and at least the GPU's `total`.
 
 use std::collections::BTreeMap;
-use std::time::Instant;
+// std on the desktop; the browser's clock in the web build (std's panics there).
+use web_time::Instant;
 
 use anyhow::Result;
 
@@ -47,7 +48,10 @@ impl Timer {
     /// GPU timestamps when the adapter has them. `WORKBOOK_TIMING=cpu` forces
     /// the CPU wall-clock fallback (to compare the two, and to test it).
     pub fn new(gpu: &Gpu) -> Timer {
-        let forced_cpu = std::env::var("WORKBOOK_TIMING").is_ok_and(|v| v == "cpu");
+        // A web page cannot wait for the timestamps it would read back
+        // (`run::web`): there, only the CPU's side of a frame is timed.
+        let forced_cpu = std::env::var("WORKBOOK_TIMING").is_ok_and(|v| v == "cpu")
+            || cfg!(target_arch = "wasm32");
         let queries = (gpu.has(wgpu::Features::TIMESTAMP_QUERY) && !forced_cpu).then(|| {
             let set = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("pass timestamps"),

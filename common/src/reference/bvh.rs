@@ -20,8 +20,11 @@
 //! overlap a hair and a ray through a shared edge hits at least one of them.
 
 use glam::{Vec3, Vec3A};
-use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::cwbvh::{bvh2_to_cwbvh::bvh2_to_cwbvh, CwBvh};
+use obvhs::ploc::PlocBuilder;
 use obvhs::ray::{Ray, RayHit};
+use obvhs::splits::split_aabbs_preset;
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 
@@ -158,7 +161,7 @@ impl Bvh {
             })
             .collect();
         let params = BvhBuildParams::medium_build();
-        let mut cwbvh = build_cwbvh_from_tris(&soup, params, &mut Default::default());
+        let mut cwbvh = build_cwbvh(&soup, params);
         // Reorder so that leaf primitive i is triangle i.
         let ids: Vec<u32> = std::mem::take(&mut cwbvh.primitive_indices)
             .into_iter()
@@ -293,6 +296,54 @@ impl Bvh {
 /// `-0.0 + 0.0 == +0.0`: the octant test and the inverse then agree (see top).
 fn sanitize(dir: Vec3) -> Vec3A {
     Vec3A::from(dir) + Vec3A::ZERO
+}
+
+/// obvhs's `build_cwbvh_from_tris` (0.4.0), step for step, without the
+/// build timer it keeps for its own profiling: that timer reads
+/// `std::time::Instant`, which a web page has not (the web build), and the
+/// crate offers the steps for exactly this ("feel free to reimplement").
+/// The same steps in the same order: the same tree.
+fn build_cwbvh(triangles: &[Triangle], config: BvhBuildParams) -> CwBvh {
+    let mut bvh2 = if config.pre_split {
+        let mut largest_half_area = 0.0f32;
+        let mut avg_area = 0.0;
+        let mut aabbs: Vec<_> = (triangles.iter())
+            .map(|tri| {
+                let aabb = tri.aabb();
+                let half_area = aabb.half_area();
+                largest_half_area = half_area.max(largest_half_area);
+                avg_area += half_area;
+                aabb
+            })
+            .collect();
+        let mut indices: Vec<u32> = (0..triangles.len() as u32).collect();
+        avg_area /= triangles.len() as f32;
+        split_aabbs_preset(
+            &mut aabbs,
+            &mut indices,
+            triangles,
+            avg_area,
+            largest_half_area,
+        );
+        PlocBuilder::with_capacity(aabbs.len()).build(
+            config.ploc_search_distance,
+            &aabbs,
+            indices,
+            config.sort_precision,
+            config.search_depth_threshold,
+        )
+    } else {
+        PlocBuilder::with_capacity(triangles.len()).build(
+            config.ploc_search_distance,
+            triangles,
+            (0..triangles.len() as u32).collect(),
+            config.sort_precision,
+            config.search_depth_threshold,
+        )
+    };
+    bvh2.uses_spatial_splits = config.pre_split;
+    ReinsertionOptimizer::default().run(&mut bvh2, config.reinsertion_batch_ratio, None);
+    bvh2_to_cwbvh(&bvh2, config.max_prims_per_leaf.clamp(1, 3), true, false)
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@ pub mod fragile;
 pub mod metrics;
 pub mod soft_metrics;
 
-use std::time::Instant;
+use web_time::Instant;
 
 use glam::{DMat4, DVec3, DVec4, Mat4, Vec3};
 use rayon::prelude::*;

@@ -125,7 +125,7 @@ pub fn refuse_area_lights<L: Lesson>(scene: &Scene) -> Result<()> {
 }
 
 /// The `--scene` file, or the lesson's default scene.
-fn load_scene<L: Lesson>(args: &Args) -> Result<Scene> {
+pub(crate) fn load_scene<L: Lesson>(args: &Args) -> Result<Scene> {
     let scene = match &args.scene {
         Some(p) => Scene::load(p)?,
         None => Scene::builtin(&format!("{} default scene", L::NAME), L::DEFAULT_SCENE)?,

@@ -17,7 +17,7 @@ use crate::run::knobs::Knob;
 use crate::scene::Scene;
 
 /// What a lesson provides. The runners do the rest.
-pub trait Lesson: Sized {
+pub trait Lesson: Sized + 'static {
     /// `"lesson_01"`.
     const NAME: &'static str;
     /// The default scene, as TOML text (built-in meshes only).

@@ -16,4 +16,6 @@ pub mod headless;
 pub mod knobs;
 pub mod lesson;
 pub mod view;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 pub mod window;

@@ -232,7 +232,7 @@ impl SecondFrameCounts {
         count: impl FnOnce(&Gpu) -> Result<(Option<u64>, VolumeCosts)>,
     ) -> Result<()> {
         self.frames[v] += 1;
-        if self.frames[v] == 2 {
+        if self.frames[v] == 2 && frame.gpu.can_wait() {
             let (invocations, costs) = frame.untimed(count)?;
             self.invocations[v] = invocations;
             self.costs[v] = Some(costs);

@@ -84,6 +84,8 @@ impl<L: Lesson> App<L> {
     /// A key pressed outside the overlay's widgets.
     pub(super) fn key(&mut self, el: &ActiveEventLoop, key: &Key) -> Result<()> {
         match key {
+            // A page has no window to close: Escape is for the desktop.
+            Key::Named(NamedKey::Escape) if cfg!(target_arch = "wasm32") => {}
             Key::Named(NamedKey::Escape) => el.exit(),
             Key::Named(NamedKey::Space) => self.step_variant(1),
             Key::Named(NamedKey::Tab) => self.state.view = self.state.view.next(),

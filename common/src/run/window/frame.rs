@@ -3,12 +3,16 @@
 //! log it when asked.
 
 use std::io::Write;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use anyhow::{Context, Result};
 use winit::event_loop::ActiveEventLoop;
 
-use super::live::{Job, Level};
+#[cfg(not(target_arch = "wasm32"))]
+use super::live::Job;
+use super::live::Level;
 use super::overlay::{self, Panel, ShownError};
 use super::present::Overlay;
 use super::views;
@@ -115,15 +119,30 @@ impl<L: Lesson> App<L> {
                 s.error_image = None;
             }
             let due = s.sent_at.is_none_or(|t| now - t >= JOB_EVERY);
-            if !live.busy() && s.sent != Some(s.stamp) && s.variant_frames >= 2 && due {
+            // A page reads the frame back without waiting: the job goes
+            // out on a later frame, when the browser has mapped it.
+            #[cfg(target_arch = "wasm32")]
+            if let Some(job) = self.page.read_done()? {
+                live.send(job);
+            }
+            #[cfg(target_arch = "wasm32")]
+            let reading = self.page.reading();
+            #[cfg(not(target_arch = "wasm32"))]
+            let reading = false;
+            if !live.busy() && !reading && s.sent != Some(s.stamp) && s.variant_frames >= 2 && due {
                 s.sent_at = Some(now);
-                let frame = r.targets.read_measured(&r.gpu)?;
+                let (stamp, scene) = (s.stamp, r.scene.scene.clone());
+                let view_proj = r.scene.camera.view_proj;
+                #[cfg(not(target_arch = "wasm32"))]
                 live.send(Job {
-                    stamp: s.stamp,
-                    scene: r.scene.scene.clone(),
-                    view_proj: r.scene.camera.view_proj,
-                    frame,
+                    stamp,
+                    scene,
+                    view_proj,
+                    frame: r.targets.read_measured(&r.gpu)?,
                 });
+                #[cfg(target_arch = "wasm32")]
+                self.page
+                    .start_read(r.targets.start_read(&r.gpu), (stamp, scene, view_proj));
                 s.sent = Some(s.stamp);
             }
         }
@@ -148,16 +167,24 @@ impl<L: Lesson> App<L> {
         // 3. The buffer view, a few times a second while it is shown.
         if s.view == View::Buffer && s.buffer_at.is_none_or(|t| now - t > BUFFER_EVERY) {
             s.buffer_at = Some(now);
-            match r.lesson.buffer_view(&r.gpu, &r.scene, variant)? {
-                Some(b) => {
+            match r.lesson.buffer_view(&r.gpu, &r.scene, variant) {
+                Ok(Some(b)) => {
                     let stamp = (s.stamp.scene_gen, s.stamp.image_gen);
                     views::upload(&ctx, &mut s.buffer, "buffer", &b.image, b.title, stamp);
                     s.buffer_note = None;
                 }
-                None => {
+                Ok(None) => {
                     s.buffer = None;
                     s.buffer_note = Some(format!("{} has no buffer to show", L::NAME));
                 }
+                // A page cannot wait for the lesson's readback: the view says so.
+                #[cfg(target_arch = "wasm32")]
+                Err(e) => {
+                    s.buffer = None;
+                    s.buffer_note = Some(format!("not in the web build: {e:#}"));
+                }
+                #[cfg(not(target_arch = "wasm32"))]
+                Err(e) => return Err(e),
             }
         }
 
@@ -248,7 +275,12 @@ impl<L: Lesson> App<L> {
                 return Ok(());
             }
         };
-        let view = surface_tex.texture.create_view(&Default::default());
+        let view = surface_tex
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor {
+                format: r.config.view_formats.first().copied(),
+                ..Default::default()
+            });
         r.present.draw(&r.gpu, s.view, overlay, &view);
         r.gpu.queue.present(surface_tex);
         self.frames += 1;
@@ -319,9 +351,10 @@ impl<L: Lesson> App<L> {
     /// One `--window-log` line: the frame's time and cost, the view it
     /// shows, and the error figure with the view it was computed for.
     fn write_log(&mut self, shown: &Option<ShownError>, overlay: Option<[f32; 4]>) -> Result<()> {
-        let Some(log) = self.log.as_mut() else {
+        #[cfg(not(target_arch = "wasm32"))]
+        if self.log.is_none() {
             return Ok(());
-        };
+        }
         let s = &self.state;
         let answer = s.answer.as_ref().map(|a| {
             serde_json::json!({
@@ -339,6 +372,8 @@ impl<L: Lesson> App<L> {
         });
         let line = serde_json::json!({
             "frame": self.frames,
+            "width": self.running.as_ref().map(|r| r.targets.width),
+            "height": self.running.as_ref().map(|r| r.targets.height),
             "t_s": self.started.elapsed().as_secs_f64(),
             "variant": s.variants[s.current],
             "scene_gen": s.stamp.scene_gen,
@@ -351,6 +386,12 @@ impl<L: Lesson> App<L> {
             "rss_kb": rss_kb(),
             "overlay_px": overlay,
         });
+        // A page shows the line to its scripts (the web check reads it).
+        #[cfg(target_arch = "wasm32")]
+        self.page.publish(&line);
+        let Some(log) = self.log.as_mut() else {
+            return Ok(());
+        };
         writeln!(log, "{line}").context("--window-log: cannot write")
     }
 }

@@ -16,21 +16,33 @@
 //! on Linux), so that they take what the renderer leaves idle rather than
 //! slow it down.
 
+#[cfg(not(target_arch = "wasm32"))]
 use std::sync::atomic::{AtomicU64, Ordering};
+#[cfg(not(target_arch = "wasm32"))]
 use std::sync::mpsc::{channel, Receiver, Sender, TryRecvError};
+#[cfg(not(target_arch = "wasm32"))]
 use std::sync::Arc;
+#[cfg(not(target_arch = "wasm32"))]
 use std::thread::JoinHandle;
-use std::time::Instant;
 
+#[cfg(not(target_arch = "wasm32"))]
 use anyhow::Result;
 use image::RgbaImage;
+#[cfg(not(target_arch = "wasm32"))]
+use web_time::Instant;
 
 use crate::gpu::targets::FrameImages;
 use crate::measure::report::combine;
 use crate::reference::dv_view::dv_image;
 use crate::reference::metrics::{compare, ErrorStats};
-use crate::reference::{try_render_reference, Reference};
+#[cfg(not(target_arch = "wasm32"))]
+use crate::reference::try_render_reference;
+use crate::reference::Reference;
 use crate::scene::Scene;
+
+/// In a web page, one thread: the reference works between frames.
+#[cfg(target_arch = "wasm32")]
+pub use super::live_page::LiveReference;
 
 /// The coarse pass's step: one ray per `COARSE × COARSE` pixels.
 pub const COARSE: u32 = 4;
@@ -77,6 +89,7 @@ pub struct Answer {
     pub last: bool,
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// The worker thread and its channels.
 pub struct LiveReference {
     jobs: Option<Sender<Job>>,
@@ -89,6 +102,7 @@ pub struct LiveReference {
     latest: Arc<Shown>,
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 impl LiveReference {
     /// Starts the worker (a thread that owns a low-priority thread pool).
     pub fn start() -> Result<Self> {
@@ -174,6 +188,7 @@ impl LiveReference {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 impl Drop for LiveReference {
     fn drop(&mut self) {
         self.jobs = None; // the worker's loop ends when the channel closes
@@ -183,6 +198,7 @@ impl Drop for LiveReference {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// What the window draws: the view (`scene_gen`) of its latest frame, and
 /// how many frames it began.
 #[derive(Default)]
@@ -191,6 +207,7 @@ struct Shown {
     frames: AtomicU64,
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 impl Shown {
     /// Whether the view has moved on from `scene_gen`, judged at the
     /// window's next frame: a view still on screen when a coarse pass ends
@@ -206,9 +223,11 @@ impl Shown {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// The longest the worker waits for the window's next frame.
 const NEXT_FRAME_WAIT: std::time::Duration = std::time::Duration::from_secs(1);
 
+#[cfg(not(target_arch = "wasm32"))]
 /// The worker's loop: one job at a time; the reference of the last view is
 /// kept, so that a new variant or knob on the same view costs a comparison.
 fn serve(
@@ -276,7 +295,10 @@ fn serve(
 
 /// Every light's figure (combined), light 0's difference image and its
 /// signed ΔV image.
-fn measure(reference: &Reference, frame: &FrameImages) -> (ErrorStats, RgbaImage, RgbaImage) {
+pub(super) fn measure(
+    reference: &Reference,
+    frame: &FrameImages,
+) -> (ErrorStats, RgbaImage, RgbaImage) {
     let mut per_light = Vec::new();
     let mut diff = None;
     for (k, vis) in frame.visibility.iter().enumerate() {
@@ -325,6 +347,7 @@ pub fn subsample(frame: &FrameImages, cw: u32, ch: u32) -> FrameImages {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// Lowers the calling thread's priority to the least (Linux: `nice` 19 for
 /// this thread alone). Elsewhere the threads keep the normal priority.
 fn lower_priority() {

@@ -10,17 +10,28 @@
 //! - [`overlay`]: the egui overlay (and [`overlay::KEYS`], every key).
 //! - [`present`]: the window's picture (view + overlay) and its capture.
 //! - [`views`]: the diff and buffer views' pictures.
+//!
+//! The same window runs in a web page (the web build, [`crate::run::web`]):
+//! winit draws into the page's canvas, the device comes from the
+//! browser's WebGPU, and the live reference works on the page's one thread
+//! ([`live`]).
 
 pub mod controls;
 pub mod frame;
 pub mod live;
+#[cfg(target_arch = "wasm32")]
+mod live_page;
 pub mod overlay;
+#[cfg(target_arch = "wasm32")]
+mod page;
 pub mod present;
 pub mod views;
 
+#[cfg(not(target_arch = "wasm32"))]
 use std::io::Write;
 use std::sync::Arc;
-use std::time::Instant;
+
+use web_time::Instant;
 
 use anyhow::{anyhow, Context, Result};
 use winit::application::ApplicationHandler;
@@ -114,6 +125,9 @@ struct App<L: Lesson> {
     /// When `--capture` began to wait for the full figure.
     capture_wait: Option<Instant>,
     log: Option<std::io::BufWriter<std::fs::File>>,
+    /// The page's canvas and the device it is opening (the web build).
+    #[cfg(target_arch = "wasm32")]
+    page: crate::run::web::Page,
 }
 
 pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant>) -> Result<()> {
@@ -133,6 +147,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
         .iter()
         .map(|&v| crate::run::lesson::variant_name(v));
     let now = Instant::now();
+    #[allow(unused_mut)]
     let mut app: App<L> = App {
         args: args.clone(),
         scene: Some(scene),
@@ -171,7 +186,22 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
         capture_wait: None,
         adapter_line: String::new(),
         log,
+        #[cfg(target_arch = "wasm32")]
+        page: Default::default(),
     };
+    #[cfg(target_arch = "wasm32")]
+    {
+        // A page's event loop returns at once and runs from the browser's.
+        use winit::platform::web::EventLoopExtWebSys;
+        event_loop.spawn_app(app);
+        Ok(())
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    run_native(event_loop, app)
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+fn run_native<L: Lesson>(event_loop: EventLoop<()>, mut app: App<L>) -> Result<()> {
     event_loop
         .run_app(&mut app)
         .map_err(|e| anyhow!("window event loop: {e}"))?;
@@ -202,8 +232,8 @@ fn check_capture_path(p: &std::path::Path) -> Result<()> {
 }
 
 impl<L: Lesson> App<L> {
+    #[cfg(not(target_arch = "wasm32"))]
     fn start(&mut self, el: &ActiveEventLoop) -> Result<()> {
-        let scene = self.scene.take().ok_or_else(|| anyhow!("no scene"))?;
         let attrs = Window::default_attributes()
             .with_title(L::NAME)
             .with_inner_size(winit::dpi::PhysicalSize::new(
@@ -225,6 +255,18 @@ impl<L: Lesson> App<L> {
             .instance
             .create_surface(window.clone())
             .map_err(|e| anyhow!("cannot create a surface: {e}"))?;
+        self.started_on(window, gpu, surface)
+    }
+
+    /// The window has a device and a surface: the scene, the lesson and
+    /// the overlay.
+    fn started_on(
+        &mut self,
+        window: Arc<Window>,
+        gpu: Gpu,
+        surface: wgpu::Surface<'static>,
+    ) -> Result<()> {
+        let scene = self.scene.take().ok_or_else(|| anyhow!("no scene"))?;
         let size = window.inner_size();
         let mut config = surface
             .get_default_config(&gpu.adapter, size.width.max(1), size.height.max(1))
@@ -238,13 +280,20 @@ impl<L: Lesson> App<L> {
         if let Some(f) = caps.formats.iter().find(|f| f.is_srgb()) {
             config.format = *f;
         }
+        // A web page's canvas has no sRGB format: an sRGB view of it draws
+        // the same picture as the desktop's sRGB surface.
+        if !config.format.is_srgb() {
+            config.view_formats = vec![config.format.add_srgb_suffix()];
+        }
+        let picture_format = config.view_formats.first().copied();
+        let picture_format = picture_format.unwrap_or(config.format);
         surface.configure(&gpu.device, &config);
         let scene = SceneGpu::new(&gpu, scene, config.width, config.height)?;
         let targets = scene.frame_targets(&gpu);
         let mut lesson = L::new(&gpu, &scene)?;
         apply_cli_knobs(&mut lesson, &gpu, &scene, &self.variants, &self.args.knobs)?;
         let timer = Timer::new(&gpu);
-        let present = Present::new(&gpu, config.format, &targets);
+        let present = Present::new(&gpu, picture_format, &targets);
         let ctx = egui::Context::default();
         let egui = egui_winit::State::new(
             ctx,
@@ -304,6 +353,8 @@ impl<L: Lesson> App<L> {
     }
 
     fn fail(&mut self, el: &ActiveEventLoop, e: anyhow::Error) {
+        #[cfg(target_arch = "wasm32")]
+        crate::run::web::show_error::<L>(&e);
         self.error = Some(e);
         el.exit();
     }
@@ -348,6 +399,8 @@ impl<L: Lesson> ApplicationHandler for App<L> {
                 Ok(())
             }
             WindowEvent::Resized(s) => self.resize(s.width, s.height),
+            #[cfg(target_arch = "wasm32")]
+            WindowEvent::RedrawRequested if self.running.is_none() => self.page_opened(),
             WindowEvent::RedrawRequested => self.redraw(el),
             _ if used => Ok(()),
             WindowEvent::MouseInput {

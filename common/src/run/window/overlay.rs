@@ -30,6 +30,9 @@ pub const KEYS: &[(&str, &str)] = &[
     ("Escape", "quit"),
 ];
 
+/// What the web build's overlay says of its costs, in one line.
+pub const WEB_COST_NOTE: &str = "in a web page: the CPU's side of a frame only; a page cannot wait for the GPU, so no GPU time (the desktop lesson times both)";
+
 /// The figure the overlay shows, and what it was computed for.
 pub struct ShownError {
     pub error: ErrorStats,
@@ -144,6 +147,13 @@ fn variant_row(ui: &mut egui::Ui, p: &Panel, act: &mut Actions) {
 fn cost_rows(ui: &mut egui::Ui, c: &Cost) {
     let ms = |k: &str| c.ms.get(k).copied();
     let fmt = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.2} ms"));
+    if cfg!(target_arch = "wasm32") {
+        // The pass times are the CPU's recording without the GPU's work:
+        // not a cost, so not shown.
+        ui.label(format!("CPU {}   {:.1} fps", fmt(ms("cpu_total")), c.fps));
+        ui.label(RichText::new(WEB_COST_NOTE).small());
+        return;
+    }
     ui.label(format!(
         "frame {}   GPU {}   CPU {}   {:.1} fps",
         fmt(ms("frame")),

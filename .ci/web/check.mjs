@@ -1,0 +1,293 @@
+// The book's live lessons in a real browser (run by .ci/web-check, which
+// builds the book, serves the repository on 127.0.0.1 and starts this under
+// Xvfb). For every lesson, on its chapter's page:
+//
+//  1. the lesson starts (`?live`, as the button does) and its overlay's
+//     full error figure comes: it must equal the native headless report's
+//     for the same scene, size and variant, within the snapshot tolerance
+//     of an error figure (tests/support/tolerance.rs, FIGURE);
+//  2. the canvas shows the scene: with the overlay hidden (H) and the frame
+//     view (1), the page's pixels are not blank and match the native run's
+//     frame (a few pixels along edges may differ between rasterisers);
+//  3. V changes the variant, and the new figure equals the native run's of
+//     that variant;
+//  4. the page logged no error (console errors and uncaught exceptions).
+//
+// Each lesson's figures are printed, web beside native. Exits non-zero if
+// any check failed. With WEB_CHECK_ALL_VARIANTS=1, step 3 goes on through
+// every variant of each lesson.
+//
+// Environment: WEB_CHECK_URL (the served repository's root, ending in /),
+// WEB_CHECK_BIN (the folder of the lesson binaries), WEB_CHECK_OUT (a
+// scratch folder, relative to the repository root, which is the working
+// directory and the served root), CHROMIUM (the browser).
+
+import { execFileSync } from "node:child_process";
+import fs from "node:fs";
+import path from "node:path";
+import { chromium } from "playwright-core";
+
+const base = process.env.WEB_CHECK_URL;
+const bin = process.env.WEB_CHECK_BIN;
+const out = process.env.WEB_CHECK_OUT;
+const browserPath = process.env.CHROMIUM || "/usr/bin/chromium";
+const lessons = process.argv.slice(2).length
+  ? process.argv.slice(2)
+  : Array.from({ length: 10 }, (_, i) => `lesson_${String(i + 1).padStart(2, "0")}`);
+
+// The snapshots' rule (tests/support/tolerance.rs): an error figure may
+// move between adapters by the bound the native run measured for it
+// (`--fragile`: the pixels a sixteenth of a pixel's camera jitter flips),
+// and where it measured none, by FIGURE: 0.03 points plus 0.5 % of itself.
+const FIGURE = { abs: 0.03, rel: 0.005 };
+// The canvas against the native frame: the share of pixels whose colour
+// differs by more than PIXEL_STEP (of 255) in a channel may be at most
+// MAX_DIFFERING plus the share the native run's jitter flipped (acne, in
+// lesson 01, flips a third of the floor). Measured on the default scenes,
+// SwiftShader in Chromium against lavapipe: at most 0.04 % elsewhere.
+const PIXEL_STEP = 48;
+const MAX_DIFFERING = 0.01;
+// How long a lesson may take to give its full figure (lesson 10's exact
+// soft shadow is the slowest: about 4 s at 640×360 in the page).
+const FIGURE_WAIT_MS = 90_000;
+
+const failures = [];
+const fail = (lesson, what) => {
+  failures.push(`${lesson}: ${what}`);
+  console.log(`  FAIL ${what}`);
+};
+
+/// The native headless report's figures for `variant` at `w`×`h`.
+function native(lesson, variant, w, h) {
+  const dir = path.join(out, "native", `${lesson}_${variant}_${w}x${h}`);
+  if (!fs.existsSync(path.join(dir, "report.json"))) {
+    execFileSync(
+      path.join(bin, lesson),
+      ["--headless", "--variant", variant, "--width", String(w), "--height", String(h),
+       "--frames", "2", "--no-timing", "--fragile", "--out", dir],
+      { stdio: ["ignore", "ignore", "inherit"] },
+    );
+  }
+  const report = JSON.parse(fs.readFileSync(path.join(dir, "report.json"), "utf8"));
+  const v = report.variants[0];
+  const b = v.fragile?.bounds ?? {};
+  const bounds = figures({
+    misclassified_pct: b.misclassified_pct,
+    false_shadow_pct: b.false_shadow_pct,
+    false_lit_pct: b.false_lit_pct,
+    penumbra_mean_abs: b.penumbra_mean_abs,
+  });
+  // The share of pixels the jitter flipped: those may differ on screen too.
+  const flipped = (v.fragile?.flipped_pixels ?? 0) / (w * h);
+  // `out` is relative to the served root (the repository).
+  return { figures: figures(v.error), bounds, flipped, frame: path.join(dir, `${variant}.png`) };
+}
+
+/// The figures compared, in percent: misclassified, false shadow, false
+/// lit, and for an area light the mean |ΔV| inside the penumbra.
+function figures(e) {
+  const f = {
+    misclassified: e.misclassified_pct,
+    false_shadow: e.false_shadow_pct,
+    false_lit: e.false_lit_pct,
+  };
+  if (e.penumbra_mean_abs !== null && e.penumbra_mean_abs !== undefined) {
+    f.penumbra_dv = 100 * e.penumbra_mean_abs;
+  }
+  return f;
+}
+
+function compare(lesson, variant, web, nat) {
+  const fmt = (f) => Object.entries(f).map(([k, v]) => `${k} ${v.toFixed(4)} %`).join(", ");
+  console.log(`  ${variant}: web    ${fmt(web)}`);
+  console.log(`  ${variant}: native ${fmt(nat.figures)}`);
+  const bounds = Object.entries(nat.bounds).filter(([, v]) => Number.isFinite(v));
+  if (bounds.length) {
+    console.log(`  ${variant}: native jitter bounds ±${bounds.map(([k, v]) => `${k} ${v.toFixed(4)}`).join(", ")}`);
+  }
+  for (const [k, a] of Object.entries(nat.figures)) {
+    const b = web[k];
+    const bound = nat.bounds[k];
+    const allowed = Number.isFinite(bound)
+      ? bound
+      : FIGURE.abs + FIGURE.rel * Math.max(Math.abs(a), Math.abs(b ?? 0));
+    if (b === undefined || !(Math.abs(a - b) <= allowed)) {
+      fail(lesson, `${variant} ${k}: web ${b} against native ${a} (allowed ±${allowed.toFixed(4)})`);
+    }
+  }
+}
+
+/// The page's latest log line (the canvas's data-figure), parsed.
+async function shown(page) {
+  const text = await page.evaluate(() => document.getElementById("workbook-canvas")?.dataset.figure);
+  return text ? JSON.parse(text) : null;
+}
+
+/// Waits for the full figure of the view on screen, of a variant `ok` accepts.
+async function fullFigure(page, lesson, ok) {
+  const start = Date.now();
+  while (Date.now() - start < FIGURE_WAIT_MS) {
+    const error = await page.evaluate(() => document.getElementById("workbook-error")?.textContent);
+    if (error) {
+      throw new Error(`the page says: ${error}`);
+    }
+    const f = await shown(page);
+    if (f && ok(f.variant) && f.error_current && f.error && f.error.level === "full") {
+      return f;
+    }
+    await page.waitForTimeout(250);
+  }
+  throw new Error(`no full figure within ${FIGURE_WAIT_MS / 1000} s`);
+}
+
+/// The canvas as the reader sees it, against the native frame.
+async function compareCanvas(page, lesson, nat) {
+  // The canvas's own pixels on screen: its box, from its top-left pixel
+  // (a box at a fractional position would take one pixel more).
+  const box = await page.locator("#workbook-canvas").boundingBox();
+  const size = await page.evaluate(() => {
+    const c = document.getElementById("workbook-canvas");
+    return [c.width, c.height];
+  });
+  const png = await page.screenshot({
+    clip: { x: Math.round(box.x), y: Math.round(box.y), width: size[0], height: size[1] },
+  });
+  fs.writeFileSync(path.join(out, `${lesson}_canvas.png`), png);
+  const result = await page.evaluate(
+    async ([webPng, nativeUrl, step]) => {
+      const load = async (src) => {
+        const img = new Image();
+        img.src = src;
+        await img.decode();
+        const c = document.createElement("canvas");
+        c.width = img.naturalWidth;
+        c.height = img.naturalHeight;
+        const ctx = c.getContext("2d");
+        ctx.drawImage(img, 0, 0);
+        return ctx.getImageData(0, 0, c.width, c.height);
+      };
+      const a = await load("data:image/png;base64," + webPng);
+      const b = await load(nativeUrl);
+      if (a.width !== b.width || a.height !== b.height) {
+        return { size: `${a.width}x${a.height} against ${b.width}x${b.height}` };
+      }
+      let differing = 0;
+      let sum = 0;
+      let sum2 = 0;
+      const n = a.width * a.height;
+      for (let i = 0; i < n; i++) {
+        let d = 0;
+        for (let c = 0; c < 3; c++) {
+          d = Math.max(d, Math.abs(a.data[4 * i + c] - b.data[4 * i + c]));
+        }
+        if (d > step) differing++;
+        const y = (a.data[4 * i] + a.data[4 * i + 1] + a.data[4 * i + 2]) / 3;
+        sum += y;
+        sum2 += y * y;
+      }
+      const mean = sum / n;
+      return { differing: differing / n, spread: Math.sqrt(Math.max(0, sum2 / n - mean * mean)) };
+    },
+    [png.toString("base64"), base + nat.frame, PIXEL_STEP],
+  );
+  if (result.size) {
+    fail(lesson, `the canvas is ${result.size}`);
+    return;
+  }
+  console.log(
+    `  canvas: ${(100 * result.differing).toFixed(2)} % of pixels differ from the native frame by more than ${PIXEL_STEP}/255 (allowed ${(100 * (MAX_DIFFERING + nat.flipped)).toFixed(2)} %); brightness spread ${result.spread.toFixed(1)}`,
+  );
+  // A blank canvas (one colour) has no spread.
+  if (result.spread < 5) fail(lesson, "the canvas is blank");
+  const allowed = MAX_DIFFERING + nat.flipped;
+  if (result.differing > allowed) {
+    fail(lesson, `the canvas differs from the native frame in ${(100 * result.differing).toFixed(2)} % of pixels (at most ${(100 * allowed).toFixed(2)} %)`);
+  }
+}
+
+const browser = await chromium.launch({
+  executablePath: browserPath,
+  // Headful, on the Xvfb display .ci/web-check starts: headless Chromium
+  // does not composite a WebGPU canvas on a CPU-only machine. WebGPU on
+  // SwiftShader (Vulkan on the CPU), the page's compositing through ANGLE on
+  // Vulkan; no network.
+  headless: false,
+  args: [
+    "--no-sandbox", "--enable-unsafe-webgpu", "--enable-unsafe-swiftshader",
+    "--use-webgpu-adapter=swiftshader", "--use-vulkan=swiftshader", "--enable-features=Vulkan",
+    "--disable-vulkan-surface", "--use-angle=vulkan",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    "--no-first-run", "--disable-quic",
+  ],
+});
+
+for (const lesson of lessons) {
+  const started = Date.now();
+  console.log(`${lesson}:`);
+  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+  const errors = [];
+  page.on("console", (m) => {
+    if (m.type() === "error") errors.push(m.text());
+  });
+  page.on("pageerror", (e) => errors.push(String(e)));
+  try {
+    await page.goto(`${base}book/book/${lesson}.html?live`);
+    const first = await fullFigure(page, lesson, () => true);
+    const [w, h] = [first.width, first.height];
+    const nat = native(lesson, first.variant, w, h);
+    compare(lesson, first.variant, figures(first.error), nat);
+
+    // The scene on the canvas: overlay hidden, frame view.
+    await page.locator("#workbook-canvas").focus();
+    await page.keyboard.press("h");
+    await page.keyboard.press("1");
+    await page.waitForTimeout(1500);
+    await compareCanvas(page, lesson, nat);
+    if (lesson === "lesson_05") {
+      await page.screenshot({ path: path.join(out, "lesson_05_frame.png") });
+    }
+    await page.keyboard.press("h");
+
+    // The next variant, by key.
+    await page.keyboard.press("v");
+    const second = await fullFigure(page, lesson, (v) => v !== first.variant);
+    const nat2 = native(lesson, second.variant, w, h);
+    compare(lesson, second.variant, figures(second.error), nat2);
+    // The key changed what the figure measures as natively: where the two
+    // variants' native figures differ, the page's must differ too.
+    const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+    if (same(figures(second.error), figures(first.error)) && !same(nat.figures, nat2.figures)) {
+      fail(lesson, `V changed the variant to ${second.variant}, but not the figure`);
+    }
+    // WEB_CHECK_ALL_VARIANTS=1: on through every other variant, each
+    // against its native run (by hand; CI checks two per lesson).
+    let current = second.variant;
+    while (process.env.WEB_CHECK_ALL_VARIANTS && current !== first.variant) {
+      const previous = current;
+      await page.keyboard.press("v");
+      const next = await fullFigure(page, lesson, (v) => v !== previous);
+      current = next.variant;
+      if (current !== first.variant) {
+        compare(lesson, current, figures(next.error), native(lesson, current, w, h));
+      }
+    }
+    if (lesson === "lesson_05") {
+      await page.locator("#workbook-canvas").scrollIntoViewIfNeeded();
+      await page.screenshot({ path: path.join(out, "lesson_05_page.png") });
+    }
+  } catch (e) {
+    fail(lesson, String(e.message || e));
+  }
+  // mdBook's own warnings (no WGSL highlighting) are not errors.
+  for (const e of errors) fail(lesson, `the page logged an error: ${e}`);
+  console.log(`  ${((Date.now() - started) / 1000).toFixed(1)} s`);
+  await page.close();
+}
+await browser.close();
+
+if (failures.length) {
+  console.log(`\nweb check FAILED (${failures.length}):`);
+  for (const f of failures) console.log(`  ${f}`);
+  process.exit(1);
+}
+console.log(`\nweb check passed: ${lessons.length} lessons`);
