@@ -137,8 +137,9 @@ pub fn build(root: &Path) -> Result<()> {
 fn live_bar(lesson: &str, variant: &str, view: &str, size: &str) -> String {
     let (w, h) = WEB_SIZE;
     let keys = "Drag to orbit, scroll to zoom, arrows move the light, V changes the variant, \
-                1–5 the view (frame, visibility, diff, buffer, dv); the overlay's figure is the \
-                error against the exact reference, ray cast in this page.";
+                1 2 3 5 the view (frame, visibility, diff, dv; the buffer view is the desktop's), \
+                H hides the overlay. Its figure is the error against the exact reference, ray cast \
+                in this page.";
     format!(
         "<p class=\"live-bar\" data-lesson=\"{lesson}\" data-args=\"--variant {variant} --view {view} --width {w} --height {h}\" data-size=\"{size}\" data-keys=\"{keys}\">\
 <button type=\"button\">Run {lesson} live in this page</button>\

@@ -45,6 +45,10 @@ pub fn digest(root: &Path) -> Result<String> {
 }
 
 fn collect(path: &Path, out: &mut Vec<PathBuf>) -> Result<()> {
+    // An input a tree lacks adds nothing (its path is in the digest once it has it).
+    if !path.exists() {
+        return Ok(());
+    }
     if path.is_file() {
         out.push(path.to_path_buf());
         return Ok(());

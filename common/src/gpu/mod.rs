@@ -15,6 +15,8 @@
 //! - [`depth_probe`]: what a depth format really stores (24-bit unorm or float).
 //! - [`wgsl`]: a WGSL module built from named files, its errors mapped back
 //!   to the file, line and column they came from.
+//! - [`choice`]: which adapter, backend and depth format to open (flags, variables).
+//! - [`web`]: the device in a web page, on the browser's WebGPU (the web build).
 
 pub mod bindings;
 pub mod chapter_copy;

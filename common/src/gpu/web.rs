@@ -6,6 +6,21 @@ use anyhow::{anyhow, Result};
 
 use super::{buffer_cap, device_failure, DepthFormatChoice, Gpu, OPTIONAL_FEATURES};
 
+/// The page's element for a lesson's error line.
+pub const ERROR_ID: &str = "workbook-error";
+
+/// `line` in the page's error element ([`ERROR_ID`]) and the console: how
+/// the web build says what stopped a lesson.
+pub fn page_error(line: &str) {
+    web_sys::console::error_1(&line.into());
+    let element = web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.get_element_by_id(ERROR_ID));
+    if let Some(el) = element {
+        el.set_text_content(Some(line));
+    }
+}
+
 /// What the page says when the browser has no WebGPU adapter.
 pub const NO_WEBGPU: &str = "this browser offers no WebGPU adapter: the live lessons need a browser with WebGPU (Chrome or Edge 113+, Firefox 141+ on Windows, Safari 26+); the screenshot stays";
 
@@ -59,7 +74,7 @@ impl Gpu {
                 .split_whitespace()
                 .collect::<Vec<_>>()
                 .join(" ");
-            crate::run::web::page_error(&format!("error: wgpu: {line}"));
+            page_error(&format!("error: wgpu: {line}"));
         }));
         Ok((
             Gpu {

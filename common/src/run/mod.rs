@@ -8,6 +8,7 @@
 //! - [`view`]: what the window shows (frame, visibility, diff, buffer).
 //! - [`window`]: the interactive window (winit), a workbench.
 //! - [`display`]: a private Xvfb for the window's tests and screenshots.
+//! - [`web`]: a lesson in a web page (the web build): the window on its canvas.
 
 pub mod app;
 pub mod cli;

@@ -10,6 +10,8 @@
 //! - [`overlay`]: the egui overlay (and [`overlay::KEYS`], every key).
 //! - [`present`]: the window's picture (view + overlay) and its capture.
 //! - [`views`]: the diff and buffer views' pictures.
+//! - [`page`], [`live_page`]: the window in a web page, and its live
+//!   reference on the page's one thread (the web build).
 //!
 //! The same window runs in a web page (the web build, [`crate::run::web`]):
 //! winit draws into the page's canvas, the device comes from the
@@ -20,10 +22,10 @@ pub mod controls;
 pub mod frame;
 pub mod live;
 #[cfg(target_arch = "wasm32")]
-mod live_page;
+pub mod live_page;
 pub mod overlay;
 #[cfg(target_arch = "wasm32")]
-mod page;
+pub mod page;
 pub mod present;
 pub mod views;
 
@@ -127,7 +129,7 @@ struct App<L: Lesson> {
     log: Option<std::io::BufWriter<std::fs::File>>,
     /// The page's canvas and the device it is opening (the web build).
     #[cfg(target_arch = "wasm32")]
-    page: crate::run::web::Page,
+    page: page::Page,
 }
 
 pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant>) -> Result<()> {
@@ -354,7 +356,7 @@ impl<L: Lesson> App<L> {
 
     fn fail(&mut self, el: &ActiveEventLoop, e: anyhow::Error) {
         #[cfg(target_arch = "wasm32")]
-        crate::run::web::show_error::<L>(&e);
+        page::show_error::<L>(&e);
         self.error = Some(e);
         el.exit();
     }

@@ -5,16 +5,23 @@
 //! ([`App::page_opened`]) builds the scene and the lesson, as the
 //! desktop's `start` does.
 
+use std::cell::RefCell;
+use std::rc::Rc;
 use std::sync::Arc;
 
 use anyhow::{anyhow, Result};
+use wasm_bindgen::JsCast;
 use winit::event_loop::ActiveEventLoop;
 use winit::platform::web::WindowAttributesExtWebSys;
 use winit::window::Window;
 
+use super::live::{Job, Stamp};
 use super::App;
+use crate::gpu::targets::PendingFrame;
+use crate::gpu::web::page_error;
 use crate::gpu::Gpu;
 use crate::run::lesson::Lesson;
+use crate::scene::Scene;
 
 impl<L: Lesson> App<L> {
     pub(super) fn start(&mut self, el: &ActiveEventLoop) -> Result<()> {
@@ -60,4 +67,95 @@ impl<L: Lesson> App<L> {
         window.request_redraw();
         Ok(())
     }
+}
+
+/// The canvas a lesson draws into.
+pub const CANVAS_ID: &str = "workbook-canvas";
+
+/// The device and surface the browser is opening: filled by the future
+/// that asks for them, taken by the first redraw after.
+pub(crate) type Opening = Rc<RefCell<Option<Result<(Gpu, wgpu::Surface<'static>)>>>>;
+
+/// The page's side of the window: its canvas, the device on its way, and
+/// the frame on its way back to the live reference.
+pub struct Page {
+    pub(crate) canvas: web_sys::HtmlCanvasElement,
+    pub(crate) window: Option<std::sync::Arc<winit::window::Window>>,
+    pub(crate) opened: Opening,
+    reading: Option<(PendingFrame, (Stamp, Scene, glam::Mat4))>,
+    last_figure: String,
+}
+
+impl Default for Page {
+    fn default() -> Page {
+        Page {
+            canvas: canvas().expect("start checked the canvas"),
+            window: None,
+            opened: Default::default(),
+            reading: None,
+            last_figure: String::new(),
+        }
+    }
+}
+
+impl Page {
+    /// Whether a frame is on its way back.
+    pub(crate) fn reading(&self) -> bool {
+        self.reading.is_some()
+    }
+
+    /// Starts reading a frame back for the live reference's next job.
+    pub(crate) fn start_read(&mut self, frame: PendingFrame, of: (Stamp, Scene, glam::Mat4)) {
+        self.reading = Some((frame, of));
+    }
+
+    /// The job, once its frame is back.
+    pub(crate) fn read_done(&mut self) -> Result<Option<Job>> {
+        let Some((pending, _)) = self.reading.as_mut() else {
+            return Ok(None);
+        };
+        let Some(frame) = pending.take() else {
+            return Ok(None);
+        };
+        let (_, (stamp, scene, view_proj)) = self.reading.take().expect("checked above");
+        Ok(Some(Job {
+            stamp,
+            scene,
+            view_proj,
+            frame: frame?,
+        }))
+    }
+
+    /// The window's log line, on the canvas for the page's scripts; a new
+    /// error figure also goes to the console.
+    pub(crate) fn publish(&mut self, line: &serde_json::Value) {
+        let _ = self.canvas.set_attribute("data-figure", &line.to_string());
+        let figure = line["error"].to_string();
+        if figure != self.last_figure && !line["error"].is_null() {
+            web_sys::console::log_1(&format!("workbook figure: {line}").into());
+            self.last_figure = figure;
+        }
+    }
+}
+
+pub(crate) fn canvas() -> Result<web_sys::HtmlCanvasElement> {
+    let document = web_sys::window()
+        .and_then(|w| w.document())
+        .ok_or_else(|| anyhow!("no document"))?;
+    let element = document
+        .get_element_by_id(CANVAS_ID)
+        .ok_or_else(|| anyhow!("the page has no canvas #{CANVAS_ID}"))?;
+    element
+        .dyn_into::<web_sys::HtmlCanvasElement>()
+        .map_err(|_| anyhow!("#{CANVAS_ID} is not a canvas"))
+}
+
+/// One line in the page (`#workbook-error`) and the console.
+pub fn show_error<L: Lesson>(e: &anyhow::Error) {
+    let line = format!(
+        "error: {}: {}",
+        L::NAME,
+        format!("{e:#}").replace('\n', " ")
+    );
+    page_error(&line);
 }
