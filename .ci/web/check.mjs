@@ -22,7 +22,8 @@
 // scratch folder, relative to the repository root, which is the working
 // directory and the served root), CHROMIUM (the browser).
 
-import { execFileSync } from "node:child_process";
+import { execFile, execFileSync } from "node:child_process";
+import { promisify } from "node:util";
 import fs from "node:fs";
 import path from "node:path";
 import { chromium } from "playwright-core";
@@ -51,23 +52,35 @@ const MAX_DIFFERING = 0.01;
 // soft shadow is the slowest: about 4 s at 640×360 in the page).
 const FIGURE_WAIT_MS = 90_000;
 
+const execFileAsync = promisify(execFile);
 const failures = [];
 const fail = (lesson, what) => {
   failures.push(`${lesson}: ${what}`);
   console.log(`  FAIL ${what}`);
 };
 
-/// The native headless report's figures for `variant` at `w`×`h`.
-function native(lesson, variant, w, h) {
-  const dir = path.join(out, "native", `${lesson}_${variant}_${w}x${h}`);
-  if (!fs.existsSync(path.join(dir, "report.json"))) {
-    execFileSync(
-      path.join(bin, lesson),
-      ["--headless", "--variant", variant, "--width", String(w), "--height", String(h),
-       "--frames", "2", "--no-timing", "--fragile", "--out", dir],
-      { stdio: ["ignore", "ignore", "inherit"] },
-    );
+/// The native headless runs, started as soon as a lesson's page is asked
+/// for, so that they run while the page loads: by lesson, variant and size.
+const runs = new Map();
+
+/// Starts (once) the native headless run of `variant` at `w`×`h`.
+function startNative(lesson, variant, w, h) {
+  const key = `${lesson}_${variant}_${w}x${h}`;
+  if (!runs.has(key)) {
+    const dir = path.join(out, "native", key);
+    const args = ["--headless", "--variant", variant, "--width", String(w), "--height", String(h),
+                  "--frames", "2", "--no-timing", "--fragile", "--out", dir];
+    const run = execFileAsync(path.join(bin, lesson), args).then(() => dir);
+    run.catch(() => {}); // awaited (and reported) by `native`
+    runs.set(key, run);
   }
+  return runs.get(key);
+}
+
+/// The native headless report's figures for `variant` at `w`×`h`, its
+/// jitter bounds, and its frame's path.
+async function native(lesson, variant, w, h) {
+  const dir = await startNative(lesson, variant, w, h);
   const report = JSON.parse(fs.readFileSync(path.join(dir, "report.json"), "utf8"));
   const v = report.variants[0];
   const b = v.fragile?.bounds ?? {};
@@ -81,6 +94,24 @@ function native(lesson, variant, w, h) {
   const flipped = (v.fragile?.flipped_pixels ?? 0) / (w * h);
   // `out` is relative to the served root (the repository).
   return { figures: figures(v.error), bounds, flipped, frame: path.join(dir, `${variant}.png`) };
+}
+
+/// The variant V leads to from `variant`: the next of the lesson's own
+/// (its exercises are listed after them), as the page orders them.
+function nextVariant(lesson, variant) {
+  const listed = execFileSync(path.join(bin, lesson), ["--list-variants"], { encoding: "utf8" });
+  const own = listed.split("\n").filter((v) => v && !v.startsWith("exercise_"));
+  return own[(own.indexOf(variant) + 1) % own.length];
+}
+
+/// The variant and size a chapter's live bar starts its lesson with.
+async function barArgs(page) {
+  const args = await page.evaluate(() => document.querySelector(".live-bar")?.dataset.args ?? "");
+  const word = (flag) => {
+    const a = args.split(/\s+/);
+    return a[a.indexOf(flag) + 1];
+  };
+  return { variant: word("--variant"), w: Number(word("--width")), h: Number(word("--height")) };
 }
 
 /// The figures compared, in percent: misclassified, false shadow, false
@@ -138,6 +169,16 @@ async function fullFigure(page, lesson, ok) {
     await page.waitForTimeout(250);
   }
   throw new Error(`no full figure within ${FIGURE_WAIT_MS / 1000} s`);
+}
+
+/// Waits until the page has drawn `n` more frames (its log line counts them).
+async function framesDrawn(page, n) {
+  const from = (await shown(page))?.frame ?? 0;
+  const start = Date.now();
+  while (((await shown(page))?.frame ?? 0) < from + n) {
+    if (Date.now() - start > 10_000) throw new Error(`the page drew no ${n} frames in 10 s`);
+    await page.waitForTimeout(50);
+  }
 }
 
 /// The canvas as the reader sees it, against the native frame.
@@ -221,27 +262,40 @@ const browser = await chromium.launch({
   ],
 });
 
+// One tab for every lesson, each chapter opened in turn: the renderer
+// keeps the compiled module between them (Chromium caches a module's
+// compilation per process), which saves compiling 8 MB of WebAssembly ten
+// times.
+const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+let errors = [];
+page.on("console", (m) => {
+  if (m.type() === "error") errors.push(m.text());
+});
+page.on("pageerror", (e) => errors.push(String(e)));
 for (const lesson of lessons) {
   const started = Date.now();
   console.log(`${lesson}:`);
-  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
-  const errors = [];
-  page.on("console", (m) => {
-    if (m.type() === "error") errors.push(m.text());
-  });
-  page.on("pageerror", (e) => errors.push(String(e)));
+  errors = [];
   try {
     await page.goto(`${base}book/book/${lesson}.html?live`);
+    // The native runs of the bar's variant and of the next, meanwhile.
+    const bar = await barArgs(page);
+    startNative(lesson, bar.variant, bar.w, bar.h);
+    startNative(lesson, nextVariant(lesson, bar.variant), bar.w, bar.h);
     const first = await fullFigure(page, lesson, () => true);
+    console.log(`  the full figure came ${((Date.now() - started) / 1000).toFixed(1)} s after the page was asked for`);
     const [w, h] = [first.width, first.height];
-    const nat = native(lesson, first.variant, w, h);
+    const nat = await native(lesson, first.variant, w, h);
+    // How long the page's reference took for this view, coarse then full
+    // (on the page's one thread).
+    console.log(`  ${w}×${h}, on ${first.adapter}; the page's exact reference took ${(first.error.worker_ms / 1000).toFixed(2)} s`);
     compare(lesson, first.variant, figures(first.error), nat);
 
     // The scene on the canvas: overlay hidden, frame view.
     await page.locator("#workbook-canvas").focus();
     await page.keyboard.press("h");
     await page.keyboard.press("1");
-    await page.waitForTimeout(1500);
+    await framesDrawn(page, 3);
     await compareCanvas(page, lesson, nat);
     if (lesson === "lesson_05") {
       await page.screenshot({ path: path.join(out, "lesson_05_frame.png") });
@@ -251,7 +305,7 @@ for (const lesson of lessons) {
     // The next variant, by key.
     await page.keyboard.press("v");
     const second = await fullFigure(page, lesson, (v) => v !== first.variant);
-    const nat2 = native(lesson, second.variant, w, h);
+    const nat2 = await native(lesson, second.variant, w, h);
     compare(lesson, second.variant, figures(second.error), nat2);
     // The key changed what the figure measures as natively: where the two
     // variants' native figures differ, the page's must differ too.
@@ -268,7 +322,7 @@ for (const lesson of lessons) {
       const next = await fullFigure(page, lesson, (v) => v !== previous);
       current = next.variant;
       if (current !== first.variant) {
-        compare(lesson, current, figures(next.error), native(lesson, current, w, h));
+        compare(lesson, current, figures(next.error), await native(lesson, current, w, h));
       }
     }
     if (lesson === "lesson_05") {
@@ -281,7 +335,6 @@ for (const lesson of lessons) {
   // mdBook's own warnings (no WGSL highlighting) are not errors.
   for (const e of errors) fail(lesson, `the page logged an error: ${e}`);
   console.log(`  ${((Date.now() - started) / 1000).toFixed(1)} s`);
-  await page.close();
 }
 await browser.close();
 

@@ -218,6 +218,11 @@ fn run(cli: Cli) -> Result<()> {
     let runner = runner_or_build()?;
     let root = root();
     let main_set = sets::is_main(&adapter, &backend);
+    // The web build first: it needs tools a machine may lack (the wasm
+    // target, wasm-bindgen), and says so before the hour of runs, not after.
+    if only.is_none() && main_set {
+        web::build(&root)?;
+    }
     let generated = root.join("book/src/generated");
     let figures = root.join("book/src/figures");
     let work = root.join("target/book-runs");
@@ -286,7 +291,6 @@ fn run(cli: Cli) -> Result<()> {
     if only.is_none() {
         scaling::run(&runner, &root, &work, &backend, &bar, None)?;
         window_shots::write_all(&runner, &figures, &generated, &backend, &adapter, None)?;
-        web::build(&root)?;
     }
     bar.finish_with_message("runs done");
     copy_outputs(&work, &figures, &generated, only.as_deref())?;
