@@ -13,11 +13,11 @@
   // A module import needs an address, not a bare path.
   const at = (path) => new URL(root + path, document.baseURI).href;
 
-  function noWebGpu(bar) {
+  function noWebGpu(bar, why) {
     bar.querySelector("button").disabled = true;
     bar.querySelector(".live-note").textContent =
-      "This browser has no WebGPU (navigator.gpu is missing), so the lesson cannot run in the page; " +
-      "the screenshot above is the desktop window. Chrome and Edge (113 and later), Firefox (141 and later, " +
+      "This browser " + why + ", so the lesson cannot run in the page; " +
+      "the screenshot below is the desktop window. Chrome and Edge (113 and later), Firefox (141 and later, " +
       "on Windows) and Safari (26 and later) have WebGPU.";
   }
 
@@ -30,6 +30,12 @@
     const note = bar.querySelector(".live-note");
     const button = bar.querySelector("button");
     button.disabled = true;
+    // WebGPU without an adapter (no usable GPU, or one the browser blocks):
+    // the screenshot stays.
+    if (!(await navigator.gpu.requestAdapter().catch(() => null))) {
+      noWebGpu(bar, "has WebGPU but offers it no adapter (no usable GPU here)");
+      return;
+    }
     const canvas = document.createElement("canvas");
     canvas.id = "workbook-canvas";
     canvas.className = "live-canvas";
@@ -75,7 +81,7 @@
   const bars = document.querySelectorAll(".live-bar");
   bars.forEach((bar) => {
     if (!navigator.gpu) {
-      noWebGpu(bar);
+      noWebGpu(bar, "has no WebGPU (navigator.gpu is missing)");
       return;
     }
     bar.querySelector("button").addEventListener("click", () => start(bar));
