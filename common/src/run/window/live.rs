@@ -25,7 +25,6 @@ use std::sync::Arc;
 #[cfg(not(target_arch = "wasm32"))]
 use std::thread::JoinHandle;
 
-#[cfg(not(target_arch = "wasm32"))]
 use anyhow::Result;
 use image::RgbaImage;
 #[cfg(not(target_arch = "wasm32"))]
@@ -35,9 +34,7 @@ use crate::gpu::targets::FrameImages;
 use crate::measure::report::combine;
 use crate::reference::dv_view::dv_image;
 use crate::reference::metrics::{compare, ErrorStats};
-#[cfg(not(target_arch = "wasm32"))]
-use crate::reference::try_render_reference;
-use crate::reference::Reference;
+use crate::reference::{try_render_reference, Reference};
 use crate::scene::Scene;
 
 /// In a web page, one thread: the reference works between frames.
@@ -246,20 +243,9 @@ fn serve(
             .is_none_or(|(g, _)| *g != job.stamp.scene_gen);
         let result = pool.install(|| -> Result<Option<Answer>> {
             if fresh {
-                let (cw, ch) = ((w / COARSE).max(1), (h / COARSE).max(1));
-                let coarse = try_render_reference(&job.scene, job.view_proj, cw, ch)?;
-                let frame = subsample(&job.frame, cw, ch);
-                let (error, diff, dv) = measure(&coarse, &frame);
+                let measured = measure_coarse(&job)?;
                 let overtaken = latest.moved_on(job.stamp.scene_gen);
-                let a = Answer {
-                    stamp: job.stamp,
-                    level: Level::Coarse,
-                    error,
-                    diff,
-                    dv,
-                    ms: ms(),
-                    last: overtaken,
-                };
+                let a = Answer::new(&job, Level::Coarse, measured, ms(), overtaken);
                 if answers.send(Ok(a)).is_err() || overtaken {
                     return Ok(None);
                 }
@@ -267,16 +253,8 @@ fn serve(
                 cached = Some((job.stamp.scene_gen, full));
             }
             let (_, reference) = cached.as_ref().expect("a reference was made above");
-            let (error, diff, dv) = measure(reference, &job.frame);
-            Ok(Some(Answer {
-                stamp: job.stamp,
-                level: Level::Full,
-                error,
-                diff,
-                dv,
-                ms: ms(),
-                last: true,
-            }))
+            let measured = measure(reference, &job.frame);
+            Ok(Some(Answer::new(&job, Level::Full, measured, ms(), true)))
         });
         match result {
             Ok(Some(a)) => {
@@ -293,12 +271,38 @@ fn serve(
     }
 }
 
+/// What one comparison gives: every light's figure (combined), light 0's
+/// difference image and its signed ΔV image.
+pub(super) type Measured = (ErrorStats, RgbaImage, RgbaImage);
+
+impl Answer {
+    /// The answer to `job` at `level`, `ms` after the job began.
+    pub(super) fn new(job: &Job, level: Level, measured: Measured, ms: f64, last: bool) -> Answer {
+        let (error, diff, dv) = measured;
+        Answer {
+            stamp: job.stamp,
+            level,
+            error,
+            diff,
+            dv,
+            ms,
+            last,
+        }
+    }
+}
+
+/// The coarse pass of a new view: a reference a [`COARSE`]th of the
+/// frame's width and height, against the frame's matching pixels.
+pub(super) fn measure_coarse(job: &Job) -> Result<Measured> {
+    let (w, h) = (job.frame.width, job.frame.height);
+    let (cw, ch) = ((w / COARSE).max(1), (h / COARSE).max(1));
+    let coarse = try_render_reference(&job.scene, job.view_proj, cw, ch)?;
+    Ok(measure(&coarse, &subsample(&job.frame, cw, ch)))
+}
+
 /// Every light's figure (combined), light 0's difference image and its
 /// signed ΔV image.
-pub(super) fn measure(
-    reference: &Reference,
-    frame: &FrameImages,
-) -> (ErrorStats, RgbaImage, RgbaImage) {
+pub(super) fn measure(reference: &Reference, frame: &FrameImages) -> Measured {
     let mut per_light = Vec::new();
     let mut diff = None;
     for (k, vis) in frame.visibility.iter().enumerate() {

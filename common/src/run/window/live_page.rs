@@ -9,7 +9,7 @@
 use anyhow::Result;
 use web_time::Instant;
 
-use super::live::{measure, subsample, Answer, Job, Level, COARSE};
+use super::live::{measure, measure_coarse, Answer, Job, Level};
 use crate::reference::{try_render_reference, Reference};
 
 /// The job under way and the reference of the last view.
@@ -73,18 +73,9 @@ impl LiveReference {
         let gen = job.stamp.scene_gen;
         let fresh = self.cached.as_ref().is_none_or(|(g, _)| *g != gen);
         if fresh && !self.coarse_given {
-            let (cw, ch) = ((w / COARSE).max(1), (h / COARSE).max(1));
-            let coarse = try_render_reference(&job.scene, job.view_proj, cw, ch)?;
-            let (error, diff, dv) = measure(&coarse, &subsample(&job.frame, cw, ch));
-            self.arrived.push(Answer {
-                stamp: job.stamp,
-                level: Level::Coarse,
-                error,
-                diff,
-                dv,
-                ms: ms(),
-                last: false,
-            });
+            let measured = measure_coarse(job)?;
+            self.arrived
+                .push(Answer::new(job, Level::Coarse, measured, ms(), false));
             self.coarse_given = true;
             return Ok(());
         }
@@ -98,16 +89,9 @@ impl LiveReference {
             self.cached = Some((gen, full));
         }
         let (_, reference) = self.cached.as_ref().expect("a reference was made above");
-        let (error, diff, dv) = measure(reference, &job.frame);
-        self.arrived.push(Answer {
-            stamp: job.stamp,
-            level: Level::Full,
-            error,
-            diff,
-            dv,
-            ms: ms(),
-            last: true,
-        });
+        let measured = measure(reference, &job.frame);
+        self.arrived
+            .push(Answer::new(job, Level::Full, measured, ms(), true));
         self.job = None;
         Ok(())
     }
