@@ -144,6 +144,12 @@ impl PendingRead {
             });
     }
 
+    /// Whether the mapping is done (or failed): [`PendingRead::take`]
+    /// then answers at once.
+    pub fn mapped(&self) -> bool {
+        self.state.lock().expect("readback state").is_some()
+    }
+
     /// The texels, row by row without padding, once mapped; `None` while
     /// the mapping is under way.
     pub fn take(&self) -> Option<Result<Vec<u8>>> {

@@ -192,33 +192,31 @@ impl FrameTargets {
     }
 }
 
-/// [`FrameTargets::read`]'s images on their way to the CPU, without
-/// blocking (the web build: [`crate::gpu::readback::PendingRead`]).
+/// [`FrameTargets::read_measured`]'s images on their way to the CPU,
+/// without blocking ([`crate::gpu::readback::PendingRead`]).
 pub struct PendingFrame {
     width: u32,
     height: u32,
-    color: PendingRead,
     id: PendingRead,
     visibility: Vec<PendingRead>,
     done: Vec<Option<Vec<u8>>>,
 }
 
 impl FrameTargets {
-    /// Starts reading the frame back: colour, ids and visibility.
-    pub fn start_read(&self, gpu: &Gpu) -> PendingFrame {
-        let color = PendingRead::start(gpu, &self.color, 4);
+    /// Starts reading back what the error figure is measured on, as
+    /// [`FrameTargets::read_measured`] reads it: ids and visibility.
+    pub fn start_read_measured(&self, gpu: &Gpu) -> PendingFrame {
         let id = PendingRead::start(gpu, &self.id, 4);
         let visibility: Vec<_> = (self.visibility.iter())
             .map(|t| PendingRead::start(gpu, t, 1))
             .collect();
-        for r in [&color, &id].into_iter().chain(&visibility) {
+        for r in std::iter::once(&id).chain(&visibility) {
             r.map();
         }
         PendingFrame {
             width: self.width,
             height: self.height,
-            done: vec![None; 2 + visibility.len()],
-            color,
+            done: vec![None; 1 + visibility.len()],
             id,
             visibility,
         }
@@ -226,9 +224,16 @@ impl FrameTargets {
 }
 
 impl PendingFrame {
+    /// Whether every image is mapped: [`PendingFrame::take`] then answers
+    /// at once (and does the copying).
+    pub fn mapped(&self) -> bool {
+        let reads = std::iter::once(&self.id).chain(&self.visibility);
+        (self.done.iter().zip(reads)).all(|(slot, r)| slot.is_some() || r.mapped())
+    }
+
     /// The frame once every image is mapped; `None` while one is not.
     pub fn take(&mut self) -> Option<Result<FrameImages>> {
-        let reads = [&self.color, &self.id].into_iter().chain(&self.visibility);
+        let reads = std::iter::once(&self.id).chain(&self.visibility);
         for (slot, r) in self.done.iter_mut().zip(reads) {
             if slot.is_none() {
                 match r.take() {
@@ -242,7 +247,6 @@ impl PendingFrame {
             return None;
         }
         let mut images = self.done.drain(..).map(|b| b.expect("checked above"));
-        let color = images.next().expect("colour");
         let id = bytemuck::cast_slice(&images.next().expect("ids")).to_vec();
         let visibility = images
             .map(|b| b.iter().map(|&v| v as f32 / 255.0).collect())
@@ -250,7 +254,7 @@ impl PendingFrame {
         Some(Ok(FrameImages {
             width: self.width,
             height: self.height,
-            color,
+            color: Vec::new(),
             id,
             visibility,
         }))

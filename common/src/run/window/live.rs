@@ -30,7 +30,8 @@ use image::RgbaImage;
 #[cfg(not(target_arch = "wasm32"))]
 use web_time::Instant;
 
-use crate::gpu::targets::FrameImages;
+use crate::gpu::targets::{FrameImages, FrameTargets, PendingFrame};
+use crate::gpu::Gpu;
 use crate::measure::report::combine;
 use crate::reference::dv_view::dv_image;
 use crate::reference::metrics::{compare, ErrorStats};
@@ -61,6 +62,64 @@ pub struct Job {
     pub frame: FrameImages,
 }
 
+/// A job whose frame is on its way back from the GPU. The window never
+/// waits for it, nor copies it: it sends the job once the images are
+/// mapped ([`PendingJob::ready`], asked once a frame), and the worker
+/// copies them out ([`PendingJob::into_job`]). Waiting drained the GPU's
+/// queue in the middle of the window's frame, and copying 1280×720 ids and
+/// visibility out of the mapped buffers took the window 14-17 ms (lavapipe
+/// and llvmpipe, 2 cores), three times a second while the camera moves.
+/// (A page has no worker: it copies them when the job reaches it.)
+pub struct PendingJob {
+    frame: PendingFrame,
+    stamp: Stamp,
+    scene: Scene,
+    view_proj: glam::Mat4,
+}
+
+impl PendingJob {
+    /// Starts reading back the frame `targets` hold, drawn at `stamp`.
+    pub fn start(
+        gpu: &Gpu,
+        targets: &FrameTargets,
+        stamp: Stamp,
+        scene: Scene,
+        view_proj: glam::Mat4,
+    ) -> PendingJob {
+        PendingJob {
+            frame: targets.start_read_measured(gpu),
+            stamp,
+            scene,
+            view_proj,
+        }
+    }
+
+    /// Whether the frame's images are mapped, so that the job can go.
+    pub fn ready(&self, gpu: &Gpu) -> Result<bool> {
+        // The desktop maps a buffer when the device is polled; a page's
+        // browser maps it by itself.
+        #[cfg(not(target_arch = "wasm32"))]
+        gpu.device
+            .poll(wgpu::PollType::Poll)
+            .map_err(|e| anyhow::anyhow!("GPU poll failed: {e}"))?;
+        #[cfg(target_arch = "wasm32")]
+        let _ = gpu;
+        Ok(self.frame.mapped())
+    }
+
+    /// The job, its images copied out of the mapped buffers.
+    pub fn into_job(mut self) -> Result<Job> {
+        let frame = (self.frame.take())
+            .ok_or_else(|| anyhow::anyhow!("the live reference's frame is not mapped yet"))?;
+        Ok(Job {
+            stamp: self.stamp,
+            scene: self.scene,
+            view_proj: self.view_proj,
+            frame: frame?,
+        })
+    }
+}
+
 /// How many rays an answer rests on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Level {
@@ -89,7 +148,7 @@ pub struct Answer {
 #[cfg(not(target_arch = "wasm32"))]
 /// The worker thread and its channels.
 pub struct LiveReference {
-    jobs: Option<Sender<Job>>,
+    jobs: Option<Sender<PendingJob>>,
     answers: Receiver<Result<Answer, String>>,
     /// Answers received by [`LiveReference::ready`] and not yet read.
     arrived: Vec<Result<Answer, String>>,
@@ -112,7 +171,7 @@ impl LiveReference {
             .thread_name(|i| format!("reference-{i}"))
             .start_handler(|_| lower_priority())
             .build()?;
-        let (job_tx, job_rx) = channel::<Job>();
+        let (job_tx, job_rx) = channel::<PendingJob>();
         let (ans_tx, answers) = channel();
         let latest = Arc::new(Shown::default());
         let now = latest.clone();
@@ -143,8 +202,9 @@ impl LiveReference {
         self.latest.frames.fetch_add(1, Ordering::Relaxed);
     }
 
-    /// Sends a job (only when not [`LiveReference::busy`]).
-    pub fn send(&mut self, job: Job) {
+    /// Sends a job (only when not [`LiveReference::busy`]), once
+    /// [`PendingJob::ready`].
+    pub fn send(&mut self, job: PendingJob) {
         if let Some(tx) = &self.jobs {
             self.busy = tx.send(job).is_ok();
         }
@@ -229,7 +289,7 @@ const NEXT_FRAME_WAIT: std::time::Duration = std::time::Duration::from_secs(1);
 /// kept, so that a new variant or knob on the same view costs a comparison.
 fn serve(
     pool: &rayon::ThreadPool,
-    jobs: &Receiver<Job>,
+    jobs: &Receiver<PendingJob>,
     answers: &Sender<Result<Answer, String>>,
     latest: &Shown,
 ) {
@@ -237,6 +297,13 @@ fn serve(
     while let Ok(job) = jobs.recv() {
         let start = Instant::now();
         let ms = || start.elapsed().as_secs_f64() * 1e3;
+        let job = match job.into_job() {
+            Ok(job) => job,
+            Err(e) => {
+                let _ = answers.send(Err(format!("{e:#}")));
+                return;
+            }
+        };
         let (w, h) = (job.frame.width, job.frame.height);
         let fresh = cached
             .as_ref()

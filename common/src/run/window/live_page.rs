@@ -9,7 +9,7 @@
 use anyhow::Result;
 use web_time::Instant;
 
-use super::live::{measure, measure_coarse, Answer, Job, Level};
+use super::live::{measure, measure_coarse, Answer, Job, Level, PendingJob};
 use crate::reference::{try_render_reference, Reference};
 
 /// The job under way and the reference of the last view.
@@ -38,8 +38,13 @@ impl LiveReference {
         self.view_now.set(scene_gen);
     }
 
-    pub fn send(&mut self, job: Job) {
-        self.job = Some((job, Instant::now()));
+    /// Takes a job once [`PendingJob::ready`], its images copied out here.
+    pub fn send(&mut self, job: PendingJob) {
+        let start = Instant::now();
+        match job.into_job() {
+            Ok(job) => self.job = Some((job, start)),
+            Err(e) => self.failed = Some(e),
+        }
         self.coarse_given = false;
     }
 

@@ -51,7 +51,7 @@ use crate::run::lesson::Lesson;
 use crate::scene::Scene;
 
 use crate::run::view::View;
-use live::{Answer, LiveReference, Stamp};
+use live::{Answer, LiveReference, PendingJob, Stamp};
 use overlay::Cost;
 use present::Present;
 use views::Picture;
@@ -93,6 +93,8 @@ struct State {
     sent_at: Option<Instant>,
     /// The last stamp sent to the live reference.
     sent: Option<Stamp>,
+    /// The job whose frame is on its way back.
+    reading: Option<PendingJob>,
     answer: Option<Answer>,
     /// Seconds from the view change to the answer, when it is for the current view.
     answer_latency: Option<f64>,
@@ -166,6 +168,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
             variant_frames: 0,
             sent_at: None,
             sent: None,
+            reading: None,
             answer: None,
             answer_latency: None,
             diff: None,

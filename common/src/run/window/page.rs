@@ -15,13 +15,10 @@ use winit::event_loop::ActiveEventLoop;
 use winit::platform::web::WindowAttributesExtWebSys;
 use winit::window::Window;
 
-use super::live::{Job, Stamp};
 use super::App;
-use crate::gpu::targets::PendingFrame;
 use crate::gpu::web::page_error;
 use crate::gpu::Gpu;
 use crate::run::lesson::Lesson;
-use crate::scene::Scene;
 
 impl<L: Lesson> App<L> {
     pub(super) fn start(&mut self, el: &ActiveEventLoop) -> Result<()> {
@@ -76,13 +73,11 @@ pub const CANVAS_ID: &str = "workbook-canvas";
 /// that asks for them, taken by the first redraw after.
 pub(crate) type Opening = Rc<RefCell<Option<Result<(Gpu, wgpu::Surface<'static>)>>>>;
 
-/// The page's side of the window: its canvas, the device on its way, and
-/// the frame on its way back to the live reference.
+/// The page's side of the window: its canvas and the device on its way.
 pub struct Page {
     pub(crate) canvas: web_sys::HtmlCanvasElement,
     pub(crate) window: Option<std::sync::Arc<winit::window::Window>>,
     pub(crate) opened: Opening,
-    reading: Option<(PendingFrame, (Stamp, Scene, glam::Mat4))>,
     last_figure: String,
 }
 
@@ -92,40 +87,12 @@ impl Default for Page {
             canvas: canvas().expect("start checked the canvas"),
             window: None,
             opened: Default::default(),
-            reading: None,
             last_figure: String::new(),
         }
     }
 }
 
 impl Page {
-    /// Whether a frame is on its way back.
-    pub(crate) fn reading(&self) -> bool {
-        self.reading.is_some()
-    }
-
-    /// Starts reading a frame back for the live reference's next job.
-    pub(crate) fn start_read(&mut self, frame: PendingFrame, of: (Stamp, Scene, glam::Mat4)) {
-        self.reading = Some((frame, of));
-    }
-
-    /// The job, once its frame is back.
-    pub(crate) fn read_done(&mut self) -> Result<Option<Job>> {
-        let Some((pending, _)) = self.reading.as_mut() else {
-            return Ok(None);
-        };
-        let Some(frame) = pending.take() else {
-            return Ok(None);
-        };
-        let (_, (stamp, scene, view_proj)) = self.reading.take().expect("checked above");
-        Ok(Some(Job {
-            stamp,
-            scene,
-            view_proj,
-            frame: frame?,
-        }))
-    }
-
     /// The window's log line, on the canvas for the page's scripts; a new
     /// error figure also goes to the console.
     pub(crate) fn publish(&mut self, line: &serde_json::Value) {
