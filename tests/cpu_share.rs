@@ -237,13 +237,9 @@ cpu_share_test!(
 /// not.
 #[test]
 fn untimed_work_is_left_out_of_the_frame() {
-    use common::gpu::Gpu;
     use common::measure::timing::{Timer, CPU_TOTAL, FRAME};
-    let adapter = support::test_adapter();
-    let gpu = match Gpu::new(None, Some(&adapter), None) {
-        Ok(gpu) => gpu,
-        Err(e) if !support::gpu_required() => return eprintln!("SKIPPED: {e}"),
-        Err(e) => panic!("{e}"),
+    let Some(gpu) = support::test_gpu() else {
+        return;
     };
     let mut timer = Timer::new(&gpu);
     let mut frame = timer.frame(&gpu);

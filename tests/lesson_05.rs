@@ -228,7 +228,6 @@ fn lesson_05_compute_matches_cpu() {
 
 mod compute_triangles {
     use common::glam::Vec3;
-    use common::gpu::Gpu;
     use common::scene::mesh::builtin;
     use workbook::lesson_05::adjacency::Adjacency;
     use workbook::lesson_05::compute::{extrude_once, unavailable};
@@ -303,11 +302,8 @@ mod compute_triangles {
     /// and with a finite reach.
     #[test]
     fn compute_volume_equals_cpu_volume() {
-        let adapter = crate::support::test_adapter();
-        let gpu = match Gpu::new(None, Some(&adapter), None) {
-            Ok(gpu) => gpu,
-            Err(e) if !crate::support::gpu_required() => return eprintln!("SKIPPED: {e}"),
-            Err(e) => panic!("{e}"),
+        let Some(gpu) = crate::support::test_gpu() else {
+            return;
         };
         if let Some(why) = unavailable(&gpu) {
             panic!("{why}");

@@ -159,18 +159,14 @@ fn window_memory_is_flat_over_a_minute_of_motion() {
 #[test]
 fn compute_volumes_in_chunks_are_the_volumes_in_one() {
     use common::glam::Vec3;
-    use common::gpu::Gpu;
     use common::scene::mesh::builtin;
     use workbook::lesson_05::adjacency::Adjacency;
     use workbook::lesson_05::compute::{chunk_bytes, extrude_in_chunks, pack_adjacency};
     use workbook::lesson_05::extrusion::CpuVertex;
     use workbook::lesson_05::silhouette::{caster_adjacency, LightDir};
 
-    let adapter = support::test_adapter();
-    let gpu = match Gpu::new(None, Some(&adapter), None) {
-        Ok(gpu) => gpu,
-        Err(e) if !support::gpu_required() => return eprintln!("SKIPPED: {e}"),
-        Err(e) => panic!("{e}"),
+    let Some(gpu) = support::test_gpu() else {
+        return;
     };
     let multiset = |v: &[CpuVertex]| {
         let mut t: Vec<Vec<u32>> = (v.chunks_exact(3))

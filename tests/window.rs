@@ -10,6 +10,7 @@
 mod support;
 
 use std::path::Path;
+use std::time::Duration;
 
 use common::run::display::Display;
 use support::window::run_window;
@@ -263,4 +264,52 @@ fn a_knob_is_measured_live_like_a_variant() {
         (shown - at_4).abs() < 0.01 && (shown - named).abs() > 1.0,
         "the window shows false shadow {shown:.3} %; headless at 4 texels {at_4:.3} %, as named (0.25 texels) {named:.3} %"
     );
+}
+
+/// The live reference's readback, which the window never waits for
+/// (`PendingRead`, under `PendingFrame`), reads what the blocking one
+/// reads: a texture of odd width (its rows padded to 256 bytes) comes back
+/// row for row, and is not mapped until it is asked for and the device is
+/// polled. (The window's captures above check the frame it reads this way:
+/// their figures are the headless report's.)
+#[test]
+fn the_readback_without_waiting_reads_what_the_blocking_one_reads() {
+    use common::gpu::readback::{read_texture, PendingRead};
+    use common::gpu::targets::{render_texture, ID_FORMAT};
+
+    let Some(gpu) = support::test_gpu() else {
+        return;
+    };
+    // 37 × 5 ids, each texel its own.
+    let (w, h) = (37u32, 5u32);
+    let copy_dst = wgpu::TextureUsages::COPY_DST;
+    let tex = render_texture(&gpu, "odd width", w, h, ID_FORMAT, copy_dst);
+    let texels: Vec<u32> = (0..w * h).map(|i| i * 7 + 1).collect();
+    gpu.queue.write_texture(
+        tex.as_image_copy(),
+        bytemuck::cast_slice(&texels),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * w),
+            rows_per_image: Some(h),
+        },
+        tex.size(),
+    );
+    let pending = PendingRead::start(&gpu, &tex, 4);
+    assert!(!pending.mapped(), "mapped before it was asked for");
+    pending.map();
+    let mut polls = 0;
+    while !pending.mapped() {
+        assert!(polls < 1000, "not mapped after 1000 polls");
+        gpu.device.poll(wgpu::PollType::Poll).expect("poll");
+        std::thread::sleep(Duration::from_millis(2));
+        polls += 1;
+    }
+    let got = pending.take().expect("mapped").expect("read");
+    assert_eq!(
+        got,
+        bytemuck::cast_slice::<u32, u8>(&texels),
+        "the texels in order"
+    );
+    assert_eq!(got, read_texture(&gpu, &tex, 4).expect("blocking read"));
 }

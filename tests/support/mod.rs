@@ -38,6 +38,20 @@ pub fn test_adapter() -> String {
         .unwrap_or_else(|| "any".into())
 }
 
+/// A device on [`test_adapter`], for the tests that drive the GPU
+/// themselves; `None` (the test returns, having said `SKIPPED`) only where
+/// [`gpu_required`] allows it.
+pub fn test_gpu() -> Option<common::gpu::Gpu> {
+    match common::gpu::Gpu::new(None, Some(&test_adapter()), None) {
+        Ok(gpu) => Some(gpu),
+        Err(e) if !gpu_required() => {
+            eprintln!("SKIPPED: {e}");
+            None
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
 /// A lesson binary's command, on [`test_adapter`].
 pub fn lesson_command(bin: &str) -> Command {
     let mut c = Command::new(bin);
