@@ -76,10 +76,12 @@ pub fn read_texture(gpu: &Gpu, tex: &wgpu::Texture, bytes_per_pixel: u32) -> Res
 }
 
 /// A texture's copy on its way to the CPU, read without blocking: what a
-/// web page does, where nothing may wait for the GPU. [`PendingRead::start`]
-/// submits the copy, [`PendingRead::map`] asks for the mapping, and
-/// [`PendingRead::take`] gives the bytes once the browser has mapped them
-/// (poll it once a frame).
+/// web page must do, where nothing may wait for the GPU, and what the
+/// window does on the desktop too, so that its frames never wait for the
+/// live reference's readback. [`PendingRead::start`] submits the copy,
+/// [`PendingRead::map`] asks for the mapping, [`PendingRead::mapped`] says
+/// when it is done (the browser maps by itself; the desktop when the device
+/// is polled), and [`PendingRead::take`] gives the bytes.
 pub struct PendingRead {
     buf: wgpu::Buffer,
     row: u32,
@@ -133,8 +135,8 @@ impl PendingRead {
         self.padded as u64 * self.height as u64
     }
 
-    /// Asks for the mapping; the browser (or `Gpu::wait` on the desktop)
-    /// answers later.
+    /// Asks for the mapping; the browser (or a poll of the device, on the
+    /// desktop) answers later.
     pub fn map(&self) {
         let state = self.state.clone();
         self.buf
