@@ -5,7 +5,8 @@
 //!   a measured-looking number in a cell (a decimal, a percentage, a time)
 //!   that is not included from `book/src/generated/`. A table of derived,
 //!   not measured, numbers says so on the line above it:
-//!   `<!-- not measured: why -->`;
+//!   `<!-- not measured: why -->`. A view of a generated table
+//!   (`<!--view: ...-->`, checked by `tests/book_views.rs`) is generated;
 //! - a figure is shown without a visible caption: every image must be an
 //!   `<img>` inside a `<figure>` with a `<figcaption>` (mdBook shows the alt
 //!   text of `![alt](src)` only when the image fails to load);
@@ -66,8 +67,22 @@ fn hand_typed_measurements(markdown: &str) -> Vec<(usize, String)> {
     let mut found = Vec::new();
     let mut exempt = false;
     let mut previous = "";
+    let mut view = false;
     for (n, line) in &lines {
         let t = line.trim();
+        // A view of a generated table (`<!--view: ...-->` ... `<!--/view-->`,
+        // book/generate/views.rs) is the generator's, checked by
+        // tests/book_views.rs.
+        if t.starts_with("<!--view:") {
+            view = true;
+        }
+        if t.starts_with("<!--/view-->") || t.ends_with("<!--/view-->") {
+            view = false;
+        }
+        if view {
+            previous = line;
+            continue;
+        }
         if t.starts_with('|') {
             if !previous.trim().starts_with('|') {
                 // A table starts: exempt only if the line above says so.

@@ -211,10 +211,18 @@ fn unsourced(markdown: &str, known: &BTreeSet<String>) -> Vec<(usize, String)> {
     found
 }
 
-/// The numbers of every generated file `chapter` includes.
+/// The numbers of every generated file `chapter` includes, or shows a
+/// view of (`<!--view: SOURCE`, a path under `book/src/generated/`).
 fn generated_numbers(chapter: &Path, text: &str) -> BTreeSet<String> {
     let dir = chapter.parent().expect("chapter folder");
     let mut known = BTreeSet::new();
+    for piece in text.split("<!--view:").skip(1) {
+        let source = piece.split_whitespace().next().unwrap_or("");
+        let path = root().join("book/src/generated").join(source);
+        if let Ok(g) = fs::read_to_string(path) {
+            known.extend(numbers(&g).into_iter().map(|(d, _)| d));
+        }
+    }
     for piece in text.split("{{#include ").skip(1) {
         let Some(end) = piece.find("}}") else {
             continue;

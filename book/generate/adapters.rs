@@ -92,8 +92,8 @@ pub fn h100_table(records: &[Record], reports: &[Report]) -> String {
         else {
             continue;
         };
-        adapter = format!("{}, {}", rec.adapter, rec.backend);
-        theirs = format!("{}, {}", report.adapter.name, report.adapter.backend);
+        adapter = rec.adapter_label();
+        theirs = crate::record::adapter_label(&report.adapter.name, &report.adapter.backend);
         size = format!("{}×{}", report.width, report.height);
         let mut cells = vec![
             report.lesson["lesson_".len()..].to_string(),

@@ -65,8 +65,10 @@ fn variant<'a>(r: &'a Record, name: &str) -> Option<&'a VariantRecord> {
 fn caption(records: &[Record], what: &str) -> String {
     match records.first() {
         Some(r) => format!(
-            "*{}, {} · {}×{} · {what}*\n\n",
-            r.adapter, r.backend, r.width, r.height
+            "*{} · {}×{} · {what}*\n\n",
+            r.adapter_label(),
+            r.width,
+            r.height
         ),
         None => String::new(),
     }

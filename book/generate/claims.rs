@@ -234,10 +234,20 @@ pub fn lookup(generated: &Path, key: &str) -> Result<Measured> {
 /// One line for every claim under `root/book/src` that is false (or cannot
 /// be read) on the records under `generated`: `book/src/FILE:LINE: ...`.
 pub fn false_claims(root: &Path, generated: &Path) -> Result<Vec<String>> {
+    false_claims_in(root, generated, &prose::chapters(&root.join("book/src"))?)
+}
+
+/// [`false_claims`] of the pages named only.
+pub fn false_claims_in(
+    root: &Path,
+    generated: &Path,
+    pages: &[std::path::PathBuf],
+) -> Result<Vec<String>> {
     let mut errors = Vec::new();
-    for ch in prose::chapters(&root.join("book/src"))? {
-        let text = std::fs::read_to_string(&ch)?;
-        let name = ch.strip_prefix(root).unwrap_or(&ch).display().to_string();
+    for ch in pages {
+        let ch = ch.as_path();
+        let text = std::fs::read_to_string(ch)?;
+        let name = ch.strip_prefix(root).unwrap_or(ch).display().to_string();
         for (line, claim) in claims(&text) {
             match eval(&claim, &mut |k| lookup(generated, k)) {
                 Ok(o) if o.holds => {}

@@ -11,7 +11,7 @@ use crate::manifest::{Run, RUNS};
 use crate::record::Record;
 use crate::{
     adapters, choosing, claims, diagrams, gpu_costs, lesson09, lesson10, manifest, ports, prose,
-    scaling, sets, soft_diagrams, summary, table, taps, volume_diagrams, volumes_gpu, write,
+    scaling, sets, soft_diagrams, summary, table, taps, views, volume_diagrams, volumes_gpu, write,
 };
 
 /// Everything made from the committed records: the scenes' tables, the
@@ -46,6 +46,11 @@ pub(super) fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()
     for chapter in prose::write_chapters(&root.join("book/src"), generated)? {
         println!("figures in prose rewritten: {chapter}");
     }
+    for page in prose::chapters(&root.join("book/src"))? {
+        if fill_views(generated, &page)? {
+            println!("tables' views rewritten: {}", page.display());
+        }
+    }
     claims::check_book(root, generated)?;
     diagrams::write_all(root, &figures.join("diagrams"))?;
     volume_diagrams::write_all(root, &figures.join("diagrams"))?;
@@ -55,6 +60,35 @@ pub(super) fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()
     let text = summary::splice(&text, &summary::readme_block(&defaults))
         .with_context(|| format!("README.md has no line {}", summary::BEGIN))?;
     write(&readme, &text)
+}
+
+/// Writes the views of one page from the generated tables; whether it
+/// changed.
+fn fill_views(generated: &Path, page: &Path) -> Result<bool> {
+    let text = std::fs::read_to_string(page).with_context(|| format!("{}", page.display()))?;
+    if !text.contains(views::OPEN) {
+        return Ok(false);
+    }
+    let new = views::fill(&text, &mut |s| views::read_generated(generated, s))
+        .with_context(|| format!("{}", page.display()))?;
+    let changed = new != text;
+    if changed {
+        write(page, &new)?;
+    }
+    Ok(changed)
+}
+
+/// Fills one page's figures in prose and its tables' views (`workbook
+/// fill`); whether it changed.
+pub(super) fn fill_page(generated: &Path, page: &Path) -> Result<bool> {
+    let text = std::fs::read_to_string(page).with_context(|| format!("{}", page.display()))?;
+    let new = prose::fill(&text, &mut |k| prose::lookup(generated, k))
+        .with_context(|| format!("{}", page.display()))?;
+    let figures = new != text;
+    if figures {
+        write(page, &new)?;
+    }
+    Ok(fill_views(generated, page)? || figures)
 }
 
 /// A run's results table and, for a timed run, its passes table.

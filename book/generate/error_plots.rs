@@ -19,7 +19,7 @@ pub(super) fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
         let title = format!(
             "{}: error against time ({}, {}×{}, {} runs × {} frames)",
             r.lesson.replace('_', " "),
-            r.adapter,
+            r.adapter_label(),
             r.width,
             r.height,
             r.repeats,
@@ -39,7 +39,9 @@ pub(super) fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
     std::fs::create_dir_all(&dir)?;
     let title = format!(
         "Every lesson's variants: error against time ({}, {}×{}, {} runs × {} frames)",
-        defaults.first().map_or("", |r| r.adapter.as_str()),
+        defaults
+            .first()
+            .map_or(String::new(), |r| r.adapter_label()),
         manifest::WIDTH,
         manifest::HEIGHT,
         manifest::REPEATS,

@@ -44,8 +44,11 @@ const VARIANTS: &str = "lesson 09's variant, each spending about 2048² shadow-m
 
 fn caption(r: &Record, what: &str) -> String {
     format!(
-        "*{}, {} · {}×{} · the default scene (`scenes/{}.toml`) · {what}*\n\n",
-        r.adapter, r.backend, r.width, r.height, r.lesson
+        "*{} · {}×{} · the default scene (`scenes/{}.toml`) · {what}*\n\n",
+        r.adapter_label(),
+        r.width,
+        r.height,
+        r.lesson
     )
 }
 
@@ -221,7 +224,9 @@ fn shimmer_plot(path: &Path, r: &Record) -> Result<()> {
     }
     let title = format!(
         "Lesson 09: shimmer over the camera path ({}, {}×{})",
-        r.adapter, r.width, r.height
+        r.adapter_label(),
+        r.width,
+        r.height
     );
     plots::bars(
         path,
@@ -259,7 +264,9 @@ fn aliasing_plot(path: &Path, r: &Record) -> Result<()> {
     }
     let title = format!(
         "Lesson 09: texels per 100 m on the ground against view distance ({}, {}×{})",
-        r.adapter, r.width, r.height
+        r.adapter_label(),
+        r.width,
+        r.height
     );
     plots::scaling_plot(
         path,

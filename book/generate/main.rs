@@ -47,6 +47,7 @@ mod stability;
 mod summary;
 mod table;
 mod taps;
+mod views;
 mod volume_diagrams;
 mod volumes_gpu;
 mod web;
@@ -101,6 +102,17 @@ enum Command {
     /// Rewrite the tables, plots and README block that are made from the
     /// committed records, without running a lesson.
     Tables,
+    /// Fill the measured figures (`<!--fig:...-->`) and the tables' views
+    /// (`<!--view:...-->`) of the pages named, from the committed records
+    /// and tables, and check their claims; nothing else is written.
+    Fill {
+        /// Pages under `book/src/` (`book/src/lesson_03.md`).
+        #[arg(required = true)]
+        pages: Vec<PathBuf>,
+    },
+    /// Draw the book's diagrams again (`book/src/figures/diagrams/`), from
+    /// the geometry they show; nothing else is written.
+    Diagrams,
     /// Compare the times of two generated folders (two runs of `book`):
     /// how many medians of B lie inside A's stated spread.
     Compare {
@@ -168,6 +180,32 @@ fn run(cli: Cli) -> Result<()> {
                 &root.join("book/src/figures"),
             )?;
             println!("tables, plots and the README block rewritten from the records");
+            return Ok(());
+        }
+        Command::Fill { pages } => {
+            let root = root();
+            let generated = root.join("book/src/generated");
+            for page in &pages {
+                if derive::fill_page(&generated, page)? {
+                    println!("filled: {}", page.display());
+                }
+            }
+            let errors = claims::false_claims_in(&root, &generated, &pages)?;
+            if !errors.is_empty() {
+                bail!(
+                    "a sentence says what the records do not:\n{}",
+                    errors.join("\n")
+                );
+            }
+            return Ok(());
+        }
+        Command::Diagrams => {
+            let root = root();
+            let dir = root.join("book/src/figures/diagrams");
+            diagrams::write_all(&root, &dir)?;
+            volume_diagrams::write_all(&root, &dir)?;
+            soft_diagrams::write_all(&root, &dir)?;
+            println!("diagrams written to {}", dir.display());
             return Ok(());
         }
         Command::Compare { a, b, write } => {

@@ -218,7 +218,25 @@ pub fn timing_source(report: &common::measure::report::Report) -> String {
     }
 }
 
+/// An adapter as the book names it, with its backend. Mesa's two CPU
+/// rasterisers both report themselves as `llvmpipe (LLVM …)`: on Vulkan
+/// it is lavapipe, on GL llvmpipe. The book says lavapipe for the first
+/// and gives the name it reports beside it, so that a reader who sees
+/// `llvmpipe` in a report knows which one it was.
+pub fn adapter_label(adapter: &str, backend: &str) -> String {
+    if adapter.starts_with("llvmpipe") && backend == "Vulkan" {
+        format!("lavapipe, Vulkan (it reports itself as {adapter})")
+    } else {
+        format!("{adapter}, {backend}")
+    }
+}
+
 impl Record {
+    /// The adapter and backend, as the book names them: [`adapter_label`].
+    pub fn adapter_label(&self) -> String {
+        adapter_label(&self.adapter, &self.backend)
+    }
+
     /// `lesson_05/results`: the manifest's run id.
     pub fn id(&self) -> String {
         format!("{}/{}", self.lesson, self.run)
@@ -244,6 +262,22 @@ impl VariantRecord {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn lavapipe_is_named_with_what_it_reports() {
+        assert_eq!(
+            super::adapter_label("llvmpipe (LLVM 15.0.6, 256 bits)", "Vulkan"),
+            "lavapipe, Vulkan (it reports itself as llvmpipe (LLVM 15.0.6, 256 bits))"
+        );
+        assert_eq!(
+            super::adapter_label("llvmpipe (LLVM 15.0.6, 256 bits)", "Gl"),
+            "llvmpipe (LLVM 15.0.6, 256 bits), Gl"
+        );
+        assert_eq!(
+            super::adapter_label("NVIDIA H200", "Vulkan"),
+            "NVIDIA H200, Vulkan"
+        );
+    }
+
     use super::*;
 
     #[test]

@@ -139,7 +139,7 @@ pub fn set_dir(generated: &Path, adapter: &str, backend: &str) -> PathBuf {
 /// A set's heading: its adapter and the commit it ran.
 fn heading(name: &str, records: &[Record]) -> String {
     let who = records.first().map_or(name.to_string(), |r| {
-        format!("{} ({})", r.adapter, r.backend)
+        r.adapter_label()
     });
     match origin(name) {
         Some(o) => format!(

@@ -139,8 +139,12 @@ pub fn compare(a: &Path, b: &Path, write: Option<&Path>) -> Result<()> {
 fn table(a: &[Record], cells: &[Cell]) -> Result<String> {
     let first = a.iter().find(|r| r.frames > 0).context("no timed record")?;
     let mut s = format!(
-        "*{}, {} · {}×{} · two runs of `workbook book`, each {} processes × {} frames a variant, compared by `workbook compare`*\n\n",
-        first.adapter, first.backend, first.width, first.height, first.repeats, first.frames
+        "*{} · {}×{} · two runs of `workbook book`, each {} processes × {} frames a variant, compared by `workbook compare`*\n\n",
+        first.adapter_label(),
+        first.width,
+        first.height,
+        first.repeats,
+        first.frames
     );
     let head = [
         "time".to_string(),

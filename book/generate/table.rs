@@ -72,8 +72,12 @@ impl Record {
             )
         };
         format!(
-            "*{}, {} · {}×{} · {} · {}*",
-            self.adapter, self.backend, self.width, self.height, scene, timing
+            "*{} · {}×{} · {} · {}*",
+            self.adapter_label(),
+            self.width,
+            self.height,
+            scene,
+            timing
         )
     }
 
@@ -353,9 +357,8 @@ pub fn scenes_table(records: &[&Record], cell: Cell) -> Result<String> {
         }
     }
     let mut s = format!(
-        "*{}, {} · {}×{} · {}*\n\n",
-        first.adapter,
-        first.backend,
+        "*{} · {}×{} · {}*\n\n",
+        first.adapter_label(),
         first.width,
         first.height,
         cell.caption()

@@ -219,7 +219,7 @@ pub fn table(lesson: &str, main: &[Record], sets: &[(String, Vec<Record>)]) -> S
     let name_of = |records: &[Record]| {
         records.iter().find(|r| r.lesson == lesson).map_or_else(
             || "?".to_string(),
-            |r| format!("{} ({})", r.adapter, r.backend),
+            |r| r.adapter_label(),
         )
     };
     if let Some(p) = part(lesson, main, &format!("**{}**", name_of(main)), None) {

@@ -40,8 +40,10 @@ pub fn table(root: &Path) -> Result<String> {
             .with_context(|| format!("{}: not a report", path.display()))?;
         if !head_done {
             s += &format!(
-                "*{}, {} · {}×{} · measured elsewhere with the protocol of commit `631f993` (2 warm-up frames; median of the frames of one process): `{DIR}/README.md` gives the commands · GPU ms from timestamps, CPU ms from the CPU's clock*\n\n",
-                r.adapter.name, r.adapter.backend, r.width, r.height
+                "*{} · {}×{} · measured elsewhere with the protocol of commit `631f993` (2 warm-up frames; median of the frames of one process): `{DIR}/README.md` gives the commands · GPU ms from timestamps, CPU ms from the CPU's clock*\n\n",
+                crate::record::adapter_label(&r.adapter.name, &r.adapter.backend),
+                r.width,
+                r.height
             );
             s += &header(&HEAD.map(String::from));
             head_done = true;

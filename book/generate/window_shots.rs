@@ -109,7 +109,14 @@ pub fn write_all(
 
 /// The chapter's caption, from the window's log.
 fn caption(shot: &Shot, last: &serde_json::Value) -> Result<String> {
-    let adapter = last["adapter"].as_str().context("the log's adapter")?;
+    let logged = last["adapter"].as_str().context("the log's adapter")?;
+    // The log names it `NAME (Backend)`: the book names it as its tables do.
+    let adapter = match logged.rsplit_once(" (") {
+        Some((name, backend)) if backend.ends_with(')') => {
+            crate::record::adapter_label(name, backend.trim_end_matches(')'))
+        }
+        _ => logged.to_string(),
+    };
     let e = &last["error"];
     let pct = |k: &str| e[k].as_f64().context("the log's error figure");
     if last["error_current"] != true || e["level"] != "full" {
