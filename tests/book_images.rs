@@ -5,7 +5,11 @@
 //! - every error figure of `book/src/generated/figures.json` whose errors
 //!   are sparse (under `SPARSE_PCT` % of its covered pixels: a few pixels
 //!   that do not show at page size) gives its count of error pixels in its
-//!   caption, and every diff or ΔV figure a chapter shows has its count.
+//!   caption, and every diff or ΔV figure a chapter shows has its count;
+//! - a diff whose errors are not sparse but one class of them is (a few
+//!   green pixels among many red: `figures::Count::marked`) gives that
+//!   class's count in its caption, since the figure draws them as dots;
+//! - a diff marks the pixels of each sparse class, and only those.
 //!
 //! The ignored test `prepare_committed_figures` is the one-off that made
 //! the committed figures from the raw copies the lessons wrote (`git show
@@ -17,7 +21,14 @@
 //! ```
 //!
 //! It reads that commit's raw figures, never HEAD's prepared ones, so it
-//! writes the same files however often it runs.
+//! writes the same files however often it runs. `BOOK_FIGURES` (paths
+//! under `figures/`, comma-separated) limits it to those figures, for
+//! remaking a few after a change to the preparation step:
+//!
+//! ```text
+//! BOOK_FIGURES=lesson_01/res_256_diff_l0.png,lesson_01/res_4096_diff_l0.png \
+//!   cargo test --release --features solutions,chapter_copies --test book_images -- --ignored prepare_committed_figures
+//! ```
 
 #[path = "../book/generate/figures.rs"]
 #[allow(dead_code)]
@@ -209,6 +220,21 @@ fn sparse_error_figures_give_their_count() {
                 figures::SPARSE_PCT
             ));
         }
+        // One class sparse, the other not: the figure dots that class.
+        let (shadow, lit) = c.marked();
+        for (marked, n, class) in [
+            (shadow, c.darker, "false shadow (red)"),
+            (lit, c.lighter, "false lit (green)"),
+        ] {
+            if marked && !sparse && !gives_count(caption, n) {
+                bad.push(format!(
+                    "{chapter}: {dest} has {n} {class} pixels of {} covered (under {} %), \
+                     drawn as dots, and its caption does not give their count",
+                    c.covered_pixels,
+                    figures::SPARSE_PCT
+                ));
+            }
+        }
     }
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
@@ -225,6 +251,61 @@ fn counts_are_read_from_captions() {
     // A figure's number is not a count of pixels.
     assert!(!gives_count("Figure 6.2: the errors are gone", 2));
     assert!(!gives_count("Figure 10.3: where pcss is wrong", 3));
+}
+
+/// A raw diff of `w`×`h`, every pixel covered: `red` false-shadow pixels
+/// in the first rows, then one false-lit pixel at `green`, the rest agreeing.
+fn raw_diff(w: u32, h: u32, red: u32, green: (u32, u32)) -> Vec<u8> {
+    use common::reference::metrics::{FALSE_LIT, FALSE_SHADOW};
+    let img = image::RgbaImage::from_fn(w, h, |x, y| {
+        if (x, y) == green {
+            FALSE_LIT
+        } else if y * w + x < red {
+            FALSE_SHADOW
+        } else {
+            image::Rgba([128, 128, 128, 255])
+        }
+    });
+    let mut png = Vec::new();
+    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    png
+}
+
+#[test]
+fn a_sparse_class_is_marked_beside_a_dense_one() {
+    use common::reference::metrics::FALSE_LIT;
+    let (w, h) = (100, 100);
+    let green = (50, 80);
+    let green_dots = |png: &[u8]| {
+        let img = image::load_from_memory(png).unwrap().to_rgb8();
+        img.pixels()
+            .filter(|p| p.0 == [FALSE_LIT.0[0], FALSE_LIT.0[1], FALSE_LIT.0[2]])
+            .count()
+    };
+    // Half the pixels red, one green: the red is left as it is, the green dotted.
+    let p = figures::prepare("t/x_diff.png", &raw_diff(w, h, w * h / 2, green)).unwrap();
+    let c = p.count.unwrap();
+    assert_eq!(
+        (c.darker, c.lighter, c.sparse),
+        (w as u64 * h as u64 / 2, 1, false)
+    );
+    assert_eq!(c.marked(), (false, true));
+    let r = figures::MARK_RADIUS as usize;
+    assert!(green_dots(&p.png) > r * r, "the green pixel is a dot");
+    let img = image::load_from_memory(&p.png).unwrap().to_rgb8();
+    let reds = img.pixels().filter(|q| q.0 == [255, 0, 0]).count();
+    assert_eq!(reds as u32, w * h / 2, "the dense red is not dotted");
+    // Few red and the green: the whole figure is sparse, both are dotted.
+    let p = figures::prepare("t/x_diff.png", &raw_diff(w, h, 3, green)).unwrap();
+    assert_eq!(p.count.as_ref().unwrap().marked(), (true, true));
+    assert!(green_dots(&p.png) > r * r);
+    // A ΔV figure marks nothing.
+    let dv = figures::Count {
+        kind: "dv".into(),
+        ..p.count.unwrap()
+    };
+    assert_eq!(dv.marked(), (false, false));
 }
 
 /// The last commit whose book figures were the lessons' raw copies.
@@ -260,6 +341,15 @@ fn prepare_committed_figures() {
     );
     dests.sort();
     dests.dedup();
+    if let Ok(only) = std::env::var("BOOK_FIGURES") {
+        let only: Vec<&str> = only.split(',').map(str::trim).collect();
+        dests.retain(|d| only.contains(&d.as_str()));
+        assert_eq!(
+            dests.len(),
+            only.len(),
+            "BOOK_FIGURES names a figure it cannot find"
+        );
+    }
     for dest in dests {
         let head = std::process::Command::new("git")
             .args(["show", &format!("{RAW_COMMIT}:book/src/figures/{dest}")])

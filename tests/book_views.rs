@@ -8,6 +8,9 @@
 //!
 //! Pure std and the generator's own module; no GPU.
 
+#[path = "../book/generate/legend.rs"]
+#[allow(dead_code)]
+mod legend;
 #[path = "../book/generate/prose.rs"]
 #[allow(dead_code)]
 mod prose;
@@ -17,9 +20,6 @@ mod record;
 #[path = "../book/generate/table.rs"]
 #[allow(dead_code)]
 mod table;
-#[path = "../book/generate/legend.rs"]
-#[allow(dead_code)]
-mod legend;
 #[path = "../book/generate/views.rs"]
 #[allow(dead_code)]
 mod views;
@@ -41,7 +41,11 @@ fn every_view_is_what_its_source_makes() {
     let mut count = 0;
     for page in prose::chapters(&src).expect("book/src") {
         let text = fs::read_to_string(&page).expect("a page");
-        let name = page.strip_prefix(root()).unwrap_or(&page).display().to_string();
+        let name = page
+            .strip_prefix(root())
+            .unwrap_or(&page)
+            .display()
+            .to_string();
         match views::fill(&text, &mut |s| views::read_generated(&generated, s)) {
             Ok(filled) if filled == text => {}
             Ok(filled) => {
@@ -58,7 +62,10 @@ fn every_view_is_what_its_source_makes() {
         }
         count += views::views(&text).map_or(0, |v| v.len());
     }
-    assert!(count > 0, "no page has a view: the check found nothing to check");
+    assert!(
+        count > 0,
+        "no page has a view: the check found nothing to check"
+    );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

@@ -67,10 +67,42 @@ const ACCENTS: &[&str] = &[
     "widetilde",
 ];
 const GREEK: &[&str] = &[
-    "alpha", "beta", "gamma", "Gamma", "delta", "Delta", "epsilon", "varepsilon", "zeta", "eta",
-    "theta", "Theta", "vartheta", "iota", "kappa", "lambda", "Lambda", "mu", "nu", "xi", "Xi",
-    "rho", "varrho", "sigma", "Sigma", "tau", "upsilon", "phi", "Phi", "varphi", "chi", "psi",
-    "Psi", "omega", "Omega", "ell",
+    "alpha",
+    "beta",
+    "gamma",
+    "Gamma",
+    "delta",
+    "Delta",
+    "epsilon",
+    "varepsilon",
+    "zeta",
+    "eta",
+    "theta",
+    "Theta",
+    "vartheta",
+    "iota",
+    "kappa",
+    "lambda",
+    "Lambda",
+    "mu",
+    "nu",
+    "xi",
+    "Xi",
+    "rho",
+    "varrho",
+    "sigma",
+    "Sigma",
+    "tau",
+    "upsilon",
+    "phi",
+    "Phi",
+    "varphi",
+    "chi",
+    "psi",
+    "Psi",
+    "omega",
+    "Omega",
+    "ell",
 ];
 /// Commands whose braced argument is text or a name, not math.
 const TEXT_ARG: &[&str] = &[
@@ -291,19 +323,30 @@ fn symbols(math: &str) -> Vec<Symbol> {
     out
 }
 
+/// The blanks that stand for `c`: as many bytes, so that an offset into
+/// the blanked text is the same offset into the page (the notation list's
+/// place is found in the page itself).
+fn blank(c: char) -> String {
+    if c == '\n' {
+        "\n".into()
+    } else {
+        " ".repeat(c.len_utf8())
+    }
+}
+
 /// `text` with code blocks, inline code and HTML comments blanked (line
-/// breaks kept), so that `$` inside them is not math.
+/// breaks and byte offsets kept), so that `$` inside them is not math.
 fn blank_code(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     let mut fenced = false;
     for line in text.split_inclusive('\n') {
         if line.trim_start().starts_with("```") {
             fenced = !fenced;
-            out.push('\n');
+            out.extend(line.chars().map(blank));
             continue;
         }
         if fenced {
-            out.push('\n');
+            out.extend(line.chars().map(blank));
             continue;
         }
         let mut in_code = false;
@@ -311,8 +354,8 @@ fn blank_code(text: &str) -> String {
             if c == '`' {
                 in_code = !in_code;
                 out.push(' ');
-            } else if in_code && c != '\n' {
-                out.push(' ');
+            } else if in_code {
+                out.push_str(&blank(c));
             } else {
                 out.push(c);
             }
@@ -324,10 +367,11 @@ fn blank_code(text: &str) -> String {
     while let Some(a) = rest.find("<!--") {
         let b = rest[a..].find("-->").map_or(rest.len(), |b| a + b + 3);
         s.push_str(&rest[..a]);
-        s.extend(rest[a..b].chars().map(|c| if c == '\n' { '\n' } else { ' ' }));
+        s.extend(rest[a..b].chars().map(blank));
         rest = &rest[b..];
     }
     s.push_str(rest);
+    debug_assert_eq!(s.len(), text.len());
     s
 }
 
@@ -443,8 +487,7 @@ fn covers(listed: &Symbol, used: &Symbol) -> bool {
     match (&listed.sub, &used.sub) {
         (None, Some(s)) => ["x", "y", "z", "w"].contains(&s.as_str()),
         (Some(index), Some(s)) if ["i", "j", "k", "n"].contains(&index.as_str()) => {
-            s.chars().all(|c| c.is_ascii_digit())
-                || (s.contains(index.as_str()) && s.len() > 1)
+            s.chars().all(|c| c.is_ascii_digit()) || (s.contains(index.as_str()) && s.len() > 1)
         }
         _ => false,
     }
@@ -474,13 +517,19 @@ fn problems(text: &str, lesson: bool) -> Vec<String> {
         }
         for s in syms {
             if let Some((_, first)) = listed.insert(s.key(), (s.clone(), *line)) {
-                out.push(format!("line {line}: ${}$ listed twice (first on line {first})", s.key()));
+                out.push(format!(
+                    "line {line}: ${}$ listed twice (first on line {first})",
+                    s.key()
+                ));
             }
         }
     }
     let mut by_letter: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     for (k, (s, _)) in &listed {
-        by_letter.entry(s.without_accents()).or_default().insert(k.clone());
+        by_letter
+            .entry(s.without_accents())
+            .or_default()
+            .insert(k.clone());
     }
     for (letter, keys) in &by_letter {
         if keys.len() > 1 {
@@ -505,10 +554,15 @@ fn problems(text: &str, lesson: bool) -> Vec<String> {
         }
         if lesson && *at < list.start {
             let line = text[..*at].lines().count();
-            out.push(format!("line {line}: ${math}$ comes before the notation list"));
+            out.push(format!(
+                "line {line}: ${math}$ comes before the notation list"
+            ));
         }
         for s in symbols(math) {
-            match listed.values().find(|(l, _)| covers(l, &s)) {
+            // The symbol itself first (`$z_w$` listed beside `$z$`), then
+            // what covers it.
+            let exact = listed.get(&s.key());
+            match exact.or_else(|| listed.values().find(|(l, _)| covers(l, &s))) {
                 Some((l, _)) => {
                     used.insert(l.key());
                 }
@@ -535,33 +589,86 @@ fn keys(math: &str) -> Vec<String> {
 
 #[test]
 fn the_reader_finds_symbols_and_not_words() {
-    assert_eq!(keys(r"d_r \le d_{\text{map}}(u, v)"), ["d_r", "d_map", "u", "v"]);
+    assert_eq!(
+        keys(r"d_r \le d_{\text{map}}(u, v)"),
+        ["d_r", "d_map", "u", "v"]
+    );
     assert_eq!(keys(r"\hat f = \hat d"), ["\\hat f", "\\hat d"]);
     assert_eq!(keys(r"\lvert \hat{d}_y \rvert > 0.99"), ["\\hat d_y"]);
-    assert_eq!(keys(r"\tan\theta \cdot \operatorname{normalize}(x)"), ["theta", "x"]);
-    assert_eq!(keys(r"w_\text{penumbra} = R\,\frac{d_r - d_b}{d_r}"), ["w_penumbra", "R", "d_r", "d_b", "d_r"]);
-    assert_eq!(keys(r"M^T x^2 e^{-\lambda t}"), ["M", "x", "e", "lambda", "t"]);
-    assert_eq!(keys(r"\hat{\mathbf n}' z_{i+1}"), ["\\hat \\mathbf n'", "z_i+1"]);
-    assert_eq!(keys(r"\def\arraystretch{1.6}\begin{pmatrix} a \end{pmatrix}"), ["a"]);
+    assert_eq!(
+        keys(r"\tan\theta \cdot \operatorname{normalize}(x)"),
+        ["theta", "x"]
+    );
+    assert_eq!(
+        keys(r"w_\text{penumbra} = R\,\frac{d_r - d_b}{d_r}"),
+        ["w_penumbra", "R", "d_r", "d_b", "d_r"]
+    );
+    assert_eq!(
+        keys(r"M^T x^2 e^{-\lambda t}"),
+        ["M", "x", "e", "lambda", "t"]
+    );
+    assert_eq!(
+        keys(r"\hat{\mathbf n}' z_{i+1}"),
+        ["\\hat \\mathbf n'", "z_i+1"]
+    );
+    assert_eq!(
+        keys(r"\def\arraystretch{1.6}\begin{pmatrix} a \end{pmatrix}"),
+        ["a"]
+    );
 }
 
 #[test]
 fn the_checker_finds_what_is_wrong() {
     let good = "Intro.\n\n**Notation.**\n\n- $f$: the far distance (m)\n- $z_i$: a split (m)\n\nThen $f > z_0 + z_{i+1}$.\n";
-    assert!(problems(good, true).is_empty(), "{:?}", problems(good, true));
+    assert!(
+        problems(good, true).is_empty(),
+        "{:?}",
+        problems(good, true)
+    );
     let missing = good.replace("Then $f", "Then $g + f");
     assert!(problems(&missing, true)[0].contains("$g$ is used"));
     let twice = good.replace("- $z_i$", "- $f$: again (m)\n- $z_i$");
-    assert!(problems(&twice, true).iter().any(|p| p.contains("listed twice")));
-    let accent = good.replace("- $z_i$", "- $\\hat f$: forward (unit vector)\n- $z_i$") + "And $\\hat f$.\n";
-    assert!(problems(&accent, true).iter().any(|p| p.contains("one letter")));
+    assert!(problems(&twice, true)
+        .iter()
+        .any(|p| p.contains("listed twice")));
+    let accent =
+        good.replace("- $z_i$", "- $\\hat f$: forward (unit vector)\n- $z_i$") + "And $\\hat f$.\n";
+    assert!(problems(&accent, true)
+        .iter()
+        .any(|p| p.contains("one letter")));
+    // A listed symbol is matched before a listed base that covers it.
+    let component = good.replace(
+        "- $z_i$",
+        "- $z$: depth (m)\n- $z_w$: window depth (m)\n- $z_i$",
+    ) + "And $z + z_w$.\n";
+    assert!(
+        problems(&component, true).is_empty(),
+        "{:?}",
+        problems(&component, true)
+    );
     let unused = good.replace("- $z_i$", "- $q$: nothing (m)\n- $z_i$");
-    assert!(problems(&unused, true).iter().any(|p| p.contains("never used")));
+    assert!(problems(&unused, true)
+        .iter()
+        .any(|p| p.contains("never used")));
     let no_unit = good.replace("the far distance (m)", "the far distance");
     assert!(problems(&no_unit, true).iter().any(|p| p.contains("unit")));
+    // Code before the list (fenced, inline, with wide characters) keeps the
+    // list's place: its entries are names, not uses before it.
+    let coded = format!(
+        "```rust\nlet x = 1; // \u{2212}\u{00d7}\n```\n`\u{2212}` <!-- \u{00d7} -->\n{good}"
+    );
+    assert!(
+        problems(&coded, true).is_empty(),
+        "{:?}",
+        problems(&coded, true)
+    );
     let early = format!("Before $f$.\n{good}");
-    assert!(problems(&early, true).iter().any(|p| p.contains("before the notation")));
-    assert!(problems(&early, false).iter().all(|p| !p.contains("before the notation")));
+    assert!(problems(&early, true)
+        .iter()
+        .any(|p| p.contains("before the notation")));
+    assert!(problems(&early, false)
+        .iter()
+        .all(|p| !p.contains("before the notation")));
     assert!(problems("No math here, `$HOME` is code.\n", true).is_empty());
     assert!(problems("Math $x$ but no list.\n", true)[0].contains("no notation list"));
 }

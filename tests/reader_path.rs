@@ -180,7 +180,10 @@ fn includes_expand_two_levels_and_stop() {
     fs::write(dir.join("c.md"), "gamma\n").unwrap();
     let got = expand("top\n{{#include a.md}}\n", &dir, 2);
     assert!(got.contains("alpha") && got.contains("beta"), "{got}");
-    assert!(got.contains("{{#include c.md}}") && !got.contains("gamma"), "{got}");
+    assert!(
+        got.contains("{{#include c.md}}") && !got.contains("gamma"),
+        "{got}"
+    );
     let _ = fs::remove_dir_all(&dir);
 }
 

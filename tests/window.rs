@@ -189,14 +189,14 @@ fn window_flags_without_a_window_are_refused() {
     assert!(!Path::new(&bad).exists());
 }
 
-/// The window is documented in one place: the introduction's key table
-/// and the README's are the overlay's own list (`overlay::KEYS`), row for
+/// The window is documented in one place: the key table of the book's
+/// "Using the workbook" and the README's are the overlay's own list (`overlay::KEYS`), row for
 /// row, so that a key added to the window and not to the book fails here.
 #[test]
 fn the_book_and_the_readme_list_the_windows_keys() {
     use common::run::window::overlay::KEYS;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    for file in ["book/src/introduction.md", "README.md"] {
+    for file in ["book/src/using.md", "README.md"] {
         let text = std::fs::read_to_string(root.join(file)).expect("read");
         let start = text
             .find("| key | what it does |")

@@ -5,8 +5,12 @@
 //! 10's in `soft_diagrams.rs`.
 //!
 //! One file a diagram under `diagrams/`, and what they share:
-//! - [`shadow_map_idea`] (chapter 01), [`acne`] (02), [`cube_faces`] (04),
-//!   [`zpass_zfail`] (05 and 06), [`range_sphere`] (08).
+//! - [`shadow_map_idea`] (the introduction's Figure 0.1), [`acne`] (02),
+//!   [`cube_faces`] (04), [`zpass_zfail`] (05 and 06), [`range_sphere`]
+//!   (08). Each file's tests read the drawn SVG back and check its central
+//!   geometric fact against a computation of their own (ray casting,
+//!   an emulated map, marching a ray, the cube-map rule, a sampled sphere),
+//!   not the drawing's helpers.
 //! - [`svg`]: the SVG canvas they are drawn on.
 //! - [`crossings`]: a view ray's count through a 2D shadow volume.
 

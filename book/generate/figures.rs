@@ -4,16 +4,20 @@
 //! - Every image with a transparent pixel is composited onto
 //!   [`dv_view::background`], a pale blue checker: "no geometry" reads
 //!   neither as lit (white) nor as shadow (black, gray).
-//! - A diff image (`*_diff*.png`: red false shadow, green false lit) whose
-//!   error pixels are fewer than [`SPARSE_PCT`] % of its covered pixels
-//!   gets each error pixel drawn as a dot of radius [`MARK_RADIUS`], so
-//!   that a few scattered errors show at page size.
+//! - A diff image (`*_diff*.png`: red false shadow, green false lit) gets
+//!   each pixel of a sparse class drawn as a dot of radius [`MARK_RADIUS`],
+//!   so that a few scattered errors show at page size. A class is sparse
+//!   when its pixels are fewer than [`SPARSE_PCT`] % of the covered pixels
+//!   ([`Count::marked`]): both classes when all the errors are sparse, and
+//!   one class on its own when the other is not (25 green pixels among
+//!   50 000 red ones, lesson 01's Figure 1.3).
 //! - A ΔV image (`*_dv*.png`, [`dv_view`]) gets its colour key below it:
 //!   ΔV from −1 (left) to +1 (right), a tick every 0.25.
 //!
 //! The counts (on the raw image, before any dot is drawn) go to
 //! `generated/figures.json` ([`Count`]); `tests/book_images.rs` checks that
-//! the caption of every sparse error figure gives its count.
+//! the caption of every sparse error figure gives its count, and that of a
+//! diff with one sparse class the count of that class.
 //!
 //! The committed figures were made from the raw copies (`git show
 //! 49310ab:<figure>`, before this step existed) by the ignored test
@@ -64,9 +68,27 @@ impl Count {
             darker,
             lighter,
             covered_pixels: covered,
-            sparse: (error_pixels as f64) < SPARSE_PCT / 100.0 * covered as f64,
+            sparse: few(error_pixels, covered),
         }
     }
+
+    /// Which classes of a diff have their pixels drawn as dots: (false
+    /// shadow, false lit), each when it has pixels and they are fewer than
+    /// [`SPARSE_PCT`] % of the covered ones. Both when the whole figure is
+    /// [`Count::sparse`]; one alone when only that class is few. A ΔV
+    /// figure marks none.
+    pub fn marked(&self) -> (bool, bool) {
+        if self.kind != "diff" {
+            return (false, false);
+        }
+        let marks = |n: u64| n > 0 && few(n, self.covered_pixels);
+        (marks(self.darker), marks(self.lighter))
+    }
+}
+
+/// Whether `n` pixels are under [`SPARSE_PCT`] % of `covered`.
+pub fn few(n: u64, covered: u64) -> bool {
+    (n as f64) < SPARSE_PCT / 100.0 * covered as f64
 }
 
 /// One figure made ready: the PNG to write, and the count of an error figure.
@@ -96,9 +118,12 @@ pub fn prepare(dest: &str, raw: &[u8]) -> Result<Prepared> {
     let (mut out, count) = (composite(&rgba), None);
     let count = if is_diff {
         let c = diff_count(&rgba);
-        if c.sparse {
-            mark_errors(&rgba, &mut out);
-        }
+        let (shadow, lit) = c.marked();
+        let classes: Vec<Rgba<u8>> = [(shadow, FALSE_SHADOW), (lit, FALSE_LIT)]
+            .into_iter()
+            .filter_map(|(m, class)| m.then_some(class))
+            .collect();
+        mark_errors(&rgba, &mut out, &classes);
         Some(c)
     } else if is_dv {
         let c = dv_count(&rgba);
@@ -148,12 +173,13 @@ fn dv_count(img: &RgbaImage) -> Count {
     Count::new("dv", darker, lighter, covered)
 }
 
-/// Draws each error pixel of `raw` as a dot of its colour on `out`.
-fn mark_errors(raw: &RgbaImage, out: &mut RgbImage) {
+/// Draws each pixel of `raw` whose colour is one of `classes` as a dot of
+/// its colour on `out`.
+fn mark_errors(raw: &RgbaImage, out: &mut RgbImage, classes: &[Rgba<u8>]) {
     let (w, h) = (raw.width() as i32, raw.height() as i32);
     let r = MARK_RADIUS;
     for (x, y, &p) in raw.enumerate_pixels() {
-        if p != FALSE_SHADOW && p != FALSE_LIT {
+        if !classes.contains(&p) {
             continue;
         }
         let c = Rgb([p.0[0], p.0[1], p.0[2]]);

@@ -119,7 +119,7 @@ enum Command {
         /// A `book/src/generated` folder (or a copy of one).
         a: PathBuf,
         b: PathBuf,
-        /// Also write the introduction's table of the comparison
+        /// Also write the table of the comparison that "Using the workbook" includes
         /// (`book/src/generated/protocol/repeatability.md`).
         #[arg(long)]
         write: bool,

@@ -8,7 +8,7 @@
 /// The book's resolution: every run, every table, every figure.
 pub const WIDTH: u32 = 640;
 pub const HEIGHT: u32 = 360;
-/// The timing protocol (documented once, in the introduction): each timed
+/// The timing protocol (documented once, in the book's using.md): each timed
 /// run renders 2 warm-up frames, then `FRAMES` timed ones, in a fresh
 /// process, `REPEATS` times. Tables quote the median of the
 /// `REPEATS × FRAMES` frame times and their spread (`record::Stat::of_runs`).
@@ -243,6 +243,11 @@ pub const FIGURES: &[Figure] = &[
     fig("lesson_03/closeup", "hw_2x2.png", "lesson_03/closeup_hw_2x2.png"),
     fig("lesson_03/closeup", "poisson_16.png", "lesson_03/closeup_poisson_16.png"),
     fig("lesson_03/closeup", "depth_avg_3x3.png", "lesson_03/closeup_depth_avg_3x3.png"),
+    fig(
+        "lesson_03/closeup",
+        "depth_avg_3x3_diff_l0.png",
+        "lesson_03/closeup_depth_avg_3x3_diff_l0.png",
+    ),
     fig("lesson_04/results", "linear_1024.png", "lesson_04/linear_1024.png"),
     fig("lesson_04/results", "linear_1024_cube_map.png", "lesson_04/linear_1024_cube_map.png"),
     fig("lesson_04/seams", "linear_1024.png", "lesson_04/seams_linear_1024.png"),

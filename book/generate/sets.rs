@@ -138,9 +138,9 @@ pub fn set_dir(generated: &Path, adapter: &str, backend: &str) -> PathBuf {
 
 /// A set's heading: its adapter and the commit it ran.
 fn heading(name: &str, records: &[Record]) -> String {
-    let who = records.first().map_or(name.to_string(), |r| {
-        r.adapter_label()
-    });
+    let who = records
+        .first()
+        .map_or(name.to_string(), |r| r.adapter_label());
     match origin(name) {
         Some(o) => format!(
             "**{who}, the code of commit `{}`** (measured {}; lavapipe's tables are of the code as it is now)\n\n",

@@ -9,8 +9,13 @@
 //! picture constructs the triangles by intersecting rays instead, and the
 //! second restates those two small functions (`filter_radius`, `vogel` in
 //! [`blocker_search`]), checked against the geometric footprint it draws
-//! beside them. This file lists the pictures and writes them; one file a
-//! picture under `soft_diagrams/`, and [`setup`], the scene they share.
+//! beside them. Both show the same floor point p, and print its distances
+//! as the text defines them: from the light, along its axis. Each
+//! picture's module tests its central fact against an independent
+//! computation (the printed distances and the footprint's radius; the
+//! search disk as the emitter seen from p). This file lists the pictures
+//! and writes them; one file a picture under `soft_diagrams/`, and
+//! [`setup`], the scene and the point they share.
 
 mod blocker_search;
 mod setup;

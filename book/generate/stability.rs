@@ -4,7 +4,7 @@
 //! counts the cells whose median in B lies inside A's stated spread (the
 //! spread the tables print), and the other way round, and
 //! lists the worst. This is how the protocol's repeatability is measured
-//! (the introduction quotes it).
+//! (the book's using.md quotes it).
 
 use std::path::Path;
 
@@ -80,7 +80,7 @@ pub fn cells(a: &[Record], b: &[Record]) -> Vec<Cell> {
 pub const REPEATABILITY: &str = "protocol/repeatability.md";
 
 /// Prints the comparison of two generated folders; with `write`, also the
-/// introduction's table of it.
+/// table of it that the book's using.md includes.
 pub fn compare(a: &Path, b: &Path, write: Option<&Path>) -> Result<()> {
     let (ra, rb) = (
         crate::derive::load_records(a)?,
@@ -134,7 +134,7 @@ pub fn compare(a: &Path, b: &Path, write: Option<&Path>) -> Result<()> {
     Ok(())
 }
 
-/// The introduction's table: per kind of time, the cells of the second
+/// The table using.md includes: per kind of time, the cells of the second
 /// run inside the first's spread, both ways, and overlapping.
 fn table(a: &[Record], cells: &[Cell]) -> Result<String> {
     let first = a.iter().find(|r| r.frames > 0).context("no timed record")?;

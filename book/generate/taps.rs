@@ -217,10 +217,10 @@ pub fn write_all(
 pub fn table(lesson: &str, main: &[Record], sets: &[(String, Vec<Record>)]) -> String {
     let mut parts = Vec::new();
     let name_of = |records: &[Record]| {
-        records.iter().find(|r| r.lesson == lesson).map_or_else(
-            || "?".to_string(),
-            |r| r.adapter_label(),
-        )
+        records
+            .iter()
+            .find(|r| r.lesson == lesson)
+            .map_or_else(|| "?".to_string(), |r| r.adapter_label())
     };
     if let Some(p) = part(lesson, main, &format!("**{}**", name_of(main)), None) {
         parts.push(p);

@@ -98,10 +98,16 @@ pub fn parse_spec(key: &str) -> Result<Spec> {
         }
     }
     if !spec.source.ends_with(".md") {
-        bail!("`{}`: a view's source is a generated table (`.md`)", spec.source);
+        bail!(
+            "`{}`: a view's source is a generated table (`.md`)",
+            spec.source
+        );
     }
     if spec.cols.is_empty() {
-        bail!("`{}`: the view lists no columns (`cols: variant; ...`)", spec.source);
+        bail!(
+            "`{}`: the view lists no columns (`cols: variant; ...`)",
+            spec.source
+        );
     }
     Ok(spec)
 }
@@ -135,6 +141,10 @@ pub fn plain(cell: &str) -> String {
 /// the resolution, the protocol), its rows, and its legend's entries.
 struct Source {
     header: Option<String>,
+    /// The bold lead of the paragraph that opens this table's part of the
+    /// file (`**NVIDIA H200, Vulkan, the code of commit ...**`), where a
+    /// file holds one table per adapter.
+    part: Option<String>,
     rows: Vec<Vec<String>>,
     legend: Vec<String>,
 }
@@ -143,6 +153,7 @@ fn source_table(text: &str, n: usize) -> Result<Source> {
     let lines: Vec<&str> = text.lines().collect();
     let mut found = 0;
     let mut i = 0;
+    let mut previous_end = 0;
     while i < lines.len() {
         if !lines[i].trim_start().starts_with('|') {
             i += 1;
@@ -154,8 +165,18 @@ fn source_table(text: &str, n: usize) -> Result<Source> {
         }
         found += 1;
         if found < n {
+            previous_end = i;
             continue;
         }
+        let part = lines[previous_end..start]
+            .iter()
+            .rev()
+            .map(|l| l.trim())
+            .find_map(|l| {
+                let rest = l.strip_prefix("**")?;
+                let end = rest.find("**")?;
+                Some(format!("**{}**", &rest[..end]))
+            });
         let header = lines[..start]
             .iter()
             .rev()
@@ -185,6 +206,7 @@ fn source_table(text: &str, n: usize) -> Result<Source> {
         }
         return Ok(Source {
             header,
+            part,
             rows,
             legend,
         });
@@ -200,7 +222,11 @@ pub fn render(spec: &Spec, source: &str) -> Result<String> {
     for c in &spec.cols {
         let Some(k) = head.iter().position(|h| plain(h) == *c) else {
             let have: Vec<String> = head.iter().map(|h| plain(h)).collect();
-            bail!("{}: no column `{c}` (it has: {})", spec.source, have.join("; "));
+            bail!(
+                "{}: no column `{c}` (it has: {})",
+                spec.source,
+                have.join("; ")
+            );
         };
         cols.push(k);
     }
@@ -212,7 +238,11 @@ pub fn render(spec: &Spec, source: &str) -> Result<String> {
             for name in names {
                 let Some(r) = body.iter().find(|r| plain(&r[0]) == *name) else {
                     let have: Vec<String> = body.iter().map(|r| plain(&r[0])).collect();
-                    bail!("{}: no row `{name}` (it has: {})", spec.source, have.join("; "));
+                    bail!(
+                        "{}: no row `{name}` (it has: {})",
+                        spec.source,
+                        have.join("; ")
+                    );
                 };
                 kept.push(r);
             }
@@ -227,6 +257,9 @@ pub fn render(spec: &Spec, source: &str) -> Result<String> {
         format!("| {} |\n", picked.join(" | "))
     };
     let mut s = String::from("\n");
+    if let Some(p) = &t.part {
+        s += &format!("{p}\n\n");
+    }
     if let Some(h) = &t.header {
         s += &format!("{h}\n\n");
     }
@@ -326,10 +359,8 @@ mod tests {
 
     #[test]
     fn a_view_keeps_its_rows_and_columns_in_its_order() {
-        let spec = parse_spec(
-            " lesson_01/results.md rows: b; a cols: variant; mean |ΔV| %; draws",
-        )
-        .unwrap();
+        let spec = parse_spec(" lesson_01/results.md rows: b; a cols: variant; mean |ΔV| %; draws")
+            .unwrap();
         let got = render(&spec, SOURCE).unwrap();
         assert!(got.contains("*llvmpipe, Vulkan · 640×360*"), "{got}");
         assert!(
@@ -343,11 +374,30 @@ mod tests {
     }
 
     #[test]
+    fn a_view_of_a_later_table_names_its_part() {
+        let two = format!(
+            "{SOURCE}\n**NVIDIA H200, Vulkan**: the second set.\n\n| variant | draws |\n| --- | --- |\n| `a` | 9 |\n"
+        );
+        let spec = parse_spec("x.md cols: variant; draws table: 2").unwrap();
+        let got = render(&spec, &two).unwrap();
+        assert!(got.contains("**NVIDIA H200, Vulkan**\n"), "{got}");
+        assert!(got.contains("| `a` | 9 |"), "{got}");
+        let first = render(&parse_spec("x.md cols: variant").unwrap(), &two).unwrap();
+        assert!(!first.contains("H200"), "{first}");
+    }
+
+    #[test]
     fn a_missing_row_or_column_is_an_error() {
         let spec = parse_spec("x.md rows: c cols: variant").unwrap();
-        assert!(render(&spec, SOURCE).unwrap_err().to_string().contains("no row `c`"));
+        assert!(render(&spec, SOURCE)
+            .unwrap_err()
+            .to_string()
+            .contains("no row `c`"));
         let spec = parse_spec("x.md cols: variant; GPU ms").unwrap();
-        assert!(render(&spec, SOURCE).unwrap_err().to_string().contains("no column `GPU ms`"));
+        assert!(render(&spec, SOURCE)
+            .unwrap_err()
+            .to_string()
+            .contains("no column `GPU ms`"));
         assert!(parse_spec("x.md row: a cols: variant").is_err());
         assert_eq!(parse_spec("x.md cols: a table: 2").unwrap().table, 2);
         assert!(parse_spec("x.md").is_err());

@@ -12,6 +12,8 @@
 
 mod caster;
 mod draw;
+#[cfg(test)]
+mod independent;
 mod passes;
 mod sides_and_caps;
 mod silhouette;

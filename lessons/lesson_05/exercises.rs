@@ -18,8 +18,8 @@ use super::silhouette::{LightDir, SilhouetteEdge};
 /// - `adj`, `light`: as for
 ///   [`silhouette_edges`](super::silhouette::silhouette_edges), whose
 ///   edges (each oriented like its lit face) you may start from;
-/// - `view`: the view frustum's planes `(n, d)` in the caster's object
-///   space, `n · x + d ≥ 0` inside (`n` is not of unit length; there is
+/// - `view`: the view frustum's planes `(q, h)` in the caster's object
+///   space, `q · x + h ≥ 0` inside (`q` is not of unit length; there is
 ///   no far plane under `far = "infinite"`).
 ///
 /// An edge `a → b` extrudes to the quad `a, b, b∞, a∞`. Leave an edge out
@@ -48,8 +48,8 @@ pub fn silhouette_edges_in_view(
 ///   directional light travels);
 /// - `range`: a point or spot light's range (`None` for a directional
 ///   light); pixels beyond it are not lit by it anyway;
-/// - `frustum`: the view frustum's planes `(n, d)`, `|n| = 1`, with
-///   `n · x + d ≥ 0` inside (no far plane under `far = "infinite"`).
+/// - `frustum`: the view frustum's planes `(q, h)`, `|q| = 1`, with
+///   `q · x + h ≥ 0` inside (no far plane under `far = "infinite"`).
 ///
 /// All in world space, relative to the scene's origin.
 ///

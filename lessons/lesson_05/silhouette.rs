@@ -46,7 +46,7 @@ pub struct SilhouetteEdge {
 /// For every face: does it face the light? The test uses the
 /// *unnormalised* normal n, so it never divides and never makes a NaN:
 ///
-/// - point light at p: `n · (p − v0) > 0`
+/// - point light at L: `n · (L − v0) > 0`
 /// - directional light travelling along d: `n · (−d) > 0`
 ///
 /// One tie rule for the whole mesh: exactly 0 is *not* facing. So a
@@ -57,7 +57,7 @@ pub fn face_facing(adj: &Adjacency, light: LightDir) -> Vec<bool> {
         .iter()
         .zip(&adj.face_normals)
         .map(|(t, n)| match light {
-            LightDir::Point(p) => n.dot(p - adj.positions[t[0] as usize]) > 0.0,
+            LightDir::Point(l) => n.dot(l - adj.positions[t[0] as usize]) > 0.0,
             LightDir::Directional(d) => n.dot(-d) > 0.0,
         })
         .collect()

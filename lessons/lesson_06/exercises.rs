@@ -43,12 +43,12 @@ pub fn needs_zfail(points: &[DVec3], light: LightDir, near_rect: &[DVec3; 4]) ->
 ///
 /// A cap triangle that lies wholly outside the view frustum draws no
 /// fragment, so leaving it out changes no pixel and saves its work. `view`
-/// holds the frustum's planes `(n, d)` in object space (`n · x + d ≥ 0`
-/// inside; `n` not of unit length; no far plane under an infinite one).
+/// holds the frustum's planes `(q, h)` in object space (`q · x + h ≥ 0`
+/// inside; `q` not of unit length; no far plane under an infinite one).
 /// A front-cap triangle is outside when its three vertices are outside one
 /// plane. A back-cap vertex can lie anywhere on the ray from the vertex
-/// `p` away from the light (`p + t (p − l)`, `t ≥ 0`, for a point light at
-/// `l`): a back-cap triangle is outside when, for one plane, all three of
+/// `X` away from the light (`X + t (X − L)`, `t ≥ 0`, for a point light at
+/// `L`): a back-cap triangle is outside when, for one plane, all three of
 /// its rays stay outside it. For a directional light the caller draws no
 /// back cap. Keep a triangle whenever unsure: a missing cap in view leaks
 /// the count.

@@ -20,14 +20,14 @@ use crate::lesson_05::volumes::{CasterDraw, ShadowVolumes, VolumeCaster};
 pub fn plan(volumes: &ShadowVolumes, scene: &SceneGpu, light: usize) -> Vec<CasterDraw> {
     let view_proj = scene.camera.view_proj.as_dmat4();
     let near_rect = near_rectangle(view_proj);
-    let l = world_light(scene, light);
-    let (l_point, l_dir) = match l {
-        LightDir::Point(p) => (Some(p.as_dvec3()), None),
-        LightDir::Directional(d) => (None, Some(d.as_dvec3())),
+    let (l_point, l_dir) = match world_light(scene, light) {
+        LightDir::Point(l) => (Some(l.as_dvec3()), None),
+        LightDir::Directional(dir) => (None, Some(dir.as_dvec3())),
     };
     let pyramid = occlusion_pyramid(&near_rect, l_point, l_dir);
+    // A plane (q, h) holds x inside when q·x + h ≥ 0.
     let reaches_near = |center: DVec3, radius: f64| match &pyramid {
-        Some(planes) => !planes.iter().any(|(n, d)| n.dot(center) + d < -radius),
+        Some(planes) => !planes.iter().any(|(q, h)| q.dot(center) + h < -radius),
         None => true, // degenerate pyramid: be safe
     };
     plan_with(volumes, scene, light, |c| reaches_near(c.center, c.radius))
@@ -46,20 +46,20 @@ pub fn plan_with(
 ) -> Vec<CasterDraw> {
     let frustum = frustum_planes(scene.camera.view_proj.as_dmat4());
     let (l_point, l_dir) = match world_light(scene, light) {
-        LightDir::Point(p) => (Some(p.as_dvec3()), None),
-        LightDir::Directional(d) => (None, Some(d.as_dvec3())),
+        LightDir::Point(l) => (Some(l.as_dvec3()), None),
+        LightDir::Directional(dir) => (None, Some(dir.as_dvec3())),
     };
     let mut out = Vec::new();
     for c in &volumes.casters {
-        let outside = |(n, d): &(DVec3, f64)| {
-            let s = n.dot(c.center) + d;
+        let outside = |(q, h): &(DVec3, f64)| {
+            let s = q.dot(c.center) + h;
             if s + c.radius >= 0.0 {
                 return false;
             }
             // The extrusion must also move away from the plane.
             match (l_point, l_dir) {
-                (Some(p), _) => s + c.radius <= n.dot(p) + d,
-                (_, Some(dir)) => n.dot(dir) <= 0.0,
+                (Some(l), _) => s + c.radius <= q.dot(l) + h,
+                (_, Some(dir)) => q.dot(dir) <= 0.0,
                 _ => false,
             }
         };
@@ -97,7 +97,7 @@ pub fn occlusion_pyramid(
     let near_n = (rect[1] - rect[0]).cross(rect[3] - rect[0]).normalize();
     let (towards_light, interior) = match (point, dir) {
         (Some(l), _) => (l - centre, (l + centre) * 0.5),
-        (_, Some(d)) => (-d, centre - d),
+        (_, Some(dir)) => (-dir, centre - dir),
         _ => return None,
     };
     let size = (rect[2] - rect[0]).length();
@@ -105,14 +105,14 @@ pub fn occlusion_pyramid(
         return None;
     }
     let mut planes = Vec::new();
-    let mut add = |n: DVec3, p: DVec3| {
-        let n = n.normalize();
-        let (n, d) = (n, -n.dot(p));
+    let mut add = |normal: DVec3, p: DVec3| {
+        let q = normal.normalize();
+        let h = -q.dot(p);
         // Orient towards the interior point.
-        if n.dot(interior) + d < 0.0 {
-            planes.push((-n, -d));
+        if q.dot(interior) + h < 0.0 {
+            planes.push((-q, -h));
         } else {
-            planes.push((n, d));
+            planes.push((q, h));
         }
     };
     add(near_n, centre);
@@ -120,12 +120,12 @@ pub fn occlusion_pyramid(
         let (a, b) = (rect[i], rect[(i + 1) % 4]);
         let side = match (point, dir) {
             (Some(l), _) => (a - l).cross(b - l),
-            (_, Some(d)) => (b - a).cross(d),
+            (_, Some(dir)) => (b - a).cross(dir),
             _ => unreachable!(),
         };
         add(side, a);
     }
-    if planes.iter().any(|(n, _)| !n.is_finite()) {
+    if planes.iter().any(|(q, _)| !q.is_finite()) {
         return None;
     }
     Some(planes)

@@ -48,8 +48,8 @@ fn project_to_infinity(world: vec3<f32>) -> vec4<f32> {
 // ANCHOR_END: extrude_to_infinity
 
 // ANCHOR: extrude_to_reach
-// A world point pushed away from a point or spot light by the factor s = 1/w:
-// L + s (p − L), written homogeneously as (p − L + w L, w). w = 0 is the
+// A world point X pushed away from a point or spot light by the factor s = 1/w:
+// L + s (X − L), written homogeneously as (X − L + w L, w). w = 0 is the
 // point at infinity above; 0 < w < 1 a finite point, so the volume ends at a
 // finite back cap, the caster's light-facing faces scaled by s about the
 // light (lesson 06 under a finite far plane). The reach w is the same for

@@ -89,3 +89,137 @@ pub(super) fn cube_faces() -> Result<String> {
     s.h = s.para((left, top + 3.0 * cell + 30.0), 13.0, "start", width, notes);
     Ok(s.finish())
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::super::svg::tests::{elements, is, number, texts};
+    use super::*;
+
+    /// "+X", "−Z", … as a unit vector.
+    fn axis(s: &str) -> DVec3 {
+        let sign = if s.starts_with('−') { -1.0 } else { 1.0 };
+        let e = match s.chars().last() {
+            Some('X') => DVec3::X,
+            Some('Y') => DVec3::Y,
+            Some('Z') => DVec3::Z,
+            _ => panic!("{s:?} is no axis"),
+        };
+        sign * e
+    }
+
+    /// The cube-map rule of WebGPU (as Vulkan's and Direct3D's): the
+    /// direction's major axis chooses the layer (+X −X +Y −Y +Z −Z), and
+    /// the texel's (s, t) in [0, 1]² follow the layer's table row.
+    fn sample(r: DVec3) -> (usize, f64, f64) {
+        let a = r.abs();
+        let (layer, sc, tc, ma) = if a.x >= a.y && a.x >= a.z {
+            if r.x > 0.0 {
+                (0, -r.z, -r.y, a.x)
+            } else {
+                (1, r.z, -r.y, a.x)
+            }
+        } else if a.y >= a.z {
+            if r.y > 0.0 {
+                (2, r.x, r.z, a.y)
+            } else {
+                (3, r.x, -r.z, a.y)
+            }
+        } else if r.z > 0.0 {
+            (4, r.x, -r.y, a.z)
+        } else {
+            (5, -r.x, -r.y, a.z)
+        };
+        (layer, 0.5 * (sc / ma + 1.0), 0.5 * (tc / ma + 1.0))
+    }
+
+    /// Each cell drawn: its face's index, forward axis, and texel axes u
+    /// (column, right) and v (row, down), read off the picture. Every
+    /// direction through the cell, forward + a u + b v for |a|, |b| < 1,
+    /// has the drawn forward as its major axis, so the sampler reads the
+    /// drawn layer there, at s = (1 + a)/2, t = (1 + b)/2: the drawn u and
+    /// v are the texel directions.
+    #[test]
+    fn each_drawn_direction_selects_the_drawn_face_and_texel() {
+        let svg = cube_faces().unwrap();
+        let words = texts(&svg);
+        let cells: Vec<_> = (elements(&svg, "rect").into_iter())
+            .filter(|r| is(r, "fill", "#eef3fb"))
+            .collect();
+        assert_eq!(cells.len(), 6);
+        let mut layers = Vec::new();
+        for cell in &cells {
+            let (x, y) = (number(cell, "x"), number(cell, "y"));
+            let (w, h) = (number(cell, "width"), number(cell, "height"));
+            let inside: Vec<&str> = (words.iter())
+                .filter(|t| (x..x + w).contains(&t.0) && (y..y + h).contains(&t.1))
+                .map(|t| t.2.as_str())
+                .collect();
+            let find = |key: &str| {
+                let t = inside.iter().find(|t| t.starts_with(key));
+                t.unwrap_or_else(|| panic!("{key:?} in {inside:?}"))[key.len()..].to_string()
+            };
+            let (index, name) = find("face ")
+                .split_once(": ")
+                .map(|(a, b)| (a.to_string(), b.to_string()))
+                .unwrap();
+            let layer: usize = index.parse().unwrap();
+            let (forward, u, v) = (axis(&name), axis(&find("u → ")), axis(&find("v ↓ ")));
+            let vector = find("forward ").replace('−', "-");
+            let xyz: Vec<f64> = (vector.trim_matches(|c| c == '(' || c == ')').split(", "))
+                .map(|c| c.parse().unwrap())
+                .collect();
+            assert_eq!(DVec3::new(xyz[0], xyz[1], xyz[2]), forward, "face {layer}");
+            for i in 0..=8 {
+                for j in 0..=8 {
+                    let (a, b) = (-0.96 + 0.24 * i as f64, -0.96 + 0.24 * j as f64);
+                    let (got, s, t) = sample(forward + a * u + b * v);
+                    assert_eq!(
+                        got, layer,
+                        "face {layer} ({name}): a {a}, b {b} selects {got}"
+                    );
+                    let want = (0.5 * (1.0 + a), 0.5 * (1.0 + b));
+                    assert!(
+                        (s - want.0).abs() < 1e-12 && (t - want.1).abs() < 1e-12,
+                        "face {layer} ({name}): u {u}, v {v} drawn, but at a {a}, b {b} the \
+                         sampler reads s {s}, t {t}"
+                    );
+                }
+            }
+            layers.push(layer);
+        }
+        layers.sort();
+        assert_eq!(layers, [0, 1, 2, 3, 4, 5]);
+    }
+
+    /// The cross the diagram lays out is the lesson's (`cross.rs`'s
+    /// shader: `if cell.y == R && cell.x == C { layer = L; }`).
+    #[test]
+    fn cross_is_the_lessons() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let src = std::fs::read_to_string(root.join("lessons/lesson_04/cross.rs")).unwrap();
+        let mut found = 0;
+        for line in src.lines().map(str::trim) {
+            let Some(rest) = line.strip_prefix("if cell.y == ") else {
+                continue;
+            };
+            let Some((row, rest)) = rest.split_once(" && cell.x == ") else {
+                continue;
+            };
+            let Some((col, rest)) = rest.split_once(" { layer = ") else {
+                continue;
+            };
+            let layer: usize = rest.trim_end_matches("; }").parse().unwrap();
+            let forward = CUBE_FACES[layer].0;
+            let cell = CROSS.iter().find(|c| c.0 == forward).unwrap();
+            assert_eq!(
+                (cell.1, cell.2),
+                (col.parse().unwrap(), row.parse().unwrap()),
+                "layer {layer}"
+            );
+            found += 1;
+        }
+        assert_eq!(found, 6);
+    }
+}

@@ -150,6 +150,8 @@ impl Svg {
 
 #[cfg(test)]
 pub(crate) mod tests {
+    use std::collections::HashMap;
+
     use super::*;
 
     /// The value of attribute `name` in a tag's attribute text.
@@ -159,6 +161,49 @@ pub(crate) mod tests {
         tag[at..at + tag[at..].find('"').unwrap()]
             .parse()
             .expect(name)
+    }
+
+    /// The attributes of every `<tag …/>` element of `svg`, by name: what
+    /// the geometry tests read back from a drawing.
+    pub(crate) fn elements(svg: &str, tag: &str) -> Vec<HashMap<String, String>> {
+        let open = format!("<{tag} ");
+        svg.split(&open)
+            .skip(1)
+            .map(|part| {
+                let attrs = &part[..part.find('>').unwrap()];
+                attrs
+                    .split('"')
+                    .collect::<Vec<_>>()
+                    .chunks_exact(2)
+                    .map(|kv| {
+                        let key = kv[0].trim().trim_end_matches('=');
+                        (key.to_string(), kv[1].to_string())
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Whether an element's attribute `name` is `value`.
+    pub(crate) fn is(e: &HashMap<String, String>, name: &str, value: &str) -> bool {
+        e.get(name).is_some_and(|v| v == value)
+    }
+
+    /// An element's numeric attribute.
+    pub(crate) fn number(e: &HashMap<String, String>, name: &str) -> f64 {
+        e[name].parse().expect(name)
+    }
+
+    /// Every text of `svg`: (x, y, its words, unescaped).
+    pub(crate) fn texts(svg: &str) -> Vec<(f64, f64, String)> {
+        let words = svg.split("<text ").skip(1).map(|part| {
+            let text = part.split_once('>').unwrap().1;
+            let text = text.split_once("</text>").unwrap().0;
+            text.replace("&lt;", "<").replace("&amp;", "&")
+        });
+        (elements(svg, "text").iter().zip(words))
+            .map(|(e, w)| (number(e, "x"), number(e, "y"), w))
+            .collect()
     }
 
     /// Every text of `svg` lies inside its canvas by the same width

@@ -40,9 +40,8 @@ pub fn table(sweep: &Sweep) -> String {
         "frame size: see the rows".to_string()
     };
     let mut s = format!(
-        "*{}, {} · {} · {} · median of {} frames, warmed up until they settle (the introduction's protocol), one process a point, [interquartile range], {}*\n\n",
-        sweep.adapter,
-        sweep.backend,
+        "*{} · {} · {} · median of {} frames, warmed up until they settle (the book's protocol), one process a point, [interquartile range], {}*\n\n",
+        crate::record::adapter_label(&sweep.adapter, &sweep.backend),
         size,
         sweep.scene,
         sweep.frames,
@@ -126,8 +125,9 @@ fn stops_table(sweep: &Sweep) -> String {
         return String::new();
     }
     let mut s = format!(
-        "\n*Where each variant stops on {} ({}): the largest {} it ran, and the lesson's line where it left the variant out.*\n\n",
-        sweep.adapter, sweep.backend, sweep.axis
+        "\n*Where each variant stops on {}: the largest {} it ran, and the lesson's line where it left the variant out.*\n\n",
+        crate::record::adapter_label(&sweep.adapter, &sweep.backend),
+        sweep.axis
     );
     let head = [
         "variant".to_string(),

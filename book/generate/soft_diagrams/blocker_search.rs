@@ -63,41 +63,52 @@ fn texel_ray(m: Mat4, bvh: &Bvh, owner: &[u32], light: DVec3, uv: P) -> Option<(
     Some((owner[hit.tri as usize], light + dir * hit.t as f64))
 }
 
-pub(super) fn blocker_search(scene: &Scene, u: &Setup) -> Result<String> {
+/// The search of the picture, on the map: what it draws of PCSS's first
+/// step at the receiver p.
+pub(super) struct Search {
+    /// The light's matrix and the map's side (texels).
+    pub(super) m: Mat4,
+    pub(super) size: f64,
+    /// p's map coordinates: the disk's centre.
+    pub(super) centre: P,
+    /// The nearest caster's distance from the light, along its axis.
+    pub(super) d_n: f64,
+    /// The search disk's radius (map units, u and v): the shader's
+    /// `filter_radius(d_r, d_n)`.
+    pub(super) radius: [f64; 2],
+}
+
+/// The search disk at the setup's receiver p.
+pub(super) fn search(scene: &Scene, u: &Setup) -> Result<Search> {
     let g = LightGeometry::new(scene, 0).context("lesson 10's light has no geometry")?;
     let m = light_view_proj(scene, 0).context("no light matrix")?;
-    let size = Technique::Pcss(Technique::PCSS).map_size() as f64;
+    let (su, sv, _) = map_uv(m, u.p);
+    let d_n = (g.nearest_caster as f64).min(u.d_r);
+    Ok(Search {
+        m,
+        size: Technique::Pcss(Technique::PCSS).map_size() as f64,
+        centre: (su, sv),
+        d_n,
+        radius: filter_radius(&g, u.d_r, d_n),
+    })
+}
+
+pub(super) fn blocker_search(scene: &Scene, u: &Setup) -> Result<String> {
+    let g = LightGeometry::new(scene, 0).context("lesson 10's light has no geometry")?;
+    let Search {
+        m,
+        size,
+        centre: (su, sv),
+        d_n,
+        radius: search,
+    } = search(scene, u)?;
     let taps = Technique::PCSS.search_taps;
     let tris = scene.world_triangles();
     let owner: Vec<u32> = tris.iter().map(|(_, o)| *o).collect();
     let bvh = Bvh::build(tris.iter().map(|(t, _)| *t).collect());
-    // The receiver: the floor under the middle of the plank's long top
-    // edge away from the light, as the light sees it (no side face of the
-    // plank shows beyond that edge).
-    let c = &u.plank_top;
-    let edge = |i: usize| (c[i] + c[(i + 1) % 4]) / 2.0;
-    let mut long: Vec<usize> = (0..4).collect();
-    long.sort_by(|&a, &b| {
-        let len = |i: usize| c[i].distance(c[(i + 1) % 4]);
-        len(b).total_cmp(&len(a))
-    });
-    let far = |i: usize| {
-        let m = edge(i) - u.light;
-        m.x * m.x + m.z * m.z
-    };
-    let i = long[..2]
-        .iter()
-        .copied()
-        .max_by(|&a, &b| far(a).total_cmp(&far(b)))
-        .unwrap();
-    let mid = edge(i);
-    let to = mid - u.light;
-    let p = u.light + to * ((u.floor_y - u.light.y) / to.y);
-    let (su, sv, d_r) = map_uv(m, p);
-    // 1. The search disk: the shader's radius, and (dashed) the emitter's
+    let (p, d_r) = (u.p, u.d_r);
+    // 1. The search disk (the shader's radius) and, dashed, the emitter's
     // disk carried through p onto the nearest caster's plane.
-    let d_n = (g.nearest_caster as f64).min(d_r);
-    let search = filter_radius(&g, d_r, d_n);
     let (a1, a2) = {
         let a = u.axis;
         let t = if a.y.abs() < 0.9 { DVec3::Y } else { DVec3::X };
@@ -189,6 +200,9 @@ pub(super) fn blocker_search(scene: &Scene, u: &Setup) -> Result<String> {
     plus(&mut s, sp, 7.0);
     // 2. The mean blocker distance, and the filter disk it gives.
     let mean = found.iter().sum::<f64>() / found.len().max(1) as f64;
+    let (lo, hi) = found
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &d| (a.min(d), b.max(d)));
     let filter = filter_radius(&g, d_r, mean);
     if !found.is_empty() {
         s.poly(&ring(filter), true, &stroke("#222", 1.5, "3 3"));
@@ -221,7 +235,7 @@ pub(super) fn blocker_search(scene: &Scene, u: &Setup) -> Result<String> {
         y = s.para((lx + 24.0, y), 12.0, "start", lw - 24.0, &t) + 4.0;
     }
     let marks: [(&str, String); 5] = [
-        ("+", "the receiver p: a floor point under the plank's edge".into()),
+        ("+", "the receiver p: the floor point under the plank's far edge".into()),
         ("o", format!("the {taps} search taps (Vogel's spiral, angle 0), at their texels; filled red: a blocker found")),
         ("—", format!("the search disk: filter_radius(d_r, d_n), {} texels", f(search[0] * size, 1))),
         ("- -", "the emitter's disk seen from p, on the nearest caster's plane".into()),
@@ -252,19 +266,111 @@ pub(super) fn blocker_search(scene: &Scene, u: &Setup) -> Result<String> {
     }
     let numbers = [
         format!("map: {0}×{0} texels, one cell each", size as u32),
-        format!("d_r = {} m (p, along the axis)", f(d_r, 2)),
-        format!("d_n = {} m (nearest caster)", f(d_n, 2)),
-        format!("blockers found: {} of {taps}", found.len()),
-        format!("their mean d_b = {} m", f(mean, 2)),
+        "distances from the light, along its axis:".to_string(),
+        format!("d_r = {} m (p)", f(d_r, 2)),
+        format!("d_b = {} m (the plank's edge above p)", f(u.d_b, 2)),
+        format!("d_n = {} m (the nearest caster)", f(d_n, 2)),
+        format!("blockers found: {} of {taps},", found.len()),
+        format!("at {} to {} m; their mean", f(lo, 2), f(hi, 2)),
+        format!("d̄ = {} m, PCSS's estimate of d_b", f(mean, 2)),
     ];
     y = s.texts((lx, y + 10.0), 12.0, "start", &numbers);
     let note = "The map's texels around p's, coloured by what the light sees through each. \
         The search reads one texel per tap and keeps those in front of the receiver's plane; \
-        the mean of their distances sizes the filter. The blue disk is the shader's search \
-        radius; the dashed green ring, the emitter's disk carried through p onto the nearest \
-        caster's plane and projected by the light's matrix: where they differ, the derivation's \
-        disk square to the axis is not the map's.";
+        the mean of their distances sizes the filter. The plank is not square to the light's \
+        axis, so the points of it the taps find lie at different distances, and their mean is \
+        not the distance of its edge above p. The blue disk is the shader's search radius; the \
+        dashed green ring, the emitter's disk carried through p onto the nearest caster's plane \
+        (square to the axis, at d_n) and projected by the light's matrix: the two coincide.";
     let bottom = (top + grid).max(y) + 24.0;
     s.h = s.para((left, bottom), 12.0, "start", 800.0 - 2.0 * left, note);
     Ok(s.finish())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use common::glam::{DVec3, Vec4};
+    use common::scene::{LightKind, Scene};
+
+    use super::super::setup::Setup;
+    use super::*;
+
+    /// The search disk drawn is the emitter seen from p on the nearest
+    /// caster's plane, computed another way: the nearest caster found
+    /// again from the scene's triangles (distance along the scene's axis),
+    /// each ray from p to the emitter's rim cut by that plane, and the cut
+    /// projected by the light's matrix. Every cut lies on the drawn disk,
+    /// and its centre is p's texel. The printed distances are the text's,
+    /// as in the similar triangles.
+    #[test]
+    fn the_search_disk_is_the_emitter_seen_from_p_on_the_nearest_casters_plane() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let scene = Scene::load(&root.join("scenes/lesson_10.toml")).unwrap();
+        let u = Setup::from_scene(&scene).unwrap();
+        let drawn = search(&scene, &u).unwrap();
+        let m = light_view_proj(&scene, 0).unwrap();
+        let LightKind::Spot {
+            position,
+            direction,
+            ..
+        } = scene.lights[0].kind
+        else {
+            panic!("lesson 10's light is a spot");
+        };
+        let (light, axis) = (position - scene.origin(), direction.normalize());
+        let along = |x: DVec3| (x - light).dot(axis);
+        // The nearest casting vertex the light's frustum holds.
+        let seen = |c: Vec4| c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w && c.z >= 0.0;
+        let d_n = (scene.world_triangles().iter())
+            .filter(|(_, o)| scene.objects[*o as usize].casts_shadow)
+            .flat_map(|(t, _)| t.iter())
+            .filter(|v| seen(m * v.extend(1.0)))
+            .map(|v| along(v.as_dvec3()))
+            .fold(f64::MAX, f64::min);
+        assert!(
+            (drawn.d_n - d_n).abs() < 1e-3,
+            "d_n {} against {d_n}",
+            drawn.d_n
+        );
+        let uv = |x: DVec3| {
+            let n = m.project_point3(x.as_vec3()).as_dvec3();
+            ((n.x + 1.0) / 2.0, (1.0 - n.y) / 2.0)
+        };
+        let c = uv(u.p);
+        assert!((c.0 - drawn.centre.0).hypot(c.1 - drawn.centre.1) < 1e-6);
+        // The emitter's rim, square to the axis, from a basis of its own.
+        let e1 = (DVec3::X - axis * axis.x).normalize();
+        let e2 = axis.cross(e1);
+        let d_r = along(u.p);
+        for k in 0..24 {
+            let t = k as f64 / 24.0 * std::f64::consts::TAU;
+            let q = light + u.radius * (t.cos() * e1 + t.sin() * e2);
+            // The ray from p to q, cut by the plane at d_n along the axis.
+            let s = (d_n - d_r) / (along(q) - d_r);
+            let x = uv(u.p + (q - u.p) * s);
+            let e = ((x.0 - c.0) / drawn.radius[0]).hypot((x.1 - c.1) / drawn.radius[1]);
+            assert!(
+                (e - 1.0).abs() < 2e-3,
+                "rim point {k}: {e} radii from p's texel"
+            );
+        }
+        // The printed distances: d_r and d_b by the text's definition.
+        let svg = blocker_search(&scene, &u).unwrap();
+        // The plank (object 4): the top of its triangles.
+        let top = (scene.world_triangles().iter())
+            .filter(|(_, o)| *o == 4)
+            .flat_map(|(t, _)| t.iter().map(|v| v.y as f64))
+            .fold(f64::MIN, f64::max);
+        let b = light + (u.p - light) * ((light.y - top) / (light.y - u.p.y));
+        for (label, want) in [("d_r", d_r), ("d_b", along(b)), ("d_n", d_n)] {
+            let at = svg.find(&format!("{label} = ")).expect(label) + label.len() + 3;
+            let got: f64 = svg[at..].split(" m").next().unwrap().parse().unwrap();
+            assert!(
+                (got - want).abs() <= 0.0051,
+                "printed {label} = {got}, want {want}"
+            );
+        }
+    }
 }

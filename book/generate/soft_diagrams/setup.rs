@@ -1,6 +1,8 @@
 //! What chapter 10's two pictures share: the default scene's spot light
-//! and plank, measured from `scenes/lesson_10.toml` ([`Setup`]), their
-//! colours, and numbers as they print them.
+//! and plank, measured from `scenes/lesson_10.toml` ([`Setup`]), the one
+//! floor point both pictures show and its distances by the text's
+//! definition ([`Setup::along_axis`]), their colours, and numbers as they
+//! print them.
 
 use anyhow::{bail, Context, Result};
 use common::glam::DVec3;
@@ -17,16 +19,23 @@ pub(super) fn f(x: f64, d: usize) -> String {
 }
 
 /// The default scene's spot light and its plank (the highest thin caster,
-/// a blocker plane parallel to the floor), origin-relative.
+/// a blocker plane parallel to the floor), origin-relative, and the floor
+/// point p both pictures show.
 pub(super) struct Setup {
     /// The light's position and unit axis.
     pub(super) light: DVec3,
     pub(super) axis: DVec3,
     /// The emitter's radius R.
     pub(super) radius: f64,
-    /// The plank's top face corners, and the floor's height.
-    pub(super) plank_top: Vec<DVec3>,
-    pub(super) floor_y: f64,
+    /// The receiver p: the floor under the middle of the plank's long top
+    /// edge away from the light, as the light's centre sees it (no side
+    /// face of the plank shows beyond that edge).
+    pub(super) p: DVec3,
+    /// p's distance from the light along its axis, and that of the
+    /// blocker the light's centre sees in front of p (the edge's middle,
+    /// on the segment from p to the light): the text's d_r and d_b.
+    pub(super) d_r: f64,
+    pub(super) d_b: f64,
 }
 
 impl Setup {
@@ -78,12 +87,41 @@ impl Setup {
             let ang = |p: &DVec3| (p.z - c.z).atan2(p.x - c.x);
             ang(a).total_cmp(&ang(b))
         });
-        Ok(Setup {
-            light: position - scene.origin(),
-            axis: direction.normalize(),
+        let (light, axis) = (position - scene.origin(), direction.normalize());
+        // The long top edge farther from the light (horizontally), its
+        // middle, and the floor point behind it on the ray from the light.
+        let c = &plank_top;
+        let mid = |i: usize| (c[i] + c[(i + 1) % 4]) / 2.0;
+        let len = |i: usize| c[i].distance(c[(i + 1) % 4]);
+        let mut long: Vec<usize> = (0..4).collect();
+        long.sort_by(|&a, &b| len(b).total_cmp(&len(a)));
+        let far = |i: usize| {
+            let m = mid(i) - light;
+            m.x * m.x + m.z * m.z
+        };
+        let i = long[..2]
+            .iter()
+            .copied()
+            .max_by(|&a, &b| far(a).total_cmp(&far(b)))
+            .context("the plank has no long edge")?;
+        let edge = mid(i);
+        let to = edge - light;
+        let p = light + to * ((floor_y - light.y) / to.y);
+        let mut setup = Setup {
+            light,
+            axis,
             radius,
-            plank_top,
-            floor_y,
-        })
+            p,
+            d_r: 0.0,
+            d_b: 0.0,
+        };
+        (setup.d_r, setup.d_b) = (setup.along_axis(p), setup.along_axis(edge));
+        Ok(setup)
+    }
+
+    /// The text's distance: from the light's position to `x`, measured
+    /// along the light's axis (what the spot's shadow map stores, linear).
+    pub(super) fn along_axis(&self, x: DVec3) -> f64 {
+        (x - self.light).dot(self.axis)
     }
 }

@@ -1,12 +1,14 @@
 //! Picture (a), the similar triangles (`soft_similar_triangles.svg`): the
 //! rays from the emitter's edges through the plank's edge, which bound the
-//! penumbra on the floor, and the footprint a floor point sees on the
-//! plank's plane.
+//! penumbra on the receiver's plane, and the footprint the receiver p sees
+//! on the plank's plane. The distances are the text's: from the light,
+//! along its axis ([`Setup::along_axis`]).
 
 use super::setup::{f, Setup, EMITTER, FOOT, PLANK, RAY};
 use crate::diagrams::svg::{add, fill, stroke, Svg, INK, P};
 
-/// Where the line through `a` and `b` (x, height) meets height `y`.
+/// Where the line through `a` and `b` (across, distance along the axis)
+/// meets distance `y`.
 fn at_height(a: P, b: P, y: f64) -> f64 {
     a.0 + (b.0 - a.0) * (y - a.1) / (b.1 - a.1)
 }
@@ -18,24 +20,63 @@ fn dimension(s: &mut Svg, a: P, b: P) {
     s.arrow(m, b, "#222");
 }
 
-/// The penumbra's similar triangles on the default scene's plank, in a
-/// vertical section: (a) the emitter's two ends through the plank's edge
-/// onto the floor, w_penumbra; (b) the emitter seen from a floor point p,
-/// its footprint 2 r_b on the plank's plane.
+/// What the picture draws, in a section through the light's axis: across,
+/// the offset from the line through the emitter's centre and p (p and the
+/// plank's edge at 0); down, the distance from the light along its axis.
+pub(super) struct Triangles {
+    /// The receiver's and the blocker's planes, square to the axis.
+    pub(super) d_r: f64,
+    pub(super) d_b: f64,
+    /// The emitter's radius R.
+    pub(super) r: f64,
+    /// (a) Where the rays from the emitter's two ends through the plank's
+    /// edge meet the receiver's plane: the penumbra, lowest first.
+    pub(super) penumbra: (f64, f64),
+    /// (b) Where the rays from p to the emitter's two ends cross the
+    /// blocker's plane: the footprint, lowest first.
+    pub(super) footprint: (f64, f64),
+}
+
+/// The triangles, by intersecting the drawn rays with the planes (not by
+/// the formulas the text derives from them).
+pub(super) fn triangles(u: &Setup) -> Triangles {
+    let (d_r, d_b, r) = (u.d_r, u.d_b, u.radius);
+    let ends = [(-r, 0.0), (r, 0.0)];
+    let sorted = |v: Vec<f64>| (v[0].min(v[1]), v[0].max(v[1]));
+    let penumbra = sorted(
+        ends.iter()
+            .map(|&q| at_height(q, (0.0, d_b), d_r))
+            .collect(),
+    );
+    let footprint = sorted(
+        ends.iter()
+            .map(|&q| at_height((0.0, d_r), q, d_b))
+            .collect(),
+    );
+    Triangles {
+        d_r,
+        d_b,
+        r,
+        penumbra,
+        footprint,
+    }
+}
+
+/// The penumbra's similar triangles at the default scene's plank, in a
+/// section through the light's axis: (a) the emitter's two ends through
+/// the plank's edge onto the receiver's plane, w_penumbra; (b) the emitter
+/// seen from p, its footprint 2 r_b on the plank's plane.
 pub(super) fn similar_triangles(u: &Setup) -> String {
+    let t = triangles(u);
+    let (d_r, d_b, r) = (t.d_r, t.d_b, t.r);
     let (w, title) = (
         800.0,
         "The penumbra's similar triangles on lesson 10's default scene",
     );
     let mut s = Svg::new(w, 0.0, title);
-    // Heights measured down from the light: the emitter's plane at 0, the
-    // plank's top at d_b, the floor at d_r (the scene's vertical
-    // distances; the emitter drawn parallel to the floor).
-    let d_r = u.light.y - u.floor_y;
-    let d_b = u.light.y - u.plank_top[0].y;
-    let r = u.radius;
-    // Across, the scale is stretched: similar triangles survive it.
-    let (ky, top) = (100.0, 92.0);
+    // Down: the distance along the axis, the emitter's plane at 0. Across,
+    // the scale is stretched: similar triangles survive it.
+    let (ky, top) = (84.0, 92.0);
     let kx = 4.0 * ky;
     let ends = [(-r, 0.0), (r, 0.0)];
     let mut bottom: f64 = 0.0;
@@ -43,11 +84,12 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
         let cx = left + 235.0;
         let px = |p: P| (cx + p.0 * kx, top + p.1 * ky);
         let heading = [
-            "(a) the penumbra on the receiver",
+            "(a) the penumbra on the receiver's plane",
             "(b) the emitter seen from p: its footprint",
         ][panel];
         s.text((left + 20.0, 54.0), 14.0, "start", heading);
-        // The emitter, the plank (its edge at x = 0, reaching left), the floor.
+        // The emitter, the plank (its edge at 0, reaching left), the
+        // receiver's plane.
         s.line(px(ends[0]), px(ends[1]), &stroke(EMITTER, 6.0, ""));
         s.text(
             add(px((0.0, 0.0)), 0.0, -12.0),
@@ -60,7 +102,7 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
         s.rect(a, (b.0 - a.0, b.1 - a.1), &fill(PLANK, "#5a3f75"));
         s.text(add(a, 0.0, -6.0), 12.0, "start", "blocker (the plank)");
         s.line(px((-0.52, d_r)), px((0.36, d_r)), INK);
-        // Depths, on the left.
+        // Distances along the axis, on the left.
         let x0 = left + 14.0;
         dimension(&mut s, (x0, px((0.0, 0.0)).1), (x0, px((0.0, d_b)).1));
         dimension(
@@ -75,21 +117,19 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
             &format!("d_b = {} m", f(d_b, 2)),
         );
         s.text(
-            (x0 + 6.0, px((0.0, d_b + 0.35)).1),
+            (x0 + 6.0, px((0.0, d_b + 0.4)).1),
             13.0,
             "start",
             &format!("d_r = {} m", f(d_r, 2)),
         );
         let floor = px((0.0, d_r)).1;
         if panel == 0 {
-            // Each end of the emitter through the edge, down to the floor.
-            let edge = (0.0, d_b);
-            let hits: Vec<f64> = ends.iter().map(|&q| at_height(q, edge, d_r)).collect();
-            for (&q, &x) in ends.iter().zip(&hits) {
+            // Each end of the emitter through the edge, to the receiver's plane.
+            for (&q, &x) in ends.iter().zip([t.penumbra.1, t.penumbra.0].iter()) {
                 s.line(px(q), px((x, d_r)), &stroke(RAY, 1.5, ""));
             }
-            let (lo, hi) = (hits[0].min(hits[1]), hits[0].max(hits[1]));
-            // The floor: umbra, penumbra, lit.
+            let (lo, hi) = t.penumbra;
+            // The receiver's plane: umbra, penumbra, lit.
             let band = |s: &mut Svg, x0: f64, x1: f64, c: &str| {
                 let (a, b) = (px((x0, d_r)), px((x1, d_r)));
                 s.rect(add(a, 0.0, 1.0), (b.0 - a.0, 7.0), &fill(c, c));
@@ -113,11 +153,10 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
         } else {
             // From p, under the edge, to the emitter's two ends.
             let p = (0.0, d_r);
-            let cross: Vec<f64> = ends.iter().map(|&q| at_height(p, q, d_b)).collect();
             for &q in &ends {
                 s.line(px(p), px(q), &stroke(RAY, 1.5, ""));
             }
-            let (lo, hi) = (cross[0].min(cross[1]), cross[0].max(cross[1]));
+            let (lo, hi) = t.footprint;
             let y = px((0.0, d_b)).1 - 9.0;
             s.line(
                 (px((lo, 0.0)).0, y),
@@ -136,20 +175,117 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
         }
     }
     let note = format!(
-        "A vertical section through the plank's edge (scenes/lesson_10.toml): the light {} m \
-         above the floor, its disk of radius R = {} m drawn parallel to the floor, the plank's \
-         top {} m below it; the distances are measured vertically. Across, the scale is 4 \
-         times the vertical one; lines stay lines and the ratios hold. The widths are where the \
-         drawn rays cross the planes, not a formula: (a) the edges of the emitter through the \
-         plank's edge bound the penumbra on the floor, 2 w_penumbra wide, with Fernando's \
-         w_penumbra = (d_r − d_b) w_light / d_b and w_light = R; (b) the rays from p to the \
-         emitter's edges cross the blocker's plane on the footprint of radius \
+        "A section through the light's axis (scenes/lesson_10.toml). p is the floor point under \
+         the middle of the plank's far long edge, as the light's centre sees it; d_r and d_b are \
+         the distances of p and of that edge from the light, measured along its axis, as the \
+         text defines them and the shadow map stores them. The planes are the derivation's, \
+         square to the axis, with the emitter's disk of radius R = {} m; p is drawn under the \
+         emitter's centre (sliding each plane sideways keeps every width on it), and across, \
+         the scale is 4 times the one along the axis: lines stay lines and the ratios hold. \
+         The widths are where the drawn rays cross the planes, not a formula: (a) the edges of \
+         the emitter through the plank's edge bound the penumbra, 2 w_penumbra wide, with \
+         Fernando's w_penumbra = (d_r − d_b) w_light / d_b and w_light = R; (b) the rays from p \
+         to the emitter's edges cross the blocker's plane on the footprint of radius \
          r_b = R (d_r − d_b) / d_r, of which the plank covers half: p, under the edge, sees \
          half the emitter.",
-        f(d_r, 2),
         f(r, 2),
-        f(d_b, 2),
     );
     s.h = s.para((20.0, bottom + 30.0), 12.0, "start", w - 40.0, &note);
     s.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use common::glam::DVec3;
+    use common::scene::camera::light_view_proj;
+    use common::scene::Scene;
+
+    use super::super::setup::Setup;
+    use super::*;
+
+    /// The numbers the SVG prints after `label = `, in metres.
+    fn printed(svg: &str, label: &str) -> Vec<f64> {
+        svg.match_indices(&format!("{label} = "))
+            .filter_map(|(i, m)| {
+                let rest = &svg[i + m.len()..];
+                rest.split(" m").next()?.parse().ok()
+            })
+            .collect()
+    }
+
+    /// The printed distances are the text's definition for the drawn p,
+    /// computed here another way: the light's own matrix (its clip w is the
+    /// distance along the axis) at p, and at the point where the segment
+    /// from p to the light crosses the plank's top (found from the scene's
+    /// triangles, not from the figure's setup); the footprint's radius is
+    /// R (d_r − d_b) / d_r and the penumbra's half width R (d_r − d_b) / d_b.
+    #[test]
+    fn printed_distances_and_widths_follow_the_texts_definition() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let scene = Scene::load(&root.join("scenes/lesson_10.toml")).unwrap();
+        let u = Setup::from_scene(&scene).unwrap();
+        let m = light_view_proj(&scene, 0).unwrap();
+        let w = |x: DVec3| (m * x.as_vec3().extend(1.0)).w as f64;
+        // The plank: the caster whose top lies 60 cm up, by its triangles.
+        let tris = scene.world_triangles();
+        let top = tris
+            .iter()
+            .filter(|(_, o)| *o == 4)
+            .flat_map(|(t, _)| t.iter().map(|p| p.y as f64))
+            .fold(f64::MIN, f64::max);
+        // (The triangles are origin-relative; the scene's floor is at y = 0.)
+        let o = scene.origin().y;
+        assert!(
+            (top + o - 0.62).abs() < 1e-3,
+            "the plank's top at {}",
+            top + o
+        );
+        // p is on the floor; the blocker in front of it on its ray to the light.
+        assert!((u.p.y + o).abs() < 1e-6, "p is not on the floor: {}", u.p);
+        let b = u.light + (u.p - u.light) * ((u.light.y - top) / (u.light.y - u.p.y));
+        let (d_r, d_b) = (w(u.p), w(b));
+        let t = triangles(&u);
+        assert!((t.d_r - d_r).abs() < 1e-4, "d_r {} against {d_r}", t.d_r);
+        assert!((t.d_b - d_b).abs() < 1e-4, "d_b {} against {d_b}", t.d_b);
+        let svg = similar_triangles(&u);
+        // Printed to 2 decimals (3 for the widths): within half the last digit.
+        let near = |got: Vec<f64>, want: f64, half: f64, label: &str| {
+            assert!(!got.is_empty(), "the figure prints no {label}");
+            for g in got {
+                assert!(
+                    (g - want).abs() <= half * 1.02,
+                    "printed {label} = {g}, the definition gives {want}"
+                );
+            }
+        };
+        for (label, want) in [("d_r", d_r), ("d_b", d_b)] {
+            near(printed(&svg, label), want, 0.005, label);
+        }
+        let r = u.radius;
+        let r_b = r * (d_r - d_b) / d_r;
+        let foot = (t.footprint.1 - t.footprint.0) / 2.0;
+        assert!(
+            (foot - r_b).abs() < 1e-4,
+            "footprint radius {foot} against {r_b}"
+        );
+        assert!(
+            t.footprint.0 < 0.0 && t.footprint.1 > 0.0,
+            "p under the edge sees half"
+        );
+        let w_pen = r * (d_r - d_b) / d_b;
+        let pen = (t.penumbra.1 - t.penumbra.0) / 2.0;
+        assert!(
+            (pen - w_pen).abs() < 1e-4,
+            "penumbra half width {pen} against {w_pen}"
+        );
+        near(printed(&svg, "2 r_b"), 2.0 * r_b, 0.0005, "2 r_b");
+        near(
+            printed(&svg, "2 w_penumbra"),
+            2.0 * w_pen,
+            0.0005,
+            "2 w_penumbra",
+        );
+    }
 }

@@ -158,3 +158,161 @@ pub(super) fn passes() -> String {
     s.h = s.para((20.0, y + 24.0), 12.0, "start", w - 40.0, note);
     s.finish()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagrams::svg::tests::texts;
+
+    /// One stencil face as the figure writes it: compare, depth pass,
+    /// depth fail, fail.
+    #[derive(Debug, Clone)]
+    struct Face {
+        compare: String,
+        pass: String,
+        depth_fail: String,
+        fail: String,
+    }
+
+    /// The word after `key` in `text` (from `from`), without its comma or
+    /// semicolon.
+    fn word_after<'a>(text: &'a str, key: &str) -> &'a str {
+        let at = text
+            .find(key)
+            .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
+            + key.len();
+        text[at..]
+            .split_whitespace()
+            .next()
+            .unwrap()
+            .trim_end_matches([',', ';', ':'])
+    }
+
+    /// The rule of `which` faces (`front`, `back`, or `both` for both) in
+    /// one pass's text.
+    fn face(text: &str, which: &str) -> Face {
+        let key = format!("{which} faces: ");
+        let at = text
+            .find(&key)
+            .unwrap_or_else(|| panic!("no {key:?} in {text:?}"));
+        let rule = &text[at..];
+        Face {
+            compare: word_after(rule, "compare ").into(),
+            pass: word_after(rule, "depth pass ").into(),
+            depth_fail: word_after(rule, "depth fail ").into(),
+            fail: word_after(rule, ", fail ").into(),
+        }
+    }
+
+    fn faces(text: &str) -> (Face, Face) {
+        if text.contains("both faces: ") {
+            (face(text, "both"), face(text, "both"))
+        } else {
+            (face(text, "front"), face(text, "back"))
+        }
+    }
+
+    /// A comparison as wgpu defines it: `new` against what is stored.
+    fn compare(f: &str, new: i64, stored: i64) -> bool {
+        match f {
+            "Never" => false,
+            "Less" => new < stored,
+            "Equal" => new == stored,
+            "LessEqual" => new <= stored,
+            "Greater" => new > stored,
+            "NotEqual" => new != stored,
+            "GreaterEqual" => new >= stored,
+            "Always" => true,
+            _ => panic!("compare {f:?}"),
+        }
+    }
+
+    /// A stencil operation on the 8-bit value `s`, reference 0.
+    fn apply(op: &str, s: u8) -> u8 {
+        match op {
+            "Keep" => s,
+            "Zero" | "Replace" => 0,
+            "Invert" => !s,
+            "IncrementClamp" => s.saturating_add(1),
+            "DecrementClamp" => s.saturating_sub(1),
+            "IncrementWrap" => s.wrapping_add(1),
+            "DecrementWrap" => s.wrapping_sub(1),
+            _ => panic!("stencil op {op:?}"),
+        }
+    }
+
+    /// One fragment of a volume face at `depth` over the surface at
+    /// `surface`, through the volume pass's depth test and stencil rule.
+    fn fragment(rule: &Face, depth_test: &str, depth: i64, surface: i64, s: u8) -> u8 {
+        if !compare(&rule.compare, 0, s as i64) {
+            return apply(&rule.fail, s);
+        }
+        if compare(depth_test, depth, surface) {
+            apply(&rule.pass, s)
+        } else {
+            apply(&rule.depth_fail, s)
+        }
+    }
+
+    /// The states the figure writes make the z-pass count. Read back from
+    /// its text (the depth test and stencil rule of the volume pass, the
+    /// stencil rule and depth test of the lit pass), they are run on
+    /// view rays that start outside every volume: each ray crosses a few
+    /// volumes' sides, entering by a face turned to the eye and leaving
+    /// by one turned away (or never, to infinity), and ends on a surface.
+    /// The lit pass must then draw exactly where the surface point lies in
+    /// no volume, counted here from the intervals.
+    #[test]
+    fn the_states_written_count_the_volumes_in_front_of_the_surface() {
+        let svg = passes();
+        let words: Vec<String> = texts(&svg).into_iter().map(|t| t.2).collect();
+        let all = words.join(" ");
+        let volume_at = all.find("2. volume pass").expect("the volume pass");
+        let lit_at = all.find("3. lit pass").expect("the lit pass");
+        let end = all.find("The stencil cells").unwrap_or(all.len());
+        let (volume, lit) = (&all[volume_at..lit_at], &all[lit_at..end]);
+        assert!(volume.contains("cleared to 0"), "{volume}");
+        assert!(volume.contains("the sides only, no caps"), "{volume}");
+        let volume_depth = word_after(volume, "test ");
+        let (front, back) = faces(volume);
+        let (lit_rule, _) = faces(lit);
+        let lit_depth = word_after(lit, "test ");
+        assert!(lit.contains("reference 0"), "{lit}");
+        // The lit pass draws the surface again, at its own depth.
+        assert!(
+            compare(lit_depth, 500, 500),
+            "the lit pass's depth test {lit_depth}"
+        );
+        // Random rays, from a fixed seed.
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = |n: u64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) % n
+        };
+        for _ in 0..20_000 {
+            // Depths: the surface's even, the faces' odd, so that no face
+            // lies on the surface (a tie either way).
+            let surface = 2 * (1 + next(500) as i64);
+            let volumes = next(6);
+            let (mut s, mut holding) = (0u8, 0);
+            for _ in 0..volumes {
+                let enter = 1 + 2 * next(500) as i64;
+                let leave = enter + 2 * (1 + next(300) as i64);
+                let leave = (next(4) > 0).then_some(leave); // else to infinity
+                holding += i32::from(enter < surface && leave.is_none_or(|l| surface < l));
+                s = fragment(&front, volume_depth, enter, surface, s);
+                if let Some(l) = leave {
+                    s = fragment(&back, volume_depth, l, surface, s);
+                }
+            }
+            let drawn = compare(&lit_rule.compare, 0, s as i64);
+            assert_eq!(
+                drawn,
+                holding == 0,
+                "surface {surface}: stencil {s}, in {holding} volumes"
+            );
+        }
+    }
+}

@@ -15,6 +15,17 @@ use crate::diagrams::svg::{fill, Svg, P};
 /// the vertex's distance. The lesson puts them at infinity (w = 0).
 const FAR: f64 = 2.2;
 
+const SIDE: &str = r##"fill="#1f5fbf" fill-opacity="0.22" stroke="#1f5fbf" stroke-width="1.2""##;
+const BACK: &str = r##"fill="#9467bd" fill-opacity="0.25" stroke="#9467bd" stroke-width="1.5" stroke-dasharray="5,3""##;
+
+/// Where a world point lands on the page: the caster's camera, fitted to
+/// the panel by every point drawn (`pts`).
+fn layout<'a>(c: &'a Caster, pts: &[DVec3]) -> impl Fn(DVec3) -> P + 'a {
+    let px: Vec<P> = pts.iter().map(|&p| c.screen(p)).collect();
+    let fit = Fit::new(&px, (30.0, 80.0), (420.0, 390.0));
+    move |p| fit.at(c.screen(p))
+}
+
 pub(super) fn sides_and_caps(c: &Caster) -> String {
     let title = "The cube's shadow volume: sides and caps (cpu_volume, lesson 05)";
     let (w, mut s) = (760.0, Svg::new(760.0, 0.0, title));
@@ -41,8 +52,7 @@ pub(super) fn sides_and_caps(c: &Caster) -> String {
             .map(|t| t.iter().map(place).collect())
             .collect()
     };
-    let side = r##"fill="#1f5fbf" fill-opacity="0.22" stroke="#1f5fbf" stroke-width="1.2""##;
-    let back = r##"fill="#9467bd" fill-opacity="0.25" stroke="#9467bd" stroke-width="1.5" stroke-dasharray="5,3""##;
+    let (side, back) = (SIDE, BACK);
     for t in part(&ranges.sides) {
         polys.push((t, side.to_string()));
     }
@@ -52,13 +62,9 @@ pub(super) fn sides_and_caps(c: &Caster) -> String {
     for t in part(&ranges.back) {
         polys.push((t, back.to_string()));
     }
-    let px: Vec<P> = polys
-        .iter()
-        .flat_map(|(t, _)| t.iter().map(|&p| c.screen(p)))
-        .collect();
+    let all: Vec<DVec3> = polys.iter().flat_map(|(t, _)| t.iter().copied()).collect();
     let (lo, hi) = ((20.0, 40.0), (460.0, 480.0));
-    let fit = Fit::new(&px, (30.0, 80.0), (420.0, 390.0));
-    let at = |p: DVec3| fit.at(c.screen(p));
+    let at = layout(c, &all);
     polys.sort_by(|a, b| c.depth(&a.0).total_cmp(&c.depth(&b.0)));
     for (t, style) in &polys {
         let pts: Vec<P> = t.iter().map(|&p| at(p)).collect();
@@ -112,4 +118,106 @@ pub(super) fn sides_and_caps(c: &Caster) -> String {
     let y = s.para((480.0, y + 14.0), 12.0, "start", w - 500.0, &note);
     s.h = y.max(490.0);
     s.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::independent::{
+        cube_triangles, faces_point, near, point_light, points, scene, silhouette,
+    };
+    use super::*;
+    use crate::diagrams::svg::tests::{elements, texts};
+
+    /// Twice the signed area of a page polygon.
+    fn area(p: &[P]) -> f64 {
+        (0..p.len())
+            .map(|i| {
+                let (a, b) = (p[i], p[(i + 1) % p.len()]);
+                a.0 * b.1 - b.0 * a.1
+            })
+            .sum::<f64>()
+            .abs()
+    }
+
+    /// The volume drawn is the cube's, built here from the scene's mesh
+    /// and light alone: the front cap is the triangles facing the light,
+    /// the back cap the same triangles pushed away from the light to
+    /// `FAR` times their distance, and each silhouette edge (between a lit
+    /// and an unlit triangle) is swept away from the light into one side,
+    /// the quad `a, b, b', a'` drawn as two triangles that cover it.
+    #[test]
+    fn volume_drawn_is_the_silhouette_swept_away_from_the_light() {
+        let scene = scene();
+        let c = Caster::from_scene(&scene).unwrap();
+        let svg = sides_and_caps(&c);
+        let light = point_light(&scene);
+        let tris = cube_triangles(&scene);
+        let lit: Vec<bool> = tris.iter().map(|t| faces_point(t, light)).collect();
+        let sil = silhouette(&tris, &lit);
+        let away = |p: DVec3| light + FAR * (p - light);
+        let front: Vec<[DVec3; 3]> = (tris.iter().zip(&lit))
+            .filter(|(_, l)| **l)
+            .map(|(t, _)| *t)
+            .collect();
+        let unlit: Vec<[DVec3; 3]> = (tris.iter().zip(&lit))
+            .filter(|(_, l)| !**l)
+            .map(|(t, _)| *t)
+            .collect();
+        let back: Vec<[DVec3; 3]> = front.iter().map(|t| t.map(away)).collect();
+        let quads: Vec<[DVec3; 4]> = sil.iter().map(|&(a, b)| [a, b, away(b), away(a)]).collect();
+        let mut all: Vec<DVec3> = [&unlit, &front, &back]
+            .iter()
+            .flat_map(|v| v.iter().flatten().copied())
+            .collect();
+        all.extend(quads.iter().flatten());
+        let at = layout(&c, &all);
+        let polygons = elements(&svg, "polygon");
+        let drawn = |fill: &str| -> Vec<Vec<P>> {
+            (polygons.iter())
+                .filter(|e| e["fill"] == fill)
+                .map(|e| points(&e["points"]))
+                .collect()
+        };
+        let same = |a: &[P], b: &[P]| {
+            a.len() == b.len() && a.iter().all(|p| b.iter().any(|q| near(*p, *q)))
+        };
+        for (name, fill, want) in [
+            ("front cap", LIT, &front),
+            ("back cap", "#9467bd", &back),
+            ("unlit face", AWAY, &unlit),
+        ] {
+            let got = drawn(fill);
+            assert_eq!(got.len(), want.len(), "{name} triangles drawn: {got:?}");
+            for t in want {
+                let t = t.map(&at);
+                assert!(got.iter().any(|g| same(g, &t)), "{name} {t:?} is not drawn");
+            }
+        }
+        let sides = drawn("#1f5fbf");
+        assert_eq!(sides.len(), 2 * quads.len(), "side triangles drawn");
+        for q in &quads {
+            let q = q.map(&at);
+            let halves: Vec<&Vec<P>> = sides
+                .iter()
+                .filter(|t| t.iter().all(|p| q.iter().any(|c| near(*p, *c))))
+                .collect();
+            let covered: f64 = halves.iter().map(|t| area(t)).sum();
+            assert!(
+                halves.len() == 2 && (covered / area(&q) - 1.0).abs() < 1e-3,
+                "side {q:?}: drawn as {halves:?}"
+            );
+        }
+        let words: Vec<String> = texts(&svg).into_iter().map(|t| t.2).collect();
+        let words = words.join(" ");
+        for count in [
+            format!("the {} light-facing triangles", front.len()),
+            format!(
+                "{} triangles, two for each of the {} silhouette edges",
+                2 * quads.len(),
+                quads.len()
+            ),
+        ] {
+            assert!(words.contains(&count), "the legend lacks {count:?}");
+        }
+    }
 }

@@ -155,3 +155,189 @@ pub(super) fn stencil_counts(scene: &Scene) -> Result<String> {
     s.h = s.para((left, y), 12.0, "start", s.w - 2.0 * left, &note);
     Ok(s.finish())
 }
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use common::glam::DVec3;
+
+    use super::super::independent::scene;
+    use super::*;
+    use crate::diagrams::svg::tests::{elements, number};
+
+    /// Where the segment `o + t d`, `1e-4 < t < t_max`, crosses the
+    /// triangle (Möller–Trumbore, in `f64`).
+    fn crosses(o: DVec3, d: DVec3, t_max: f64, [a, b, c]: [DVec3; 3]) -> bool {
+        let (e1, e2) = (b - a, c - a);
+        let p = d.cross(e2);
+        let det = e1.dot(p);
+        if det.abs() < 1e-15 {
+            return false;
+        }
+        let s = o - a;
+        let u = s.dot(p) / det;
+        let q = s.cross(e1);
+        let v = d.dot(q) / det;
+        let t = e2.dot(q) / det;
+        u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 1e-4 && t < t_max
+    }
+
+    /// One caster: its triangles, its bounding sphere, and whether it is
+    /// closed (each edge, its vertices welded by position, has two faces).
+    struct Solid {
+        tris: Vec<[DVec3; 3]>,
+        centre: DVec3,
+        radius: f64,
+        closed: bool,
+    }
+
+    fn solids(scene: &Scene) -> Vec<Solid> {
+        let mut by_object: BTreeMap<u32, Vec<[DVec3; 3]>> = BTreeMap::new();
+        for (t, i) in scene.world_triangles() {
+            if scene.objects[i as usize].casts_shadow {
+                by_object
+                    .entry(i)
+                    .or_default()
+                    .push(t.map(|p| p.as_dvec3()));
+            }
+        }
+        let key = |p: DVec3| (p * 1e4).round().as_i64vec3().to_array();
+        by_object
+            .into_values()
+            .map(|tris| {
+                let mut edges: BTreeMap<_, u32> = BTreeMap::new();
+                for t in &tris {
+                    for k in 0..3 {
+                        let (a, b) = (key(t[k]), key(t[(k + 1) % 3]));
+                        *edges
+                            .entry(if a < b { (a, b) } else { (b, a) })
+                            .or_default() += 1;
+                    }
+                }
+                let n = (tris.len() * 3) as f64;
+                let centre = tris.iter().flatten().fold(DVec3::ZERO, |s, p| s + *p / n);
+                let radius = tris
+                    .iter()
+                    .flatten()
+                    .map(|p| p.distance(centre))
+                    .fold(0.0, f64::max);
+                Solid {
+                    closed: edges.values().all(|&n| n == 2),
+                    tris,
+                    centre,
+                    radius,
+                }
+            })
+            .collect()
+    }
+
+    /// How many shadow volumes hold the point `p` for a light at `l` (or
+    /// along `dir`): how many times the way from the light to `p` enters a
+    /// caster. A closed caster is entered once for each two crossings of
+    /// its surface, the last one counted when `p` is on its far side (an
+    /// odd count); an open one (a two-sided surface) once for each.
+    fn volumes_holding(solids: &[Solid], p: DVec3, light: Result<DVec3, DVec3>) -> u32 {
+        let (to, t_max) = match light {
+            Ok(l) => ((l - p).normalize(), p.distance(l)),
+            Err(dir) => (-dir.normalize(), f64::INFINITY),
+        };
+        solids
+            .iter()
+            .map(|s| {
+                // The sphere behind the start or beyond the light is missed.
+                let along = (s.centre - p).dot(to).clamp(0.0, t_max);
+                if (p + to * along).distance(s.centre) > s.radius {
+                    return 0;
+                }
+                let n = s.tris.iter().filter(|t| crosses(p, to, t_max, **t)).count() as u32;
+                if s.closed {
+                    n.div_ceil(2)
+                } else {
+                    n
+                }
+            })
+            .sum()
+    }
+
+    /// The counts drawn, read back from the cells' rectangles: per panel,
+    /// `None` for no surface, else the colour's count (4 for "4 or more").
+    fn drawn(svg: &str) -> Vec<Vec<Option<u32>>> {
+        let pw = COLS as f64 * CELL;
+        let mut out = vec![vec![Some(99); (COLS * ROWS) as usize]; 2];
+        for r in elements(svg, "rect") {
+            if r.get("stroke").map(String::as_str) != Some("none") {
+                continue;
+            }
+            let (x, y, w) = (number(&r, "x"), number(&r, "y"), number(&r, "width"));
+            let k = usize::from(x > 28.0 + pw + 12.0);
+            let i = ((x - 28.0 - k as f64 * (pw + 24.0)) / CELL).round() as u32;
+            let j = ((y - 62.0) / CELL).round() as u32;
+            let run = ((w - 0.3) / CELL).round() as u32;
+            let value = match r["fill"].as_str() {
+                "#fff" => None,
+                c => Some(
+                    COUNT_COLOURS
+                        .iter()
+                        .position(|x| *x == c)
+                        .expect("a count's colour") as u32,
+                ),
+            };
+            for c in i..i + run {
+                out[k][(j * COLS + c) as usize] = value;
+            }
+        }
+        out
+    }
+
+    /// Every cell's colour is the number of shadow volumes holding the
+    /// surface point it sees, counted here as the times the segment from
+    /// the light to that point enters a caster (its own ray–triangle test
+    /// on every caster triangle, not the lesson's lit triangles), for the
+    /// point light and for the directional one.
+    #[test]
+    fn each_cell_is_the_number_of_volumes_holding_its_point() {
+        let scene = scene();
+        let svg = stencil_counts(&scene).unwrap();
+        let got = drawn(&svg);
+        let solids = solids(&scene);
+        let tris = scene.world_triangles();
+        let bvh = Bvh::try_build(tris.iter().map(|(t, _)| *t).collect()).unwrap();
+        let inv = camera_matrices(&scene, COLS, ROWS)
+            .view_proj
+            .as_dmat4()
+            .inverse();
+        let o = scene.origin();
+        let mut shadowed = [0; 2];
+        for (k, light) in scene.lights.iter().enumerate() {
+            let light = match light.kind {
+                LightKind::Directional { direction } => Err(direction),
+                LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
+                    Ok(position - o)
+                }
+            };
+            let mut wrong = Vec::new();
+            for j in 0..ROWS {
+                for i in 0..COLS {
+                    let (org, d) = primary_ray(inv, i, j, COLS, ROWS);
+                    let want = bvh.closest_hit(org, d, f32::INFINITY).map(|hit| {
+                        let p = (org + d * hit.t).as_dvec3();
+                        volumes_holding(&solids, p, light).min(COUNT_COLOURS.len() as u32 - 1)
+                    });
+                    shadowed[k] += usize::from(want.is_some_and(|c| c > 0));
+                    if got[k][(j * COLS + i) as usize] != want {
+                        wrong.push((i, j, got[k][(j * COLS + i) as usize], want));
+                    }
+                }
+            }
+            assert!(
+                wrong.is_empty(),
+                "light {k}: cells (column, row, drawn, counted): {wrong:?}"
+            );
+        }
+        assert!(
+            shadowed.iter().all(|&n| n > 100),
+            "shadowed cells: {shadowed:?}"
+        );
+    }
+}

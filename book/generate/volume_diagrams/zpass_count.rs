@@ -20,14 +20,30 @@ const LIGHT_2D: P = (-2.6, 6.4);
 const EYE_2D: P = (7.6, 4.6);
 const FAR_Y: f64 = -2.6;
 
+/// The part of the section drawn: x and y, in metres.
+const WX: P = (-3.6, 9.0);
+const WY: P = (FAR_Y - 0.2, 7.0);
+/// Pixels a metre.
+const K: f64 = 740.0 / (WX.1 - WX.0);
+
+/// A point of the section on the page.
+fn page(p: P) -> P {
+    (30.0 + (p.0 - WX.0) * K, 50.0 + (WY.1 - p.1) * K)
+}
+
+/// The long box: lesson 05's cube scaled, turned about z and lifted.
+fn prism_model() -> DMat4 {
+    DMat4::from_translation(DVec3::new(0.2, 2.7, 0.0))
+        * DMat4::from_rotation_z(20f64.to_radians())
+        * DMat4::from_scale(DVec3::new(1.8, 0.8, 4.0))
+}
+
 /// A segment of the cross-section.
 type Segment = (P, P);
 
 /// The prism's cross-section: (front cap segments, silhouette points).
 fn prism_section() -> Result<(Vec<Segment>, Vec<P>)> {
-    let model = DMat4::from_translation(DVec3::new(0.2, 2.7, 0.0))
-        * DMat4::from_rotation_z(20f64.to_radians())
-        * DMat4::from_scale(DVec3::new(1.8, 0.8, 4.0));
+    let model = prism_model();
     let cube = builtin("cube")?;
     let world: Vec<Vec3> = cube
         .positions
@@ -135,9 +151,7 @@ pub(super) fn zpass_count() -> Result<String> {
     ];
     let title = "Z-pass: counting volume faces along two view rays (a cross-section)";
     let mut s = Svg::new(800.0, 0.0, title);
-    let (wx, wy) = ((-3.6, 9.0), (FAR_Y - 0.2, 7.0));
-    let k = 740.0 / (wx.1 - wx.0);
-    let at = |p: P| (30.0 + (p.0 - wx.0) * k, 50.0 + (wy.1 - p.1) * k);
+    let (wx, at) = (WX, page);
     let region: Vec<P> = hull.iter().map(|&p| at(p)).collect();
     s.poly(&region, true, &fill("#ddd", "none"));
     for f in &faces {
@@ -239,4 +253,188 @@ pub(super) fn zpass_count() -> Result<String> {
                 light_facing_triangles.";
     s.h = s.para((30.0, y), 12.0, "start", 740.0, note);
     Ok(s.finish())
+}
+
+#[cfg(test)]
+mod tests {
+    use common::scene::mesh::builtin;
+
+    use super::super::independent::points;
+    use super::*;
+    use crate::diagrams::svg::tests::{elements, number, texts};
+
+    /// A point of the page in the section's metres.
+    fn metres(p: P) -> P {
+        (WX.0 + (p.0 - 30.0) / K, WY.1 - (p.1 - 50.0) / K)
+    }
+
+    /// Is `p` inside the polygon `poly` (its winding number)?
+    fn within(poly: &[P], p: P) -> bool {
+        let mut winding = 0;
+        for i in 0..poly.len() {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            let side = (b.0 - a.0) * (p.1 - a.1) - (p.0 - a.0) * (b.1 - a.1);
+            if a.1 <= p.1 && b.1 > p.1 && side > 0.0 {
+                winding += 1;
+            } else if a.1 > p.1 && b.1 <= p.1 && side < 0.0 {
+                winding -= 1;
+            }
+        }
+        winding != 0
+    }
+
+    /// Where the segments `p0 → p1` and `q0 → q1` cross: the parameter
+    /// along the first, if they do.
+    fn cross(p0: P, p1: P, q0: P, q1: P) -> Option<f64> {
+        let (d, e) = ((p1.0 - p0.0, p1.1 - p0.1), (q1.0 - q0.0, q1.1 - q0.1));
+        let den = d.0 * e.1 - d.1 * e.0;
+        if den.abs() < 1e-12 {
+            return None;
+        }
+        let w = (q0.0 - p0.0, q0.1 - p0.1);
+        let t = (w.0 * e.1 - w.1 * e.0) / den;
+        let u = (w.0 * d.1 - w.1 * d.0) / den;
+        ((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)).then_some(t)
+    }
+
+    /// The long box's section by z = 0: its four corners, in turn.
+    fn box_section() -> Vec<P> {
+        let cube = builtin("cube").unwrap();
+        let mut corners: Vec<P> = Vec::new();
+        for p in &cube.positions {
+            let q = prism_model().transform_point3(p.as_dvec3());
+            if !corners
+                .iter()
+                .any(|c| (c.0 - q.x).abs() + (c.1 - q.y).abs() < 1e-9)
+            {
+                corners.push((q.x, q.y));
+            }
+        }
+        assert_eq!(corners.len(), 4, "a box's section is a rectangle");
+        let c = corners
+            .iter()
+            .fold((0.0, 0.0), |s, p| (s.0 + p.0 / 4.0, s.1 + p.1 / 4.0));
+        corners.sort_by(|a, b| {
+            (a.1 - c.1)
+                .atan2(a.0 - c.0)
+                .total_cmp(&(b.1 - c.1).atan2(b.0 - c.0))
+        });
+        corners
+    }
+
+    /// Does the box hide `p` from the light: does the segment from the
+    /// light to `p` meet the box?
+    fn hidden(p: P) -> bool {
+        let rect = box_section();
+        within(&rect, p) || (0..4).any(|i| cross(LIGHT_2D, p, rect[i], rect[(i + 1) % 4]).is_some())
+    }
+
+    /// The distance from `p` to the polygon's outline.
+    fn to_outline(poly: &[P], p: P) -> f64 {
+        (0..poly.len())
+            .map(|i| {
+                let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+                let e = (b.0 - a.0, b.1 - a.1);
+                let t = (((p.0 - a.0) * e.0 + (p.1 - a.1) * e.1) / (e.0 * e.0 + e.1 * e.1))
+                    .clamp(0.0, 1.0);
+                ((p.0 - a.0 - t * e.0).powi(2) + (p.1 - a.1 - t * e.1).powi(2)).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The grey region drawn is the box's shadow: a point of the section
+    /// (down to the back cap's line) lies in it exactly when the segment
+    /// from the light to it meets the box. And the count written at each
+    /// crossing of a view ray is the running sum of +1 where the ray
+    /// enters that region and −1 where it leaves, found by intersecting
+    /// the ray with the region's outline; the count at the floor is not 0
+    /// exactly where the box hides the floor point from the light.
+    #[test]
+    fn counts_written_are_the_crossings_of_each_ray() {
+        let svg = zpass_count().unwrap();
+        let polygons = elements(&svg, "polygon");
+        let region = polygons
+            .iter()
+            .find(|e| e["fill"] == "#ddd")
+            .expect("the volume");
+        let region: Vec<P> = points(&region["points"]);
+        let in_metres: Vec<P> = region.iter().map(|&p| metres(p)).collect();
+        let mut sampled = 0;
+        for i in 0..=250 {
+            for j in 0..=200 {
+                let p = (
+                    WX.0 + (WX.1 - WX.0) * i as f64 / 250.0,
+                    FAR_Y + (WY.1 - FAR_Y) * j as f64 / 200.0,
+                );
+                let edge = to_outline(&in_metres, p).min(to_outline(&box_section(), p));
+                if edge < 0.03 {
+                    continue;
+                }
+                sampled += 1;
+                assert_eq!(within(&in_metres, p), hidden(p), "at {p:?} (m)");
+            }
+        }
+        assert!(sampled > 40_000);
+        let labels = texts(&svg);
+        let mut crossings_found = 0;
+        let rays = elements(&svg, "line");
+        let rays: Vec<(P, P)> = rays
+            .iter()
+            .filter(|l| {
+                l["stroke-width"] == "2" && (l["stroke"] == "#2ca02c" || l["stroke"] == BLUE)
+            })
+            .map(|l| {
+                (
+                    (number(l, "x1"), number(l, "y1")),
+                    (number(l, "x2"), number(l, "y2")),
+                )
+            })
+            .collect();
+        assert_eq!(rays.len(), 2, "two view rays");
+        let label_at = |p: P| {
+            let found = labels
+                .iter()
+                .find(|t| (t.0 - p.0).abs() < 0.1 && (t.1 - p.1).abs() < 0.1);
+            found.map(|t| t.2.clone()).unwrap_or_default()
+        };
+        for &(eye, target) in &rays {
+            let mut ts: Vec<f64> = (0..region.len())
+                .filter_map(|i| cross(eye, target, region[i], region[(i + 1) % region.len()]))
+                .filter(|t| *t < 1.0 - 1e-9)
+                .collect();
+            ts.sort_by(f64::total_cmp);
+            let mut count = 0;
+            let along = |t: f64| {
+                (
+                    eye.0 + t * (target.0 - eye.0),
+                    eye.1 + t * (target.1 - eye.1),
+                )
+            };
+            for t in ts {
+                let sign = if within(&region, along(t + 1e-3)) {
+                    1
+                } else {
+                    -1
+                };
+                count += sign;
+                let q = along(t);
+                let want = format!("{} → {count}", if sign > 0 { "+1" } else { "−1" });
+                assert_eq!(label_at((q.0 + 2.0, q.1 - 9.0)), want, "crossing at {q:?}");
+                crossings_found += 1;
+            }
+            assert_eq!(
+                label_at((target.0, target.1 + 18.0)),
+                format!("count {count}")
+            );
+            assert_eq!(count != 0, hidden(metres(target)), "ray to {target:?}");
+        }
+        let written = (labels.iter())
+            .filter(|t| t.2.starts_with("+1 → ") || t.2.starts_with("−1 → "))
+            .count();
+        assert_eq!(
+            written, crossings_found,
+            "a count for each crossing, and no other"
+        );
+        assert!(crossings_found >= 3);
+    }
 }

@@ -37,7 +37,7 @@ pub struct Args {
     pub frames: u32,
     /// Untimed warm-up of each timed block, at least (milliseconds; the
     /// first block ten times as long), until frame times settle: see the
-    /// book's introduction. WORKBOOK_WARM_UP_MS is honoured too.
+    /// book's "Using the workbook". WORKBOOK_WARM_UP_MS is honoured too.
     #[arg(long, value_name = "MS", env = "WORKBOOK_WARM_UP_MS",
           default_value_t = crate::measure::protocol::DEFAULT_WARM_UP_MS,
           value_parser = parse_warm_up_ms)]
