@@ -70,11 +70,13 @@ fn fs_base(in: VertexOut) -> BaseOut {
     return out;
 }
 
+// ANCHOR: vs_light_depth
 // A shadow pass's vertex shader: the object seen from the light.
 @vertex
 fn vs_light_depth(v: VertexIn) -> @builtin(position) vec4<f32> {
     return light.view_proj * object.model * vec4<f32>(v.position, 1.0);
 }
+// ANCHOR_END: vs_light_depth
 
 // Unit vector from a surface point towards the light.
 fn to_light(p: vec3<f32>) -> vec3<f32> {
@@ -115,6 +117,7 @@ struct LitOut {
     @location(1) visibility: f32,
 };
 
+// ANCHOR: lit_output
 // What every lit pass returns: the light's contribution, added onto the
 // frame, and the visibility the technique computed, for the metrics.
 fn lit_output(in: VertexOut, visibility: f32) -> LitOut {
@@ -124,3 +127,4 @@ fn lit_output(in: VertexOut, visibility: f32) -> LitOut {
     out.visibility = visibility;
     return out;
 }
+// ANCHOR_END: lit_output

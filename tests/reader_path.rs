@@ -160,9 +160,9 @@ fn the_counter_counts_what_a_reader_reads() {
     // A table wider than COLS, or longer than ROWS, is over.
     let wide = format!(
         "| {} |\n|{}\n| {} |\n",
-        vec!["h"; COLS + 1].join(" | "),
+        ["h"; COLS + 1].join(" | "),
         " --- |".repeat(COLS + 1),
-        vec!["1"; COLS + 1].join(" | ")
+        ["1"; COLS + 1].join(" | ")
     );
     assert!(over_budget(&weigh(&wide), WORDS)[0].contains("columns"));
     let long = format!("| a |\n| --- |\n{}", "| 1 |\n".repeat(ROWS + 1));
@@ -286,7 +286,7 @@ fn every_generated_table_is_on_a_page() {
                 let text = fs::read_to_string(&p).unwrap_or_default();
                 let is_table = text.lines().any(|l| l.trim_start().starts_with('|'));
                 if is_table && !shown.contains(&normalise(&p)) {
-                    missing.push(p.strip_prefix(&src()).unwrap_or(&p).display().to_string());
+                    missing.push(p.strip_prefix(src()).unwrap_or(&p).display().to_string());
                 }
             }
         }

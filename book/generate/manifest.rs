@@ -225,6 +225,7 @@ pub const FIGURES: &[Figure] = &[
     fig("lesson_01/results", "res_4096.png", "lesson_01/res_4096.png"),
     fig("lesson_01/results", "res_256_diff_l0.png", "lesson_01/res_256_diff_l0.png"),
     fig("lesson_01/results", "res_4096_diff_l0.png", "lesson_01/res_4096_diff_l0.png"),
+    fig("lesson_01/results", "reference_visibility_l0.png", "lesson_01/reference_visibility_l0.png"),
     fig("lesson_02/results", "none_diff_l0.png", "lesson_02/none_diff.png"),
     fig("lesson_02/results", "slope_hw.png", "lesson_02/slope_hw.png"),
     fig("lesson_02/results", "slope_hw_diff_l0.png", "lesson_02/slope_hw_diff.png"),

@@ -18,7 +18,10 @@
 //! - `mean_abs`: mean |ΔV| as the tables print it, `0.123 %`;
 //! - a soft shadow's (lesson 10) `penumbra_mean_abs` (as the tables print
 //!   it, `3.210 %`), `light_bleeding_pct`, `umbra_misclassified_pct`,
-//!   `penumbra_pixels`, `umbra_pixels`;
+//!   `penumbra_pixels`, `umbra_pixels`, and its per-class figures as the
+//!   classes table prints them: `umbra_mean_abs`, `lit_mean_abs`,
+//!   `spill_mean_abs` (`0.657 %`), `leak_pct` (`0.452 %`) and
+//!   `penumbra_width_error_px` (`0.61 px`);
 //! - a counter's name: `37 390`;
 //! - `frame`, `cpu_total` or a pass (`lighting`, `volume`, ...): its median,
 //!   `12.4 ms`;
@@ -101,6 +104,8 @@ pub enum Measured {
     Pct(f64),
     /// A count.
     Count(u64),
+    /// A distance in pixels, as the tables print it (`0.61` for `0.61 px`).
+    Pixels(f64),
     /// A time: its median and spread, in milliseconds.
     Time(Stat),
     /// The frame's time over the no-shadow baseline's.
@@ -112,7 +117,7 @@ impl Measured {
     /// difference of the medians.
     pub fn number(&self) -> f64 {
         match *self {
-            Measured::Pct(x) => x,
+            Measured::Pct(x) | Measured::Pixels(x) => x,
             Measured::Count(n) => n as f64,
             Measured::Time(s) => s.median,
             Measured::Cost { frame, baseline } => frame.median - baseline.median,
@@ -125,6 +130,7 @@ pub fn value(record: &Record, variant: &str, field: &str) -> Result<String> {
     Ok(match measure(record, variant, field)? {
         Measured::Pct(x) => format!("{} %", pct(x)),
         Measured::Count(n) => count(n),
+        Measured::Pixels(x) => format!("{x:.2} px"),
         Measured::Time(s) => format!("{} ms", ms(s.median)),
         Measured::Cost { frame, baseline } => {
             if frame.differs_from(&baseline) {
@@ -187,7 +193,12 @@ pub fn measure(record: &Record, variant: &str, field: &str) -> Result<Measured> 
         | "light_bleeding_pct"
         | "umbra_misclassified_pct"
         | "penumbra_pixels"
-        | "umbra_pixels" => {
+        | "umbra_pixels"
+        | "umbra_mean_abs"
+        | "lit_mean_abs"
+        | "spill_mean_abs"
+        | "leak_pct"
+        | "penumbra_width_error_px" => {
             let Some(e) = &v.soft else {
                 bail!("`{variant}` has no soft-shadow figures (its light has no size)");
             };
@@ -196,6 +207,14 @@ pub fn measure(record: &Record, variant: &str, field: &str) -> Result<Measured> 
                 "light_bleeding_pct" => Measured::Pct(e.light_bleeding_pct),
                 "umbra_misclassified_pct" => Measured::Pct(e.umbra_misclassified_pct),
                 "penumbra_pixels" => Measured::Count(e.penumbra_pixels),
+                "umbra_mean_abs" => Measured::Pct(100.0 * e.umbra_mean_abs),
+                "lit_mean_abs" => Measured::Pct(100.0 * e.lit_mean_abs),
+                "spill_mean_abs" => Measured::Pct(100.0 * e.spill_mean_abs),
+                "leak_pct" => Measured::Pct(e.leak_pct),
+                "penumbra_width_error_px" => match e.penumbra_width_error_px {
+                    Some(w) => Measured::Pixels(w),
+                    None => bail!("`{variant}` has no penumbra width error (a contour is missing)"),
+                },
                 _ => Measured::Count(e.umbra_pixels),
             }
         }

@@ -48,10 +48,17 @@ pub fn readme_block(defaults: &[&Record]) -> String {
     };
     let mut s = format!(
         "{BEGIN}\n{}\n\n",
-        first.header().replace(
-            &format!("the default scene (`scenes/{}.toml`)", first.lesson),
-            "each lesson's default scene",
-        )
+        first
+            .header()
+            .replace(
+                &format!("the default scene (`scenes/{}.toml`)", first.lesson),
+                "each lesson's default scene",
+            )
+            // The README sits at the repository's root, not in the book.
+            .replace(
+                &format!("]({})", crate::table::PROTOCOL),
+                &format!("](book/src/{})", crate::table::PROTOCOL),
+            )
     );
     // A soft shadow's error is its penumbra's mean |ΔV|: the header says
     // so when a lesson has one, and so does each of its cells.

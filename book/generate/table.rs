@@ -13,6 +13,9 @@ use crate::record::{Record, Stat, Timing, VariantRecord};
 pub const PENUMBRA: &str = "penumbra \\|ΔV\\| %";
 pub const BLEEDING: &str = "bleeding %";
 
+/// Where the timing protocol is told, from a page of the book.
+pub const PROTOCOL: &str = "using.md#how-times-are-measured";
+
 /// An error percentage as the tables print it.
 pub fn pct(x: f64) -> String {
     format!("{x:.3}")
@@ -58,14 +61,14 @@ impl Record {
         let timing = if self.frames == 0 {
             "error and counters only (untimed)".to_string()
         } else {
+            // The protocol is told once, where the link goes; the line
+            // keeps what a reader needs to weigh the cells.
             let warm_up = match self.warm_up_ms {
-                Some(ms) => format!(
-                    "each variant warmed up (≥ {ms:.0} ms, until its frame times settle) and timed back to back with the no-shadow baseline between"
-                ),
+                Some(ms) => format!("each variant warmed up ≥ {ms:.0} ms"),
                 None => "after 2 warm-up frames".to_string(),
             };
             format!(
-                "times: median of {} runs × {} frames, {warm_up}, [spread: the frames' interquartile range, widened to hold each run's median], {}",
+                "times: median [spread] of {} runs × {} frames, {warm_up}, {} ([the protocol]({PROTOCOL}))",
                 self.repeats,
                 self.frames,
                 self.timing_source.replace('_', " ")

@@ -38,7 +38,7 @@ pub const SHOTS: [Shot; 10] = [
     Shot { lesson: "lesson_07", variant: "reversed_z", view: "frame", shows: "the frame" },
     Shot { lesson: "lesson_08", variant: "bounds_scissor", view: "frame", shows: "the frame, with the knobs that switch the scissor, the depth bounds and the culling" },
     Shot { lesson: "lesson_09", variant: "k4", view: "buffer", shows: "the lesson's buffer: the cascade each pixel samples" },
-    Shot { lesson: "lesson_10", variant: "pcss", view: "diff", shows: "the difference against the exact soft shadow, classified at V = ½: red false shadow, green false lit, gray where both agree" },
+    Shot { lesson: "lesson_10", variant: "pcss", view: "dv", shows: "ΔV, the GPU's visibility less the exact visible fraction of the light, on the receivers: blue where the GPU is darker, red where it is lighter, white where the two agree" },
 ];
 
 /// Takes every chapter's shot (or only `only`'s, a lesson) into

@@ -89,12 +89,14 @@ pub fn depth_compare_pipeline(
     ))
 }
 
-/// The layout of `exercise_depth_compare`'s group 3: the map as floats.
+// ANCHOR: shadow_depths_layout
+/// Group 3 of exercise 2's lit pass: the map as floats, one entry, an
+/// unfilterable-float 2D texture at binding 0 (`shadow_depths`).
 pub fn depths_layout(gpu: &Gpu) -> wgpu::BindGroupLayout {
     bindings::layout(gpu, "shadow map as floats", &[float_texture_entry(0)])
 }
 
-/// Group 3 for `map`.
+/// Group 3 for `map`: the same view of the same depth texture as group 2.
 pub fn depths_group(
     gpu: &Gpu,
     layout: &wgpu::BindGroupLayout,
@@ -103,3 +105,4 @@ pub fn depths_group(
     let view = wgpu::BindingResource::TextureView(&map.view);
     bindings::group(gpu, "shadow map as floats", layout, &[view])
 }
+// ANCHOR_END: shadow_depths_layout

@@ -19,6 +19,8 @@ use common::scene::{LightKind, Scene};
 use super::tally::Tally;
 use super::tally::TallyShader;
 
+// ANCHOR: shadow_map_texture
+/// 32-bit float depth: the comparison reads the very value the shadow pass wrote.
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// A square depth texture seen from the light.
@@ -38,7 +40,12 @@ impl ShadowMap {
             view,
         }
     }
+}
+// ANCHOR_END: shadow_map_texture
 
+/// The map as pictures: the lesson's `<variant>_depth_map.png` and the
+/// window's buffer view.
+impl ShadowMap {
     /// Reads the stored depths back to the CPU. Drawn through a shader into
     /// an RGBA8 target (the float's four bytes), because GL cannot copy
     /// depth textures to buffers.

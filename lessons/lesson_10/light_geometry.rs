@@ -30,27 +30,29 @@ impl LightGeometry {
     /// Light `k`'s geometry (a directional or spot light; the lesson
     /// refuses point lights).
     pub fn new(scene: &Scene, k: usize) -> Option<LightGeometry> {
-        let m = light_view_proj(scene, k)?;
+        let view_proj = light_view_proj(scene, k)?;
         let light = &scene.lights[k];
         // The casters' vertices that the light's frustum holds, in its clip
         // space: the nearest of them bounds the blocker search (a floor's
         // corners out of the light's view would pull it to the light).
-        let inside = |c: &Vec4| {
-            c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w && (0.0..=c.w).contains(&c.z)
+        let inside = |v: &Vec4| {
+            v.w > 0.0 && v.x.abs() <= v.w && v.y.abs() <= v.w && (0.0..=v.w).contains(&v.z)
         };
         let clip: Vec<Vec4> = (scene.world_triangles().into_iter())
             .filter(|(_, o)| scene.objects[*o as usize].casts_shadow)
-            .flat_map(|(t, _)| t)
-            .map(|p| m * p.extend(1.0))
+            .flat_map(|(tri, _)| tri)
+            .map(|vertex| view_proj * vertex.extend(1.0))
             .filter(inside)
             .collect();
         let size = match light.size {
-            LightSize::Radius(r) => r as f32,
-            LightSize::AngularRadiusDeg(a) => a.to_radians().tan() as f32,
+            LightSize::Radius(radius) => radius as f32,
+            LightSize::AngularRadiusDeg(deg) => deg.to_radians().tan() as f32,
         };
         match light.kind {
-            LightKind::Directional { .. } => Some(directional(m, &clip, size)),
-            LightKind::Spot { spot_angle_deg, .. } => Some(spot(m, &clip, size, spot_angle_deg)),
+            LightKind::Directional { .. } => Some(directional(view_proj, &clip, size)),
+            LightKind::Spot { spot_angle_deg, .. } => {
+                Some(spot(view_proj, &clip, size, spot_angle_deg))
+            }
             LightKind::Point { .. } => None,
         }
     }
@@ -59,13 +61,13 @@ impl LightGeometry {
 
 // ANCHOR: light_kinds
 /// A directional light's orthographic map: depth linear in the distance.
-fn directional(m: Mat4, clip: &[Vec4], size: f32) -> LightGeometry {
-    let row = |i: usize| m.row(i).xyz();
-    // z = row 2 · p + m₂₃: one unit of depth is 1 / |row 2| long.
+fn directional(view_proj: Mat4, clip: &[Vec4], size: f32) -> LightGeometry {
+    let row = |i: usize| view_proj.row(i).xyz();
+    // depth = row 2 · x + the row's fourth entry: one unit of depth is 1 / |row 2| long.
     let far = 1.0 / row(2).length();
     let nearest = clip
         .iter()
-        .map(|c| c.z / c.w)
+        .map(|v| v.z / v.w)
         .fold(1.0f32, f32::min)
         .max(0.0);
     LightGeometry {
@@ -79,10 +81,10 @@ fn directional(m: Mat4, clip: &[Vec4], size: f32) -> LightGeometry {
 }
 
 /// A spot's perspective map: map units per radian from its cone.
-fn spot(m: Mat4, clip: &[Vec4], size: f32, spot_angle_deg: f64) -> LightGeometry {
-    let (near, far) = perspective_planes(m);
+fn spot(view_proj: Mat4, clip: &[Vec4], size: f32, spot_angle_deg: f64) -> LightGeometry {
+    let (near, far) = perspective_planes(view_proj);
     // clip.w is the distance along the light's axis.
-    let nearest = clip.iter().map(|c| c.w).fold(far, f32::min).max(near);
+    let nearest = clip.iter().map(|v| v.w).fold(far, f32::min).max(near);
     let per = 0.5 / (0.5 * spot_angle_deg).to_radians().tan() as f32;
     LightGeometry {
         perspective: true,
@@ -96,22 +98,22 @@ fn spot(m: Mat4, clip: &[Vec4], size: f32, spot_angle_deg: f64) -> LightGeometry
 // ANCHOR_END: light_kinds
 
 // ANCHOR: perspective_planes
-/// The near and far planes of webgpu's perspective `m` (depth
-/// z = A − B / d of the distance d along the axis): from two points on the
-/// axis, `n = B / A`, `f = B / (A − 1)`.
-fn perspective_planes(m: Mat4) -> (f32, f32) {
-    let inv = m.inverse();
+/// The near and far planes of webgpu's perspective `view_proj` (depth
+/// = offset − slope / d of the distance d along the axis): from two points
+/// on the axis, `n = slope / offset`, `f = slope / (offset − 1)`.
+fn perspective_planes(view_proj: Mat4) -> (f32, f32) {
+    let inv = view_proj.inverse();
     // Two depths on the axis, their distances: the clip w.
-    let at = |z: f32| {
-        let p = inv * Vec4::new(0.0, 0.0, z, 1.0);
-        let p: Vec3 = p.xyz() / p.w;
-        (m * p.extend(1.0)).w
+    let at = |depth: f32| {
+        let x = inv * Vec4::new(0.0, 0.0, depth, 1.0);
+        let x: Vec3 = x.xyz() / x.w;
+        (view_proj * x.extend(1.0)).w
     };
-    let (z1, z2) = (0.25f32, 0.75f32);
-    let (d1, d2) = (at(z1) as f64, at(z2) as f64);
-    // z = A − B / d at both: B = (z2 − z1) / (1/d1 − 1/d2), A = z1 + B / d1.
-    let b = (z2 - z1) as f64 / (1.0 / d1 - 1.0 / d2);
-    let a = z1 as f64 + b / d1;
-    ((b / a) as f32, (b / (a - 1.0)) as f32)
+    let (depth_near, depth_far) = (0.25f32, 0.75f32);
+    let (dist_near, dist_far) = (at(depth_near) as f64, at(depth_far) as f64);
+    // depth = offset − slope / d at both points.
+    let slope = (depth_far - depth_near) as f64 / (1.0 / dist_near - 1.0 / dist_far);
+    let offset = depth_near as f64 + slope / dist_near;
+    ((slope / offset) as f32, (slope / (offset - 1.0)) as f32)
 }
 // ANCHOR_END: perspective_planes

@@ -66,12 +66,12 @@ enum Variant {
     /// A variance map (Donnelly and Lauritzen 2006), blurred 9×9 texels.
     #[value(name = "vsm")]
     Vsm,
-    /// The same with Lauritzen's light-bleeding cut, linstep(0.3, 1, p).
+    /// The same with Lauritzen's light-bleeding cut, linstep(0.3, 1, p_max).
     #[value(name = "vsm_bleed_cut")]
     VsmBleedCut,
     /// Exponential variance map (Lauritzen and McCool 2008): the moments
-    /// of exp(40 (2 z̃ − 1)) and of −exp(−5 (2 z̃ − 1)), blurred 9×9, the
-    /// lower bound of the two (EVSM4).
+    /// of exp(40 (2z − 1)) and of −exp(−5 (2z − 1)), z the linear depth,
+    /// blurred 9×9, the lower bound of the two (EVSM4).
     #[value(name = "evsm")]
     Evsm,
     // Then the renderers' ports (peers.rs) and the chapter's exercises.

@@ -14,9 +14,9 @@ use crate::lesson_10::light_geometry::LightGeometry;
 pub struct Variance {
     /// The box blur's radius, texels (0: the moments, bilinearly).
     pub blur: u32,
-    /// `Some(c)`: exponential moments of `exp(c (2 z̃ − 1))`.
+    /// `Some(c)`: exponential moments of `exp(c (2z − 1))`.
     pub exponent: Option<f32>,
-    /// `Some(c⁻)`: also those of `−exp(−c⁻ (2 z̃ − 1))`, the bound the
+    /// `Some(c⁻)`: also those of `−exp(−c⁻ (2z − 1))`, the bound the
     /// lower of the two (EVSM4); `None`: the positive warp alone (EVSM2).
     pub negative: Option<f32>,
     /// The least variance (plain), or the least variance over the warped

@@ -19,7 +19,10 @@ fn visibility(world: vec3<f32>) -> f32 {
 }
 // ANCHOR_END: depth_compare
 
+// ANCHOR: fs_lit
+// The lit pass's fragment shader: the light, times its visibility.
 @fragment
 fn fs_lit(in: VertexOut) -> LitOut {
     return lit_output(in, visibility(in.world));
 }
+// ANCHOR_END: fs_lit

@@ -2,10 +2,12 @@
 // Compiled after common.wgsl and before the lesson's own WGSL
 // (`lesson_01::shadow_map::shader_module`).
 
+// ANCHOR: shadow_map_bindings
 @group(2) @binding(0) var shadow_map: texture_depth_2d;
 // A comparison sampler: the hardware does `receiver <= stored` per texel.
 // Nearest filtering gives one 0-or-1 answer, linear the 2×2 average (lesson 03).
 @group(2) @binding(1) var shadow_compare: sampler_comparison;
+// ANCHOR_END: shadow_map_bindings
 
 // ANCHOR: shadow_coords
 // World position (origin-relative, see Scene::origin) -> (u, v, depth).

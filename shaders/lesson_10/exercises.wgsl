@@ -15,10 +15,10 @@
 fn exercise_blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
     // Starter: one tap at the centre.
     let size = vec2<f32>(textureDimensions(shadow_depths));
-    let t = clamp(vec2<i32>(floor(s.xy * size)), vec2<i32>(0), vec2<i32>(size) - 1);
-    let z = textureLoad(shadow_depths, t, 0).r;
-    if z < s.z {
-        return Blockers(light_distance(z), 1u);
+    let texel = clamp(vec2<i32>(floor(s.xy * size)), vec2<i32>(0), vec2<i32>(size) - 1);
+    let depth = textureLoad(shadow_depths, texel, 0).r;
+    if depth < s.z {
+        return Blockers(light_distance(depth), 1u);
     }
     return Blockers(0.0, 0u);
 }

@@ -1,8 +1,8 @@
 // lesson_10/moments.wgsl: a variance map from the shadow map, in two
 // compute passes over the map, into storage buffers of 32-bit floats (a
 // 32-bit float colour target is not renderable everywhere: wgpu's GL). The
-// first turns each depth into the moments (z̃, z̃²) of its linear depth z̃,
-// or those of exp(c (2 z̃ − 1)) for an exponential map, and averages 2r + 1
+// first turns each depth into the moments (z, z²) of its linear depth z,
+// or those of exp(c (2z − 1)) for an exponential map, and averages 2r + 1
 // of them along x; the second averages the first's along y: a (2r + 1)²
 // box filter, separable.
 
@@ -31,25 +31,25 @@ struct Blur {
 @group(0) @binding(3) var<storage, read_write> out: array<vec4<f32>>;
 
 // ANCHOR: moments
-// A depth's moments, of the linear depth z̃ in [0, 1] (a perspective map's
-// depths crowd near 1, where a variance of their squares is lost to
-// rounding). An exponential map stores those of exp(c (2 z̃ − 1))
+// The moments of a stored depth's linear depth z in [0, 1] (a perspective
+// map's depths crowd near 1, where a variance of their squares is lost to
+// rounding). An exponential map stores those of exp(c (2z − 1))
 // (Filament's warp): the warp makes a receiver's test sharper, and the
 // bound tighter, where blockers overlap; and with a negative exponent c⁻
-// also those of −exp(−c⁻ (2 z̃ − 1)) in .zw (EVSM4), whose bound is tight
+// also those of −exp(−c⁻ (2z − 1)) in .zw (EVSM4), whose bound is tight
 // where the positive one's mean is dragged by far texels.
-fn depth_moments(z: f32) -> vec4<f32> {
-    var d = blur.near + z * (blur.far - blur.near);
+fn depth_moments(stored: f32) -> vec4<f32> {
+    var dist = blur.near + stored * (blur.far - blur.near);
     if blur.perspective == 1u {
-        d = blur.far * blur.near / (blur.far - z * (blur.far - blur.near));
+        dist = blur.far * blur.near / (blur.far - stored * (blur.far - blur.near));
     }
-    let lin = (d - blur.near) / (blur.far - blur.near);
+    let z = (dist - blur.near) / (blur.far - blur.near);
     if blur.exponential == 0u {
-        return vec4<f32>(lin, lin * lin, 0.0, 0.0);
+        return vec4<f32>(z, z * z, 0.0, 0.0);
     }
-    let x = exp(blur.exponent * (2.0 * lin - 1.0));
-    let y = -exp(-blur.negative * (2.0 * lin - 1.0));
-    return vec4<f32>(x, x * x, y, y * y);
+    let warped = exp(blur.exponent * (2.0 * z - 1.0));
+    let warped_neg = -exp(-blur.negative * (2.0 * z - 1.0));
+    return vec4<f32>(warped, warped * warped, warped_neg, warped_neg * warped_neg);
 }
 // ANCHOR_END: moments
 

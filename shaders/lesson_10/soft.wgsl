@@ -22,7 +22,8 @@ struct Soft {
     receiver_plane: u32,
     // The light: 0 orthographic (directional), 1 perspective (spot).
     perspective: u32,
-    // Variance maps: 0 plain; 1 exponential (the moments of exp(c·z̃)).
+    // Variance maps: 0 plain; 1 exponential (the moments of exp(c (2z − 1)),
+    // z the linear depth).
     exponential: u32,
     _pad: u32,
     // 1: PCSS's step 3 probes the filter disk's rim first (penumbra_pcf).
@@ -56,13 +57,14 @@ struct Soft {
 @group(3) @binding(1) var<storage, read> soft: Soft;
 
 // ANCHOR: distance
-// The distance from the light of a point at map depth z: linear for an
-// orthographic map; for webgpu's perspective, z = f (d − n) / (d (f − n)).
-fn light_distance(z: f32) -> f32 {
+// The distance from the light of a point at map depth `depth` (what the
+// map stores): linear for an orthographic map; for webgpu's perspective,
+// depth = f (d − n) / (d (f − n)).
+fn light_distance(depth: f32) -> f32 {
     if soft.perspective == 0u {
-        return soft.near + z * (soft.far - soft.near);
+        return soft.near + depth * (soft.far - soft.near);
     }
-    return soft.far * soft.near / (soft.far - z * (soft.far - soft.near));
+    return soft.far * soft.near / (soft.far - depth * (soft.far - soft.near));
 }
 // ANCHOR_END: distance
 
@@ -87,9 +89,9 @@ fn filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
 // `angle`. Equal areas per point, no two close: a Poisson-like disk for
 // any n (Godot's kernels are the same spiral).
 fn vogel(i: u32, n: u32, angle: f32) -> vec2<f32> {
-    let r = sqrt((f32(i) + 0.5) / f32(n));
-    let t = f32(i) * 2.39996323 + angle;
-    return r * vec2<f32>(cos(t), sin(t));
+    let rho = sqrt((f32(i) + 0.5) / f32(n));
+    let turn = f32(i) * 2.39996323 + angle;
+    return rho * vec2<f32>(cos(turn), sin(turn));
 }
 // ANCHOR_END: vogel
 
@@ -109,10 +111,10 @@ fn blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f3
     var count = 0u;
     for (var i = 0u; i < soft.search_taps; i++) {
         let o = vogel(i, soft.search_taps, angle) * radius;
-        let t = clamp(vec2<i32>(floor((s.xy + o) * size)), vec2<i32>(0), vec2<i32>(size) - 1);
-        let z = textureLoad(shadow_depths, t, 0).r;
-        if z < s.z + dot(gradient, o) {
-            sum += light_distance(z);
+        let texel = clamp(vec2<i32>(floor((s.xy + o) * size)), vec2<i32>(0), vec2<i32>(size) - 1);
+        let depth = textureLoad(shadow_depths, texel, 0).r;
+        if depth < s.z + dot(gradient, o) {
+            sum += light_distance(depth);
             count += 1u;
         }
     }
@@ -141,13 +143,13 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
     // 1. Blocker search, wherever blockers can be: the emitter seen
     // through the receiver, on the nearest caster's plane.
     let search = filter_radius(d_r, min(soft.nearest_caster, d_r));
-    let b = blocker_search(s, search, angle, gradient);
-    if b.count == 0u {
+    let blockers = blocker_search(s, search, angle, gradient);
+    if blockers.count == 0u {
         return 1.0;
     }
     // 2. Penumbra estimate: the footprint on the blockers' mean plane.
     let texel = 1.0 / f32(textureDimensions(shadow_map).x);
-    let radius = max(filter_radius(d_r, b.distance), vec2<f32>(soft.min_filter_texels * texel));
+    let radius = max(filter_radius(d_r, blockers.distance), vec2<f32>(soft.min_filter_texels * texel));
     // 3. Filter: a PCF that wide.
     return penumbra_pcf(s, radius, angle + 1.0, gradient);
 }
@@ -182,8 +184,8 @@ fn chebyshev(m: vec2<f32>, t: f32, min_variance: f32) -> f32 {
         return 1.0;
     }
     let variance = max(m.y - m.x * m.x, min_variance);
-    let d = t - m.x;
-    return variance / (variance + d * d);
+    let behind = t - m.x;
+    return variance / (variance + behind * behind);
 }
 // ANCHOR_END: chebyshev
 
@@ -209,34 +211,35 @@ fn moments_at(uv: vec2<f32>) -> vec4<f32> {
 }
 
 // ANCHOR: variance_map
-// Lauritzen's light-bleeding reduction: the tail of p below `lo` is cut,
+// Lauritzen's light-bleeding reduction: the tail of x below `lo` is cut,
 // the rest stretched to [0, 1] (three.js: lo 0.3, hi 0.95).
-fn linstep(lo: f32, hi: f32, p: f32) -> f32 {
-    return clamp((p - lo) / (hi - lo), 0.0, 1.0);
+fn linstep(lo: f32, hi: f32, x: f32) -> f32 {
+    return clamp((x - lo) / (hi - lo), 0.0, 1.0);
 }
 
 fn variance_map(s: vec3<f32>) -> f32 {
-    // The linear depth z̃ in [0, 1], as the moments hold it (moments.wgsl).
-    let lin = linear_depth(s.z);
+    // The receiver's linear depth t in [0, 1], as the moments hold the
+    // map's (moments.wgsl).
+    let t = linear_depth(s.z);
     let m = moments_at(s.xy);
-    var p = 1.0;
+    var p_max = 1.0;
     if soft.exponential == 0u {
-        p = chebyshev(m.xy, lin, soft.min_variance);
+        p_max = chebyshev(m.xy, t, soft.min_variance);
     } else {
-        // exp(c (2 z̃ − 1)); the least variance scales with it.
-        let t = exp(soft.exponent * (2.0 * lin - 1.0));
-        p = chebyshev(m.xy, t, soft.min_variance * t * t);
+        // exp(c (2t − 1)); the least variance scales with it.
+        let warped = exp(soft.exponent * (2.0 * t - 1.0));
+        p_max = chebyshev(m.xy, warped, soft.min_variance * warped * warped);
         if soft.negative > 0.0 {
-            let u = -exp(-soft.negative * (2.0 * lin - 1.0));
-            p = min(p, chebyshev(m.zw, u, soft.min_variance * u * u));
+            let warped_neg = -exp(-soft.negative * (2.0 * t - 1.0));
+            p_max = min(p_max, chebyshev(m.zw, warped_neg, soft.min_variance * warped_neg * warped_neg));
         }
     }
-    return linstep(soft.bleed_lo, soft.bleed_hi, p);
+    return linstep(soft.bleed_lo, soft.bleed_hi, p_max);
 }
 
-// The depth as a fraction of the light's near-to-far distance.
-fn linear_depth(z: f32) -> f32 {
-    return (light_distance(z) - soft.near) / (soft.far - soft.near);
+// A map depth as a fraction of the light's near-to-far distance.
+fn linear_depth(depth: f32) -> f32 {
+    return (light_distance(depth) - soft.near) / (soft.far - soft.near);
 }
 // ANCHOR_END: variance_map
 

@@ -36,6 +36,9 @@ pub(super) struct Setup {
     /// on the segment from p to the light): the text's d_r and d_b.
     pub(super) d_r: f64,
     pub(super) d_b: f64,
+    /// The middle of the plank's far top edge: the blocker the light's
+    /// centre sees in front of p (d_b is its distance).
+    pub(super) edge: DVec3,
 }
 
 impl Setup {
@@ -114,6 +117,7 @@ impl Setup {
             p,
             d_r: 0.0,
             d_b: 0.0,
+            edge,
         };
         (setup.d_r, setup.d_b) = (setup.along_axis(p), setup.along_axis(edge));
         Ok(setup)

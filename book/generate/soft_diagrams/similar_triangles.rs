@@ -13,6 +13,10 @@ fn at_height(a: P, b: P, y: f64) -> f64 {
     a.0 + (b.0 - a.0) * (y - a.1) / (b.1 - a.1)
 }
 
+/// Pixels per metre along the axis, and where the emitter's plane is drawn.
+const KY: f64 = 84.0;
+const TOP: f64 = 92.0;
+
 /// A two-headed dimension line from `a` to `b`.
 fn dimension(s: &mut Svg, a: P, b: P) {
     let m = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
@@ -76,7 +80,7 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
     let mut s = Svg::new(w, 0.0, title);
     // Down: the distance along the axis, the emitter's plane at 0. Across,
     // the scale is stretched: similar triangles survive it.
-    let (ky, top) = (84.0, 92.0);
+    let (ky, top) = (KY, TOP);
     let kx = 4.0 * ky;
     let ends = [(-r, 0.0), (r, 0.0)];
     let mut bottom: f64 = 0.0;
@@ -102,14 +106,14 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
         s.rect(a, (b.0 - a.0, b.1 - a.1), &fill(PLANK, "#5a3f75"));
         s.text(add(a, 0.0, -6.0), 12.0, "start", "blocker (the plank)");
         s.line(px((-0.52, d_r)), px((0.36, d_r)), INK);
-        // Distances along the axis, on the left.
+        // Distances along the axis, each label beside its own span: d_b
+        // and the rest of the way to the receiver, d_r − d_b, on the left;
+        // d_r, the whole way, on the right.
         let x0 = left + 14.0;
         dimension(&mut s, (x0, px((0.0, 0.0)).1), (x0, px((0.0, d_b)).1));
-        dimension(
-            &mut s,
-            (x0 - 8.0, px((0.0, 0.0)).1),
-            (x0 - 8.0, px((0.0, d_r)).1),
-        );
+        dimension(&mut s, (x0, px((0.0, d_b)).1), (x0, px((0.0, d_r)).1));
+        let x1 = left + w / 2.0 - 14.0;
+        dimension(&mut s, (x1, px((0.0, 0.0)).1), (x1, px((0.0, d_r)).1));
         s.text(
             (x0 + 6.0, px((0.0, d_b / 2.0)).1),
             13.0,
@@ -117,9 +121,15 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
             &format!("d_b = {} m", f(d_b, 2)),
         );
         s.text(
-            (x0 + 6.0, px((0.0, d_b + 0.4)).1),
+            (x0 + 6.0, px((0.0, (d_b + d_r) / 2.0)).1 + 4.0),
             13.0,
             "start",
+            &format!("d_r − d_b = {} m", f(d_r - d_b, 2)),
+        );
+        s.text(
+            (x1 - 6.0, px((0.0, d_r / 2.0)).1),
+            13.0,
+            "end",
             &format!("d_r = {} m", f(d_r, 2)),
         );
         let floor = px((0.0, d_r)).1;
@@ -174,11 +184,19 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
             bottom = bottom.max(floor + 22.0);
         }
     }
+    // The way from the plank's edge down to p, on the ray from the light:
+    // its drop, its length, its slant from the vertical and from the axis.
+    let way = u.p - u.edge;
+    let slant = (-way.y / way.length()).acos().to_degrees();
+    let off_axis = (way.normalize().dot(u.axis)).acos().to_degrees();
     let note = format!(
         "A section through the light's axis (scenes/lesson_10.toml). p is the floor point under \
          the middle of the plank's far long edge, as the light's centre sees it; d_r and d_b are \
          the distances of p and of that edge from the light, measured along its axis, as the \
-         text defines them and the shadow map stores them. The planes are the derivation's, \
+         text defines them and the shadow map stores them. The edge is {} m above the floor; \
+         the ray from it down to p falls {}° from the vertical, {} m long, and along the \
+         light's axis ({}° from the ray) it measures d_r − d_b = {} m. \
+         The planes are the derivation's, \
          square to the axis, with the emitter's disk of radius R = {} m; p is drawn under the \
          emitter's centre (sliding each plane sideways keeps every width on it), and across, \
          the scale is 4 times the one along the axis: lines stay lines and the ratios hold. \
@@ -188,6 +206,11 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
          to the emitter's edges cross the blocker's plane on the footprint of radius \
          r_b = R (d_r − d_b) / d_r, of which the plank covers half: p, under the edge, sees \
          half the emitter.",
+        f(-way.y, 2),
+        f(slant, 0),
+        f(way.length(), 2),
+        f(off_axis, 0),
+        f(d_r - d_b, 2),
         f(r, 2),
     );
     s.h = s.para((20.0, bottom + 30.0), 12.0, "start", w - 40.0, &note);
@@ -205,9 +228,11 @@ mod tests {
     use super::super::setup::Setup;
     use super::*;
 
-    /// The numbers the SVG prints after `label = `, in metres.
+    /// The numbers the SVG prints after `label = `, in metres (`d_b = `, not
+    /// the `d_b = ` of `d_r − d_b = `).
     fn printed(svg: &str, label: &str) -> Vec<f64> {
         svg.match_indices(&format!("{label} = "))
+            .filter(|(i, _)| !svg[..*i].ends_with("− "))
             .filter_map(|(i, m)| {
                 let rest = &svg[i + m.len()..];
                 rest.split(" m").next()?.parse().ok()
@@ -260,9 +285,67 @@ mod tests {
                 );
             }
         };
-        for (label, want) in [("d_r", d_r), ("d_b", d_b)] {
+        for (label, want) in [("d_r", d_r), ("d_b", d_b), ("d_r − d_b", d_r - d_b)] {
             near(printed(&svg, label), want, 0.005, label);
         }
+        // Each distance's label beside its own span, in both panels: d_b's
+        // and d_r − d_b's on the left, each between the ends of its span;
+        // d_r's on the right, beside the one arrow drawn there, the whole
+        // way from the emitter to the receiver's plane.
+        let at = |d: f64| TOP + d * KY;
+        let labels = |label: &str| -> Vec<(f64, f64)> {
+            crate::diagrams::svg::tests::texts(&svg)
+                .into_iter()
+                .filter(|(_, _, t)| t.starts_with(&format!("{label} = ")))
+                .map(|(x, y, _)| (x % 400.0, y))
+                .collect()
+        };
+        for (label, lo, hi, left) in [
+            ("d_b", 0.0, d_b, true),
+            ("d_r − d_b", d_b, d_r, true),
+            ("d_r", 0.0, d_r, false),
+        ] {
+            let found = labels(label);
+            assert_eq!(found.len(), 2, "{label}: one label a panel");
+            for (x, y) in found {
+                assert!(
+                    y > at(lo) && y < at(hi),
+                    "{label}'s label at y {y}, its span {lo}..{hi}"
+                );
+                assert_eq!(x < 100.0, left, "{label}'s label at x {x} of its panel");
+            }
+        }
+        // The edge's height above the floor, as the note prints it: the
+        // plank's top, from the scene's triangles above.
+        let words: Vec<String> = crate::diagrams::svg::tests::texts(&svg)
+            .into_iter()
+            .map(|(_, _, t)| t)
+            .collect();
+        let words = words.join(" ");
+        let key = "The edge is ";
+        let gap: f64 = words
+            [words.find(key).expect("the note gives the edge's height") + key.len()..]
+            .split(" m")
+            .next()
+            .and_then(|x| x.parse().ok())
+            .expect("a height");
+        assert!(
+            (gap - (top + o)).abs() <= 0.005 * 1.02,
+            "printed edge height {gap}"
+        );
+        // The ray's length from the edge to p, from the independent b.
+        let key = " m long";
+        let at_key = words.find(key).expect("the note gives the ray's length");
+        let long: f64 = words[..at_key]
+            .rsplit(' ')
+            .next()
+            .and_then(|x| x.parse().ok())
+            .expect("a length");
+        let want = (u.p - b).length();
+        assert!(
+            (long - want).abs() <= 0.005 * 1.02,
+            "printed length {long}, the scene gives {want}"
+        );
         let r = u.radius;
         let r_b = r * (d_r - d_b) / d_r;
         let foot = (t.footprint.1 - t.footprint.0) / 2.0;

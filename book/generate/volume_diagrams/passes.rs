@@ -77,7 +77,8 @@ pub(super) fn passes() -> String {
             ],
             vec!["not used".into()],
             vec![
-                "writes the ambient term and the object id".into(),
+                "writes the ambient colour: the light every surface gets, shadowed or not".into(),
+                "for the measurements: which object covers each pixel".into(),
                 "no blending".into(),
             ],
         ),
@@ -87,7 +88,8 @@ pub(super) fn passes() -> String {
                 "2. volume pass".into(),
                 "per light".into(),
                 format!("draws the volumes: {parts}"),
-                "cull none: both faces count".into(),
+                "cull none: front faces (a ray enters) and back faces (it leaves) both count"
+                    .into(),
             ],
             vec![
                 "test Less against pass 1's depth".into(),
@@ -110,7 +112,9 @@ pub(super) fn passes() -> String {
             lit_stencil_cell,
             vec![
                 "adds the light: blend One + One (colour)".into(),
-                "writes the light's visibility".into(),
+                "for the measurements: 1 into the light's visibility image (0 where the stencil \
+                 stops the pass)"
+                    .into(),
             ],
         ),
     ];
@@ -119,9 +123,9 @@ pub(super) fn passes() -> String {
     let mut s = Svg::new(w, 0.0, title);
     let cols = [
         (20.0, 165.0),
-        (185.0, 160.0),
-        (345.0, 340.0),
-        (685.0, 155.0),
+        (185.0, 150.0),
+        (335.0, 305.0),
+        (640.0, 200.0),
     ];
     let heads = ["pass", "depth", "stencil", "colour"];
     let mut y = 58.0;
@@ -151,10 +155,9 @@ pub(super) fn passes() -> String {
     for &(x, _) in &cols[1..] {
         s.line((x, 68.0), (x, y), &stroke("#999", 1.0, ""));
     }
-    let note = "The stencil cells and the volume's parts are read from the lesson's code \
-        (Counting::zpass, lit_stencil, CasterDraw::zpass); the depth and colour cells are as \
-        SceneGpu and the volume pipelines set them. The volume pass loads pass 1's depth and \
-        never writes it, so every light's volumes are tested against the same surfaces.";
+    let note = "The volume pass loads pass 1's depth and never writes it, so every light's \
+        volumes are tested against the same surfaces; the lit pass adds the light only where \
+        the volume pass left the stencil at 0.";
     s.h = s.para((20.0, y + 24.0), 12.0, "start", w - 40.0, note);
     s.finish()
 }

@@ -41,8 +41,12 @@ fn prism_model() -> DMat4 {
 /// A segment of the cross-section.
 type Segment = (P, P);
 
-/// The prism's cross-section: (front cap segments, silhouette points).
-fn prism_section() -> Result<(Vec<Segment>, Vec<P>)> {
+/// The caster's fill: its cross-section is drawn over the volume's.
+const CASTER: &str = "#8796a8";
+
+/// The prism's cross-section: (front cap segments, silhouette points, the
+/// box's own section, counter-clockwise).
+fn prism_section() -> Result<(Vec<Segment>, Vec<P>, Vec<P>)> {
     let model = prism_model();
     let cube = builtin("cube")?;
     let world: Vec<Vec3> = cube
@@ -87,7 +91,23 @@ fn prism_section() -> Result<(Vec<Segment>, Vec<P>)> {
             caps.len()
         );
     }
-    Ok((caps, points))
+    // The box runs along z, so its section is its corners' (x, y).
+    let mut section: Vec<P> = Vec::new();
+    for i in 0..adj.positions.len() as u32 {
+        if !section.iter().any(|q| close(*q, xy(i))) {
+            section.push(xy(i));
+        }
+    }
+    let n = section.len() as f64;
+    let c = section
+        .iter()
+        .fold((0.0, 0.0), |s, p| (s.0 + p.0 / n, s.1 + p.1 / n));
+    section.sort_by(|a, b| {
+        (a.1 - c.1)
+            .atan2(a.0 - c.0)
+            .total_cmp(&(b.1 - c.1).atan2(b.0 - c.0))
+    });
+    Ok((caps, points, section))
 }
 
 /// A silhouette point pushed away from the light to y = `y`.
@@ -141,7 +161,7 @@ fn section_faces(caps: &[(P, P)], sil: &[P]) -> (Vec<P>, Vec<Face>) {
 }
 
 pub(super) fn zpass_count() -> Result<String> {
-    let (caps, sil) = prism_section()?;
+    let (caps, sil, section) = prism_section()?;
     let (hull, faces) = section_faces(&caps, &sil);
     let floor: Vec<f64> = sil.iter().map(|&p| extrude_to(p, 0.0).0).collect();
     let (x0, x1) = (floor[0].min(floor[1]), floor[0].max(floor[1]));
@@ -154,6 +174,8 @@ pub(super) fn zpass_count() -> Result<String> {
     let (wx, at) = (WX, page);
     let region: Vec<P> = hull.iter().map(|&p| at(p)).collect();
     s.poly(&region, true, &fill("#ddd", "none"));
+    let caster: Vec<P> = section.iter().map(|&p| at(p)).collect();
+    s.poly(&caster, true, &fill(CASTER, "#333"));
     for f in &faces {
         let style = match f.name {
             "front cap" => stroke("#a80", 3.0, ""),
@@ -181,7 +203,7 @@ pub(super) fn zpass_count() -> Result<String> {
     s.circle(at(EYE_2D), 6.0, &fill(BLUE, "none"));
     s.text(add(at(EYE_2D), 0.0, -12.0), 12.0, "middle", "eye");
     let names = [
-        ("front cap", "front cap (the lit faces)"),
+        ("front cap", "front cap"),
         ("side", "side"),
         ("back cap (∞)", "back cap (∞, lesson 06)"),
     ];
@@ -205,6 +227,11 @@ pub(super) fn zpass_count() -> Result<String> {
         };
         s.text(add(at(m), d, dy), 12.0, anchor, label);
     }
+    let n = caster.len() as f64;
+    let mid = caster
+        .iter()
+        .fold((0.0, 0.0), |s, p| (s.0 + p.0 / n, s.1 + p.1 / n));
+    s.text(add(mid, 0.0, 4.0), 12.0, "middle", "caster");
     let colours = ["#2ca02c", BLUE];
     let mut lines = Vec::new();
     for ((what, target), colour) in targets.iter().zip(colours) {
@@ -246,11 +273,11 @@ pub(super) fn zpass_count() -> Result<String> {
     }
     let mut y = at((0.0, FAR_Y)).1 + 30.0;
     y = s.texts((30.0, y), 13.0, "start", &lines) + 4.0;
-    let note = "Each face crossed in front of the surface adds +1 where the ray enters the volume \
-                (a face turned towards the eye) and −1 where it leaves; the number after the arrow \
-                is the running count. The lesson's cube, extended along z into a long box, cut \
-                through the light: its silhouette edges and lit faces are silhouette_edges and \
-                light_facing_triangles.";
+    let note = "Each volume face a ray crosses in front of the surface it hits adds +1 where \
+                the ray enters the volume and −1 where it leaves it; the number after the arrow \
+                is the count so far. The caster (blue-grey) is lesson 05's cube stretched into a long \
+                box and cut through the light; its faces that face the light are the volume's \
+                front cap, and the volume's sides run from its silhouette away from the light.";
     s.h = s.para((30.0, y), 12.0, "start", 740.0, note);
     Ok(s.finish())
 }
@@ -342,9 +369,10 @@ mod tests {
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// The grey region drawn is the box's shadow: a point of the section
-    /// (down to the back cap's line) lies in it exactly when the segment
-    /// from the light to it meets the box. And the count written at each
+    /// The caster drawn is the box's section, and the grey region drawn
+    /// is the box's shadow: a point of the section (down to the back
+    /// cap's line) lies in it exactly when the segment from the light to
+    /// it meets the box. And the count written at each
     /// crossing of a view ray is the running sum of +1 where the ray
     /// enters that region and −1 where it leaves, found by intersecting
     /// the ray with the region's outline; the count at the floor is not 0
@@ -358,6 +386,23 @@ mod tests {
             .find(|e| e["fill"] == "#ddd")
             .expect("the volume");
         let region: Vec<P> = points(&region["points"]);
+        // The caster is drawn apart from its volume: its own section.
+        let caster = polygons
+            .iter()
+            .find(|e| e["fill"] == CASTER)
+            .expect("the caster");
+        let caster: Vec<P> = points(&caster["points"]).into_iter().map(metres).collect();
+        let rect = box_section();
+        assert_eq!(caster.len(), rect.len(), "the caster's section: {caster:?}");
+        for c in &rect {
+            let drawn = caster
+                .iter()
+                .any(|p| (p.0 - c.0).abs() + (p.1 - c.1).abs() < 1e-3);
+            assert!(
+                drawn,
+                "the box's corner {c:?} (m) is not the caster's: {caster:?}"
+            );
+        }
         let in_metres: Vec<P> = region.iter().map(|&p| metres(p)).collect();
         let mut sampled = 0;
         for i in 0..=250 {

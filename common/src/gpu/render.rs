@@ -306,10 +306,13 @@ impl SceneGpu {
         FrameTargets::new(gpu, size, self.depth_format, self.scene.lights.len())
     }
 
-    /// Binds group 0 for light `k`.
+    // ANCHOR: bind_frame
+    /// Binds group 0 for light `light`: the camera, and the light's slot of
+    /// the light buffer (a dynamic offset), `light` in the shaders.
     pub fn bind_frame(&self, pass: &mut wgpu::RenderPass<'_>, light: usize) {
         pass.set_bind_group(0, &self.frame_group, &[(SLOT * light as u64) as u32]);
     }
+    // ANCHOR_END: bind_frame
 
     /// Binds object `i`'s uniforms at group 1 (shadow volumes draw their own geometry).
     pub fn bind_object(&self, pass: &mut wgpu::RenderPass<'_>, i: usize) {

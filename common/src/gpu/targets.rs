@@ -270,7 +270,9 @@ pub struct FrameImages {
     pub visibility: Vec<Vec<f32>>,
 }
 
-/// A depth texture the lesson samples (shadow maps).
+// ANCHOR: depth_texture
+/// A depth texture the lesson samples (shadow maps): `size` × `size`
+/// texels, `layers` of them (1 for one map; more for a cube map or cascades).
 pub fn depth_texture(
     gpu: &Gpu,
     label: &str,
@@ -289,12 +291,14 @@ pub fn depth_texture(
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format,
+        // A shadow pass renders into it; a lit pass samples it.
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     })
 }
+// ANCHOR_END: depth_texture
 
 /// One 2D view per array layer of `texture` (a cube map's faces, a
 /// cascade's layers): what a pass renders into, one layer at a time.
