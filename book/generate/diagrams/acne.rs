@@ -209,20 +209,8 @@ fn acne_panel(s: &mut Svg, top: f64, name: &str, tan: f64, bias: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::svg::tests::texts;
+    use super::super::svg::tests::{after, texts};
     use super::*;
-
-    /// The number that follows `key` in `text`.
-    fn after(text: &str, key: &str) -> f64 {
-        let at = text
-            .find(key)
-            .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
-            + key.len();
-        let num: String = (text[at..].chars())
-            .take_while(|c| c.is_ascii_digit() || ".e-".contains(*c))
-            .collect();
-        num.parse().unwrap_or_else(|_| panic!("{key:?}: {num:?}"))
-    }
 
     /// Lesson 02's shadow map of its floor, emulated from the light's
     /// matrix alone: map coordinates (u, v in texels, depth) of a floor

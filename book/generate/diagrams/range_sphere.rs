@@ -179,20 +179,8 @@ fn sphere_outline(c: DVec3, r: f64, proj: DMat4, w: u32, h: u32) -> Vec<P> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::svg::tests::{elements, is, number, texts};
+    use super::super::svg::tests::{after, elements, is, number, texts};
     use super::*;
-
-    /// The number after `key` in `text`.
-    fn after(text: &str, key: &str) -> f64 {
-        let at = text
-            .find(key)
-            .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
-            + key.len();
-        let num: String = (text[at..].chars())
-            .take_while(|c| c.is_ascii_digit() || *c == '.')
-            .collect();
-        num.parse().unwrap()
-    }
 
     /// The scissor drawn and printed bounds the sphere's image, tightly,
     /// and the depth bounds printed hold its depths: light 0's range sphere

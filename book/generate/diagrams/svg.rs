@@ -163,6 +163,19 @@ pub(crate) mod tests {
             .expect(name)
     }
 
+    /// The number that follows `key` in `text` (digits, a point, an
+    /// exponent), for the tests that read a diagram's printed values.
+    pub(crate) fn after(text: &str, key: &str) -> f64 {
+        let at = text
+            .find(key)
+            .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
+            + key.len();
+        let num: String = (text[at..].chars())
+            .take_while(|c| c.is_ascii_digit() || ".e-".contains(*c))
+            .collect();
+        num.parse().unwrap_or_else(|_| panic!("{key:?}: {num:?}"))
+    }
+
     /// The attributes of every `<tag …/>` element of `svg`, by name: what
     /// the geometry tests read back from a drawing.
     pub(crate) fn elements(svg: &str, tag: &str) -> Vec<HashMap<String, String>> {
