@@ -73,4 +73,33 @@ mod tests {
             assert_texts_fit(name, &svg);
         }
     }
+
+    /// Every module that draws a diagram (it opens an `Svg`) checks its
+    /// central geometric fact in a test of its own: a drawing that looks
+    /// right is not yet right.
+    #[test]
+    fn every_diagram_tests_its_geometry() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("book/generate");
+        let mut drawn = 0;
+        let mut untested = Vec::new();
+        for dir in ["diagrams", "volume_diagrams", "soft_diagrams"] {
+            for e in std::fs::read_dir(root.join(dir)).unwrap() {
+                let p = e.unwrap().path();
+                let text = std::fs::read_to_string(&p).unwrap();
+                if !text.contains("Svg::new(") {
+                    continue;
+                }
+                drawn += 1;
+                if !text.contains("#[test]") {
+                    untested.push(p.display().to_string());
+                }
+            }
+        }
+        // The 13 diagrams of the book (figures/diagrams/).
+        assert!(drawn >= 13, "found {drawn} diagram modules, not 13");
+        assert!(
+            untested.is_empty(),
+            "diagrams without a geometry test: {untested:?}"
+        );
+    }
 }

@@ -242,23 +242,28 @@ fn shimmer_plot(path: &Path, r: &Record) -> Result<()> {
 
 fn aliasing_plot(path: &Path, r: &Record) -> Result<()> {
     let d = distances(r);
-    let curves: Vec<Curve> = r
-        .variants
-        .iter()
-        .filter(|v| d.iter().any(|(_, k)| v.counters.contains_key(k)))
-        .map(|v| {
-            let (xs, ys) = d
-                .iter()
-                .filter_map(|(m, k)| Some((*m as f64, *v.counters.get(k)? as f64)))
-                .unzip();
-            Curve {
+    // Variants with the same density at every distance (the fit's options
+    // that do not change the texel: snapping, the blend) share one line,
+    // named after all of them, so that no line hides under another.
+    let mut curves: Vec<Curve> = Vec::new();
+    for v in &r.variants {
+        if !d.iter().any(|(_, k)| v.counters.contains_key(k)) {
+            continue;
+        }
+        let (xs, ys): (Vec<f64>, Vec<f64>) = d
+            .iter()
+            .filter_map(|(m, k)| Some((*m as f64, *v.counters.get(k)? as f64)))
+            .unzip();
+        match curves.iter_mut().find(|c| c.xs == xs && c.ys == ys) {
+            Some(c) => c.name = format!("{}, {}", c.name, v.name),
+            None => curves.push(Curve {
                 name: v.name.clone(),
                 xs,
                 ys,
                 expected: String::new(),
-            }
-        })
-        .collect();
+            }),
+        }
+    }
     if curves.is_empty() {
         return Ok(());
     }

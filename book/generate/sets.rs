@@ -188,7 +188,9 @@ fn set_part(name: &str, records: &[Record], lesson: &str) -> Result<(String, Vec
         held.sort();
         held.dedup();
         s += &format!(
-            "*This set has no run of this lesson (it holds lessons {}).*\n",
+            "*This set has no run of this lesson at the book's size, {}×{} (it holds lessons {} there).*\n",
+            manifest::WIDTH,
+            manifest::HEIGHT,
             held.join(", ")
         );
         return Ok((s, left_out));

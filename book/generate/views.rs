@@ -261,7 +261,7 @@ pub fn render(spec: &Spec, source: &str) -> Result<String> {
         s += &format!("{p}\n\n");
     }
     if let Some(h) = &t.header {
-        s += &format!("{h}\n\n");
+        s += &format!("{}\n\n", header_for(h, &spec.cols));
     }
     s += &line(head);
     s += &format!("|{}\n", " --- |".repeat(cols.len()));
@@ -283,6 +283,23 @@ pub fn render(spec: &Spec, source: &str) -> Result<String> {
     }
     s += "\n";
     Ok(s)
+}
+
+/// Whether a column holds a time: its cells are medians with spreads.
+fn is_time(col: &str) -> bool {
+    col.ends_with(" ms")
+        || col.contains("(ms)")
+        || col.starts_with("shadows cost")
+        || col == "vs the fastest"
+}
+
+/// The source's header line, less its timing protocol when the view keeps
+/// no time: a reader should not look for times the view does not show.
+fn header_for(header: &str, cols: &[String]) -> String {
+    match header.find(" · times: ") {
+        Some(at) if !cols.iter().any(|c| is_time(c)) => format!("{}*", &header[..at]),
+        _ => header.to_string(),
+    }
 }
 
 /// Every view in `text`: (line, declaration, its current body).
@@ -371,6 +388,18 @@ mod tests {
         );
         assert!(got.contains("- `draws`: draw calls"), "{got}");
         assert!(!got.contains("- frame ms"), "{got}");
+    }
+
+    #[test]
+    fn a_view_without_times_drops_the_protocol() {
+        let h = "*lavapipe · 640×360 · times: median [spread] of 3 runs × 5 frames*";
+        let cols = |c: &[&str]| c.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+        assert_eq!(
+            header_for(h, &cols(&["variant", "draws"])),
+            "*lavapipe · 640×360*"
+        );
+        assert_eq!(header_for(h, &cols(&["variant", "GPU ms"])), h);
+        assert_eq!(header_for(h, &cols(&["variant", "`shadow` ms"])), h);
     }
 
     #[test]

@@ -26,9 +26,9 @@ pub struct ShadowBias {
     /// ... plus `slope · tan θ` texels, at most `slope_max`.
     pub slope: f32,
     pub slope_max: f32,
-    /// The receiver moves `normal · (1 − N·L)` texels along its normal.
+    /// The receiver moves `normal · (1 − cos θ)` texels along its normal.
     pub normal: f32,
-    /// LearnOpenGL's: `max(depth_slope · (1 − N·L), depth)` depth units are
+    /// LearnOpenGL's: `max(depth_slope · (1 − cos θ), depth)` depth units are
     /// subtracted instead of `depth`.
     pub depth_slope: f32,
     /// Bevy's depth bias: the receiver moves this far towards the light, in

@@ -12,7 +12,7 @@
 //!   (`none` has none: it is lesson 01's comparison). `slope_unclamped` has
 //!   no clamp knob: having none is what it is (`slope_shader` with
 //!   `slope_clamp` at 64 texels clamps only beyond tan θ = 64 / `slope`,
-//!   past 89° at `slope` 1, where N·L < 0.05 and the report counts no
+//!   past 89° at `slope` 1, where cos θ < 0.05 and the report counts no
 //!   receiver);
 //! - a hardware bias ([`SlopeScaledBias`]: `slope_hw`, `wgpu_example`)
 //!   shows the rasteriser's three numbers, the clamp in texels (0: no
@@ -60,7 +60,7 @@ const RECEIVER: [ReceiverKnob; 8] = [
     },
     ReceiverKnob {
         name: "normal_texels",
-        doc: "normal offset: the receiver moves normal_texels × (1 − N·L) texels along its normal",
+        doc: "normal offset: the receiver moves normal_texels × (1 − cos θ) texels along its normal",
         range: float(0.0, 16.0, false),
         field: |b| &mut b.normal,
     },
@@ -72,7 +72,7 @@ const RECEIVER: [ReceiverKnob; 8] = [
     },
     ReceiverKnob {
         name: "bias_depth_slope",
-        doc: "LearnOpenGL's max(bias_depth_slope × (1 − N·L), bias_depth) depth units",
+        doc: "LearnOpenGL's max(bias_depth_slope × (1 − cos θ), bias_depth) depth units",
         range: float(0.0, 0.2, false),
         field: |b| &mut b.depth_slope,
     },

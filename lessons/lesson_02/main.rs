@@ -47,8 +47,8 @@ const MAP_SIZE: u32 = 1024;
 enum Fix {
     /// In the lit pass: compare a point moved off the surface (bias.wgsl).
     Receiver(ShadowBias),
-    /// In the shadow pass: the rasteriser adds `slope_scale · m + constant · r`
-    /// to each stored depth (m: the triangle's depth slope per texel, r: one
+    /// In the shadow pass: the rasteriser adds `slope_scale · m + constant · q`
+    /// to each stored depth (m: the triangle's depth slope per texel, q: one
     /// unit of the depth format), at most `clamp_texels` texels of depth;
     /// and the faces the pass culls (the wgpu example culls back faces).
     Hardware(SlopeScaledBias, Option<wgpu::Face>),

@@ -15,9 +15,9 @@ struct ShadowBias {
     // ... plus slope × tan θ texels, at most slope_max: slope-scaled.
     slope: f32,
     slope_max: f32,
-    // Move it along its normal by normal × (1 − N·L) texels: normal offset.
+    // Move it along its normal by normal × (1 − cos θ) texels: normal offset.
     normal: f32,
-    // LearnOpenGL's: max(depth_slope × (1 − N·L), depth) depth units instead.
+    // LearnOpenGL's: max(depth_slope × (1 − cos θ), depth) depth units instead.
     depth_slope: f32,
     // Bevy's: this many world units towards the light, and normal_flat
     // texels (the texel's larger side) along the normal.
@@ -45,7 +45,7 @@ fn biased_receiver(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> vec3<f32> {
 }
 
 // The depth subtracted after the move: the lwjgl book's constant, or
-// LearnOpenGL's max(0.05 × (1 − N·L), 0.005) in depth units.
+// LearnOpenGL's max(0.05 × (1 − cos θ), 0.005) in depth units.
 fn depth_bias(world: vec3<f32>, n: vec3<f32>, b: ShadowBias) -> f32 {
     let cos_t = clamp(dot(n, to_light(world)), 0.0, 1.0);
     return max(b.depth_slope * (1.0 - cos_t), b.depth);

@@ -75,8 +75,8 @@ pub(super) fn w_zero(scene: &Scene, c: &Caster) -> Result<String> {
         }
         for &(v, near, inf) in &ends {
             s.line(fit.at(near), fit.at(inf), &stroke(SIL, 1.2, "5,3"));
-            for t in [1.0, 3.0, 9.0] {
-                if let Some(p) = px(rel(v + t * away(v))) {
+            for k in [1.0, 3.0, 9.0] {
+                if let Some(p) = px(rel(v + k * away(v))) {
                     s.circle(fit.at(p), 2.5, &fill(SIL, "none"));
                 }
             }
@@ -111,8 +111,8 @@ pub(super) fn w_zero(scene: &Scene, c: &Caster) -> Result<String> {
     }
     let note = format!(
         "The {w}×{h} screen of the scene's camera (light blue) with the cube. Dashed red: each \
-         silhouette vertex v pushed away from the light; the dots are v + t·(direction) for \
-         t = 1, 3, 9, closing in on the purple point, the projection of the w = 0 point: where \
+         silhouette vertex v pushed away from the light; the dots are v + k·(direction) for \
+         k = 1, 3, 9, closing in on the purple point, the projection of the w = 0 point: where \
          that direction vanishes on screen. The rasteriser draws the volume's far vertices \
          there, with no finite length to choose and nothing for a far plane to clip."
     );
@@ -155,7 +155,7 @@ mod tests {
     /// (v − L, or d), with w = 1, and projected: the dashed line drawn
     /// from v ends there, the purple point of each panel is one of those
     /// ends (every vertex's, for the directional light), the pixel written
-    /// under it is its pixel, and the dots drawn for t = 1, 3, 9 lie on
+    /// under it is its pixel, and the dots drawn for k = 1, 3, 9 lie on
     /// the dashed line, each closer to its end than the one before.
     #[test]
     fn purple_points_are_where_farther_and_farther_points_project() {
