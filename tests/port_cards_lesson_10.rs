@@ -6,7 +6,9 @@
 //! conventions and penumbra formulas). Changing a port's constant, or its
 //! card's, fails here.
 
-use common::ports::PortCard;
+use common::ports::{PortCard, Role};
+use workbook::lesson_02::bias::ShadowBias;
+use workbook::lesson_10::map_sets::MapPass;
 use workbook::lesson_10::peers::{self, Peer};
 use workbook::lesson_10::port_cards::{self, CARDS};
 use workbook::lesson_10::soft::LightGeometry;
@@ -135,7 +137,7 @@ fn filament_pcss_runs_its_card() {
     let taps = wgsl_numbers("FILAMENT_PCSS_TAPS")[0];
     assert_eq!(c.num("PCSS_SHADOW_BLOCKER_SEARCH_TAP_COUNT"), taps);
     assert_eq!(c.num("PCSS_SHADOW_FILTER_TAP_COUNT"), taps);
-    let Some(Peer::FilamentPcss { bulb_radius }) = peers::port(c.variant, &sun()) else {
+    let Some(Peer::FilamentPcss { bulb_radius, .. }) = peers::port(c.variant, &sun()) else {
         panic!("filament_pcss is Filament's PCSS");
     };
     assert!(close(c.num("shadowBulbRadius"), bulb_radius as f64));
@@ -219,7 +221,7 @@ fn bevy_pcss_or_pcf_runs_its_card() {
         c.num("DEFAULT_SHADOW_MAP_NEAR_Z (spot)"),
         wgsl_numbers("BEVY_NEAR_Z")[0]
     ));
-    // The spot: PCSS, sized by the light's radius, on Bevy's point map size.
+    // The spot: PCSS, sized by the light's radius.
     let g = spot();
     let p = peers::port(c.variant, &g).unwrap();
     assert_eq!(p, Peer::BevyPcss { light_size: g.size });
@@ -228,14 +230,10 @@ fn bevy_pcss_or_pcf_runs_its_card() {
         (search as f64, filter as f64),
         (c.num("PCSS taps"), c.num("PCSS taps"))
     );
-    assert_eq!(
-        c.num("PointLightShadowMap size (spots too)"),
-        p.map_size() as f64
-    );
-    // The sun: no PCSS (soft_shadow_size None), Bevy's Castaño on 2048².
+    // The sun: no PCSS (soft_shadow_size None), Bevy's default filter.
     let p = peers::port(c.variant, &sun()).unwrap();
     assert_eq!(p, Peer::BevyCastano);
-    assert_eq!(c.num("DirectionalLightShadowMap size"), p.map_size() as f64);
+    assert_eq!(peers::port("bevy_gaussian", &sun()), Some(p));
     assert!(c
         .text("depth (spot)")
         .contains("near_z / -projected_position.z"));
@@ -261,6 +259,11 @@ fn bevy_pcss_or_pcf_runs_its_card() {
     );
     assert_wgsl(
         c.variant,
+        "shadow_map_size",
+        "let shadow_map_size = f32(textureDimensions(shadow_map).x);",
+    );
+    assert_wgsl(
+        c.variant,
         "blocker test",
         "sum += select(vec2<f32>(0.0), vec2<f32>(sampled, 1.0), sampled >= depth);",
     );
@@ -268,6 +271,119 @@ fn bevy_pcss_or_pcf_runs_its_card() {
         c.variant,
         "interleaved_gradient_noise",
         "let xy = pixel + 5.588238 * f32(1u % 64u);",
+    );
+}
+
+/// The pass a card's shadow pass describes: the faces it culls (the
+/// opposite of those it draws) and its hardware offset.
+fn pass(cull: Option<wgpu::Face>, constant: i32, slope_scale: f32) -> MapPass {
+    MapPass::Renderer {
+        cull,
+        bias: wgpu::DepthBiasState {
+            constant,
+            slope_scale,
+            clamp: 0.0,
+        },
+    }
+}
+
+#[test]
+fn bevys_ports_draw_its_map_and_move_its_receiver() {
+    for variant in ["bevy_gaussian", "bevy_pcss_or_pcf"] {
+        let c = card(variant);
+        // Spot maps are layers of the directional texture: its size.
+        assert!(c.text("spot maps").contains("DirectionalLightShadowMap"));
+        let size = c.num("DirectionalLightShadowMap size (spots too)");
+        // Front faces drawn (back culled), no hardware offset.
+        assert!(c
+            .text("StandardMaterial cull_mode")
+            .contains("Some(Face::Back)"));
+        assert!(c
+            .text("shadow pass DepthBiasState")
+            .contains("(0), slope_scale 0.0"));
+        let depth_bias = c.num("shadow_depth_bias (spot and directional)");
+        let normal_bias = c.num("shadow_normal_bias (spot and directional)");
+        assert!(c.text("spot normal bias").contains("SQRT_2"));
+        for g in [spot(), sun()] {
+            let p = peers::port(variant, &g).unwrap();
+            assert_eq!(p.map_size() as f64, size, "{variant}");
+            assert_eq!(p.map_pass(), pass(Some(wgpu::Face::Back), 0, 0.0));
+            let r = p.receiver_bias();
+            assert!(close(r.toward_light_world as f64, depth_bias));
+            assert!(close(
+                r.normal_flat as f64,
+                normal_bias * std::f64::consts::SQRT_2
+            ));
+            assert_eq!(p.receiver_normal_sin(), 0.0);
+        }
+    }
+    assert_eq!(card("bevy_gaussian").role, Role::Default);
+}
+
+#[test]
+fn filaments_ports_draw_its_map_and_move_its_receiver() {
+    for variant in ["filament_pcf", "filament_pcss"] {
+        let c = card(variant);
+        let offset = c.list("polygonOffsetSlope, polygonOffsetConstant");
+        assert!(c.text("mCullingMode").contains("CullingMode::BACK"));
+        assert!(c.text("computeLightSpacePosition").contains("sinTheta"));
+        let scaled = c.text("normalBias scaled");
+        assert!(
+            scaled.contains("a cascade 0.5 * normalBias") && scaled.contains("a spot normalBias")
+        );
+        for g in [spot(), sun()] {
+            let p = peers::port(variant, &g).unwrap();
+            // wgpu's constant is whole units: Filament's 0.5, rounded up.
+            let want = pass(
+                Some(wgpu::Face::Back),
+                offset[1].ceil() as i32,
+                offset[0] as f32,
+            );
+            assert_eq!(p.map_pass(), want, "{variant}");
+            let r = p.receiver_bias();
+            assert!(close(r.toward_light_world as f64, c.num("constantBias")));
+            let half = if g.perspective { 1.0 } else { 0.5 };
+            assert!(close(
+                p.receiver_normal_sin() as f64,
+                half * c.num("normalBias")
+            ));
+            assert_eq!(p.map_size() as f64, c.num("mapSize"));
+        }
+    }
+    // Filament's VSM: no offsets anywhere, the material's culling.
+    let c = card("filament_evsm");
+    assert!(c.text("polygonOffset").contains("0 when the view has VSM"));
+    assert!(c.text("offsets under VSM").contains("ignored"));
+    for g in [spot(), sun()] {
+        let p = peers::port(c.variant, &g).unwrap();
+        assert_eq!(p.map_pass(), pass(Some(wgpu::Face::Back), 0, 0.0));
+        assert_eq!(p.receiver_bias(), ShadowBias::NONE);
+        assert_eq!(p.receiver_normal_sin(), 0.0);
+    }
+}
+
+#[test]
+fn filament_pcf_runs_its_card() {
+    let c = card("filament_pcf");
+    let p = peers::port(c.variant, &spot()).unwrap();
+    assert_eq!(p.taps().1, 4);
+    assert!(c
+        .text("ShadowSample_PCF_Low")
+        .contains("sum * (1.0 / 16.0)"));
+    assert_wgsl(
+        c.variant,
+        "ShadowSample_PCF_Low",
+        "return sum * (1.0 / 16.0);",
+    );
+    assert_wgsl(
+        c.variant,
+        "uw, vw",
+        "let uw = vec2<f32>(3.0 - 2.0 * st.x, 1.0 + 2.0 * st.x);",
+    );
+    assert_wgsl(
+        c.variant,
+        "u, v",
+        "var u = vec2<f32>((2.0 - st.x) / uw.x - 1.0, st.x / uw.y + 1.0);",
     );
 }
 
@@ -321,15 +437,98 @@ fn godot_soft_low_runs_its_card() {
 }
 
 #[test]
-fn threejs_ports_run_their_cards() {
-    let pcf = card("threejs_pcf_soft");
-    let p = peers::port(pcf.variant, &spot()).unwrap();
-    assert_eq!(p, Peer::ThreePcfSoft);
-    assert_eq!(p.taps().1 as f64, pcf.num("PCF_SOFT taps"));
-    assert_eq!(p.map_size() as f64, pcf.num("mapSize"));
-    assert_wgsl(pcf.variant, "PCF_SOFT weights", "return sum / 9.0;");
+fn godot_pcf_runs_its_card() {
+    let c = card("godot_pcf");
+    assert_eq!(c.num("PARAM_SIZE (light_size)"), 0.0);
+    for g in [spot(), sun()] {
+        let Some(Peer::GodotPcf { taps, radius }) = peers::port(c.variant, &g) else {
+            panic!("godot_pcf is Godot's PCF");
+        };
+        assert_eq!(taps as f64, c.num("SOFT_LOW soft_shadow_samples"));
+        assert!(c
+            .text("soft_shadow_scale (size 0)")
+            .contains("shadow_blur (1.0) * shadows_quality_radius"));
+        assert!(close(
+            radius as f64,
+            c.num("SOFT_LOW shadows_quality_radius")
+        ));
+    }
+    assert_wgsl(
+        c.variant,
+        "sample_pcf_shadow",
+        "avg += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + shadow_pixel_size * (disk_rotation * godot_vogel(i, n)), s.z);",
+    );
+}
 
+#[test]
+fn godots_ports_move_the_receiver_along_its_normal() {
+    for variant in ["godot_pcf", "godot_soft_low"] {
+        let c = card(variant);
+        assert!(c
+            .text("shadow_normal_bias")
+            .contains("SHADOW_NORMAL_BIAS (1.0) * shadow_texel_size * 10.0"));
+        assert!(c.text("normal_bias (spot)").contains("(1.0 - abs(dot("));
+        let p = peers::port(variant, &spot()).unwrap();
+        assert_eq!(p.receiver_bias().normal, 10.0);
+        // Its shadow pass was not read to its lines: the lesson's map, said so.
+        assert_eq!(p.map_pass(), MapPass::Lesson);
+        assert!(c
+            .departures
+            .iter()
+            .any(|d| d.what.contains("its shadow pass")));
+    }
+}
+
+#[test]
+fn threejs_ports_run_their_cards() {
+    // PCFShadowMap (the default) and PCFSoftShadowMap draw the back faces
+    // of a front-sided material; VSM draws its front faces.
+    for variant in ["threejs_pcf", "threejs_pcf_soft"] {
+        let c = card(variant);
+        assert!(c.text("shadowSide").contains("FrontSide: BackSide"));
+        assert!(c
+            .text("Material.side, shadowSide")
+            .starts_with("FrontSide, null"));
+        for g in [spot(), sun()] {
+            let p = peers::port(variant, &g).unwrap();
+            assert_eq!(
+                p.map_pass(),
+                pass(Some(wgpu::Face::Front), 0, 0.0),
+                "{variant}"
+            );
+            assert_eq!(c.list("bias, normalBias"), &[0.0, 0.0]);
+            assert_eq!(p.receiver_bias(), ShadowBias::NONE);
+            assert_eq!(
+                p.params().receiver_plane,
+                false,
+                "three.js has no receiver plane"
+            );
+            assert_eq!(p.map_size() as f64, c.num("mapSize"));
+        }
+    }
     let vsm = card("threejs_vsm");
+    assert!(vsm.text("VSM side").contains("material.side"));
+    let p = peers::port(vsm.variant, &spot()).unwrap();
+    assert_eq!(p.map_pass(), pass(Some(wgpu::Face::Back), 0, 0.0));
+    assert_eq!(p.receiver_bias(), ShadowBias::NONE);
+
+    let pcf = card("threejs_pcf");
+    let p = peers::port(pcf.variant, &spot()).unwrap();
+    assert_eq!(p, Peer::ThreePcf);
+    assert_eq!(p.taps().1 as f64, pcf.num("PCF taps"));
+    assert_wgsl(
+        pcf.variant,
+        "vogelDiskSample",
+        "let golden_angle = 2.399963229728653;",
+    );
+    assert_wgsl(pcf.variant, "PCF taps", "return shadow * 0.2;");
+
+    let soft = card("threejs_pcf_soft");
+    let p = peers::port(soft.variant, &spot()).unwrap();
+    assert_eq!(p, Peer::ThreePcfSoft);
+    assert_eq!(p.taps().1 as f64, soft.num("PCF_SOFT taps"));
+    assert_wgsl(soft.variant, "PCF_SOFT weights", "return sum / 9.0;");
+
     let Some(Peer::ThreeVsm(v, blur)) = peers::port(vsm.variant, &spot()) else {
         panic!("threejs_vsm is three.js's VSM");
     };
@@ -344,12 +543,39 @@ fn threejs_ports_run_their_cards() {
     assert_eq!(p.map_size() as f64, vsm.num("mapSize"));
     assert_wgsl(
         vsm.variant,
-        "VSMShadow",
-        "let hard_shadow = step(compare, m.x);",
+        "VSM getShadow",
+        "let hard_shadow = step(s.z, mean);",
     );
     assert_wgsl(
         vsm.variant,
-        "moments",
-        "let variance = max(0.0, m.y * m.y);",
+        "VSM getShadow",
+        "variance = max(variance, 0.0000001);",
     );
+    assert_wgsl(vsm.variant, "moments", "var variance = m.y * m.y;");
+}
+
+#[test]
+fn every_card_says_default_or_option_as_its_port_is() {
+    let mut defaults = std::collections::BTreeSet::new();
+    for c in CARDS {
+        for g in [spot(), sun()] {
+            let p = peers::port(c.variant, &g).unwrap();
+            let default = c.role == Role::Default;
+            // bevy_pcss_or_pcf runs Bevy's default on a sun: its card is
+            // the option's, which it is where it differs.
+            if c.variant != "bevy_pcss_or_pcf" || g.perspective {
+                assert_eq!(p.is_default(), default, "{}", c.variant);
+            }
+        }
+        if c.role == Role::Default {
+            assert!(
+                defaults.insert(c.renderer),
+                "two defaults for {}",
+                c.renderer
+            );
+        }
+    }
+    // Every renderer's default is ported beside its options.
+    let renderers: std::collections::BTreeSet<_> = CARDS.iter().map(|c| c.renderer).collect();
+    assert_eq!(defaults, renderers);
 }

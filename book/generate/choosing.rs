@@ -169,7 +169,7 @@ pub fn peers(
         "each scene of the lesson, in the row's measure: misclassified % of receiver pixels, or for a soft shadow the mean |ΔV| over the reference's penumbra, in %; difference in percentage points (peer − ours)",
     );
     let head = [
-        "peer default (variant)".to_string(),
+        "peer (variant)".to_string(),
         "ours".into(),
         "scene".into(),
         "measure".into(),
@@ -211,7 +211,7 @@ const BETTER: &str = "which has the smaller error, and how many times smaller (t
 
 /// The peers table's own columns.
 const PEERS_LEGEND: &[(&str, &str)] = &[
-    ("peer default (variant)", "a published renderer's or tutorial's documented default, and the lesson's variant that reproduces it"),
+    ("peer (variant)", "a published renderer's or tutorial's default, or an option it documents (the label says which, and the port's card gives the setting), and the lesson's variant that reproduces it"),
     ("ours", "the lesson's variant the book recommends in its place"),
     ("scene", "the run: the lesson's default scene, or the title of one of its extreme cases"),
     ("measure", "the error compared: `misclassified %` (receiver pixels classified differently from the exact reference, in % of the receiver pixels) for a hard shadow; `penumbra |ΔV| %` (the mean |V − V_ref| over the receivers in the exact reference's penumbra, 0 < V_ref < 1, in %) for a soft shadow"),

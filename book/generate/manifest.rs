@@ -353,7 +353,7 @@ const fn peer(
 /// The peers' defaults beside ours (chapter "Choosing a technique").
 #[rustfmt::skip]
 pub const PEERS: &[Peer] = &[
-    peer("lesson_02", "constant_lwjgl", "slope_hw", "the lwjgl book's constant bias"),
+    peer("lesson_02", "constant_lwjgl", "slope_hw", "the lwjgl book's (legacy edition) constant bias"),
     peer("lesson_02", "learnopengl", "slope_hw", "LearnOpenGL's slope bias"),
     peer("lesson_02", "wgpu_example", "slope_hw", "the wgpu shadow example's hardware bias"),
     peer("lesson_02", "bevy_bias", "slope_hw", "Bevy's directional depth + normal bias"),
@@ -363,12 +363,16 @@ pub const PEERS: &[Peer] = &[
     peer("lesson_04", "learnopengl_1tap", "pcf3d_1024", "LearnOpenGL's point shadow, one tap"),
     peer("lesson_04", "learnopengl_pcf20", "pcf3d_1024", "LearnOpenGL's 20-tap point kernel"),
     peer("lesson_04", "bevy_point", "pcf3d_1024", "Bevy's point-light biases"),
-    peer("lesson_10", "filament_pcss", "pcss", "Filament's PCSS"),
-    peer("lesson_10", "filament_evsm", "pcss", "Filament's VSM (an EVSM)"),
-    peer("lesson_10", "bevy_pcss_or_pcf", "pcss", "Bevy's PCSS on a spot, its Castaño PCF on a sun"),
-    peer("lesson_10", "godot_soft_low", "pcss", "Godot's Soft Low"),
-    peer("lesson_10", "threejs_pcf_soft", "pcss", "three.js's PCFSoftShadowMap"),
-    peer("lesson_10", "threejs_vsm", "pcss", "three.js's VSMShadowMap"),
+    peer("lesson_10", "filament_pcf", "pcss", "Filament's PCF (its default)"),
+    peer("lesson_10", "filament_pcss", "pcss", "Filament's PCSS (an option)"),
+    peer("lesson_10", "filament_evsm", "pcss", "Filament's VSM, an EVSM (an option)"),
+    peer("lesson_10", "bevy_gaussian", "pcss", "Bevy's Gaussian PCF (its default)"),
+    peer("lesson_10", "bevy_pcss_or_pcf", "pcss", "Bevy's PCSS on a spot (an option), its default on a sun"),
+    peer("lesson_10", "godot_pcf", "pcss", "Godot's PCF (its default)"),
+    peer("lesson_10", "godot_soft_low", "pcss", "Godot's soft shadow at Soft Low (an option)"),
+    peer("lesson_10", "threejs_pcf", "pcss", "three.js's PCFShadowMap (its default)"),
+    peer("lesson_10", "threejs_pcf_soft", "pcss", "three.js's PCFSoftShadowMap (an option, deprecated in r182)"),
+    peer("lesson_10", "threejs_vsm", "pcss", "three.js's VSMShadowMap (an option)"),
 ];
 
 /// The runs and variants of the volume-building table: (run id, [(variant,

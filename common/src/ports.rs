@@ -56,12 +56,34 @@ pub struct Departure {
     pub why: &'static str,
 }
 
+/// Whether a port is what its renderer runs unless told otherwise, or
+/// something a user turns on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Role {
+    /// The renderer's default (a tutorial's own listing counts as one).
+    Default,
+    /// An option, with the setting that turns it on.
+    Option(&'static str),
+}
+
+impl Role {
+    /// "default", or "option: the setting".
+    pub fn text(self) -> String {
+        match self {
+            Role::Default => "default".into(),
+            Role::Option(setting) => format!("option: {setting}"),
+        }
+    }
+}
+
 /// The card of one port: one variant of one lesson.
 #[derive(Clone, Copy, Debug)]
 pub struct PortCard {
     /// The variant's `--variant` name.
     pub variant: &'static str,
     pub renderer: &'static str,
+    /// Its renderer's default, or an option (and its setting).
+    pub role: Role,
     /// `owner/name`.
     pub repository: &'static str,
     pub sources: &'static [Source],
@@ -120,6 +142,11 @@ impl PortCard {
         if self.sources.is_empty() || self.constants.is_empty() {
             out.push(format!("{v}: a card needs a source and a constant"));
         }
+        if self.role == Role::Option("") {
+            out.push(format!(
+                "{v}: an option without the setting that turns it on"
+            ));
+        }
         for s in self.sources {
             let hex = s.commit.len() == 40 && s.commit.chars().all(|c| c.is_ascii_hexdigit());
             if !hex || s.file.is_empty() {
@@ -177,7 +204,7 @@ pub fn departures_table(cards: &[PortCard]) -> String {
             );
         }
     }
-    out += "\n| variant | repository | read at |\n| --- | --- | --- |\n";
+    out += "\n| variant | default or option | repository | read at |\n| --- | --- | --- | --- |\n";
     for c in cards {
         let files: Vec<String> = c
             .sources
@@ -185,8 +212,9 @@ pub fn departures_table(cards: &[PortCard]) -> String {
             .map(|s| format!("`{}@{}`", s.file, &s.commit[..s.commit.len().min(7)]))
             .collect();
         out += &format!(
-            "| `{}` | {} | {} |\n",
+            "| `{}` | {} | {} | {} |\n",
             c.variant,
+            cell(&c.role.text()),
             cell(c.repository),
             files.join("<br>")
         );
@@ -201,6 +229,7 @@ mod tests {
     const CARD: PortCard = PortCard {
         variant: "x",
         renderer: "R",
+        role: Role::Default,
         repository: "o/r",
         sources: &[Source {
             file: "a.glsl",
@@ -241,6 +270,11 @@ mod tests {
             ..CARD
         };
         assert_eq!(orphan.problems().len(), 1);
+        let unset = PortCard {
+            role: Role::Option(""),
+            ..CARD
+        };
+        assert_eq!(unset.problems().len(), 1);
     }
 
     #[test]
@@ -255,6 +289,18 @@ mod tests {
         let t = departures_table(&[card, CARD]);
         assert!(t.contains("| `x` | R | a \\| b | c |"), "{t}");
         assert!(t.contains("| `x` | R | nothing | |"), "{t}");
-        assert!(t.contains("| `x` | o/r | `a.glsl@0123456` |"), "{t}");
+        assert!(
+            t.contains("| `x` | default | o/r | `a.glsl@0123456` |"),
+            "{t}"
+        );
+        let option = PortCard {
+            role: Role::Option("Light.soft = true"),
+            ..CARD
+        };
+        let t = departures_table(&[option]);
+        assert!(
+            t.contains("| `x` | option: Light.soft = true | o/r |"),
+            "{t}"
+        );
     }
 }

@@ -83,7 +83,7 @@ const fn slope_scaled(max: f32) -> Fix {
 enum Variant {
     #[value(name = "none")]
     None,
-    /// The lwjgl book's `bias = 0.05`, in depth units.
+    /// The lwjgl book's `bias = 0.05` (its legacy edition, chapter 18), in depth units.
     #[value(name = "constant_lwjgl")]
     ConstantLwjgl,
     #[value(name = "bias_0.25tx")]

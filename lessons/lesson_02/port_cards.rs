@@ -6,7 +6,7 @@
 //! and the book's table of departures is generated from these. Lesson 03's
 //! cards reuse these rows (its ports add their filters).
 
-use common::ports::{Constant, Departure, PortCard, Source, Value};
+use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
 
 const LEARNOPENGL_AT_85530AB: &str = "85530ab9976154133a21cfd228f642c47b0c88da";
 /// The snapshot of gfx-rs/wgpu that was read (its trunk, 2024-10-23).
@@ -112,6 +112,7 @@ pub const GL_DEPTH_FORMAT: Departure = Departure {
 pub const LEARNOPENGL: PortCard = PortCard {
     variant: "learnopengl",
     renderer: "LearnOpenGL, Shadow Mapping",
+    role: Role::Default,
     repository: "JoeyDeVries/LearnOpenGL",
     sources: LEARNOPENGL_SOURCES,
     constants: &[
@@ -269,6 +270,7 @@ pub const WGPU_DEPARTURES: [Departure; 4] = [
 pub const WGPU_EXAMPLE: PortCard = PortCard {
     variant: "wgpu_example",
     renderer: "wgpu, shadow example",
+    role: Role::Default,
     repository: "gfx-rs/wgpu",
     sources: WGPU_SOURCES,
     constants: &[
@@ -437,6 +439,7 @@ pub const BEVY_DEPARTURES: [Departure; 4] = [
 pub const BEVY_BIAS: PortCard = PortCard {
     variant: "bevy_bias",
     renderer: "Bevy, DirectionalLight",
+    role: Role::Default,
     repository: "bevyengine/bevy",
     sources: &BEVY_SOURCES,
     constants: &[

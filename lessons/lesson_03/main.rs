@@ -2,7 +2,7 @@
 //!
 //! Percentage-closer filtering: instead of one depth comparison per pixel,
 //! several around it, averaged into a fractional visibility. The variants
-//! are N×N grids (N = 1, 3, 5, 7; 3×3 is LearnOpenGL's), the hardware's 2×2
+//! are N×N grids (N = 1, 3, 5, 7) compared with the receiver's plane, the hardware's 2×2
 //! (a comparison sampler with linear filtering), a rotated 16-tap Poisson
 //! disk, a 7×7 grid without the receiver-plane depth bias that wide kernels
 //! need, and the wrong way: averaging depths, then comparing once. The
@@ -49,7 +49,9 @@ const MAP_SIZE: u32 = 1024;
 enum Variant {
     #[value(name = "pcf_1x1")]
     Pcf1x1,
-    /// LearnOpenGL's 3×3 average (with our bias).
+    /// The lesson's 3×3 grid: nine nearest comparisons, each with the
+    /// receiver's plane, on lesson 02's slope-scaled bias (LearnOpenGL's
+    /// own 3×3, with its bias: `learnopengl_pcf`).
     #[value(name = "pcf_3x3")]
     Pcf3x3,
     #[value(name = "pcf_5x5")]

@@ -114,7 +114,11 @@ pub struct FilterUniform {
     depth_slope: f32,
     toward_light_world: f32,
     normal_flat: f32,
-    _pad: [f32; 4],
+    /// Texels along the normal × (1 − cos θ) (Godot's normal bias).
+    normal: f32,
+    /// Texels along the normal × sin θ (Filament's normal bias).
+    normal_sin: f32,
+    _pad: [f32; 2],
 }
 
 impl FilterUniform {
@@ -126,7 +130,17 @@ impl FilterUniform {
             depth_slope: b.depth_slope,
             toward_light_world: b.toward_light_world,
             normal_flat: b.normal_flat,
+            normal: b.normal,
             ..FilterUniform::from(filter)
+        }
+    }
+
+    /// The same with `texels × sin θ` along the normal too (Filament's
+    /// normal bias, which lesson 02's `ShadowBias` has no field for).
+    pub fn with_normal_sin(self, texels: f32) -> Self {
+        FilterUniform {
+            normal_sin: texels,
+            ..self
         }
     }
 }
@@ -142,7 +156,9 @@ impl From<Filter> for FilterUniform {
             depth_slope: 0.0,
             toward_light_world: 0.0,
             normal_flat: 0.0,
-            _pad: [0.0; 4],
+            normal: 0.0,
+            normal_sin: 0.0,
+            _pad: [0.0; 2],
         };
         match f {
             Filter::Grid { n, receiver_plane } => FilterUniform {

@@ -5,7 +5,7 @@
 //! ([`super::pcf`], `shaders/lesson_03/pcf.wgsl`); the book's table of
 //! departures is generated from these.
 
-use common::ports::{Constant, PortCard, Source, Value};
+use common::ports::{Constant, PortCard, Role, Source, Value};
 
 use crate::lesson_02::port_cards as l02;
 
@@ -22,6 +22,7 @@ const LEARNOPENGL_PCF_OFFSETS: &[f64] = &[
 pub const LEARNOPENGL_PCF: PortCard = PortCard {
     variant: "learnopengl_pcf",
     renderer: "LearnOpenGL, Shadow Mapping",
+    role: Role::Default,
     repository: "JoeyDeVries/LearnOpenGL",
     sources: l02::LEARNOPENGL_SOURCES,
     constants: &[
@@ -74,6 +75,7 @@ pub const LEARNOPENGL_PCF: PortCard = PortCard {
 pub const WGPU_EXAMPLE_HW2X2: PortCard = PortCard {
     variant: "wgpu_example_hw2x2",
     renderer: "wgpu, shadow example",
+    role: Role::Default,
     repository: "gfx-rs/wgpu",
     sources: l02::WGPU_SOURCES,
     constants: &[
@@ -136,6 +138,7 @@ const fn castano(name: &'static str, text: &'static str, lines: &'static str) ->
 pub const BEVY: PortCard = PortCard {
     variant: "bevy",
     renderer: "Bevy, DirectionalLight",
+    role: Role::Default,
     repository: "bevyengine/bevy",
     sources: &BEVY_SOURCES,
     constants: &[

@@ -3,7 +3,7 @@
 //! lines, and what it cannot do here (LearnOpenGL's cards sit beside it,
 //! in `port_cards.rs`, which lists all three).
 
-use common::ports::{Constant, Departure, PortCard, Source, Value};
+use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
 
 use crate::lesson_02::port_cards::{self as l02, BEVY_AT_E85A706};
 use crate::lesson_03::port_cards as l03;
@@ -22,6 +22,7 @@ const D3D_SAMPLE_POINT_COEFFS: &[f64] = &[
 pub const BEVY_POINT: PortCard = PortCard {
     variant: "bevy_point",
     renderer: "Bevy, PointLight",
+    role: Role::Default,
     repository: "bevyengine/bevy",
     sources: &[
         Source {

@@ -4,7 +4,7 @@
 //! the port's own constants; `tests/port_cards.rs` checks one against the
 //! other, and the book's table of departures is generated from these.
 
-use common::ports::{Constant, Departure, PortCard, Source, Value};
+use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
 
 pub use super::bevy_card::BEVY_POINT;
 
@@ -42,6 +42,7 @@ const LEARNOPENGL_DIFFUSE: &str = "max(dot(lightDir, normal), 0.0)";
 pub const LEARNOPENGL_1TAP: PortCard = PortCard {
     variant: "learnopengl_1tap",
     renderer: "LearnOpenGL, Point Shadows",
+    role: Role::Default,
     repository: "JoeyDeVries/LearnOpenGL",
     sources: &[
         Source {
@@ -149,6 +150,7 @@ const GRID_SAMPLING_DISK: &[f64] = &[
 pub const LEARNOPENGL_PCF20: PortCard = PortCard {
     variant: "learnopengl_pcf20",
     renderer: "LearnOpenGL, Point Shadows (soft)",
+    role: Role::Default,
     repository: "JoeyDeVries/LearnOpenGL",
     sources: &[
         Source {

@@ -31,11 +31,10 @@ use common::run::knobs::Knob;
 use common::run::lesson::{BufferView, Lesson};
 use common::scene::Scene;
 use common::Result;
-use workbook::lesson_01::shadow_map::{self, PerSize};
-use workbook::lesson_03::pcf::{Filter, FilterUniform};
+use workbook::lesson_01::shadow_map;
 use workbook::lesson_10::exercise_shaders::Module;
 use workbook::lesson_10::knobs;
-use workbook::lesson_10::map_sets::{self, MapSet};
+use workbook::lesson_10::map_sets::{self, MapSet, MapSets};
 use workbook::lesson_10::moments::MomentsPasses;
 use workbook::lesson_10::peers::{self, Peer};
 use workbook::lesson_10::soft::{LightGeometry, Pcss, SoftUniform, Technique, Variance};
@@ -76,38 +75,64 @@ enum Variant {
     Evsm,
     // Then the renderers' ports (peers.rs) and the chapter's exercises.
     // ANCHOR_END: variants
-    /// Filament's PCSS (`ShadowType::PCSS`, shaders/src/surface_shadowing.fs):
-    /// the first 16 of its 64 Poisson points (all in one half of the
-    /// disk) to search and to filter, turned per pixel; the blockers' mean
-    /// reversed depth; its penumbra ratio; its bulb radius (the spot's
-    /// radius, or its default 2 cm on a sun). Card: `port_cards.rs`.
+    /// Filament's default, `ShadowType::PCF` (`ShadowSample_PCF_Low`):
+    /// Castaño's 3×3 from 4 bilinear comparisons, on its 1024² map of
+    /// front faces with its polygon offset and 1 mm constant bias. Card:
+    /// `port_cards.rs`.
+    #[value(name = "filament_pcf")]
+    FilamentPcf,
+    /// Filament's PCSS, an option (`ShadowType::PCSS`,
+    /// shaders/src/surface_shadowing.fs): the first 16 of its 64 Poisson
+    /// points (all in one half of the disk) to search and to filter,
+    /// turned per pixel; the blockers' mean reversed depth; its penumbra
+    /// ratio; its bulb radius (the spot's radius, or its default 2 cm on a
+    /// sun). Card: `port_cards.rs`.
     #[value(name = "filament_pcss")]
     FilamentPcss,
-    /// Filament's VSM, an EVSM (exponent 5.54 for its 16-bit moments, no
-    /// blur, `lightBleedReduction` 0.15, least variance from
-    /// `minVarianceScale` 0.5 and the exponent). Card: `port_cards.rs`.
+    /// Filament's VSM, an option (`ShadowType::VSM`): an EVSM (exponent
+    /// 5.54 for its 16-bit moments, no blur, `lightBleedReduction` 0.15,
+    /// least variance from `minVarianceScale` 0.5 and the exponent) of a
+    /// map drawn without offsets. Card: `port_cards.rs`.
     #[value(name = "filament_evsm")]
     FilamentEvsm,
-    /// Bevy's soft-shadow defaults: on a spot with `soft_shadows_enabled`
-    /// its PCSS (8 D3D points to search in its reversed infinite depth, 8
-    /// spiral taps to filter, widths in its own texel units); on a sun,
-    /// where `soft_shadow_size` is `None` by default, no PCSS but its
-    /// default Gaussian PCF (Castaño's 5×5) on its 2048² map. Card:
+    /// Bevy's default filter, `ShadowFilteringMethod::Gaussian` (Castaño's
+    /// 5×5, lesson 03's `bevy`) with its receiver offsets, on its 2048²
+    /// map of front faces, spot and sun alike. Card: `port_cards.rs`.
+    #[value(name = "bevy_gaussian")]
+    BevyGaussian,
+    /// Bevy's PCSS, an option (the `experimental_pbr_pcss` feature and
+    /// `soft_shadows_enabled` on a spot): 8 D3D points to search in its
+    /// reversed infinite depth, 8 spiral taps to filter, widths in its own
+    /// texel units, on its 2048² map. On a sun, whose `soft_shadow_size` is
+    /// not ported, Bevy's default (as `bevy_gaussian`). Card:
     /// `port_cards.rs`.
     #[value(name = "bevy_pcss_or_pcf")]
     BevyPcssOrPcf,
-    /// Godot's default "Soft Low": 8 Vogel taps to search and the same 8 to
-    /// filter, its penumbra `(b − z) / (1 − b)` on reversed depth, no
+    /// Godot's default (a light size of 0): its PCF at Soft Low, 4 Vogel
+    /// taps of bilinear comparisons on a disk of 2 texels. Card:
+    /// `port_cards.rs`.
+    #[value(name = "godot_pcf")]
+    GodotPcf,
+    /// Godot's soft shadow, an option (a light size above 0), at its
+    /// default quality, Soft Low: 8 Vogel taps to search and the same 8
+    /// to filter, its penumbra `(b − z) / (1 − b)` on reversed depth, no
     /// receiver-plane bias. Card: `port_cards.rs`.
     #[value(name = "godot_soft_low")]
     GodotSoftLow,
-    /// three.js's `PCFSoftShadowMap`: a fixed 3×3-texel box, bilinearly
-    /// smoothed, on its 512² map; it has no light size. Card: `port_cards.rs`.
+    /// three.js's default, `PCFShadowMap` (r182): 5 Vogel taps of bilinear
+    /// comparisons on a disk of one texel, on its 512² map of back faces.
+    /// Card: `port_cards.rs`.
+    #[value(name = "threejs_pcf")]
+    ThreejsPcf,
+    /// three.js's `PCFSoftShadowMap`, an option until r182 deprecated it:
+    /// a fixed 3×3-texel box, bilinearly smoothed, on its 512² map of back
+    /// faces; it has no light size. Card: `port_cards.rs`.
     #[value(name = "threejs_pcf_soft")]
     ThreejsPcfSoft,
-    /// three.js's `VSMShadowMap`: the (mean, deviation) of its map's depth,
-    /// 8 samples over ±1 texel along y then x, on its 512² map, cut by
-    /// linstep(0.3, 0.95, p). Card: `port_cards.rs`.
+    /// three.js's `VSMShadowMap`, an option: the (mean, deviation) of its
+    /// map's depth (front faces, no offsets), 8 samples over ±1 texel
+    /// along y then x, on its 512² map, cut by linstep(0.3, 0.95, p).
+    /// Card: `port_cards.rs`.
     #[value(name = "threejs_vsm")]
     ThreejsVsm,
     /// The chapter's exercises (`exercises.wgsl`), run only when named.
@@ -212,11 +237,9 @@ struct PerLight {
 }
 
 struct Soft {
-    maps: PerSize<MapSet>,
+    maps: MapSets,
     geometry: Vec<LightGeometry>,
     params_layout: wgpu::BindGroupLayout,
-    /// Lesson 03's filter uniform (its Poisson disk), for the hard baseline.
-    filter: wgpu::Buffer,
     /// fs_soft of the lesson's module, then of each exercise's.
     lit_pipelines: [wgpu::RenderPipeline; 3],
     /// `per_light[variant][light]`.
@@ -229,9 +252,13 @@ impl Soft {
         let g = &self.geometry[k];
         let u = SoftUniform::new(t, g);
         let soft = bindings::params_buffer(gpu, "soft", bytemuck::bytes_of(&u));
-        let resources = [self.filter.as_entire_binding(), soft.as_entire_binding()];
+        // Lesson 03's Poisson disk (the hard baseline's filter), with a
+        // renderer's receiver offsets (its peer_receiver) for a port.
+        let f = t.filter_uniform();
+        let filter = bindings::params_buffer(gpu, "lesson 03 filter", bytemuck::bytes_of(&f));
+        let resources = [filter.as_entire_binding(), soft.as_entire_binding()];
         let name = format!("{v:?} light {k}");
-        let map = self.maps.index(t.map_size());
+        let map = self.maps.index(t.map_size(), t.map_pass());
         let set = self.maps.at(map);
         PerLight {
             technique: t,
@@ -287,16 +314,6 @@ impl Lesson for Soft {
                 storage_entry(1, stage, false, None),
             ],
         );
-        // Lesson 03's Poisson disk, as its poisson_16 variant runs it.
-        let poisson = Filter::Poisson {
-            taps: 16,
-            radius: 2.5,
-        };
-        let filter = bindings::params_buffer(
-            gpu,
-            "lesson 03 filter",
-            bytemuck::bytes_of(&FilterUniform::from(poisson)),
-        );
         let lit = |module| {
             scene.lit_pipeline_with_depth(
                 gpu,
@@ -314,17 +331,20 @@ impl Lesson for Soft {
                     .ok_or_else(|| anyhow::anyhow!("light {k}: lesson_10 has no point lights"))
             })
             .collect::<Result<Vec<_>>>()?;
-        // One map of each size some variant runs on some light.
-        let sizes = (Variant::value_variants().iter())
-            .flat_map(|v| geometry.iter().map(|g| v.technique(g).map_size()));
-        let maps = PerSize::new(sizes, |size| {
-            MapSet::new(gpu, scene, &module, &map_layout, size)
+        // One map of each size and pass some variant runs on some light.
+        let keys = (Variant::value_variants().iter()).flat_map(|v| {
+            geometry.iter().map(|g| {
+                let t = v.technique(g);
+                (t.map_size(), t.map_pass())
+            })
+        });
+        let maps = MapSets::new(keys, |size, pass| {
+            MapSet::new(gpu, scene, &module, &map_layout, size, pass)
         });
         let mut soft = Soft {
             maps,
             geometry,
             params_layout,
-            filter,
             lit_pipelines,
             per_light: Vec::new(),
             draws: shadow_map::shadow_map_draws(scene),

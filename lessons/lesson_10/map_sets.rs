@@ -1,7 +1,8 @@
-//! The shadow maps lesson 10's variants read, one set per map size (the
-//! lesson's 1024², and each size a renderer's port runs: three.js 512²,
-//! Bevy's cascade 2048²): the map, its variance map, their bindings and
-//! the shadow pipelines that render it.
+//! The shadow maps lesson 10's variants read, one set per map size and
+//! shadow pass (the lesson's 1024² with lesson 02's bias; each renderer's
+//! port on its renderer's size, drawn as its renderer draws it: three.js
+//! 512² of back faces, Bevy's 2048² of front faces): the map, its variance
+//! map, their bindings and the shadow pipelines that render it.
 
 use common::gpu::bindings::{self, float_texture_entry, storage_entry};
 use common::gpu::render::SceneGpu;
@@ -13,10 +14,25 @@ use crate::lesson_01::shadow_map::{
 };
 use crate::lesson_02::bias::SlopeScaledBias;
 
-/// A shadow map of one size, its variance map, their bindings and the
-/// shadow pipelines that render it.
+/// How a map's shadow pass draws the casters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MapPass {
+    /// Both faces with lesson 02's recommended slope-scaled bias: the map
+    /// of every variant of the lesson's own.
+    Lesson,
+    /// A renderer's shadow pass: the faces it culls and its hardware depth
+    /// offset (none, for most).
+    Renderer {
+        cull: Option<wgpu::Face>,
+        bias: wgpu::DepthBiasState,
+    },
+}
+
+/// A shadow map of one size and pass, its variance map, their bindings and
+/// the shadow pipelines that render it.
 pub struct MapSet {
     pub size: u32,
+    pub pass: MapPass,
     pub map: ShadowMap,
     pub moments: MomentsMap,
     /// Group 2 with nearest and with linear comparisons.
@@ -33,15 +49,18 @@ impl MapSet {
         module: &wgpu::ShaderModule,
         layout: &wgpu::BindGroupLayout,
         size: u32,
+        pass: MapPass,
     ) -> MapSet {
         let map = ShadowMap::new(gpu, size);
         let moments = MomentsMap::new(gpu, size);
         let shadow_pipelines = (0..scene.scene.lights.len())
             .map(|k| {
-                let b = SlopeScaledBias::RECOMMENDED;
-                let state = ShadowPassState {
-                    cull: None,
-                    ..b.pass_state(gpu, &scene.scene, k, size)
+                let state = match pass {
+                    MapPass::Lesson => ShadowPassState {
+                        cull: None,
+                        ..SlopeScaledBias::RECOMMENDED.pass_state(gpu, &scene.scene, k, size)
+                    },
+                    MapPass::Renderer { cull, bias } => ShadowPassState { cull, bias },
                 };
                 shadow_map::shadow_pipeline(gpu, scene, module, state)
             })
@@ -50,6 +69,7 @@ impl MapSet {
         let linear = map_group(gpu, layout, &map, &moments, wgpu::FilterMode::Linear);
         MapSet {
             size,
+            pass,
             map,
             moments,
             nearest,
@@ -64,6 +84,39 @@ impl MapSet {
             wgpu::FilterMode::Nearest => &self.nearest,
             _ => &self.linear,
         }
+    }
+}
+
+/// The maps the variants read: one per size and pass some variant runs.
+pub struct MapSets {
+    sets: Vec<MapSet>,
+}
+
+impl MapSets {
+    /// A set for each distinct `(size, pass)` of `keys`, in their order.
+    pub fn new(
+        keys: impl IntoIterator<Item = (u32, MapPass)>,
+        mut make: impl FnMut(u32, MapPass) -> MapSet,
+    ) -> MapSets {
+        let mut sets: Vec<MapSet> = Vec::new();
+        for (size, pass) in keys {
+            if !sets.iter().any(|s| s.size == size && s.pass == pass) {
+                sets.push(make(size, pass));
+            }
+        }
+        MapSets { sets }
+    }
+
+    /// The index of the set of `size` and `pass` (made by [`MapSets::new`]).
+    pub fn index(&self, size: u32, pass: MapPass) -> usize {
+        self.sets
+            .iter()
+            .position(|s| s.size == size && s.pass == pass)
+            .expect("a map set for every size and pass a variant runs")
+    }
+
+    pub fn at(&self, index: usize) -> &MapSet {
+        &self.sets[index]
     }
 }
 

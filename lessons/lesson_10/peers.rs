@@ -5,15 +5,24 @@
 //! `tests/port_cards_lesson_10.rs` checks the two against each other.
 
 use super::light_geometry::LightGeometry;
+use super::map_sets::MapPass;
 pub use super::moments::ThreeVsmBlur;
 use super::moments::Variance;
+use crate::lesson_02::bias::ShadowBias;
 
-/// A renderer's soft shadow, as its source runs it.
+/// A renderer's shadow filter, its default or its soft option, as its
+/// source runs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Peer {
+    /// Filament's default, `ShadowType::PCF` (`ShadowSample_PCF_Low`):
+    /// Castaño's 3×3 from 4 bilinear comparisons.
+    FilamentPcf { normal_texels: f32 },
     /// Filament's PCSS (`ShadowType::PCSS`): 16 of its Poisson points to
     /// search and the same 16 to filter, its bulb radius in world units.
-    FilamentPcss { bulb_radius: f32 },
+    FilamentPcss {
+        bulb_radius: f32,
+        normal_texels: f32,
+    },
     /// Bevy's PCSS on a spot with `soft_shadows_enabled`: 8 D3D points to
     /// search, 8 spiral taps to filter, sized by its light's radius.
     BevyPcss { light_size: f32 },
@@ -21,11 +30,19 @@ pub enum Peer {
     /// `soft_shadow_size` is `None` by default): its Gaussian filter,
     /// Castaño's 5×5 (lesson 03's `bevy`), on its own map size.
     BevyCastano,
-    /// Godot's Soft Low: `taps` Vogel taps to search and to filter, its
-    /// soft-shadow size and scale (`size`, `scale`) in map units.
+    /// Godot's default (a light of size 0): its PCF, `taps` Vogel taps of
+    /// bilinear comparisons on a disk of `radius` texels.
+    GodotPcf { taps: u32, radius: f32 },
+    /// Godot's soft shadow (a light size above 0), at Soft Low: `taps`
+    /// Vogel taps to search and to filter, its soft-shadow size and scale
+    /// (`size`, `scale`) in map units.
     GodotSoft { taps: u32, size: f32, scale: f32 },
-    /// three.js's `PCFSoftShadowMap`: a fixed 3×3-texel box, bilinearly
-    /// smoothed, 16 nearest comparisons.
+    /// three.js's default, `PCFShadowMap` (r182): 5 Vogel taps of bilinear
+    /// comparisons on a disk of one texel.
+    ThreePcf,
+    /// three.js's `PCFSoftShadowMap` (r179; r182 deprecates it and runs
+    /// `PCFShadowMap`): a fixed 3×3-texel box, bilinearly smoothed, 16
+    /// nearest comparisons.
     ThreePcfSoft,
     /// Filament's VSM, an EVSM ([`filament_evsm`]).
     FilamentEvsm(Variance),
@@ -38,21 +55,96 @@ pub enum Peer {
 pub const FILAMENT_BULB_RADIUS: f32 = 0.02;
 /// Filament's default shadow map (`ShadowOptions::mapSize`).
 pub const FILAMENT_MAP_SIZE: u32 = 1024;
+/// Filament's shadow pass outside VSM: the material's culling (back faces),
+/// its polygon offset, slope 2 and constant 0.5 (`polygonOffsetSlope`,
+/// `polygonOffsetConstant`), the constant rounded up to a whole unit, all
+/// wgpu takes.
+pub const FILAMENT_PASS: MapPass = MapPass::Renderer {
+    cull: Some(wgpu::Face::Back),
+    bias: wgpu::DepthBiasState {
+        constant: 1,
+        slope_scale: 2.0,
+        clamp: 0.0,
+    },
+};
+/// Filament's shadow pass for VSM: the material's culling, no offset.
+pub const FILAMENT_VSM_PASS: MapPass = MapPass::Renderer {
+    cull: Some(wgpu::Face::Back),
+    bias: NO_DEPTH_BIAS,
+};
+/// Filament's `constantBias` outside VSM: 1 mm towards the light (its
+/// shadow camera moved along the light's direction).
+pub const FILAMENT_RECEIVER: ShadowBias = ShadowBias {
+    toward_light_world: 0.001,
+    ..ShadowBias::NONE
+};
+/// Filament's `normalBias` (1.0) outside VSM: texels along the normal,
+/// times sin θ; a cascade takes half of it.
+pub const FILAMENT_NORMAL_BIAS: f32 = 1.0;
+
+/// Filament's normal offset in texels at the receiver, times sin θ: on a
+/// spot `normalBias` texels (`normalBias × wsTexelSizeAtOneMeter × zLight`),
+/// on a sun's cascade `0.5 × normalBias`.
+pub fn filament_normal_texels(g: &LightGeometry) -> f32 {
+    if g.perspective {
+        FILAMENT_NORMAL_BIAS
+    } else {
+        0.5 * FILAMENT_NORMAL_BIAS
+    }
+}
 /// Filament's PCSS taps (`PCSS_SHADOW_BLOCKER_SEARCH_TAP_COUNT`,
 /// `PCSS_SHADOW_FILTER_TAP_COUNT`).
 pub const FILAMENT_PCSS_TAPS: u32 = 16;
-/// Bevy's cascade map side (`DirectionalLightShadowMap::default`).
+/// Bevy's cascade and spot map side (`DirectionalLightShadowMap::default`:
+/// spot maps are layers of the directional texture).
 pub const BEVY_DIRECTIONAL_MAP_SIZE: u32 = 2048;
-/// Bevy's point and spot map side (`PointLightShadowMap::default`).
-pub const BEVY_POINT_MAP_SIZE: u32 = 1024;
+/// Bevy's receiver offsets, a spot's (`SpotLight`) as a sun's
+/// (`DirectionalLight`): 0.02 m towards the light, and 1.8 × √2 texels
+/// along the normal (lesson 02's `ShadowBias::BEVY`).
+pub const BEVY_RECEIVER: ShadowBias = ShadowBias::BEVY;
+/// Bevy's shadow pass: the default `StandardMaterial` culls back faces,
+/// no hardware depth offset (`material.depth_bias` 0).
+pub const BEVY_PASS: MapPass = MapPass::Renderer {
+    cull: Some(wgpu::Face::Back),
+    bias: NO_DEPTH_BIAS,
+};
+/// three.js's shadow pass for PCF: a front-sided material's back faces
+/// (`shadowSide[FrontSide]` is `BackSide`), no offset.
+pub const THREEJS_PCF_PASS: MapPass = MapPass::Renderer {
+    cull: Some(wgpu::Face::Front),
+    bias: NO_DEPTH_BIAS,
+};
+/// three.js's shadow pass for VSM: the material's own side (front), no
+/// offset.
+pub const THREEJS_VSM_PASS: MapPass = MapPass::Renderer {
+    cull: Some(wgpu::Face::Back),
+    bias: NO_DEPTH_BIAS,
+};
+const NO_DEPTH_BIAS: wgpu::DepthBiasState = wgpu::DepthBiasState {
+    constant: 0,
+    slope_scale: 0.0,
+    clamp: 0.0,
+};
+/// three.js's `PCFShadowMap` (r182): 5 Vogel taps, `radius` 1 texel.
+pub const THREEJS_PCF_TAPS: u32 = 5;
 /// Bevy's PCSS taps: eight D3D sample points, eight spiral taps.
 pub const BEVY_PCSS_TAPS: u32 = 8;
-/// Godot's Soft Low: 8 penumbra taps (`directional_soft_shadow_filter_set_quality`).
+/// Godot's Soft Low (the project default): 8 penumbra taps, and for its
+/// PCF 4 taps on a disk of 2 texels (`shadows_quality_set`).
 pub const GODOT_SOFT_LOW_TAPS: u32 = 8;
+pub const GODOT_SOFT_LOW_PCF_TAPS: u32 = 4;
+pub const GODOT_SOFT_LOW_RADIUS: f32 = 2.0;
 /// Godot's atlas and splits are not emulated: the lesson's 1024² map.
 pub const GODOT_MAP_SIZE: u32 = 1024;
 /// Godot's `shadow_blur` default: the soft shadow's scale.
 pub const GODOT_SHADOW_BLUR: f32 = 1.0;
+/// Godot's normal bias on a spot: `shadow_normal_bias` (1.0) × 10 texels,
+/// times (1 − |cos θ|), along the normal (lesson 02's `normal` field, here
+/// in lesson 03's texel, the texel's larger side).
+pub const GODOT_RECEIVER: ShadowBias = ShadowBias {
+    normal: 1.0 * 10.0,
+    ..ShadowBias::NONE
+};
 /// three.js's `LightShadow` defaults: `mapSize` 512, `radius` 1,
 /// `blurSamples` 8.
 pub const THREEJS_MAP_SIZE: u32 = 512;
@@ -99,6 +191,9 @@ pub fn threejs_vsm() -> (Variance, ThreeVsmBlur) {
 /// variant is the lesson's own.
 pub fn port(variant: &str, g: &LightGeometry) -> Option<Peer> {
     Some(match variant {
+        "filament_pcf" => Peer::FilamentPcf {
+            normal_texels: filament_normal_texels(g),
+        },
         // The spot's radius as its bulb; on a sun, Filament's default.
         "filament_pcss" => Peer::FilamentPcss {
             bulb_radius: if g.perspective {
@@ -106,15 +201,22 @@ pub fn port(variant: &str, g: &LightGeometry) -> Option<Peer> {
             } else {
                 FILAMENT_BULB_RADIUS
             },
+            normal_texels: filament_normal_texels(g),
         },
         "filament_evsm" => Peer::FilamentEvsm(filament_evsm()),
+        "bevy_gaussian" => Peer::BevyCastano,
         "bevy_pcss_or_pcf" if g.perspective => Peer::BevyPcss { light_size: g.size },
         "bevy_pcss_or_pcf" => Peer::BevyCastano,
+        "godot_pcf" => Peer::GodotPcf {
+            taps: GODOT_SOFT_LOW_PCF_TAPS,
+            radius: GODOT_SHADOW_BLUR * GODOT_SOFT_LOW_RADIUS,
+        },
         "godot_soft_low" => Peer::GodotSoft {
             taps: GODOT_SOFT_LOW_TAPS,
             size: godot_soft_size(g),
             scale: GODOT_SHADOW_BLUR,
         },
+        "threejs_pcf" => Peer::ThreePcf,
         "threejs_pcf_soft" => Peer::ThreePcfSoft,
         "threejs_vsm" => {
             let (v, blur) = threejs_vsm();
@@ -125,10 +227,20 @@ pub fn port(variant: &str, g: &LightGeometry) -> Option<Peer> {
 }
 
 impl Peer {
+    /// Whether the renderer runs this filter by default, or a user turns
+    /// it on (the card says with which setting).
+    pub fn is_default(self) -> bool {
+        matches!(
+            self,
+            Peer::FilamentPcf { .. } | Peer::BevyCastano | Peer::GodotPcf { .. } | Peer::ThreePcf
+        )
+    }
+
     /// Depth comparisons per pixel and light (search, filter) and the texels
     /// they read: the counters.
     pub fn taps(self) -> (u64, u64, u64) {
         match self {
+            Peer::FilamentPcf { .. } => (0, 4, 16),
             Peer::FilamentPcss { .. } => {
                 let n = FILAMENT_PCSS_TAPS as u64;
                 (n, n, n + 4 * n)
@@ -139,7 +251,12 @@ impl Peer {
                 (n, n, 4 * n + 4 * n)
             }
             Peer::BevyCastano => (0, 9, 36),
+            Peer::GodotPcf { taps, .. } => (0, taps as u64, 4 * taps as u64),
             Peer::GodotSoft { taps, .. } => (taps as u64, taps as u64, 8 * taps as u64),
+            Peer::ThreePcf => {
+                let n = THREEJS_PCF_TAPS as u64;
+                (0, n, 4 * n)
+            }
             Peer::ThreePcfSoft => (0, 16, 16),
             // Four texels of the blurred moments; the blur reads its own.
             Peer::FilamentEvsm(_) | Peer::ThreeVsm(..) => (0, 1, 4),
@@ -163,13 +280,17 @@ impl Peer {
             Peer::BevyPcss { .. } => 8,
             Peer::BevyCastano => 9,
             Peer::GodotSoft { .. } => 10,
+            Peer::FilamentPcf { .. } => 11,
+            Peer::GodotPcf { .. } => 12,
+            Peer::ThreePcf => 13,
             Peer::FilamentEvsm(_) => 3,
             // (mean, standard deviation) of the map's own depth: its own.
             Peer::ThreeVsm(..) => 6,
         }
     }
 
-    /// three.js's point taps compare the nearest texel; the others blend 2×2.
+    /// three.js's `PCFSoftShadowMap` compares the nearest texel; the others
+    /// blend 2×2.
     pub fn sampler(self) -> wgpu::FilterMode {
         match self {
             Peer::ThreePcfSoft => wgpu::FilterMode::Nearest,
@@ -180,13 +301,50 @@ impl Peer {
     /// The renderer's default shadow map side.
     pub fn map_size(self) -> u32 {
         match self {
-            Peer::FilamentPcss { .. } => FILAMENT_MAP_SIZE,
-            Peer::BevyPcss { .. } => BEVY_POINT_MAP_SIZE,
-            Peer::BevyCastano => BEVY_DIRECTIONAL_MAP_SIZE,
+            Peer::FilamentPcf { .. } | Peer::FilamentPcss { .. } | Peer::FilamentEvsm(_) => {
+                FILAMENT_MAP_SIZE
+            }
+            // Spot maps are layers of Bevy's directional texture.
+            Peer::BevyPcss { .. } | Peer::BevyCastano => BEVY_DIRECTIONAL_MAP_SIZE,
             // Godot's atlas is not emulated: the lesson's map (its card).
-            Peer::GodotSoft { .. } => GODOT_MAP_SIZE,
-            Peer::ThreePcfSoft | Peer::ThreeVsm(..) => THREEJS_MAP_SIZE,
-            Peer::FilamentEvsm(_) => FILAMENT_MAP_SIZE,
+            Peer::GodotPcf { .. } | Peer::GodotSoft { .. } => GODOT_MAP_SIZE,
+            Peer::ThreePcf | Peer::ThreePcfSoft | Peer::ThreeVsm(..) => THREEJS_MAP_SIZE,
+        }
+    }
+
+    /// How the renderer draws its map: which faces, what hardware offset.
+    pub fn map_pass(self) -> MapPass {
+        match self {
+            Peer::FilamentPcf { .. } | Peer::FilamentPcss { .. } => FILAMENT_PASS,
+            Peer::FilamentEvsm(_) => FILAMENT_VSM_PASS,
+            Peer::BevyPcss { .. } | Peer::BevyCastano => BEVY_PASS,
+            Peer::ThreePcf | Peer::ThreePcfSoft => THREEJS_PCF_PASS,
+            Peer::ThreeVsm(..) => THREEJS_VSM_PASS,
+            // Godot's shadow pass was not read to its lines: the lesson's.
+            Peer::GodotPcf { .. } | Peer::GodotSoft { .. } => MapPass::Lesson,
+        }
+    }
+
+    /// The receiver's offsets before its lookup, as the renderer moves it
+    /// (lesson 03's `peer_receiver`): none where its defaults are 0 (three.js)
+    /// or its moments take none (the variance maps).
+    pub fn receiver_bias(self) -> ShadowBias {
+        match self {
+            Peer::BevyPcss { .. } | Peer::BevyCastano => BEVY_RECEIVER,
+            Peer::FilamentPcf { .. } | Peer::FilamentPcss { .. } => FILAMENT_RECEIVER,
+            Peer::GodotPcf { .. } | Peer::GodotSoft { .. } => GODOT_RECEIVER,
+            _ => ShadowBias::NONE,
+        }
+    }
+
+    /// Texels along the normal × sin θ (Filament's normal bias, outside
+    /// VSM), which `ShadowBias` has no field for.
+    pub fn receiver_normal_sin(self) -> f32 {
+        match self {
+            Peer::FilamentPcf { normal_texels } | Peer::FilamentPcss { normal_texels, .. } => {
+                normal_texels
+            }
+            _ => 0.0,
         }
     }
 
@@ -200,7 +358,7 @@ impl Peer {
             variance: None,
         };
         match self {
-            Peer::FilamentPcss { bulb_radius } => PeerParams {
+            Peer::FilamentPcss { bulb_radius, .. } => PeerParams {
                 size: Some(bulb_radius),
                 receiver_plane: true,
                 ..none
@@ -209,8 +367,12 @@ impl Peer {
                 size: Some(light_size),
                 ..none
             },
-            Peer::BevyCastano | Peer::ThreePcfSoft => PeerParams {
-                receiver_plane: true,
+            Peer::FilamentPcf { .. } | Peer::BevyCastano | Peer::ThreePcf | Peer::ThreePcfSoft => {
+                none
+            }
+            Peer::GodotPcf { taps, radius } => PeerParams {
+                taps,
+                scale: radius,
                 ..none
             },
             Peer::GodotSoft { taps, size, scale } => PeerParams {

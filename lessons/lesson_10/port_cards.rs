@@ -1,13 +1,15 @@
-//! The cards of lesson 10's ports ([`common::ports`]): for each renderer's
-//! soft-shadow default the lesson runs, the files and commits it was read
-//! at, every constant and formula the port takes from there with its lines,
-//! and what the port cannot do here. `tests/port_cards_lesson_10.rs` checks
-//! each port ([`super::peers`], `shaders/lesson_10/peers.wgsl`) against its
-//! card; the chapter's "where each port departs" table is made from these.
+//! The cards of lesson 10's ports ([`common::ports`]): for each renderer,
+//! its default shadow filter and the soft options a user turns on, the
+//! files and commits each was read at, every constant and formula the port
+//! takes from there with its lines (the map's size, the faces its shadow
+//! pass draws, its offsets, its kernel), and what the port cannot do here.
+//! `tests/port_cards_lesson_10.rs` checks each port ([`super::peers`],
+//! `shaders/lesson_10/peers.wgsl`) against its card; the chapter's "where
+//! each port departs" table is made from these.
 //!
 //! Line numbers were read in the files' stored text at the commits named.
 
-use common::ports::{Constant, Departure, PortCard, Source, Value};
+use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
 
 const FILAMENT_SHADER: Source = Source {
     file: "shaders/src/surface_shadowing.fs",
@@ -29,12 +31,60 @@ const FILAMENT_OPTIONS: Source = Source {
     file: "filament/include/filament/Options.h",
     commit: "2fac13e154fb1a64bbca70e5857838d319957e9c",
 };
+const FILAMENT_RENDER_PASS: Source = Source {
+    file: FILAMENT_RENDER_PASS_FILE,
+    commit: FILAMENT_RENDER_PASS_COMMIT,
+};
+const FILAMENT_RENDER_PASS_FILE: &str = "filament/src/RenderPass.cpp";
+const FILAMENT_RENDER_PASS_COMMIT: &str = "fc9e5e249800cbcd2b438eda1ae0001dcb25de5d";
+const FILAMENT_SHADOW_MAP: Source = Source {
+    file: "filament/src/ShadowMap.cpp",
+    commit: "0362f36ef6e6017426730cbbb68e7af1fda2f38c",
+};
+const FILAMENT_COMMON_SHADOWING: Source = Source {
+    file: "shaders/src/common_shadowing.glsl",
+    commit: "7c0643f122bbb9c7d61f15ba4e1c5f6db2460515",
+};
+const FILAMENT_GETTERS: Source = Source {
+    file: "shaders/src/surface_getters.fs",
+    commit: "24a7bc2799eee5e5694b5df2adea457727ae25d8",
+};
+const FILAMENT_MATERIAL_BUILDER: Source = Source {
+    file: "libs/filamat/include/filamat/MaterialBuilder.h",
+    commit: "cb91a23a03f62cb09f2f77217e9e98ea69f0813d",
+};
+/// The sources of the PCF and PCSS cards, in the order their constants
+/// index them.
+const FILAMENT_PCF_SOURCES: &[Source] = &[
+    FILAMENT_SHADER,
+    FILAMENT_MANAGER,
+    FILAMENT_JAVA,
+    FILAMENT_OPTIONS,
+    FILAMENT_RENDER_PASS,
+    FILAMENT_SHADOW_MAP,
+    FILAMENT_COMMON_SHADOWING,
+    FILAMENT_GETTERS,
+    FILAMENT_MATERIAL_BUILDER,
+];
 
-/// The shared departure of every lesson 10 port: one map, rendered once per
-/// light with lesson 02's recommended slope-scaled bias.
-const MAP_BIAS: Departure = Departure {
-    what: "its own depth and normal bias",
-    why: "every variant reads the lesson's map, rendered with lesson 02's slope-scaled hardware bias; a renderer's receiver offsets are not applied",
+/// Filament's shadow pass and receiver outside VSM (`filament_pcf`,
+/// `filament_pcss`, sources [`FILAMENT_PCF_SOURCES`]).
+const FILAMENT_PCF_PASS: [Constant; 9] = [
+    Constant { name: "polygonOffsetSlope, polygonOffsetConstant", value: Value::List(&[2.0, 0.5]), unit: "", source: 2, lines: "309, 318" },
+    Constant { name: "polygonOffset", value: Value::Text("-polygonOffsetSlope, -polygonOffsetConstant (reversed Z), 0 when the view has VSM"), unit: "", source: 1, lines: "362-364, 521-523" },
+    Constant { name: "constantBias", value: Value::Num(0.001), unit: "m", source: 2, lines: "249" },
+    Constant { name: "constantBias applied", value: Value::Text("the light camera moved by translation(direction * constantBias), 0 under VSM"), unit: "m", source: 5, lines: "246-247, 301-302" },
+    Constant { name: "normalBias", value: Value::Num(1.0), unit: "", source: 2, lines: "255" },
+    Constant { name: "normalBias scaled", value: Value::Text("a cascade 0.5 * normalBias * wsTexelSize; a spot normalBias * wsTexelSizeAtOneMeter, times zLight"), unit: "m", source: 1, lines: "387-391, 556-563" },
+    Constant { name: "computeLightSpacePosition", value: Value::Text("p += n * (sinTheta * b), sinTheta = sqrt(1 - NoL * NoL), not under VSM"), unit: "", source: 6, lines: "14-20" },
+    Constant { name: "shadow pass culling", value: Value::Text("cmdDepth.primitive.rasterState.culling = mi->getCullingMode()"), unit: "", source: 4, lines: "551" },
+    Constant { name: "mCullingMode", value: Value::Text("CullingMode::BACK by default: front faces drawn"), unit: "", source: 8, lines: "406, 762" },
+];
+
+/// Filament's sides of a light the ports cannot take.
+const FILAMENT_TAA: Departure = Departure {
+    what: "TAA (temporalNoise)",
+    why: "the workbook renders single frames; Filament's temporal rotation needs TAA to average it",
 };
 
 /// Filament's first 16 Poisson points, as lines 93-96 list them (x, y).
@@ -45,12 +95,42 @@ pub const FILAMENT_POISSON_16: &[f64] = &[
     0.0821375, 0.882071, 0.17308, 0.301207, -0.120452, 0.867216, 0.371096, 0.916454,
 ];
 
+pub const FILAMENT_PCF: PortCard = PortCard {
+    variant: "filament_pcf",
+    renderer: "Filament",
+    role: Role::Default,
+    repository: "google/filament",
+    sources: FILAMENT_PCF_SOURCES,
+    constants: &[
+        Constant { name: "ShadowType", value: Value::Text("PCF, the default"), unit: "", source: 3, lines: "545-546" },
+        Constant { name: "ShadowSample_PCF_Low", value: Value::Text("4 hardware 2x2 comparisons weighted uw * vw, sum * (1.0 / 16.0): Castaño's 3x3"), unit: "", source: 0, lines: "40-74" },
+        Constant { name: "uw, vw", value: Value::Text("vec2(3.0 - 2.0 * st, 1.0 + 2.0 * st)"), unit: "", source: 0, lines: "59-60" },
+        Constant { name: "u, v", value: Value::Text("vec2((2.0 - st) / uw.x - 1.0, st / uw.y + 1.0) * texelSize"), unit: "texels", source: 0, lines: "62-66" },
+        FILAMENT_PCF_PASS[0],
+        FILAMENT_PCF_PASS[1],
+        FILAMENT_PCF_PASS[2],
+        FILAMENT_PCF_PASS[3],
+        FILAMENT_PCF_PASS[4],
+        FILAMENT_PCF_PASS[5],
+        FILAMENT_PCF_PASS[6],
+        FILAMENT_PCF_PASS[7],
+        FILAMENT_PCF_PASS[8],
+        Constant { name: "mapSize", value: Value::Num(1024.0), unit: "texels", source: 2, lines: "194" },
+    ],
+    departures: &[
+        Departure { what: "its polygon offset's constant, 0.5", why: "wgpu takes the constant in whole units: the port draws with 1 (and Filament's slope, 2)" },
+        Departure { what: "its shadow camera's fit and near and far planes", why: "the lesson's map planes (its light_view_proj); the 1 mm constant bias is a move of the receiver towards the light, as Filament's moved camera is" },
+    ],
+};
+
 pub const FILAMENT_PCSS: PortCard = PortCard {
     variant: "filament_pcss",
     renderer: "Filament",
+    role: Role::Option("View::setShadowType(ShadowType::PCSS)"),
     repository: "google/filament",
-    sources: &[FILAMENT_SHADER, FILAMENT_MANAGER, FILAMENT_JAVA, FILAMENT_OPTIONS],
+    sources: FILAMENT_PCF_SOURCES,
     constants: &[
+        Constant { name: "ShadowType", value: Value::Text("PCSS, an option (PCF is the default)"), unit: "", source: 3, lines: "545-549" },
         Constant { name: "poissonDisk[0..16]", value: Value::List(FILAMENT_POISSON_16), unit: "disk radii", source: 0, lines: "92-96" },
         Constant { name: "PCSS_SHADOW_BLOCKER_SEARCH_TAP_COUNT", value: Value::Num(16.0), unit: "taps", source: 0, lines: "114" },
         Constant { name: "PCSS_SHADOW_FILTER_TAP_COUNT", value: Value::Num(16.0), unit: "taps", source: 0, lines: "116" },
@@ -68,21 +148,31 @@ pub const FILAMENT_PCSS: PortCard = PortCard {
         Constant { name: "mapSize", value: Value::Num(1024.0), unit: "texels", source: 2, lines: "194" },
         Constant { name: "penumbraScale", value: Value::Num(1.0), unit: "", source: 3, lines: "609" },
         Constant { name: "penumbraRatioScale", value: Value::Num(1.0), unit: "", source: 3, lines: "617" },
+        FILAMENT_PCF_PASS[0],
+        FILAMENT_PCF_PASS[1],
+        FILAMENT_PCF_PASS[2],
+        FILAMENT_PCF_PASS[3],
+        FILAMENT_PCF_PASS[4],
+        FILAMENT_PCF_PASS[5],
+        FILAMENT_PCF_PASS[6],
+        FILAMENT_PCF_PASS[7],
+        FILAMENT_PCF_PASS[8],
     ],
     departures: &[
-        MAP_BIAS,
+        Departure { what: "its polygon offset's constant, 0.5", why: "wgpu takes the constant in whole units: the port draws with 1 (and Filament's slope, 2)" },
         Departure { what: "its shadow camera's near and far planes", why: "the ratio uses the lesson's map planes (its light_view_proj), not Filament's own fit of the camera to the scene" },
         Departure { what: "the bulb radius of a spot", why: "the scene's emitter radius stands in for shadowBulbRadius (a user would set it so); on a sun Filament's default 2 cm is kept, since its directional penumbra does not follow the sun's angle" },
         Departure { what: "its interleaved gradient noise's constants", why: "lesson 03's rotation_angle (Jimenez 2014's 0.06711056, 0.00583715, 52.9829189); Filament's common_math.fs was not read" },
-        Departure { what: "TAA (temporalNoise)", why: "the workbook renders single frames; Filament's temporal rotation needs TAA to average it" },
+        FILAMENT_TAA,
     ],
 };
 
 pub const FILAMENT_EVSM: PortCard = PortCard {
     variant: "filament_evsm",
     renderer: "Filament",
+    role: Role::Option("View::setShadowType(ShadowType::VSM)"),
     repository: "google/filament",
-    sources: &[FILAMENT_SHADER, FILAMENT_VIEW, FILAMENT_OPTIONS, FILAMENT_JAVA],
+    sources: &[FILAMENT_SHADER, FILAMENT_VIEW, FILAMENT_OPTIONS, FILAMENT_JAVA, FILAMENT_MANAGER, FILAMENT_RENDER_PASS, FILAMENT_MATERIAL_BUILDER, FILAMENT_COMMON_SHADOWING],
     constants: &[
         Constant { name: "vsmExponent (16-bit moments)", value: Value::Num(5.54), unit: "", source: 1, lines: "329, 345" },
         Constant { name: "vsmDepthScale", value: Value::Text("minVarianceScale * 0.01f * vsmExponent"), unit: "", source: 1, lines: "346" },
@@ -96,21 +186,26 @@ pub const FILAMENT_EVSM: PortCard = PortCard {
         Constant { name: "filtering", value: Value::Text("LINEAR, no mipmaps, no anisotropy"), unit: "", source: 1, lines: "331-340" },
         Constant { name: "blurWidth", value: Value::Num(0.0), unit: "texels", source: 3, lines: "365" },
         Constant { name: "mapSize", value: Value::Num(1024.0), unit: "texels", source: 3, lines: "194" },
+        Constant { name: "offsets under VSM", value: Value::Text("constantBias, normalBias and the polygon offset are ignored when the View's ShadowType is VSM"), unit: "", source: 3, lines: "247, 253, 307, 316" },
+        Constant { name: "polygonOffset", value: Value::Text("0 when the view has VSM"), unit: "", source: 4, lines: "362-364, 521-523" },
+        Constant { name: "normalBias under VSM", value: Value::Text("0: shadowMapInfo.vsm ? 0.0f : ..., and computeLightSpacePosition moves nothing under VARIANT_HAS_VSM"), unit: "", source: 4, lines: "387, 556" },
+        Constant { name: "shadow pass culling", value: Value::Text("cmdDepth.primitive.rasterState.culling = mi->getCullingMode()"), unit: "", source: 5, lines: "551" },
+        Constant { name: "mCullingMode", value: Value::Text("CullingMode::BACK by default: front faces drawn"), unit: "", source: 6, lines: "406, 762" },
     ],
     departures: &[
-        MAP_BIAS,
         Departure { what: "16-bit moments", why: "the moments are 32-bit floats in a storage buffer (GL renders no float targets); the exponent stays the 16-bit one, 5.54" },
         Departure { what: "MSAA of the moments", why: "msaaSamples is 1 by default: nothing to emulate" },
+        Departure { what: "its shadow camera's near and far planes", why: "the moments warp the lesson's linear depth between its map planes, not Filament's own fit of the camera" },
     ],
 };
 
 const BEVY_SAMPLING: Source = Source {
     file: "crates/bevy_pbr/src/render/shadow_sampling.wgsl",
-    commit: "00ef04ec8ad0f5b8abeea45c6461a003bcb1a0fa",
+    commit: BEVY_COMMIT,
 };
 const BEVY_SHADOWS: Source = Source {
     file: "crates/bevy_pbr/src/render/shadows.wgsl",
-    commit: "00ef04ec8ad0f5b8abeea45c6461a003bcb1a0fa",
+    commit: BEVY_COMMIT,
 };
 const BEVY_UTILS: Source = Source {
     file: "crates/bevy_pbr/src/render/utils.wgsl",
@@ -118,20 +213,57 @@ const BEVY_UTILS: Source = Source {
 };
 const BEVY_LIGHT: Source = Source {
     file: "crates/bevy_pbr/src/render/light.rs",
-    commit: "00ef04ec8ad0f5b8abeea45c6461a003bcb1a0fa",
+    commit: BEVY_COMMIT,
 };
 const BEVY_SPOT: Source = Source {
     file: "crates/bevy_light/src/spot_light.rs",
-    commit: "00ef04ec8ad0f5b8abeea45c6461a003bcb1a0fa",
-};
-const BEVY_POINT: Source = Source {
-    file: "crates/bevy_light/src/point_light.rs",
-    commit: "00ef04ec8ad0f5b8abeea45c6461a003bcb1a0fa",
+    commit: BEVY_COMMIT,
 };
 const BEVY_DIRECTIONAL: Source = Source {
     file: "crates/bevy_light/src/directional_light.rs",
-    commit: "00ef04ec8ad0f5b8abeea45c6461a003bcb1a0fa",
+    commit: BEVY_COMMIT,
 };
+const BEVY_MATERIAL: Source = Source {
+    file: "crates/bevy_pbr/src/pbr_material.rs",
+    commit: BEVY_COMMIT,
+};
+const BEVY_PREPASS: Source = Source {
+    file: "crates/bevy_pbr/src/prepass/mod.rs",
+    commit: BEVY_COMMIT,
+};
+const BEVY_LIGHT_LIB: Source = Source {
+    file: "crates/bevy_light/src/lib.rs",
+    commit: BEVY_COMMIT,
+};
+const BEVY_COMMIT: &str = "00ef04ec8ad0f5b8abeea45c6461a003bcb1a0fa";
+
+/// Bevy's sources, in the order the two Bevy cards' constants index them.
+const BEVY_SOURCES: &[Source] = &[
+    BEVY_SAMPLING,
+    BEVY_SHADOWS,
+    BEVY_UTILS,
+    BEVY_LIGHT,
+    BEVY_SPOT,
+    BEVY_DIRECTIONAL,
+    BEVY_MATERIAL,
+    BEVY_PREPASS,
+    BEVY_LIGHT_LIB,
+];
+
+/// What both Bevy ports take: the map, the shadow pass, the receiver's
+/// offsets, the default filter.
+const BEVY_MAP_AND_PASS: [Constant; 10] = [
+    Constant { name: "DirectionalLightShadowMap size (spots too)", value: Value::Num(2048.0), unit: "texels", source: 5, lines: "183, 193-204" },
+    Constant { name: "spot maps", value: Value::Text("To control the resolution of the shadow maps, use the DirectionalLightShadowMap resource: layers of the directional texture, at its size"), unit: "", source: 4, lines: "21" },
+    Constant { name: "directional_light_shadow_map_texture", value: Value::Text("width and height directional_light_shadow_map.size, one layer per cascade and per spot"), unit: "", source: 3, lines: "1204-1216, 1372-1376" },
+    Constant { name: "StandardMaterial cull_mode", value: Value::Text("Some(Face::Back), kept by the shadow (depth prepass) pipeline: front faces drawn"), unit: "", source: 6, lines: "922, 1539-1548" },
+    Constant { name: "shadow pass DepthBiasState", value: Value::Text("constant material.depth_bias (0), slope_scale 0.0, clamp 0.0"), unit: "", source: 7, lines: "627-631" },
+    Constant { name: "shadow_depth_bias (spot and directional)", value: Value::Num(0.02), unit: "m", source: 4, lines: "134" },
+    Constant { name: "shadow_normal_bias (spot and directional)", value: Value::Num(1.8), unit: "texels", source: 4, lines: "136" },
+    Constant { name: "spot normal bias", value: Value::Text("shadow_normal_bias * texel_size * SQRT_2, texel_size = 2 tan(outer_angle) / map size, times distance_to_light along the normal"), unit: "m", source: 3, lines: "515-516, 537-539" },
+    Constant { name: "offset_position", value: Value::Text("shadow_depth_bias * normalize(surface_to_light) + surface_normal * shadow_normal_bias * distance_to_light"), unit: "m", source: 1, lines: "93-96" },
+    Constant { name: "ShadowFilteringMethod", value: Value::Text("Gaussian, #[default]: sample_shadow_map_castano_thirteen, 9 bilinear comparisons, weights / 144"), unit: "", source: 8, lines: "288-289" },
+];
 
 pub const BEVY_D3D_SAMPLE_POINT_POSITIONS: &[f64] = &[
     0.125, -0.375, -0.125, 0.375, 0.625, 0.125, -0.375, -0.625, //
@@ -144,17 +276,58 @@ pub const BEVY_SPIRAL_OFFSETS: &[f64] = &[
     0.3536, -0.3536, -0.0000, 0.3750, -0.1768, -0.1768, 0.1250, 0.0000,
 ];
 
+pub const BEVY_GAUSSIAN: PortCard = PortCard {
+    variant: "bevy_gaussian",
+    renderer: "Bevy",
+    role: Role::Default,
+    repository: "bevyengine/bevy",
+    sources: BEVY_SOURCES,
+    constants: &[
+        BEVY_MAP_AND_PASS[0],
+        BEVY_MAP_AND_PASS[1],
+        BEVY_MAP_AND_PASS[2],
+        BEVY_MAP_AND_PASS[3],
+        BEVY_MAP_AND_PASS[4],
+        BEVY_MAP_AND_PASS[5],
+        BEVY_MAP_AND_PASS[6],
+        BEVY_MAP_AND_PASS[7],
+        BEVY_MAP_AND_PASS[8],
+        BEVY_MAP_AND_PASS[9],
+        Constant { name: "sample_shadow_map_castano_thirteen", value: Value::Text("lesson 03's pcf_castano13, Bevy's lines"), unit: "", source: 0, lines: "105-147, 256-264" },
+        Constant { name: "soft_shadows_enabled", value: Value::Text("false: no PCSS on a spot"), unit: "", source: 4, lines: "160-161" },
+    ],
+    departures: &[
+        Departure { what: "cascades on a sun", why: "one 2048² map stands for Bevy's first cascade; the lesson fits it to the scene, not to Bevy's cascade splits" },
+        Departure { what: "its infinite reversed depth", why: "the lesson's map is finite and forward; the comparisons' outcomes are the same up to Depth32Float rounding" },
+        Departure { what: "the normal of the face it draws", why: "Bevy offsets along the interpolated normal as the mesh has it; the port turns it to the light's side (lesson 03's peer_receiver)" },
+        Departure { what: "the texel its normal bias scales", why: "Bevy's spot texel is 2 tan(outer_angle) / 2048 at unit distance; the port takes the lesson's map's texel (its larger side) at the receiver, the same where the map's cone is the spot's" },
+    ],
+};
+
 pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
     variant: "bevy_pcss_or_pcf",
     renderer: "Bevy",
+    role: Role::Option("the experimental_pbr_pcss feature, and SpotLight::soft_shadows_enabled with a radius"),
     repository: "bevyengine/bevy",
-    sources: &[BEVY_SAMPLING, BEVY_SHADOWS, BEVY_UTILS, BEVY_LIGHT, BEVY_SPOT, BEVY_POINT, BEVY_DIRECTIONAL],
+    sources: BEVY_SOURCES,
     constants: &[
+        BEVY_MAP_AND_PASS[0],
+        BEVY_MAP_AND_PASS[1],
+        BEVY_MAP_AND_PASS[2],
+        BEVY_MAP_AND_PASS[3],
+        BEVY_MAP_AND_PASS[4],
+        BEVY_MAP_AND_PASS[5],
+        BEVY_MAP_AND_PASS[6],
+        BEVY_MAP_AND_PASS[7],
+        BEVY_MAP_AND_PASS[8],
+        BEVY_MAP_AND_PASS[9],
+        Constant { name: "soft_shadows_enabled", value: Value::Text("false by default, behind the experimental_pbr_pcss feature"), unit: "", source: 4, lines: "79-80, 160-161" },
         Constant { name: "depth (spot)", value: Value::Text("near_z / -projected_position.z: reversed and infinite"), unit: "", source: 1, lines: "112" },
         Constant { name: "DEFAULT_SHADOW_MAP_NEAR_Z (spot)", value: Value::Num(0.1), unit: "m", source: 4, lines: "138" },
         Constant { name: "spot PCSS call", value: Value::Text("sample_shadow_map_pcss(shadow_uv, depth, array_index, frag_coord_xy, SPOT_SHADOW_TEXEL_SIZE, soft_shadow_size) when soft_shadow_size > 0"), unit: "", source: 1, lines: "116-125" },
         Constant { name: "soft_shadow_size (spot)", value: Value::Text("light.radius when soft_shadows_enabled, else 0"), unit: "m", source: 3, lines: "1095-1099" },
         Constant { name: "SPOT_SHADOW_TEXEL_SIZE", value: Value::Num(0.0134277345), unit: "texel_size units", source: 0, lines: "71" },
+        Constant { name: "shadow_map_size", value: Value::Text("textureDimensions(directional_shadow_textures): the spot's map is a layer of the directional texture"), unit: "texels", source: 0, lines: "170, 228" },
         Constant { name: "D3D_SAMPLE_POINT_POSITIONS", value: Value::List(BEVY_D3D_SAMPLE_POINT_POSITIONS), unit: "search radii", source: 0, lines: "79-88" },
         Constant { name: "blocker test", value: Value::Text("sampled_depth >= depth, linearly filtered depth"), unit: "", source: 0, lines: "46-61" },
         Constant { name: "search uv_offset_scale", value: Value::Text("search_size / (texel_size * shadow_map_size)"), unit: "uv", source: 0, lines: "229" },
@@ -165,17 +338,14 @@ pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
         Constant { name: "random_rotation_matrix", value: Value::Text("2 PI * interleaved_gradient_noise(frag_coord, 1) when not temporal; mat2x2(m.y, -m.x, m.x, m.y), m = (sin, cos)"), unit: "", source: 0, lines: "156-164" },
         Constant { name: "interleaved_gradient_noise", value: Value::Text("fract(52.9829189 * fract(0.06711056 * x + 0.00583715 * y)), xy + 5.588238 * (frame % 64)"), unit: "", source: 2, lines: "66-69" },
         Constant { name: "PCSS taps", value: Value::Num(8.0), unit: "taps", source: 0, lines: "177-209, 221-254" },
-        Constant { name: "PointLightShadowMap size (spots too)", value: Value::Num(1024.0), unit: "texels", source: 5, lines: "188" },
-        Constant { name: "soft_shadow_size (directional)", value: Value::Text("None by default: no PCSS on a sun"), unit: "", source: 6, lines: "116, 158" },
-        Constant { name: "DirectionalLightShadowMap size", value: Value::Num(2048.0), unit: "texels", source: 6, lines: "204" },
-        Constant { name: "sample_shadow_map_castano_thirteen (default Gaussian filter)", value: Value::Text("9 bilinear comparisons, weights / 144"), unit: "", source: 0, lines: "105-147" },
+        Constant { name: "soft_shadow_size (directional)", value: Value::Text("None by default: no PCSS on a sun"), unit: "", source: 5, lines: "116, 158" },
     ],
     departures: &[
-        MAP_BIAS,
-        Departure { what: "PCSS on a sun", why: "off in Bevy by default (soft_shadow_size None): on a sun the variant runs Bevy's default Gaussian PCF instead, and says so in its name" },
+        Departure { what: "PCSS on a sun", why: "Bevy's directional PCSS takes soft_shadow_size, a world-space search radius no sun angle gives; the port leaves it None there and runs Bevy's default Gaussian (as bevy_gaussian), and says so in its name" },
         Departure { what: "cascades on a sun", why: "one 2048² map stands for Bevy's first cascade; the lesson fits it to the scene, not to Bevy's cascade splits" },
         Departure { what: "its infinite reversed depth", why: "the lesson's map is finite and forward; since it is affine in 1/d, each tap's near_z / d is recovered exactly from it (bilinear blends too)" },
-        Departure { what: "the experimental_pbr_pcss feature", why: "Bevy builds PCSS only with that feature and soft_shadows_enabled on the light; the port assumes both" },
+        Departure { what: "the normal of the face it draws", why: "Bevy offsets along the interpolated normal as the mesh has it; the port turns it to the light's side (lesson 03's peer_receiver)" },
+        Departure { what: "the texel its normal bias scales", why: "Bevy's spot texel is 2 tan(outer_angle) / 2048 at unit distance; the port takes the lesson's map's texel (its larger side) at the receiver, the same where the map's cone is the spot's" },
     ],
 };
 
@@ -191,94 +361,307 @@ const GODOT_RENDER: Source = Source {
     file: "servers/rendering/renderer_rd/renderer_scene_render_rd.cpp",
     commit: "238862bddb647a832b4be38791b86f882b20af6a",
 };
+const GODOT_LIGHT: Source = Source {
+    file: "scene/3d/light_3d.cpp",
+    commit: "8ea4ec9531e385802c08b97cb214e2de03056ddc",
+};
+const GODOT_SOURCES: &[Source] = &[GODOT_SHADER, GODOT_STORAGE, GODOT_RENDER, GODOT_LIGHT];
+
+/// What both Godot ports take: the receiver's normal offset, the Vogel
+/// disk, the rotation.
+const GODOT_COMMON: [Constant; 5] = [
+    Constant { name: "get_vogel_disk golden_angle", value: Value::Num(2.4), unit: "radians", source: 2, lines: "38-48" },
+    Constant { name: "quick_hash", value: Value::Text("fract(52.9829189 * fract(dot(pos, (0.06711056, 0.00583715))))"), unit: "", source: 0, lines: "236-239" },
+    Constant { name: "disk_rotation", value: Value::Text("mat2(vec2(cr, -sr), vec2(sr, cr)), r = quick_hash(gl_FragCoord.xy) * 2 PI"), unit: "", source: 0, lines: "276-282, 341-347, 750-756" },
+    Constant { name: "normal_bias (spot)", value: Value::Text("normal * light_length * shadow_normal_bias * (1.0 - abs(dot(normal, light_rel_vec_norm)))"), unit: "", source: 0, lines: "730, 733" },
+    Constant { name: "shadow_normal_bias", value: Value::Text("SHADOW_NORMAL_BIAS (1.0) * shadow_texel_size * 10.0"), unit: "texels", source: 1, lines: "954-955" },
+];
+
+/// Godot's sides the ports cannot take.
+const GODOT_DEPARTURES: [Departure; 5] = [
+    Departure { what: "its shadow pass and shadow_bias", why: "the port reads the lesson's map (both faces, lesson 02's slope-scaled bias); Godot's shadow pass culling was not read to its lines, and its shadow_bias (0.03 / 100 × the filter's scale, added to the clip depth over distance / range) is in its own depth convention: it is not applied" },
+    Departure { what: "its shadow atlas and 4-split PSSM", why: "one map of the lesson's size stands for the atlas quadrant or the first split; the normal bias's texel is that map's (its larger side)" },
+    Departure { what: "its spot near plane", why: "the spot's reversed depth is taken with the lesson's near and far planes; Godot's own near was not read" },
+    Departure { what: "shadow_opacity and TAA (taa_frame_count)", why: "opacity 1 and one frame: nothing to emulate" },
+    Departure { what: "the directional call's tex_scale", why: "uv_scale1 * (range_pos - range_begin) * softshadow_angle * soft_shadow_scale comes from Godot's forward shader, found by text search in the store but not resolved to a file and commit" },
+];
+
+pub const GODOT_PCF: PortCard = PortCard {
+    variant: "godot_pcf",
+    renderer: "Godot 4",
+    role: Role::Default,
+    repository: "godotengine/godot",
+    sources: GODOT_SOURCES,
+    constants: &[
+        Constant { name: "PARAM_SIZE (light_size)", value: Value::Num(0.0), unit: "m", source: 3, lines: "472" },
+        Constant { name: "hard shadow (size 0)", value: Value::Text("sample_pcf_shadow(shadow_atlas, soft_shadow_scale * shadow_atlas_pixel_size, shadow_uv, taa_frame_count)"), unit: "", source: 0, lines: "791-793" },
+        Constant { name: "sample_pcf_shadow", value: Value::Text("sc_soft_shadow_samples() bilinear comparisons at pos + shadow_pixel_size * (disk_rotation * soft_shadow_kernel[i].xy), averaged"), unit: "", source: 0, lines: "267-291" },
+        Constant { name: "SOFT_LOW soft_shadow_samples", value: Value::Num(4.0), unit: "taps", source: 2, lines: "3061-3065, 3108-3112" },
+        Constant { name: "SOFT_LOW shadows_quality_radius", value: Value::Num(2.0), unit: "texels", source: 2, lines: "3061-3065, 3108-3112" },
+        Constant { name: "soft_shadow_scale (size 0)", value: Value::Text("shadow_blur (1.0) * shadows_quality_radius"), unit: "", source: 1, lines: "973, 1007-1010" },
+        GODOT_COMMON[0],
+        GODOT_COMMON[1],
+        GODOT_COMMON[2],
+        GODOT_COMMON[3],
+        GODOT_COMMON[4],
+    ],
+    departures: &[GODOT_DEPARTURES[0], GODOT_DEPARTURES[1], GODOT_DEPARTURES[3]],
+};
 
 pub const GODOT_SOFT_LOW: PortCard = PortCard {
     variant: "godot_soft_low",
     renderer: "Godot 4",
+    role: Role::Option("Light3D light_size (a spot) or light_angular_distance (a sun) above 0"),
     repository: "godotengine/godot",
-    sources: &[GODOT_SHADER, GODOT_STORAGE, GODOT_RENDER],
+    sources: GODOT_SOURCES,
     constants: &[
-        Constant { name: "SOFT_LOW penumbra samples", value: Value::Num(8.0), unit: "taps", source: 2, lines: "3061-3065, 3108-3112" },
-        Constant { name: "get_vogel_disk golden_angle", value: Value::Num(2.4), unit: "radians", source: 2, lines: "38-48" },
-        Constant { name: "quick_hash", value: Value::Text("fract(52.9829189 * fract(dot(pos, (0.06711056, 0.00583715))))"), unit: "", source: 0, lines: "236-239" },
-        Constant { name: "disk_rotation", value: Value::Text("mat2(vec2(cr, -sr), vec2(sr, cr)), r = quick_hash(gl_FragCoord.xy) * 2 PI"), unit: "", source: 0, lines: "341-347, 750-756" },
-        Constant { name: "blocker test", value: Value::Text("d > z, d linearly filtered reversed depth"), unit: "", source: 0, lines: "351-352, 763-764" },
-        Constant { name: "penumbra (directional)", value: Value::Text("(-pssm_coord.z + blocker_average) / (1.0 - blocker_average)"), unit: "", source: 0, lines: "361" },
-        Constant { name: "uv_size (spot)", value: Value::Text("soft_shadow_size * z_norm * soft_shadow_scale"), unit: "uv", source: 0, lines: "758" },
-        Constant { name: "z_norm (spot)", value: Value::Text("dot(spot_dir, -light_rel_vec) * inv_radius"), unit: "", source: 0, lines: "743" },
-        Constant { name: "penumbra (spot)", value: Value::Text("(-z_norm + blocker_average) / (1.0 - blocker_average)"), unit: "", source: 0, lines: "773" },
-        Constant { name: "no blocker", value: Value::Text("shadow = 1.0"), unit: "", source: 0, lines: "372-375, 786-789" },
-        Constant { name: "soft_shadow_size (spot)", value: Value::Text("(size * 0.5 / radius) / (half_np / z_near) * rect.size.width"), unit: "uv", source: 1, lines: "1005-1006" },
-        Constant { name: "softshadow_angle (directional)", value: Value::Text("tan(deg_to_rad(LIGHT_PARAM_SIZE)), the angular diameter"), unit: "", source: 1, lines: "664-685" },
-        Constant { name: "soft_shadow_scale", value: Value::Text("LIGHT_PARAM_SHADOW_BLUR (default 1.0)"), unit: "", source: 1, lines: "684, 973" },
+        Constant {
+            name: "soft shadow branch",
+            value: Value::Text("sc_use_light_soft_shadows() && soft_shadow_size > 0.0"),
+            unit: "",
+            source: 0,
+            lines: "739",
+        },
+        Constant {
+            name: "SOFT_LOW penumbra samples",
+            value: Value::Num(8.0),
+            unit: "taps",
+            source: 2,
+            lines: "3061-3065, 3108-3112",
+        },
+        Constant {
+            name: "blocker test",
+            value: Value::Text("d > z, d linearly filtered reversed depth"),
+            unit: "",
+            source: 0,
+            lines: "351-352, 763-764",
+        },
+        Constant {
+            name: "penumbra (directional)",
+            value: Value::Text("(-pssm_coord.z + blocker_average) / (1.0 - blocker_average)"),
+            unit: "",
+            source: 0,
+            lines: "361",
+        },
+        Constant {
+            name: "uv_size (spot)",
+            value: Value::Text("soft_shadow_size * z_norm * soft_shadow_scale"),
+            unit: "uv",
+            source: 0,
+            lines: "758",
+        },
+        Constant {
+            name: "z_norm (spot)",
+            value: Value::Text("dot(spot_dir, -light_rel_vec) * inv_radius"),
+            unit: "",
+            source: 0,
+            lines: "743",
+        },
+        Constant {
+            name: "penumbra (spot)",
+            value: Value::Text("(-z_norm + blocker_average) / (1.0 - blocker_average)"),
+            unit: "",
+            source: 0,
+            lines: "773",
+        },
+        Constant {
+            name: "no blocker",
+            value: Value::Text("shadow = 1.0"),
+            unit: "",
+            source: 0,
+            lines: "372-375, 786-789",
+        },
+        Constant {
+            name: "soft_shadow_size (spot)",
+            value: Value::Text("(size * 0.5 / radius) / (half_np / z_near) * rect.size.width"),
+            unit: "uv",
+            source: 1,
+            lines: "1005-1006",
+        },
+        Constant {
+            name: "softshadow_angle (directional)",
+            value: Value::Text("tan(deg_to_rad(LIGHT_PARAM_SIZE)), the angular diameter"),
+            unit: "",
+            source: 1,
+            lines: "664-685",
+        },
+        Constant {
+            name: "soft_shadow_scale",
+            value: Value::Text("LIGHT_PARAM_SHADOW_BLUR (default 1.0)"),
+            unit: "",
+            source: 1,
+            lines: "684, 973",
+        },
+        GODOT_COMMON[0],
+        GODOT_COMMON[1],
+        GODOT_COMMON[2],
+        GODOT_COMMON[3],
+        GODOT_COMMON[4],
     ],
-    departures: &[
-        MAP_BIAS,
-        Departure { what: "the directional call's tex_scale", why: "uv_scale1 * (range_pos - range_begin) * softshadow_angle * soft_shadow_scale comes from Godot's forward shader, found by text search in the store but not resolved to a file and commit" },
-        Departure { what: "its shadow atlas and 4-split PSSM", why: "one map of the lesson's size stands for the atlas quadrant or the first split" },
-        Departure { what: "its spot near plane", why: "the spot's reversed depth is taken with the lesson's near and far planes; Godot's own near was not read" },
-        Departure { what: "shadow_opacity and TAA (taa_frame_count)", why: "opacity 1 and one frame: nothing to emulate" },
-    ],
+    departures: &GODOT_DEPARTURES,
 };
 
-const THREE_SHADOW: Source = Source {
+const THREE_R182: &str = "ec1bc8aed59bd41f636ef19e420451a3f7975812";
+/// r182's files, from the `pschroen/three-src` mirror of release r182.0
+/// (`mrdoob/three.js` is stored only at other commits).
+const THREE_R182_SHADOW: Source = Source {
+    file: "src/renderers/shaders/ShaderChunk/shadowmap_pars_fragment.glsl.js",
+    commit: THREE_R182,
+};
+const THREE_R182_MAP: Source = Source {
+    file: "src/renderers/webgl/WebGLShadowMap.js",
+    commit: THREE_R182,
+};
+const THREE_R182_MATERIAL: Source = Source {
+    file: "src/materials/Material.js",
+    commit: THREE_R182,
+};
+const THREE_R182_LIGHT_SHADOW: Source = Source {
+    file: "src/lights/LightShadow.js",
+    commit: THREE_R182,
+};
+const THREE_R182_VSM: Source = Source {
+    file: "src/renderers/shaders/ShaderLib/vsm.glsl.js",
+    commit: THREE_R182,
+};
+const THREE_R182_PROGRAM: Source = Source {
+    file: "src/renderers/webgl/WebGLProgram.js",
+    commit: THREE_R182,
+};
+const THREE_SHADOW_R179: Source = Source {
     file: "src/renderers/shaders/ShaderChunk/shadowmap_pars_fragment.glsl.js",
     commit: "99e4d38509e60dccd471011b64d03975102dd25f",
 };
-const THREE_VSM: Source = Source {
-    file: "src/renderers/shaders/ShaderLib/vsm.glsl.js",
-    commit: "1b7857ec6020acc9cdf7128729058ab6ae8e6cc3",
-};
-const THREE_LIGHT_SHADOW: Source = Source {
-    file: "src/lights/LightShadow.js",
-    commit: "d5761f37f9b90d82a9796cc8d6dd3b58297e5b7f",
+/// three.js's sources, in the order the three cards' constants index them.
+const THREE_SOURCES: &[Source] = &[
+    THREE_R182_SHADOW,
+    THREE_R182_MAP,
+    THREE_R182_MATERIAL,
+    THREE_R182_LIGHT_SHADOW,
+    THREE_R182_VSM,
+    THREE_SHADOW_R179,
+    THREE_R182_PROGRAM,
+];
+
+/// What every three.js port takes: the map, its offsets (none).
+const THREE_COMMON: [Constant; 4] = [
+    Constant {
+        name: "mapSize",
+        value: Value::Num(512.0),
+        unit: "texels",
+        source: 3,
+        lines: "94",
+    },
+    Constant {
+        name: "bias, normalBias",
+        value: Value::List(&[0.0, 0.0]),
+        unit: "",
+        source: 3,
+        lines: "53, 64",
+    },
+    Constant {
+        name: "Material.side, shadowSide",
+        value: Value::Text("FrontSide, null"),
+        unit: "",
+        source: 2,
+        lines: "86, 340",
+    },
+    Constant {
+        name: "depth material offset",
+        value: Value::Text(
+            "none: getDepthMaterial copies no polygon offset; Material.polygonOffset false",
+        ),
+        unit: "",
+        source: 2,
+        lines: "373, 381, 389",
+    },
+];
+
+pub const THREEJS_PCF: PortCard = PortCard {
+    variant: "threejs_pcf",
+    renderer: "three.js",
+    role: Role::Default,
+    repository: "mrdoob/three.js",
+    sources: THREE_SOURCES,
+    constants: &[
+        Constant { name: "shadowMap.type", value: Value::Text("PCFShadowMap, the default"), unit: "", source: 1, lines: "89" },
+        Constant { name: "shadowSide", value: Value::Text("{ FrontSide: BackSide, BackSide: FrontSide, DoubleSide: DoubleSide }: a front-sided material's back faces"), unit: "", source: 1, lines: "51, 476" },
+        Constant { name: "PCF depth texture", value: Value::Text("compareFunction LessEqualCompare, LinearFilter: bilinear comparisons"), unit: "", source: 1, lines: "260-264" },
+        Constant { name: "PCF taps", value: Value::Num(5.0), unit: "taps", source: 0, lines: "137-143" },
+        Constant { name: "vogelDiskSample", value: Value::Text("r = sqrt((i + 0.5) / n), theta = i * 2.399963229728653 + phi"), unit: "", source: 0, lines: "104-111" },
+        Constant { name: "phi", value: Value::Text("interleavedGradientNoise(gl_FragCoord.xy) * 6.28318530718"), unit: "radians", source: 0, lines: "97-101, 135" },
+        Constant { name: "radius", value: Value::Text("shadowRadius * texelSize.x, shadowRadius 1"), unit: "texels", source: 0, lines: "132" },
+        THREE_COMMON[0],
+        THREE_COMMON[1],
+        THREE_COMMON[2],
+        THREE_COMMON[3],
+    ],
+    departures: &[
+        Departure { what: "its 24-bit depth", why: "three.js's PCF map is UnsignedIntType depth; the lesson's is Depth32Float: the comparisons agree up to that rounding" },
+    ],
 };
 
 pub const THREEJS_PCF_SOFT: PortCard = PortCard {
     variant: "threejs_pcf_soft",
     renderer: "three.js",
+    role: Role::Option("WebGLRenderer.shadowMap.type = PCFSoftShadowMap, until r182 deprecates it (it then runs PCFShadowMap)"),
     repository: "mrdoob/three.js",
-    sources: &[THREE_SHADOW, THREE_LIGHT_SHADOW],
+    sources: THREE_SOURCES,
     constants: &[
-        Constant { name: "PCF_SOFT taps", value: Value::Num(16.0), unit: "taps", source: 0, lines: "172-206" },
-        Constant { name: "PCF_SOFT weights", value: Value::Text("the outer row and column mixed by f = fract(uv * size + 0.5), sum / 9"), unit: "", source: 0, lines: "179-206" },
-        Constant { name: "texture2DCompare", value: Value::Text("step(compare, depth): one nearest texel"), unit: "", source: 0, lines: "76-90" },
-        Constant { name: "mapSize", value: Value::Num(512.0), unit: "texels", source: 1, lines: "104" },
+        Constant { name: "PCFSoftShadowMap deprecated", value: Value::Text("'PCFSoftShadowMap has been deprecated. Using PCFShadowMap instead.', tested on lights.type, the array of lights"), unit: "", source: 1, lines: "92-102" },
+        Constant { name: "shadowMapTypeDefines", value: Value::Text("PCF and VSM only; any other type compiles SHADOWMAP_TYPE_BASIC"), unit: "", source: 6, lines: "345-352" },
+        Constant { name: "PCF_SOFT taps", value: Value::Num(16.0), unit: "taps", source: 5, lines: "172-206" },
+        Constant { name: "PCF_SOFT weights", value: Value::Text("the outer row and column mixed by f = fract(uv * size + 0.5), sum / 9"), unit: "", source: 5, lines: "179-206" },
+        Constant { name: "texture2DCompare", value: Value::Text("step(compare, depth): one nearest texel"), unit: "", source: 5, lines: "76-90" },
+        Constant { name: "shadowSide", value: Value::Text("{ FrontSide: BackSide, BackSide: FrontSide, DoubleSide: DoubleSide }: a front-sided material's back faces"), unit: "", source: 1, lines: "51, 476" },
+        THREE_COMMON[0],
+        THREE_COMMON[1],
+        THREE_COMMON[2],
+        THREE_COMMON[3],
     ],
     departures: &[
-        MAP_BIAS,
         Departure { what: "RGBA-packed depth", why: "the lesson's 32-bit float depth map; the comparison is the same" },
-        Departure { what: "receiver-plane comparison", why: "each tap compares with the receiver's plane (three.js's bias is 0 by default and its outer taps acne without it)" },
+        Departure { what: "its release", why: "the kernel is r179's (commit 99e4d38), the last before r182 deprecated it; the shadow pass and defaults are r182's, the same there. In r182 as written the warning's test reads lights.type, not the renderer's type, so a user who sets PCFSoftShadowMap gets SHADOWMAP_TYPE_BASIC, one comparison, not PCFShadowMap: not ported" },
     ],
 };
 
 pub const THREEJS_VSM: PortCard = PortCard {
     variant: "threejs_vsm",
     renderer: "three.js",
+    role: Role::Option("WebGLRenderer.shadowMap.type = VSMShadowMap"),
     repository: "mrdoob/three.js",
-    sources: &[THREE_SHADOW, THREE_VSM, THREE_LIGHT_SHADOW],
+    sources: THREE_SOURCES,
     constants: &[
-        Constant { name: "VSMShadow", value: Value::Text("hard_shadow = step(compare, mean); else max(hard, linstep(0.3, 0.95, var / (var + d^2)))"), unit: "", source: 0, lines: "98-125" },
-        Constant { name: "bleed cut", value: Value::List(&[0.3, 0.95]), unit: "", source: 0, lines: "119" },
-        Constant { name: "moments", value: Value::Text("(mean, std_dev) of the map's own depth; variance = std_dev^2"), unit: "", source: 1, lines: "43-48" },
-        Constant { name: "blur samples", value: Value::Text("uvStart + i * uvStride over [-1, 1] * radius, first along y from the depth, then along x"), unit: "texels", source: 1, lines: "16-41" },
-        Constant { name: "blurSamples", value: Value::Num(8.0), unit: "samples", source: 2, lines: "95" },
-        Constant { name: "radius", value: Value::Num(1.0), unit: "texels", source: 2, lines: "87" },
-        Constant { name: "mapSize", value: Value::Num(512.0), unit: "texels", source: 2, lines: "104" },
+        Constant { name: "VSM getShadow", value: Value::Text("hard_shadow = step(shadowCoord.z, mean); else max(hard_shadow, clamp((p_max - 0.3) / 0.65, 0, 1)), variance at least 0.0000001"), unit: "", source: 0, lines: "151-207" },
+        Constant { name: "bleed cut", value: Value::List(&[0.3, 0.95]), unit: "", source: 0, lines: "197" },
+        Constant { name: "moments", value: Value::Text("(mean, std_dev) of the map's own depth; variance = std_dev^2"), unit: "", source: 4, lines: "43-48" },
+        Constant { name: "blur samples", value: Value::Text("uvStart + i * uvStride over [-1, 1] * radius, first along y from the depth, then along x"), unit: "texels", source: 4, lines: "14-41" },
+        Constant { name: "blurSamples", value: Value::Num(8.0), unit: "samples", source: 3, lines: "85" },
+        Constant { name: "radius", value: Value::Num(1.0), unit: "texels", source: 3, lines: "77" },
+        Constant { name: "VSM side", value: Value::Text("material.shadowSide ?? material.side: the front faces of a front-sided material"), unit: "", source: 1, lines: "470-472" },
+        Constant { name: "VSM receivers", value: Value::Text("object.castShadow || (object.receiveShadow && type === VSMShadowMap)"), unit: "", source: 1, lines: "514" },
+        Constant { name: "VSM targets", value: Value::Text("RGFormat HalfFloatType moments, linear; FloatType depth read nearest"), unit: "", source: 1, lines: "224-239" },
+        THREE_COMMON[0],
+        THREE_COMMON[1],
+        THREE_COMMON[2],
+        THREE_COMMON[3],
     ],
     departures: &[
-        MAP_BIAS,
-        Departure { what: "16-bit moments", why: "three.js keeps (mean, std_dev) in half floats (r182: RGFormat HalfFloatType, in the pschroen/three-src mirror of release r182.0, WebGLShadowMap.js 224-239); the port keeps 32-bit floats" },
-        Departure { what: "the blur's filtering", why: "its first pass reads the depth texture nearest (NearestFilter) and its second the half-float target linearly, as r182's WebGLShadowMap.js (mirror, lines 233-239, 388-413) sets them; mrdoob/three.js's own copy of that file is stored only at an older commit" },
+        Departure { what: "16-bit moments", why: "three.js keeps (mean, std_dev) in half floats; the port keeps 32-bit floats" },
+        Departure { what: "receivers that cast nothing", why: "three.js draws them into a VSM map too; the port draws the scene's casters, and no lesson 10 scene has an object with casts_shadow = false" },
     ],
 };
 
 /// Every card of lesson 10, in the variants' order.
 pub const CARDS: &[PortCard] = &[
+    FILAMENT_PCF,
     FILAMENT_PCSS,
     FILAMENT_EVSM,
+    BEVY_GAUSSIAN,
     BEVY_PCSS_OR_PCF,
+    GODOT_PCF,
     GODOT_SOFT_LOW,
+    THREEJS_PCF,
     THREEJS_PCF_SOFT,
     THREEJS_VSM,
 ];

@@ -4,8 +4,11 @@
 //! reads them.
 
 pub use super::light_geometry::LightGeometry;
+use super::map_sets::MapPass;
 pub use super::moments::Variance;
 use super::peers::{Peer, PeerParams};
+use crate::lesson_02::bias::ShadowBias;
+use crate::lesson_03::pcf::{Filter, FilterUniform};
 
 // ANCHOR: technique
 /// How a variant turns the shadow map into a visibility.
@@ -128,6 +131,46 @@ impl Technique {
             _ => LESSON_MAP_SIZE,
         }
     }
+
+    /// How its map is drawn: the lesson's pass, or the renderer's.
+    pub fn map_pass(self) -> MapPass {
+        match self {
+            Technique::Peer(p) => p.map_pass(),
+            _ => MapPass::Lesson,
+        }
+    }
+
+    /// The receiver's offsets before the lookup (lesson 03's
+    /// `peer_receiver`): none for the lesson's own, the renderer's for a port.
+    pub fn receiver_bias(self) -> ShadowBias {
+        match self {
+            Technique::Peer(p) => p.receiver_bias(),
+            _ => ShadowBias::NONE,
+        }
+    }
+
+    /// Lesson 03's filter uniform for the lit pass: its Poisson disk (the
+    /// hard baseline's filter) with the receiver's offsets.
+    pub fn filter_uniform(self) -> FilterUniform {
+        let poisson = Filter::Poisson {
+            taps: 16,
+            radius: 2.5,
+        };
+        let sin = match self {
+            Technique::Peer(p) => p.receiver_normal_sin(),
+            _ => 0.0,
+        };
+        FilterUniform::new(poisson, self.receiver_bias()).with_normal_sin(sin)
+    }
+
+    /// Whether the receiver moves before its lookup.
+    pub fn moves_receiver(self) -> bool {
+        let sin = match self {
+            Technique::Peer(p) => p.receiver_normal_sin(),
+            _ => 0.0,
+        };
+        self.receiver_bias() != ShadowBias::NONE || sin != 0.0
+    }
 }
 
 /// `Soft` in `soft.wgsl`: a variant's technique with one light's geometry.
@@ -140,7 +183,9 @@ pub struct SoftUniform {
     pub receiver_plane: u32,
     pub perspective: u32,
     pub exponential: u32,
-    pub _pad: u32,
+    /// 1: the receiver moves by a renderer's offsets (lesson 03's
+    /// `peer_receiver`, from group 3's filter) before the lookup.
+    pub renderer_bias: u32,
     /// 1: PCSS's step 3 probes the disk's rim first.
     pub adaptive: u32,
     pub near: f32,
@@ -167,7 +212,7 @@ impl SoftUniform {
             receiver_plane: 0,
             perspective: g.perspective as u32,
             exponential: 0,
-            _pad: 0,
+            renderer_bias: t.moves_receiver() as u32,
             adaptive: 0,
             near: g.near,
             far: g.far,

@@ -34,13 +34,14 @@ struct Filter {
     radius: f32,
     // A renderer's receiver bias (lesson 02's ShadowBias fields; 0 for ours):
     // LearnOpenGL's max(depth_slope × (1 − N·L), depth) of depth, Bevy's
-    // world units towards the light and texels along the normal.
+    // world units towards the light and texels along the normal; texels
+    // along the normal × (1 − cos θ) (Godot's) and × sin θ (Filament's).
     depth: f32,
     depth_slope: f32,
     toward_light_world: f32,
     normal_flat: f32,
-    _pad0: f32,
-    _pad1: f32,
+    normal: f32,
+    normal_sin: f32,
     _pad2: f32,
     _pad3: f32,
 };
@@ -224,8 +225,9 @@ fn pcf_castano13(coords: vec3<f32>) -> f32 {
 // ANCHOR_END: castano
 
 // ANCHOR: peer_receiver
-// A renderer's receiver bias: Bevy moves the point (world units towards the
-// light, texels along the normal), LearnOpenGL subtracts depth after.
+// A renderer's receiver bias: Bevy, Godot and Filament move the point
+// (world units towards the light, texels along the normal: flat, or
+// × (1 − cos θ), or × sin θ), LearnOpenGL subtracts depth after.
 // xyz: the point to look up; w: the depth to subtract.
 fn peer_receiver(world: vec3<f32>, normal: vec3<f32>) -> vec4<f32> {
     let l = to_light(world);
@@ -234,8 +236,10 @@ fn peer_receiver(world: vec3<f32>, normal: vec3<f32>) -> vec4<f32> {
         n = -n; // open meshes are two-sided: the side the light sees
     }
     let e = shadow_texel_extent(world);
-    let p = world + pcf.toward_light_world * l + pcf.normal_flat * max(e.x, e.y) * n;
     let cos_t = clamp(dot(n, l), 0.0, 1.0);
+    let sin_t = sqrt(1.0 - cos_t * cos_t);
+    let texels = pcf.normal_flat + pcf.normal * (1.0 - cos_t) + pcf.normal_sin * sin_t;
+    let p = world + pcf.toward_light_world * l + texels * max(e.x, e.y) * n;
     return vec4<f32>(p, max(pcf.depth_slope * (1.0 - cos_t), pcf.depth));
 }
 // ANCHOR_END: peer_receiver

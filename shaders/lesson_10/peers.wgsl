@@ -16,6 +16,9 @@ const BEVY_CASTANO: u32 = 9u;
 const GODOT_SOFT: u32 = 10u;
 const THREEJS_PCF_SOFT: u32 = 5u;
 const THREEJS_VSM: u32 = 6u;
+const FILAMENT_PCF: u32 = 11u;
+const GODOT_PCF: u32 = 12u;
+const THREEJS_PCF: u32 = 13u;
 
 fn peer(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
     switch soft.mode {
@@ -28,7 +31,10 @@ fn peer(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
         case GODOT_SOFT: { return godot_soft(s, pixel); }
         // Its moments from soft.wgsl's buffer, as three.js's blur left them.
         case THREEJS_VSM: { return threejs_vsm(s, moments_at(s.xy)); }
-        default: { return three_pcf_soft(s, gradient); }
+        case FILAMENT_PCF: { return filament_pcf_low(s); }
+        case GODOT_PCF: { return godot_pcf(s, pixel); }
+        case THREEJS_PCF: { return three_pcf(s, pixel); }
+        default: { return three_pcf_soft(s); }
     }
 }
 
@@ -268,14 +274,15 @@ fn godot_soft(s: vec3<f32>, pixel: vec2<f32>) -> f32 {
 // ANCHOR_END: godot_soft
 // ANCHOR: three_pcf_soft
 // three.js's PCFSoftShadowMap (shadowmap_pars_fragment.glsl.js at
-// 99e4d38, SHADOWMAP_TYPE_PCF_SOFT): 16 nearest comparisons on the 4×4
-// texel block around the point (the lesson binds the nearest-filtering
-// comparison sampler for it), the outer rows and columns weighted by
-// the point's fraction f within its texel: a 3×3-texel box, bilinearly
-// smoothed, divided by 9. It has no light size: a fixed kernel.
-// Each tap compares with the receiver's plane there (three.js leaves that
-// to its `bias`, 0 by default: without it the outer taps acne).
-fn three_pcf_soft(s: vec3<f32>, gradient: vec2<f32>) -> f32 {
+// 99e4d38, SHADOWMAP_TYPE_PCF_SOFT; r182 deprecates it): 16 nearest
+// comparisons on the 4×4 texel block around the point (the lesson binds
+// the nearest-filtering comparison sampler for it), the outer rows and
+// columns weighted by the point's fraction f within its texel: a
+// 3×3-texel box, bilinearly smoothed, divided by 9. It has no light size:
+// a fixed kernel. Every tap compares with the point's own depth: three.js
+// draws the casters' back faces into the map, so a lit surface does not
+// meet its own depth there.
+fn three_pcf_soft(s: vec3<f32>) -> f32 {
     let size = vec2<f32>(textureDimensions(shadow_map));
     let texel = 1.0 / size;
     let f = fract(s.xy * size + 0.5);
@@ -289,8 +296,7 @@ fn three_pcf_soft(s: vec3<f32>, gradient: vec2<f32>) -> f32 {
             if i == 3 { w *= f.x; }
             if j == 0 { w *= 1.0 - f.y; }
             if j == 3 { w *= f.y; }
-            let at = uv + o;
-            sum += w * textureSampleCompareLevel(shadow_map, shadow_compare, at, s.z + dot(gradient, at - s.xy));
+            sum += w * textureSampleCompareLevel(shadow_map, shadow_compare, uv + o, s.z);
         }
     }
     return sum / 9.0;
@@ -298,21 +304,91 @@ fn three_pcf_soft(s: vec3<f32>, gradient: vec2<f32>) -> f32 {
 // ANCHOR_END: three_pcf_soft
 
 // ANCHOR: threejs_vsm
-// three.js's VSMShadow (shadowmap_pars_fragment.glsl.js): `m` holds the
-// blurred (mean, standard deviation) of the map's own depth; a hard test
-// first, then Chebyshev's bound cut by linstep(0.3, 0.95, p) ("0.3 reduces
-// light bleed"), the larger of the two.
+// three.js's VSM getShadow (r182, shadowmap_pars_fragment.glsl.js): `m`
+// holds the blurred (mean, standard deviation) of the map's own depth; a
+// hard test first, then Chebyshev's bound on a variance of at least 1e-7,
+// cut by (p − 0.3) / 0.65, i.e. linstep(0.3, 0.95, p), the larger of the two.
 fn threejs_vsm(s: vec3<f32>, m: vec4<f32>) -> f32 {
-    let compare = s.z;
-    var occlusion = 1.0;
-    let hard_shadow = step(compare, m.x);
-    if hard_shadow != 1.0 {
-        let distance = compare - m.x;
-        let variance = max(0.0, m.y * m.y);
-        var softness_probability = variance / (variance + distance * distance);
-        softness_probability = clamp((softness_probability - soft.bleed_lo) / (soft.bleed_hi - soft.bleed_lo), 0.0, 1.0);
-        occlusion = clamp(max(hard_shadow, softness_probability), 0.0, 1.0);
+    let mean = m.x;
+    var variance = m.y * m.y;
+    let hard_shadow = step(s.z, mean);
+    if hard_shadow == 1.0 {
+        return 1.0;
     }
-    return occlusion;
+    variance = max(variance, 0.0000001);
+    let d = s.z - mean;
+    var p_max = variance / (variance + d * d);
+    p_max = clamp((p_max - soft.bleed_lo) / (soft.bleed_hi - soft.bleed_lo), 0.0, 1.0);
+    return max(hard_shadow, p_max);
 }
 // ANCHOR_END: threejs_vsm
+
+// ANCHOR: filament_pcf
+// Filament's default, ShadowType::PCF (surface_shadowing.fs,
+// ShadowSample_PCF_Low, "hardware assisted PCF + 3x3 gaussian filter",
+// Castaño 2013): 4 bilinear comparisons, weighted, over 16. Filament's
+// lines and names, our forward depth in its reversed place.
+fn filament_pcf_low(position: vec3<f32>) -> f32 {
+    let size = vec2<f32>(textureDimensions(shadow_map));
+    let texel_size = vec2<f32>(1.0) / size;
+    let depth = position.z;
+    let offset = vec2<f32>(0.5);
+    let uv = (clamp(position.xy, vec2<f32>(-1.0), vec2<f32>(2.0)) * size) + offset;
+    let base = (floor(uv) - offset) * texel_size;
+    let st = fract(uv);
+    let uw = vec2<f32>(3.0 - 2.0 * st.x, 1.0 + 2.0 * st.x);
+    let vw = vec2<f32>(3.0 - 2.0 * st.y, 1.0 + 2.0 * st.y);
+    var u = vec2<f32>((2.0 - st.x) / uw.x - 1.0, st.x / uw.y + 1.0);
+    var v = vec2<f32>((2.0 - st.y) / vw.x - 1.0, st.y / vw.y + 1.0);
+    u *= texel_size.x;
+    v *= texel_size.y;
+    var sum = 0.0;
+    sum += uw.x * vw.x * textureSampleCompareLevel(shadow_map, shadow_compare, base + vec2<f32>(u.x, v.x), depth);
+    sum += uw.y * vw.x * textureSampleCompareLevel(shadow_map, shadow_compare, base + vec2<f32>(u.y, v.x), depth);
+    sum += uw.x * vw.y * textureSampleCompareLevel(shadow_map, shadow_compare, base + vec2<f32>(u.x, v.y), depth);
+    sum += uw.y * vw.y * textureSampleCompareLevel(shadow_map, shadow_compare, base + vec2<f32>(u.y, v.y), depth);
+    return sum * (1.0 / 16.0);
+}
+// ANCHOR_END: filament_pcf
+
+// ANCHOR: godot_pcf
+// Godot's default, a light of size 0 (scene_forward_lights_inc.glsl,
+// sample_pcf_shadow): `taps` bilinear comparisons on its Vogel disk
+// (soft_shadow_kernel), turned per pixel by quick_hash, on a disk of
+// soft_shadow_scale (shadow_blur × the quality's radius) texels, averaged.
+fn godot_pcf(s: vec3<f32>, pixel: vec2<f32>) -> f32 {
+    let n = soft.filter_taps;
+    let texel = 1.0 / vec2<f32>(textureDimensions(shadow_map));
+    let shadow_pixel_size = soft.scale * texel;
+    let disk_rotation = godot_rotation(pixel);
+    var avg = 0.0;
+    for (var i = 0u; i < n; i++) {
+        avg += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + shadow_pixel_size * (disk_rotation * godot_vogel(i, n)), s.z);
+    }
+    return avg * (1.0 / f32(n));
+}
+// ANCHOR_END: godot_pcf
+
+// ANCHOR: three_pcf
+// three.js's default, PCFShadowMap (r182, shadowmap_pars_fragment.glsl.js):
+// 5 bilinear comparisons on its Vogel disk (golden angle 2.399963229728653,
+// r = sqrt((i + 0.5) / 5)), turned per pixel by interleaved gradient noise,
+// on a disk of `radius` (1) texel, × 0.2.
+fn three_vogel(i: u32, n: u32, phi: f32) -> vec2<f32> {
+    let golden_angle = 2.399963229728653;
+    let r = sqrt((f32(i) + 0.5) / f32(n));
+    let theta = f32(i) * golden_angle + phi;
+    return vec2<f32>(cos(theta), sin(theta)) * r;
+}
+
+fn three_pcf(s: vec3<f32>, pixel: vec2<f32>) -> f32 {
+    let texel_size = vec2<f32>(1.0) / vec2<f32>(textureDimensions(shadow_map));
+    let radius = 1.0 * texel_size.x;
+    let phi = fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715)))) * 6.28318530718;
+    var shadow = 0.0;
+    for (var i = 0u; i < 5u; i++) {
+        shadow += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + three_vogel(i, 5u, phi) * radius, s.z);
+    }
+    return shadow * 0.2;
+}
+// ANCHOR_END: three_pcf

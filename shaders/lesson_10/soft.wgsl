@@ -25,7 +25,9 @@ struct Soft {
     // Variance maps: 0 plain; 1 exponential (the moments of exp(c (2z − 1)),
     // z the linear depth).
     exponential: u32,
-    _pad: u32,
+    // 1: the receiver moves by a renderer's offsets first (lesson 03's
+    // peer_receiver, from the filter at group 3 binding 0).
+    renderer_bias: u32,
     // 1: PCSS's step 3 probes the filter disk's rim first (penumbra_pcf).
     adaptive: u32,
     // Orthographic: world distance from the light's plane at depth 0 and 1.
@@ -246,7 +248,12 @@ fn linear_depth(depth: f32) -> f32 {
 // ANCHOR: fs_soft
 @fragment
 fn fs_soft(in: VertexOut) -> LitOut {
-    let s = shadow_coords(in.world);
+    var r = vec4<f32>(in.world, 0.0);
+    if soft.renderer_bias == 1u {
+        r = peer_receiver(in.world, in.normal);
+    }
+    var s = shadow_coords(r.xyz);
+    s.z -= r.w;
     // Derivatives before any branch: they need all four pixels of the quad.
     var gradient = receiver_plane_gradient(in.world);
     if soft.receiver_plane == 0u {
@@ -254,7 +261,7 @@ fn fs_soft(in: VertexOut) -> LitOut {
     }
     let angle = rotation_angle(in.clip.xy);
     var v = 1.0;
-    if !outside_shadow_map(in.world, s) {
+    if !outside_shadow_map(r.xyz, s) {
         switch soft.mode {
             case 0u: { v = pcf_poisson(s, in.clip.xy, gradient); }
             case 1u: {
