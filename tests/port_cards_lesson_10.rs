@@ -333,12 +333,14 @@ fn filaments_ports_draw_its_map_and_move_its_receiver() {
         );
         for g in [spot(), sun()] {
             let p = peers::port(variant, &g).unwrap();
-            // wgpu's constant is whole units: Filament's 0.5, rounded up.
+            // Filament's constant is in 16-bit units (2^-16), wgpu's in
+            // Depth32Float's (2^-24 for depths in [0.5, 1)).
             let want = pass(
                 Some(wgpu::Face::Back),
-                offset[1].ceil() as i32,
+                (offset[1] * 256.0) as i32,
                 offset[0] as f32,
             );
+            assert!(c.departures.iter().any(|d| d.what == "its 16-bit map"));
             assert_eq!(p.map_pass(), want, "{variant}");
             let r = p.receiver_bias();
             assert!(close(r.toward_light_world as f64, c.num("constantBias")));
@@ -391,7 +393,10 @@ fn filament_pcf_runs_its_card() {
 fn godot_soft_low_runs_its_card() {
     let c = card("godot_soft_low");
     let g = spot();
-    let Some(Peer::GodotSoft { taps, size, scale }) = peers::port(c.variant, &g) else {
+    let Some(Peer::GodotSoft {
+        taps, size, scale, ..
+    }) = peers::port(c.variant, &g)
+    else {
         panic!("godot_soft_low is Godot's soft shadow");
     };
     assert_eq!(taps as f64, c.num("SOFT_LOW penumbra samples"));
@@ -441,7 +446,7 @@ fn godot_pcf_runs_its_card() {
     let c = card("godot_pcf");
     assert_eq!(c.num("PARAM_SIZE (light_size)"), 0.0);
     for g in [spot(), sun()] {
-        let Some(Peer::GodotPcf { taps, radius }) = peers::port(c.variant, &g) else {
+        let Some(Peer::GodotPcf { taps, radius, .. }) = peers::port(c.variant, &g) else {
             panic!("godot_pcf is Godot's PCF");
         };
         assert_eq!(taps as f64, c.num("SOFT_LOW soft_shadow_samples"));
@@ -468,8 +473,38 @@ fn godots_ports_move_the_receiver_along_its_normal() {
             .text("shadow_normal_bias")
             .contains("SHADOW_NORMAL_BIAS (1.0) * shadow_texel_size * 10.0"));
         assert!(c.text("normal_bias (spot)").contains("(1.0 - abs(dot("));
-        let p = peers::port(variant, &spot()).unwrap();
-        assert_eq!(p.receiver_bias().normal, 10.0);
+        // normal × light_length × normal_bias × 10 / shadow_size: per
+        // texel of the spot at that distance, 10 / (2 tan(cone / 2)).
+        assert!(c.text("shadow_texel_size").contains("1.0 / shadow_size"));
+        let g = spot();
+        let p = peers::port(variant, &g).unwrap();
+        let tan_half = 0.5 / g.uv_per[0];
+        assert!(close(
+            p.receiver_bias().normal as f64,
+            10.0 / (2.0 * tan_half as f64)
+        ));
+        // A sun: its DirectionalLight3D's 2.0 × sin θ, on its first split.
+        assert!(c
+            .text("shadow_normal_bias (directional)")
+            .contains("(2.0 for DirectionalLight3D)"));
+        let s = peers::port(variant, &sun()).unwrap();
+        assert_eq!(s.receiver_normal_sin(), 2.0);
+        assert_eq!(s.receiver_bias().normal, 0.0);
+        assert_eq!(s.map_size(), 2048);
+        assert_eq!(p.receiver_normal_sin(), 0.0);
+        assert_eq!(p.map_size(), 1024);
+        // shadow_bias: a spot's 0.03 / 100 × the filter's scale in clip depth
+        // over distance / range, 199 × that in metres for its near plane.
+        assert!(c
+            .text("shadow_bias (spot)")
+            .contains("/ (light_length * inv_radius)"));
+        let scale = if variant == "godot_pcf" { 2.0 } else { 1.0 };
+        let near = c.num("spot near / range");
+        let want = c.num("SpotLight3D shadow_bias") / 100.0 * scale * (1.0 / near - 1.0);
+        assert!(
+            close(p.receiver_bias().toward_light_world as f64, want),
+            "{variant}"
+        );
         // Its shadow pass was not read to its lines: the lesson's map, said so.
         assert_eq!(p.map_pass(), MapPass::Lesson);
         assert!(c

@@ -58,7 +58,8 @@ pub struct Change {
 }
 
 /// What changed since each measurement's commit, read from
-/// `git log d7678c5..HEAD -- lessons/ shaders/ common/src/reference/` and
+/// `git log d7678c5..HEAD -- lessons/ shaders/ common/src/reference/` (and
+/// from `8768674`, the H200 set's) and
 /// checked against the book's own records of those commits.
 pub const CHANGES: &[Change] = &[
     Change {
@@ -156,6 +157,53 @@ pub const CHANGES: &[Change] = &[
         now: None,
         commits: &["0a5b04a"],
         what: "the exact reference: an area light's rays now go wherever a conservative cone query finds a caster, so this set's errors are against the reference as it was (its times do not depend on it)",
+    },    Change {
+        since: "8768674",
+        lesson: "lesson_10",
+        variant: Some("filament_pcss"),
+        now: None,
+        commits: &["122f8ed"],
+        what: "Filament's own shadow pass (front faces, its polygon offset) and receiver offsets (1 mm towards the light, its normal bias × sin θ), not the lesson's map",
+    },
+    Change {
+        since: "8768674",
+        lesson: "lesson_10",
+        variant: Some("filament_evsm"),
+        now: None,
+        commits: &["122f8ed"],
+        what: "Filament's VSM moments of a map drawn without offsets (front faces), not the lesson's biased map",
+    },
+    Change {
+        since: "8768674",
+        lesson: "lesson_10",
+        variant: Some("bevy_pcss_or_pcf"),
+        now: None,
+        commits: &["122f8ed"],
+        what: "Bevy's 2048² spot map (DirectionalLightShadowMap; it ran on 1024²), its front faces and its receiver offsets",
+    },
+    Change {
+        since: "8768674",
+        lesson: "lesson_10",
+        variant: Some("godot_soft_low"),
+        now: None,
+        commits: &["122f8ed"],
+        what: "Godot's normal bias on the receiver (on a spot 10 / shadow_size per metre of distance × (1 − cos θ), on a sun 2 texels × sin θ) and a sun's 2048² split (it ran on 1024²)",
+    },
+    Change {
+        since: "8768674",
+        lesson: "lesson_10",
+        variant: Some("threejs_pcf_soft"),
+        now: None,
+        commits: &["122f8ed"],
+        what: "three.js's back faces in the map, no receiver plane (it ran on the lesson's biased map with a receiver plane)",
+    },
+    Change {
+        since: "8768674",
+        lesson: "lesson_10",
+        variant: Some("threejs_vsm"),
+        now: None,
+        commits: &["122f8ed"],
+        what: "three.js's front faces, no offsets, and r182's variance floor",
     },
 ];
 

@@ -52,7 +52,8 @@ const DEPARTURE_COLUMNS: &[(&str, &str)] = &[
 
 /// The sources table's columns.
 const SOURCE_COLUMNS: &[(&str, &str)] = &[
-    ("variant", "the lesson's variant that ports a renderer's default"),
+    ("variant", "the lesson's variant that ports a renderer's default or one of its options"),
+    ("default or option", "`default` where the renderer runs it unless told otherwise (a tutorial's own listing counts as one); `option:` and the setting that turns it on, where a user must"),
     ("repository", "the renderer's public repository, `owner/name`"),
     ("read at", "each file the port's card was read from, at its commit (the card gives the full commit and each constant's lines)"),
 ];

@@ -32,11 +32,22 @@ pub enum Peer {
     BevyCastano,
     /// Godot's default (a light of size 0): its PCF, `taps` Vogel taps of
     /// bilinear comparisons on a disk of `radius` texels.
-    GodotPcf { taps: u32, radius: f32 },
+    GodotPcf {
+        taps: u32,
+        radius: f32,
+        receiver: ShadowBias,
+        map: u32,
+    },
     /// Godot's soft shadow (a light size above 0), at Soft Low: `taps`
     /// Vogel taps to search and to filter, its soft-shadow size and scale
     /// (`size`, `scale`) in map units.
-    GodotSoft { taps: u32, size: f32, scale: f32 },
+    GodotSoft {
+        taps: u32,
+        size: f32,
+        scale: f32,
+        receiver: ShadowBias,
+        map: u32,
+    },
     /// three.js's default, `PCFShadowMap` (r182): 5 Vogel taps of bilinear
     /// comparisons on a disk of one texel.
     ThreePcf,
@@ -57,16 +68,20 @@ pub const FILAMENT_BULB_RADIUS: f32 = 0.02;
 pub const FILAMENT_MAP_SIZE: u32 = 1024;
 /// Filament's shadow pass outside VSM: the material's culling (back faces),
 /// its polygon offset, slope 2 and constant 0.5 (`polygonOffsetSlope`,
-/// `polygonOffsetConstant`), the constant rounded up to a whole unit, all
-/// wgpu takes.
+/// `polygonOffsetConstant`). The constant is in units of its DEPTH16 map,
+/// 2^-16 of depth: in Depth32Float's units, 2^-24 for depths in [0.5, 1),
+/// it is 0.5 × 2^8 = 128.
 pub const FILAMENT_PASS: MapPass = MapPass::Renderer {
     cull: Some(wgpu::Face::Back),
     bias: wgpu::DepthBiasState {
-        constant: 1,
+        constant: FILAMENT_POLYGON_OFFSET_UNITS,
         slope_scale: 2.0,
         clamp: 0.0,
     },
 };
+/// Filament's `polygonOffsetConstant` (0.5 of a 16-bit unit) in
+/// Depth32Float's units for depths in [0.5, 1).
+pub const FILAMENT_POLYGON_OFFSET_UNITS: i32 = 128;
 /// Filament's shadow pass for VSM: the material's culling, no offset.
 pub const FILAMENT_VSM_PASS: MapPass = MapPass::Renderer {
     cull: Some(wgpu::Face::Back),
@@ -138,13 +153,57 @@ pub const GODOT_SOFT_LOW_RADIUS: f32 = 2.0;
 pub const GODOT_MAP_SIZE: u32 = 1024;
 /// Godot's `shadow_blur` default: the soft shadow's scale.
 pub const GODOT_SHADOW_BLUR: f32 = 1.0;
-/// Godot's normal bias on a spot: `shadow_normal_bias` (1.0) × 10 texels,
-/// times (1 − |cos θ|), along the normal (lesson 02's `normal` field, here
-/// in lesson 03's texel, the texel's larger side).
-pub const GODOT_RECEIVER: ShadowBias = ShadowBias {
-    normal: 1.0 * 10.0,
-    ..ShadowBias::NONE
-};
+/// Godot's `shadow_normal_bias` defaults: `Light3D`'s 1.0, and
+/// `DirectionalLight3D`'s 2.0.
+pub const GODOT_NORMAL_BIAS: f32 = 1.0;
+pub const GODOT_DIRECTIONAL_NORMAL_BIAS: f32 = 2.0;
+/// Godot's directional atlas (4096², 4 splits): 2048² a split.
+pub const GODOT_DIRECTIONAL_MAP_SIZE: u32 = 2048;
+
+/// Godot's `shadow_bias` defaults: `SpotLight3D`'s 0.03, `Light3D`'s 0.1
+/// (a sun's), both divided by 100 and scaled by `soft_shadow_scale`.
+pub const GODOT_SPOT_SHADOW_BIAS: f32 = 0.03;
+pub const GODOT_DIRECTIONAL_SHADOW_BIAS: f32 = 0.1;
+/// Godot's spot shadow camera's near plane over its range (0.005).
+pub const GODOT_SPOT_NEAR_OVER_RANGE: f32 = 0.005;
+
+/// Godot's receiver offsets for a filter of `soft_shadow_scale` `scale`
+/// (its PCF's `shadow_blur × quality radius`, its soft shadow's
+/// `shadow_blur`). Along the normal, in texels of the map at the receiver:
+/// on a spot `normal * light_length * shadow_normal_bias * (1 − |cos θ|)`
+/// with `shadow_normal_bias = normal_bias × 10 / shadow_size`, which is
+/// `10 / (2 tan(cone / 2))` of the spot's texels at that distance
+/// (`uv_per`, per radian); on a sun `shadow_normal_bias` (2) texels times
+/// sin θ ([`Peer::receiver_normal_sin`]). Towards the light: a spot's
+/// `shadow_bias / (light_length · inv_radius)` added to its clip depth is,
+/// for its near plane of range / 200, a move of `shadow_bias · (1/0.005 −
+/// 1)` metres whatever the distance; a sun's `shadow_bias` moves it along
+/// the light (its split's `bias_scale` taken as 1).
+pub fn godot_receiver(g: &LightGeometry, scale: f32) -> ShadowBias {
+    if g.perspective {
+        let bias = GODOT_SPOT_SHADOW_BIAS / 100.0 * scale;
+        ShadowBias {
+            normal: GODOT_NORMAL_BIAS * 10.0 * g.uv_per[0],
+            toward_light_world: bias * (1.0 / GODOT_SPOT_NEAR_OVER_RANGE - 1.0),
+            ..ShadowBias::NONE
+        }
+    } else {
+        ShadowBias {
+            toward_light_world: GODOT_DIRECTIONAL_SHADOW_BIAS / 100.0 * scale,
+            ..ShadowBias::NONE
+        }
+    }
+}
+
+/// Godot's map side: a spot's atlas slot (quadrant 0 of the 4096² atlas,
+/// subdivided by 2: the lesson's 1024²), a sun's first split (2048²).
+pub fn godot_map_size(g: &LightGeometry) -> u32 {
+    if g.perspective {
+        GODOT_MAP_SIZE
+    } else {
+        GODOT_DIRECTIONAL_MAP_SIZE
+    }
+}
 /// three.js's `LightShadow` defaults: `mapSize` 512, `radius` 1,
 /// `blurSamples` 8.
 pub const THREEJS_MAP_SIZE: u32 = 512;
@@ -210,11 +269,15 @@ pub fn port(variant: &str, g: &LightGeometry) -> Option<Peer> {
         "godot_pcf" => Peer::GodotPcf {
             taps: GODOT_SOFT_LOW_PCF_TAPS,
             radius: GODOT_SHADOW_BLUR * GODOT_SOFT_LOW_RADIUS,
+            receiver: godot_receiver(g, GODOT_SHADOW_BLUR * GODOT_SOFT_LOW_RADIUS),
+            map: godot_map_size(g),
         },
         "godot_soft_low" => Peer::GodotSoft {
             taps: GODOT_SOFT_LOW_TAPS,
             size: godot_soft_size(g),
             scale: GODOT_SHADOW_BLUR,
+            receiver: godot_receiver(g, GODOT_SHADOW_BLUR),
+            map: godot_map_size(g),
         },
         "threejs_pcf" => Peer::ThreePcf,
         "threejs_pcf_soft" => Peer::ThreePcfSoft,
@@ -307,7 +370,7 @@ impl Peer {
             // Spot maps are layers of Bevy's directional texture.
             Peer::BevyPcss { .. } | Peer::BevyCastano => BEVY_DIRECTIONAL_MAP_SIZE,
             // Godot's atlas is not emulated: the lesson's map (its card).
-            Peer::GodotPcf { .. } | Peer::GodotSoft { .. } => GODOT_MAP_SIZE,
+            Peer::GodotPcf { map, .. } | Peer::GodotSoft { map, .. } => map,
             Peer::ThreePcf | Peer::ThreePcfSoft | Peer::ThreeVsm(..) => THREEJS_MAP_SIZE,
         }
     }
@@ -332,7 +395,7 @@ impl Peer {
         match self {
             Peer::BevyPcss { .. } | Peer::BevyCastano => BEVY_RECEIVER,
             Peer::FilamentPcf { .. } | Peer::FilamentPcss { .. } => FILAMENT_RECEIVER,
-            Peer::GodotPcf { .. } | Peer::GodotSoft { .. } => GODOT_RECEIVER,
+            Peer::GodotPcf { receiver, .. } | Peer::GodotSoft { receiver, .. } => receiver,
             _ => ShadowBias::NONE,
         }
     }
@@ -341,6 +404,11 @@ impl Peer {
     /// VSM), which `ShadowBias` has no field for.
     pub fn receiver_normal_sin(self) -> f32 {
         match self {
+            Peer::GodotPcf { map, .. } | Peer::GodotSoft { map, .. }
+                if map == GODOT_DIRECTIONAL_MAP_SIZE =>
+            {
+                GODOT_DIRECTIONAL_NORMAL_BIAS
+            }
             Peer::FilamentPcf { normal_texels } | Peer::FilamentPcss { normal_texels, .. } => {
                 normal_texels
             }
@@ -370,12 +438,14 @@ impl Peer {
             Peer::FilamentPcf { .. } | Peer::BevyCastano | Peer::ThreePcf | Peer::ThreePcfSoft => {
                 none
             }
-            Peer::GodotPcf { taps, radius } => PeerParams {
+            Peer::GodotPcf { taps, radius, .. } => PeerParams {
                 taps,
                 scale: radius,
                 ..none
             },
-            Peer::GodotSoft { taps, size, scale } => PeerParams {
+            Peer::GodotSoft {
+                taps, size, scale, ..
+            } => PeerParams {
                 taps,
                 size: Some(size),
                 scale,

@@ -70,15 +70,26 @@ const FILAMENT_PCF_SOURCES: &[Source] = &[
 /// Filament's shadow pass and receiver outside VSM (`filament_pcf`,
 /// `filament_pcss`, sources [`FILAMENT_PCF_SOURCES`]).
 const FILAMENT_PCF_PASS: [Constant; 9] = [
-    Constant { name: "polygonOffsetSlope, polygonOffsetConstant", value: Value::List(&[2.0, 0.5]), unit: "", source: 2, lines: "309, 318" },
-    Constant { name: "polygonOffset", value: Value::Text("-polygonOffsetSlope, -polygonOffsetConstant (reversed Z), 0 when the view has VSM"), unit: "", source: 1, lines: "362-364, 521-523" },
+    Constant { name: "polygonOffsetSlope, polygonOffsetConstant", value: Value::List(&[2.0, 0.5]), unit: "", source: 2, lines: "318, 309" },
+    Constant { name: "polygonOffset", value: Value::Text("-polygonOffsetSlope, -polygonOffsetConstant, 0 when the view has VSM"), unit: "", source: 1, lines: "362-364, 521-523" },
     Constant { name: "constantBias", value: Value::Num(0.001), unit: "m", source: 2, lines: "249" },
     Constant { name: "constantBias applied", value: Value::Text("the light camera moved by translation(direction * constantBias), 0 under VSM"), unit: "m", source: 5, lines: "246-247, 301-302" },
     Constant { name: "normalBias", value: Value::Num(1.0), unit: "", source: 2, lines: "255" },
-    Constant { name: "normalBias scaled", value: Value::Text("a cascade 0.5 * normalBias * wsTexelSize; a spot normalBias * wsTexelSizeAtOneMeter, times zLight"), unit: "m", source: 1, lines: "387-391, 556-563" },
+    Constant { name: "normalBias scaled", value: Value::Text("a cascade 0.5 * normalBias * wsTexelSize; a spot normalBias * wsTexelSizeAtOneMeter, times zLight (surface_getters.fs 115)"), unit: "m", source: 1, lines: "387-391, 556-563" },
     Constant { name: "computeLightSpacePosition", value: Value::Text("p += n * (sinTheta * b), sinTheta = sqrt(1 - NoL * NoL), not under VSM"), unit: "", source: 6, lines: "14-20" },
     Constant { name: "shadow pass culling", value: Value::Text("cmdDepth.primitive.rasterState.culling = mi->getCullingMode()"), unit: "", source: 4, lines: "551" },
     Constant { name: "mCullingMode", value: Value::Text("CullingMode::BACK by default: front faces drawn"), unit: "", source: 8, lines: "406, 762" },
+];
+
+/// Where Filament's PCF and PCSS ports depart from Filament.
+const FILAMENT_PCF_DEPARTURES: [Departure; 7] = [
+    Departure { what: "its 16-bit map", why: "Filament renders these maps as DEPTH16; the lesson's is Depth32Float: with Filament's 1 cm spot near plane one 16-bit step is about 4 cm at 5 m, which its 1 mm constant bias cannot span; the port's depth is finer. Its polygon offset's constant, 0.5 of a 16-bit unit (7.6e-6 of depth), is drawn as 128 units of Depth32Float's 2^-24 (the same for depths in [0.5, 1), twice as much below 0.5); its slope, 2, as it is" },
+    Departure { what: "the angle of a spot's normal bias", why: "Filament's spot passes the light's direction to computeLightSpacePosition (surface_getters.fs getSpotLightSpacePosition); its sign was not read to its lines: if it is the axis away from the light, NoL is 0 on every lit face and each moves the full normalBias texels. The port takes sin θ from the point's own ray to the light" },
+    Departure { what: "the normal and the faces it shades", why: "Filament takes the geometric normal as it is and skips the lookup where NoL <= 0; the port turns the normal to the light's side and looks up everywhere (the lesson's receivers are lit from their light's side); the directional offset is per vertex in Filament, per pixel here" },
+    Departure { what: "its 1-texel border", why: "Filament projects onto 1022² inside the 1024² texture (viewport 1, 1, dim - 2) and clamps taps to it (ShadowMapManager.cpp 304, 360, 518); the port projects onto the whole 1024²" },
+    Departure { what: "LiSPSM on a sun", why: "the Java mirror the card cites has lispsm = false (LightManager.java 301); C++'s ShadowOptions::lispsm was not read at a commit the card names. The port's sun map is not warped" },
+    Departure { what: "its shadow camera's fit and near and far planes", why: "the lesson's map planes (its light_view_proj); the 1 mm constant bias is a move of the receiver towards the light along its ray (Filament's along the spot's axis: 1 mm × (1 − cos) apart)" },
+    Departure { what: "one Filament", why: "the cited files come from several commits (the shader, the manager, ShadowMap.cpp and RenderPass.cpp do not all call each other with the signatures at those commits); each constant is read where cited, and the sampling quality that picks ShadowSample_PCF_Low (Material::Builder::shadowSamplingQuality, LOW by default) was not read to its lines" },
 ];
 
 /// Filament's sides of a light the ports cannot take.
@@ -102,10 +113,36 @@ pub const FILAMENT_PCF: PortCard = PortCard {
     repository: "google/filament",
     sources: FILAMENT_PCF_SOURCES,
     constants: &[
-        Constant { name: "ShadowType", value: Value::Text("PCF, the default"), unit: "", source: 3, lines: "545-546" },
-        Constant { name: "ShadowSample_PCF_Low", value: Value::Text("4 hardware 2x2 comparisons weighted uw * vw, sum * (1.0 / 16.0): Castaño's 3x3"), unit: "", source: 0, lines: "40-74" },
-        Constant { name: "uw, vw", value: Value::Text("vec2(3.0 - 2.0 * st, 1.0 + 2.0 * st)"), unit: "", source: 0, lines: "59-60" },
-        Constant { name: "u, v", value: Value::Text("vec2((2.0 - st) / uw.x - 1.0, st / uw.y + 1.0) * texelSize"), unit: "texels", source: 0, lines: "62-66" },
+        Constant {
+            name: "ShadowType",
+            value: Value::Text("PCF, the default"),
+            unit: "",
+            source: 3,
+            lines: "545-546",
+        },
+        Constant {
+            name: "ShadowSample_PCF_Low",
+            value: Value::Text(
+                "4 hardware 2x2 comparisons weighted uw * vw, sum * (1.0 / 16.0): Castaño's 3x3",
+            ),
+            unit: "",
+            source: 0,
+            lines: "40-74",
+        },
+        Constant {
+            name: "uw, vw",
+            value: Value::Text("vec2(3.0 - 2.0 * st, 1.0 + 2.0 * st)"),
+            unit: "",
+            source: 0,
+            lines: "59-60",
+        },
+        Constant {
+            name: "u, v",
+            value: Value::Text("vec2((2.0 - st) / uw.x - 1.0, st / uw.y + 1.0) * texelSize"),
+            unit: "texels",
+            source: 0,
+            lines: "62-66",
+        },
         FILAMENT_PCF_PASS[0],
         FILAMENT_PCF_PASS[1],
         FILAMENT_PCF_PASS[2],
@@ -115,12 +152,15 @@ pub const FILAMENT_PCF: PortCard = PortCard {
         FILAMENT_PCF_PASS[6],
         FILAMENT_PCF_PASS[7],
         FILAMENT_PCF_PASS[8],
-        Constant { name: "mapSize", value: Value::Num(1024.0), unit: "texels", source: 2, lines: "194" },
+        Constant {
+            name: "mapSize",
+            value: Value::Num(1024.0),
+            unit: "texels",
+            source: 2,
+            lines: "194",
+        },
     ],
-    departures: &[
-        Departure { what: "its polygon offset's constant, 0.5", why: "wgpu takes the constant in whole units: the port draws with 1 (and Filament's slope, 2)" },
-        Departure { what: "its shadow camera's fit and near and far planes", why: "the lesson's map planes (its light_view_proj); the 1 mm constant bias is a move of the receiver towards the light, as Filament's moved camera is" },
-    ],
+    departures: &FILAMENT_PCF_DEPARTURES,
 };
 
 pub const FILAMENT_PCSS: PortCard = PortCard {
@@ -159,10 +199,16 @@ pub const FILAMENT_PCSS: PortCard = PortCard {
         FILAMENT_PCF_PASS[8],
     ],
     departures: &[
-        Departure { what: "its polygon offset's constant, 0.5", why: "wgpu takes the constant in whole units: the port draws with 1 (and Filament's slope, 2)" },
-        Departure { what: "its shadow camera's near and far planes", why: "the ratio uses the lesson's map planes (its light_view_proj), not Filament's own fit of the camera to the scene" },
+        FILAMENT_PCF_DEPARTURES[0],
+        FILAMENT_PCF_DEPARTURES[1],
+        FILAMENT_PCF_DEPARTURES[2],
+        FILAMENT_PCF_DEPARTURES[3],
+        FILAMENT_PCF_DEPARTURES[4],
+        FILAMENT_PCF_DEPARTURES[6],
+        Departure { what: "its shadow camera's near and far planes", why: "the ratio uses the lesson's map planes (its light_view_proj), not Filament's own fit of the camera to the scene (its spot near plane is 1 cm)" },
         Departure { what: "the bulb radius of a spot", why: "the scene's emitter radius stands in for shadowBulbRadius (a user would set it so); on a sun Filament's default 2 cm is kept, since its directional penumbra does not follow the sun's angle" },
         Departure { what: "its interleaved gradient noise's constants", why: "lesson 03's rotation_angle (Jimenez 2014's 0.06711056, 0.00583715, 52.9829189); Filament's common_math.fs was not read" },
+        Departure { what: "its disk's shape on a sun", why: "Filament's disk is round in texels (one wsTexelSize), the port's round in world units (the map's two uv_per); they differ where the fitted map's texels are not square" },
         FILAMENT_TAA,
     ],
 };
@@ -182,7 +228,7 @@ pub const FILAMENT_EVSM: PortCard = PortCard {
         Constant { name: "EVSM warp", value: Value::Text("exp(vsmExponent * (2 * depth - 1)), depth linear in [0, 1]"), unit: "", source: 0, lines: "451, 464-468" },
         Constant { name: "reduceLightBleed", value: Value::Text("linstep(amount, 1.0, pMax)"), unit: "", source: 0, lines: "421-424" },
         Constant { name: "chebyshevUpperBound", value: Value::Text("mean <= moments.x ? 1.0 : pMax"), unit: "", source: 0, lines: "426-439" },
-        Constant { name: "ELVSM", value: Value::Text("off by default: the positive warp alone"), unit: "", source: 0, lines: "470-472" },
+        Constant { name: "ELVSM", value: Value::Text("off by default (LightManager.java 359): the positive warp alone"), unit: "", source: 0, lines: "470-472" },
         Constant { name: "filtering", value: Value::Text("LINEAR, no mipmaps, no anisotropy"), unit: "", source: 1, lines: "331-340" },
         Constant { name: "blurWidth", value: Value::Num(0.0), unit: "texels", source: 3, lines: "365" },
         Constant { name: "mapSize", value: Value::Num(1024.0), unit: "texels", source: 3, lines: "194" },
@@ -252,17 +298,18 @@ const BEVY_SOURCES: &[Source] = &[
 
 /// What both Bevy ports take: the map, the shadow pass, the receiver's
 /// offsets, the default filter.
-const BEVY_MAP_AND_PASS: [Constant; 10] = [
+const BEVY_MAP_AND_PASS: [Constant; 11] = [
     Constant { name: "DirectionalLightShadowMap size (spots too)", value: Value::Num(2048.0), unit: "texels", source: 5, lines: "183, 193-204" },
-    Constant { name: "spot maps", value: Value::Text("To control the resolution of the shadow maps, use the DirectionalLightShadowMap resource: layers of the directional texture, at its size"), unit: "", source: 4, lines: "21" },
+    Constant { name: "spot maps", value: Value::Text("To control the resolution of the shadow maps, use the DirectionalLightShadowMap resource"), unit: "", source: 4, lines: "21" },
     Constant { name: "directional_light_shadow_map_texture", value: Value::Text("width and height directional_light_shadow_map.size, one layer per cascade and per spot"), unit: "", source: 3, lines: "1204-1216, 1372-1376" },
     Constant { name: "StandardMaterial cull_mode", value: Value::Text("Some(Face::Back), kept by the shadow (depth prepass) pipeline: front faces drawn"), unit: "", source: 6, lines: "922, 1539-1548" },
-    Constant { name: "shadow pass DepthBiasState", value: Value::Text("constant material.depth_bias (0), slope_scale 0.0, clamp 0.0"), unit: "", source: 7, lines: "627-631" },
+    Constant { name: "shadow pass DepthBiasState", value: Value::Text("constant material.depth_bias (0), slope_scale 0.0, clamp 0.0"), unit: "", source: 7, lines: "627-631; pbr_material.rs 926, 1553-1556" },
     Constant { name: "shadow_depth_bias (spot and directional)", value: Value::Num(0.02), unit: "m", source: 4, lines: "134" },
     Constant { name: "shadow_normal_bias (spot and directional)", value: Value::Num(1.8), unit: "texels", source: 4, lines: "136" },
     Constant { name: "spot normal bias", value: Value::Text("shadow_normal_bias * texel_size * SQRT_2, texel_size = 2 tan(outer_angle) / map size, times distance_to_light along the normal"), unit: "m", source: 3, lines: "515-516, 537-539" },
     Constant { name: "offset_position", value: Value::Text("shadow_depth_bias * normalize(surface_to_light) + surface_normal * shadow_normal_bias * distance_to_light"), unit: "m", source: 1, lines: "93-96" },
     Constant { name: "ShadowFilteringMethod", value: Value::Text("Gaussian, #[default]: sample_shadow_map_castano_thirteen, 9 bilinear comparisons, weights / 144"), unit: "", source: 8, lines: "288-289" },
+    Constant { name: "shadow_maps_enabled", value: Value::Text("false by default on a spot and a sun: the default filter is the one a light gets when its shadows are switched on"), unit: "", source: 4, lines: "152" },
 ];
 
 pub const BEVY_D3D_SAMPLE_POINT_POSITIONS: &[f64] = &[
@@ -274,6 +321,18 @@ pub const BEVY_D3D_SAMPLE_POINT_POSITIONS: &[f64] = &[
 pub const BEVY_SPIRAL_OFFSETS: &[f64] = &[
     -0.7071, 0.7071, -0.0000, -0.8750, 0.5303, 0.5303, -0.6250, -0.0000, //
     0.3536, -0.3536, -0.0000, 0.3750, -0.1768, -0.1768, 0.1250, 0.0000,
+];
+
+/// Where both Bevy ports depart from Bevy, bar the PCSS's own.
+const BEVY_DEPARTURES: [Departure; 8] = [
+    Departure { what: "cascades on a sun", why: "one 2048² map stands for Bevy's first cascade; the lesson fits it to the scene, not to Bevy's cascade splits, and Bevy's sun normal bias (shadow_normal_bias × √2 × the cascade's square texel, ceil(diameter) / 2048: light.rs 659-661, shadows.wgsl 190-193) is taken on the fitted map's texel (its larger side), which can differ from it several-fold" },
+    Departure { what: "its spot's near and far planes", why: "Bevy clips casters nearer than 0.1 m and has no far plane; the lesson's spot map runs from range / 1000 to the range (no lesson 10 scene has a caster within 0.1 m of its light)" },
+    Departure { what: "a sun's unclipped depth", why: "Bevy draws a sun's casters in front of the map with unclipped depth (light.rs 1852-1856); the lesson's map is fitted around every caster, so none lies in front of it" },
+    Departure { what: "the map's rotation about the light's axis", why: "Bevy builds the light's basis with orthonormalize (spot_light.rs 172-193), the lesson with look_at and a stable up: the texel grid and the kernels' patterns turn by another angle, their statistics do not" },
+    Departure { what: "the normal it offsets along", why: "Bevy takes the interpolated world_normal as the mesh has it, not normalized, on the side it was drawn; the port normalizes it and turns it to the light's side (lesson 03's peer_receiver)" },
+    Departure { what: "the texel its spot normal bias scales", why: "Bevy's spot texel is 2 tan(outer_angle) / 2048 at unit distance; the port takes the map's texel (its larger side) at the receiver, the same where the map's cone is the spot's (as in every lesson 10 scene)" },
+    Departure { what: "its infinite reversed depth", why: "the lesson's map is finite and forward (Depth32Float): the comparisons' outcomes agree up to its rounding, about 0.1 mm at 4 m from the default scene's spot" },
+    Departure { what: "MSAA (Msaa::Sample4 by default)", why: "the lesson renders one sample per pixel: only geometric edges differ" },
 ];
 
 pub const BEVY_GAUSSIAN: PortCard = PortCard {
@@ -293,15 +352,23 @@ pub const BEVY_GAUSSIAN: PortCard = PortCard {
         BEVY_MAP_AND_PASS[7],
         BEVY_MAP_AND_PASS[8],
         BEVY_MAP_AND_PASS[9],
-        Constant { name: "sample_shadow_map_castano_thirteen", value: Value::Text("lesson 03's pcf_castano13, Bevy's lines"), unit: "", source: 0, lines: "105-147, 256-264" },
-        Constant { name: "soft_shadows_enabled", value: Value::Text("false: no PCSS on a spot"), unit: "", source: 4, lines: "160-161" },
+        BEVY_MAP_AND_PASS[10],
+        Constant {
+            name: "sample_shadow_map_castano_thirteen",
+            value: Value::Text("lesson 03's pcf_castano13, Bevy's lines"),
+            unit: "",
+            source: 0,
+            lines: "105-147, 256-264",
+        },
+        Constant {
+            name: "soft_shadows_enabled",
+            value: Value::Text("false: no PCSS on a spot"),
+            unit: "",
+            source: 4,
+            lines: "160-161",
+        },
     ],
-    departures: &[
-        Departure { what: "cascades on a sun", why: "one 2048² map stands for Bevy's first cascade; the lesson fits it to the scene, not to Bevy's cascade splits" },
-        Departure { what: "its infinite reversed depth", why: "the lesson's map is finite and forward; the comparisons' outcomes are the same up to Depth32Float rounding" },
-        Departure { what: "the normal of the face it draws", why: "Bevy offsets along the interpolated normal as the mesh has it; the port turns it to the light's side (lesson 03's peer_receiver)" },
-        Departure { what: "the texel its normal bias scales", why: "Bevy's spot texel is 2 tan(outer_angle) / 2048 at unit distance; the port takes the lesson's map's texel (its larger side) at the receiver, the same where the map's cone is the spot's" },
-    ],
+    departures: &BEVY_DEPARTURES,
 };
 
 pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
@@ -321,6 +388,7 @@ pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
         BEVY_MAP_AND_PASS[7],
         BEVY_MAP_AND_PASS[8],
         BEVY_MAP_AND_PASS[9],
+        BEVY_MAP_AND_PASS[10],
         Constant { name: "soft_shadows_enabled", value: Value::Text("false by default, behind the experimental_pbr_pcss feature"), unit: "", source: 4, lines: "79-80, 160-161" },
         Constant { name: "depth (spot)", value: Value::Text("near_z / -projected_position.z: reversed and infinite"), unit: "", source: 1, lines: "112" },
         Constant { name: "DEFAULT_SHADOW_MAP_NEAR_Z (spot)", value: Value::Num(0.1), unit: "m", source: 4, lines: "138" },
@@ -342,10 +410,14 @@ pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
     ],
     departures: &[
         Departure { what: "PCSS on a sun", why: "Bevy's directional PCSS takes soft_shadow_size, a world-space search radius no sun angle gives; the port leaves it None there and runs Bevy's default Gaussian (as bevy_gaussian), and says so in its name" },
-        Departure { what: "cascades on a sun", why: "one 2048² map stands for Bevy's first cascade; the lesson fits it to the scene, not to Bevy's cascade splits" },
-        Departure { what: "its infinite reversed depth", why: "the lesson's map is finite and forward; since it is affine in 1/d, each tap's near_z / d is recovered exactly from it (bilinear blends too)" },
-        Departure { what: "the normal of the face it draws", why: "Bevy offsets along the interpolated normal as the mesh has it; the port turns it to the light's side (lesson 03's peer_receiver)" },
-        Departure { what: "the texel its normal bias scales", why: "Bevy's spot texel is 2 tan(outer_angle) / 2048 at unit distance; the port takes the lesson's map's texel (its larger side) at the receiver, the same where the map's cone is the spot's" },
+        BEVY_DEPARTURES[0],
+        BEVY_DEPARTURES[1],
+        BEVY_DEPARTURES[2],
+        BEVY_DEPARTURES[3],
+        BEVY_DEPARTURES[4],
+        BEVY_DEPARTURES[5],
+        Departure { what: "its infinite reversed depth", why: "the lesson's map is finite and forward; since it is affine in 1/d, each tap's near_z / d follows from it, exactly in algebra and up to Depth32Float's rounding in fact (about 0.1 mm at 4 m here, against Bevy's 2 cm depth bias)" },
+        BEVY_DEPARTURES[7],
     ],
 };
 
@@ -365,22 +437,44 @@ const GODOT_LIGHT: Source = Source {
     file: "scene/3d/light_3d.cpp",
     commit: "8ea4ec9531e385802c08b97cb214e2de03056ddc",
 };
-const GODOT_SOURCES: &[Source] = &[GODOT_SHADER, GODOT_STORAGE, GODOT_RENDER, GODOT_LIGHT];
+const GODOT_HEADER: Source = Source {
+    file: "servers/rendering/renderer_rd/storage_rd/light_storage.h",
+    commit: "05c838b763fd7907910773cd73e4d10c97f289dd",
+};
+const GODOT_CULL: Source = Source {
+    file: "servers/rendering/renderer_scene_cull.cpp",
+    commit: "e2deec67b9b3258f1c4fc7ee8c9a375676a0571a",
+};
+const GODOT_SOURCES: &[Source] = &[
+    GODOT_SHADER,
+    GODOT_STORAGE,
+    GODOT_RENDER,
+    GODOT_LIGHT,
+    GODOT_HEADER,
+    GODOT_CULL,
+];
 
 /// What both Godot ports take: the receiver's normal offset, the Vogel
 /// disk, the rotation.
-const GODOT_COMMON: [Constant; 5] = [
+const GODOT_COMMON: [Constant; 10] = [
+    Constant { name: "shadow_bias (spot)", value: Value::Text("splane.z += shadow_bias / (light_length * inv_radius), shadow_bias = SHADOW_BIAS / 100.0 * soft_shadow_scale"), unit: "clip depth", source: 0, lines: "736; light_storage.cpp 958, 1011" },
+    Constant { name: "SpotLight3D shadow_bias", value: Value::Num(0.03), unit: "", source: 3, lines: "673" },
+    Constant { name: "spot near / range", value: Value::Num(0.005), unit: "", source: 5, lines: "2322" },
     Constant { name: "get_vogel_disk golden_angle", value: Value::Num(2.4), unit: "radians", source: 2, lines: "38-48" },
     Constant { name: "quick_hash", value: Value::Text("fract(52.9829189 * fract(dot(pos, (0.06711056, 0.00583715))))"), unit: "", source: 0, lines: "236-239" },
     Constant { name: "disk_rotation", value: Value::Text("mat2(vec2(cr, -sr), vec2(sr, cr)), r = quick_hash(gl_FragCoord.xy) * 2 PI"), unit: "", source: 0, lines: "276-282, 341-347, 750-756" },
     Constant { name: "normal_bias (spot)", value: Value::Text("normal * light_length * shadow_normal_bias * (1.0 - abs(dot(normal, light_rel_vec_norm)))"), unit: "", source: 0, lines: "730, 733" },
-    Constant { name: "shadow_normal_bias", value: Value::Text("SHADOW_NORMAL_BIAS (1.0) * shadow_texel_size * 10.0"), unit: "texels", source: 1, lines: "954-955" },
+    Constant { name: "shadow_normal_bias", value: Value::Text("SHADOW_NORMAL_BIAS (1.0) * shadow_texel_size * 10.0"), unit: "", source: 1, lines: "954-955" },
+    Constant { name: "shadow_normal_bias (directional)", value: Value::Text("SHADOW_NORMAL_BIAS (2.0 for DirectionalLight3D) * the split's world texel, times sin θ across the light"), unit: "texels", source: 1, lines: "711; light_3d.cpp 596" },
+    Constant { name: "shadow_texel_size", value: Value::Text("light_instance_get_shadow_texel_size: 1.0 / shadow_size, the atlas slot's side in texels"), unit: "uv", source: 4, lines: "702-721" },
 ];
 
 /// Godot's sides the ports cannot take.
-const GODOT_DEPARTURES: [Departure; 5] = [
-    Departure { what: "its shadow pass and shadow_bias", why: "the port reads the lesson's map (both faces, lesson 02's slope-scaled bias); Godot's shadow pass culling was not read to its lines, and its shadow_bias (0.03 / 100 × the filter's scale, added to the clip depth over distance / range) is in its own depth convention: it is not applied" },
-    Departure { what: "its shadow atlas and 4-split PSSM", why: "one map of the lesson's size stands for the atlas quadrant or the first split; the normal bias's texel is that map's (its larger side)" },
+const GODOT_DEPARTURES: [Departure; 7] = [
+    Departure { what: "its shadow pass and shadow_bias", why: "the port reads the lesson's map (both faces, lesson 02's slope-scaled bias); Godot's shadow pass culling was not read to its lines. Its shadow_bias is not applied: a spot's (0.03 / 100 × the filter's scale, added to the clip depth over distance / range) is in its own depth convention, a sun's (0.1 / 100 × its bias scale and the filter's, light_storage.cpp 709-710) moves the receiver along the light" },
+    Departure { what: "its 16-bit depth", why: "Godot's shadow atlases default to 16-bit depth, the lesson's map is Depth32Float: acne Godot's biases are tuned against is finer here" },
+    Departure { what: "its shadow atlas and 4-split PSSM", why: "a spot's map is the 1024² slot of the 4096² atlas's first quadrant, a sun's the first of 4 splits of its 4096² directional atlas, 2048² (both the project settings' defaults, read in stored versions not pinned to a commit): the port runs those sizes; the normal bias's 10 / shadow_size per metre of light_length is taken as 10 / (2 tan(cone / 2)) of the map's texels at the receiver (the texel's larger side, at its distance along the axis, not its distance from the light)" },
+    Departure { what: "the direction of its sun's normal bias", why: "Godot moves the receiver by n's part across the light, n − L (L·n), sin θ long; the port moves it the same length along n itself (lesson 03's peer_receiver), which also brings it sin θ cos θ nearer the light" },
     Departure { what: "its spot near plane", why: "the spot's reversed depth is taken with the lesson's near and far planes; Godot's own near was not read" },
     Departure { what: "shadow_opacity and TAA (taa_frame_count)", why: "opacity 1 and one frame: nothing to emulate" },
     Departure { what: "the directional call's tex_scale", why: "uv_scale1 * (range_pos - range_begin) * softshadow_angle * soft_shadow_scale comes from Godot's forward shader, found by text search in the store but not resolved to a file and commit" },
@@ -404,8 +498,13 @@ pub const GODOT_PCF: PortCard = PortCard {
         GODOT_COMMON[2],
         GODOT_COMMON[3],
         GODOT_COMMON[4],
+        GODOT_COMMON[5],
+        GODOT_COMMON[6],
+        GODOT_COMMON[7],
+        GODOT_COMMON[8],
+        GODOT_COMMON[9],
     ],
-    departures: &[GODOT_DEPARTURES[0], GODOT_DEPARTURES[1], GODOT_DEPARTURES[3]],
+    departures: &[GODOT_DEPARTURES[0], GODOT_DEPARTURES[1], GODOT_DEPARTURES[2], GODOT_DEPARTURES[3], GODOT_DEPARTURES[5]],
 };
 
 pub const GODOT_SOFT_LOW: PortCard = PortCard {
@@ -487,7 +586,7 @@ pub const GODOT_SOFT_LOW: PortCard = PortCard {
         },
         Constant {
             name: "soft_shadow_scale",
-            value: Value::Text("LIGHT_PARAM_SHADOW_BLUR (default 1.0)"),
+            value: Value::Text("LIGHT_PARAM_SHADOW_BLUR, 1.0 by default (light_3d.cpp 483)"),
             unit: "",
             source: 1,
             lines: "684, 973",
@@ -497,6 +596,11 @@ pub const GODOT_SOFT_LOW: PortCard = PortCard {
         GODOT_COMMON[2],
         GODOT_COMMON[3],
         GODOT_COMMON[4],
+        GODOT_COMMON[5],
+        GODOT_COMMON[6],
+        GODOT_COMMON[7],
+        GODOT_COMMON[8],
+        GODOT_COMMON[9],
     ],
     departures: &GODOT_DEPARTURES,
 };
@@ -542,6 +646,11 @@ const THREE_SOURCES: &[Source] = &[
     THREE_SHADOW_R179,
     THREE_R182_PROGRAM,
 ];
+
+/// three.js's shadow camera, which no three.js port follows.
+const THREE_CAMERA: Departure = Departure { what: "its shadow camera", why: "a spot's PerspectiveCamera(fov 2 × angle, near 0.5, far light.distance or 500) and a sun's OrthographicCamera(±5, near 0.5, far 500), placed from the light to its target (SpotLightShadow.js 17, 51-53; DirectionalLightShadow.js 16); the ports use the lesson's map planes, fitted to the scene (a spot from range / 1000 to the range, a sun's box around the casters), with a stable up instead of (0, 1, 0)" };
+/// three.js's noise runs on gl_FragCoord, origin bottom-left.
+const THREE_NOISE: Departure = Departure { what: "the noise's pixel origin", why: "three.js's interleaved gradient noise reads gl_FragCoord (origin bottom-left), the port the framebuffer position (top-left): each pixel's turn differs, their statistics do not" };
 
 /// What every three.js port takes: the map, its offsets (none).
 const THREE_COMMON: [Constant; 4] = [
@@ -590,7 +699,7 @@ pub const THREEJS_PCF: PortCard = PortCard {
         Constant { name: "PCF taps", value: Value::Num(5.0), unit: "taps", source: 0, lines: "137-143" },
         Constant { name: "vogelDiskSample", value: Value::Text("r = sqrt((i + 0.5) / n), theta = i * 2.399963229728653 + phi"), unit: "", source: 0, lines: "104-111" },
         Constant { name: "phi", value: Value::Text("interleavedGradientNoise(gl_FragCoord.xy) * 6.28318530718"), unit: "radians", source: 0, lines: "97-101, 135" },
-        Constant { name: "radius", value: Value::Text("shadowRadius * texelSize.x, shadowRadius 1"), unit: "texels", source: 0, lines: "132" },
+        Constant { name: "radius", value: Value::Text("shadowRadius * texelSize.x, shadowRadius 1 (LightShadow.radius)"), unit: "texels", source: 0, lines: "132; LightShadow.js 77" },
         THREE_COMMON[0],
         THREE_COMMON[1],
         THREE_COMMON[2],
@@ -598,17 +707,19 @@ pub const THREEJS_PCF: PortCard = PortCard {
     ],
     departures: &[
         Departure { what: "its 24-bit depth", why: "three.js's PCF map is UnsignedIntType depth; the lesson's is Depth32Float: the comparisons agree up to that rounding" },
+        THREE_CAMERA,
+        THREE_NOISE,
     ],
 };
 
 pub const THREEJS_PCF_SOFT: PortCard = PortCard {
     variant: "threejs_pcf_soft",
     renderer: "three.js",
-    role: Role::Option("WebGLRenderer.shadowMap.type = PCFSoftShadowMap, until r182 deprecates it (it then runs PCFShadowMap)"),
+    role: Role::Option("WebGLRenderer.shadowMap.type = PCFSoftShadowMap, through r181; r182 deprecates it"),
     repository: "mrdoob/three.js",
     sources: THREE_SOURCES,
     constants: &[
-        Constant { name: "PCFSoftShadowMap deprecated", value: Value::Text("'PCFSoftShadowMap has been deprecated. Using PCFShadowMap instead.', tested on lights.type, the array of lights"), unit: "", source: 1, lines: "92-102" },
+        Constant { name: "PCFSoftShadowMap deprecated", value: Value::Text("'PCFSoftShadowMap has been deprecated. Using PCFShadowMap instead.', tested on lights.type, the array of lights"), unit: "", source: 1, lines: "99-104" },
         Constant { name: "shadowMapTypeDefines", value: Value::Text("PCF and VSM only; any other type compiles SHADOWMAP_TYPE_BASIC"), unit: "", source: 6, lines: "345-352" },
         Constant { name: "PCF_SOFT taps", value: Value::Num(16.0), unit: "taps", source: 5, lines: "172-206" },
         Constant { name: "PCF_SOFT weights", value: Value::Text("the outer row and column mixed by f = fract(uv * size + 0.5), sum / 9"), unit: "", source: 5, lines: "179-206" },
@@ -620,8 +731,9 @@ pub const THREEJS_PCF_SOFT: PortCard = PortCard {
         THREE_COMMON[3],
     ],
     departures: &[
-        Departure { what: "RGBA-packed depth", why: "the lesson's 32-bit float depth map; the comparison is the same" },
-        Departure { what: "its release", why: "the kernel is r179's (commit 99e4d38), the last before r182 deprecated it; the shadow pass and defaults are r182's, the same there. In r182 as written the warning's test reads lights.type, not the renderer's type, so a user who sets PCFSoftShadowMap gets SHADOWMAP_TYPE_BASIC, one comparison, not PCFShadowMap: not ported" },
+        Departure { what: "RGBA-packed depth", why: "r179 writes its map into an RGBA8 colour target (MeshDepthMaterial, RGBADepthPacking, nearest); the lesson's is a 32-bit float depth map: the comparisons agree up to the packing's rounding" },
+        Departure { what: "its release", why: "the kernel is r179's (commit 99e4d38), unchanged through r181; the shadow pass's sides and the defaults are r182's, the same there. In r182 as written the deprecation's test reads lights.type (the array of lights), not the renderer's type, so a user who sets PCFSoftShadowMap gets SHADOWMAP_TYPE_BASIC, one comparison, not PCFShadowMap: not ported" },
+        THREE_CAMERA,
     ],
 };
 
@@ -649,6 +761,8 @@ pub const THREEJS_VSM: PortCard = PortCard {
     departures: &[
         Departure { what: "16-bit moments", why: "three.js keeps (mean, std_dev) in half floats; the port keeps 32-bit floats" },
         Departure { what: "receivers that cast nothing", why: "three.js draws them into a VSM map too; the port draws the scene's casters, and no lesson 10 scene has an object with casts_shadow = false" },
+        THREE_CAMERA,
+        Departure { what: "the depth units of its variance", why: "its least variance, 1e-7, and Chebyshev's distance are in the map's depth, which its camera's near plane sets: with three.js's 0.5 m a receiver 8 cm behind the default scene's slab is 2.9e-3 deep behind it and in shadow; with the lesson's 0.012 m it is 6.7e-5 deep and lit. The port's figures are of the lesson's planes" },
     ],
 };
 

@@ -1,11 +1,12 @@
 // lesson_10/peers.wgsl: the soft-shadow defaults of renderers people use,
 // each written as its source writes it (the file, commit and lines are on
 // its card, lessons/lesson_10/port_cards.rs). Compiled after soft.wgsl:
-// light_distance, the map's bindings and `soft` are there. Every renderer
-// here keeps reversed depth (1 at the near plane); our map keeps forward
-// depth z, and for the same near and far planes the reversed depth is
-// exactly 1 − z (orthographic and perspective alike), so each port turns
-// our depths into its renderer's before its arithmetic.
+// light_distance, the map's bindings and `soft` are there. Filament, Bevy
+// and Godot keep reversed depth (1 at the near plane), three.js forward
+// depth by default; our map keeps forward depth z, and for the same near
+// and far planes the reversed depth is exactly 1 − z (orthographic and
+// perspective alike), so each reversed port turns our depths into its
+// renderer's before its arithmetic.
 
 // The peer's mode in `soft.mode` (peers.rs `Peer::mode`; soft.rs
 // `Technique::mode` for our PCSS with Filament's and Bevy's search).
