@@ -162,7 +162,7 @@ pub const CHANGES: &[Change] = &[
         lesson: "lesson_10",
         variant: Some("filament_pcss"),
         now: None,
-        commits: &["122f8ed"],
+        commits: &["122f8ed", "60a5198"],
         what: "Filament's own shadow pass (front faces, its polygon offset) and receiver offsets (1 mm towards the light, its normal bias × sin θ), not the lesson's map",
     },
     Change {
@@ -186,7 +186,7 @@ pub const CHANGES: &[Change] = &[
         lesson: "lesson_10",
         variant: Some("godot_soft_low"),
         now: None,
-        commits: &["122f8ed"],
+        commits: &["122f8ed", "60a5198"],
         what: "Godot's normal bias on the receiver (on a spot 10 / shadow_size per metre of distance × (1 − cos θ), on a sun 2 texels × sin θ) and a sun's 2048² split (it ran on 1024²)",
     },
     Change {

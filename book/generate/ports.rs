@@ -76,7 +76,7 @@ pub fn sources() -> String {
     for (lesson, cards) in lessons() {
         for c in cards {
             for s in c.sources {
-                rows.entry((c.repository, s.file, s.commit))
+                rows.entry((s.repository.unwrap_or(c.repository), s.file, s.commit))
                     .or_default()
                     .push(format!("{lesson} `{}`", c.variant));
             }

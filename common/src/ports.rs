@@ -22,6 +22,9 @@ pub struct Source {
     pub file: &'static str,
     /// The full 40-digit commit the file was read at.
     pub commit: &'static str,
+    /// The repository the commit is in, where it is not the card's own (a
+    /// mirror of a release): `owner/name`.
+    pub repository: Option<&'static str>,
 }
 
 /// A value as the source writes it.
@@ -149,7 +152,8 @@ impl PortCard {
         }
         for s in self.sources {
             let hex = s.commit.len() == 40 && s.commit.chars().all(|c| c.is_ascii_hexdigit());
-            if !hex || s.file.is_empty() {
+            let repository = s.repository.is_none_or(|r| r.contains('/'));
+            if !hex || s.file.is_empty() || !repository {
                 out.push(format!("{v}: source {} at {:?}", s.file, s.commit));
             }
         }
@@ -209,7 +213,14 @@ pub fn departures_table(cards: &[PortCard]) -> String {
         let files: Vec<String> = c
             .sources
             .iter()
-            .map(|s| format!("`{}@{}`", s.file, &s.commit[..s.commit.len().min(7)]))
+            .map(|s| {
+                let mirror = s.repository.map_or(String::new(), |r| format!(" ({r})"));
+                format!(
+                    "`{}@{}`{mirror}",
+                    s.file,
+                    &s.commit[..s.commit.len().min(7)]
+                )
+            })
             .collect();
         out += &format!(
             "| `{}` | {} | {} | {} |\n",
@@ -234,6 +245,7 @@ mod tests {
         sources: &[Source {
             file: "a.glsl",
             commit: "0123456789abcdef0123456789abcdef01234567",
+            repository: None,
         }],
         constants: &[Constant {
             name: "TAPS",
@@ -254,6 +266,7 @@ mod tests {
             sources: &[Source {
                 file: "a.glsl",
                 commit: "0123456",
+                repository: None,
             }],
             ..CARD
         };

@@ -19,10 +19,12 @@ pub const LEARNOPENGL_SOURCES: &[Source] = &[
     Source {
         file: "src/5.advanced_lighting/3.1.3.shadow_mapping/3.1.3.shadow_mapping.fs",
         commit: LEARNOPENGL_AT_85530AB,
+        repository: None,
     },
     Source {
         file: "src/5.advanced_lighting/3.1.3.shadow_mapping/shadow_mapping.cpp",
         commit: LEARNOPENGL_AT_85530AB,
+        repository: None,
     },
 ];
 
@@ -157,10 +159,12 @@ pub const WGPU_SOURCES: &[Source] = &[
     Source {
         file: "examples/src/shadow/mod.rs",
         commit: WGPU_AT_64A61EE,
+        repository: None,
     },
     Source {
         file: "examples/src/shadow/shader.wgsl",
         commit: WGPU_AT_64A61EE,
+        repository: None,
     },
 ];
 
@@ -305,26 +309,32 @@ pub const BEVY_SOURCES: [Source; 6] = [
     Source {
         file: "crates/bevy_pbr/src/light/directional_light.rs",
         commit: BEVY_AT_E85A706,
+        repository: None,
     },
     Source {
         file: "crates/bevy_pbr/src/light/mod.rs",
         commit: BEVY_AT_E85A706,
+        repository: None,
     },
     Source {
         file: "crates/bevy_pbr/src/render/light.rs",
         commit: BEVY_AT_E85A706,
+        repository: None,
     },
     Source {
         file: "crates/bevy_pbr/src/render/shadows.wgsl",
         commit: BEVY_AT_E85A706,
+        repository: None,
     },
     Source {
         file: "crates/bevy_core_pipeline/src/core_3d/mod.rs",
         commit: BEVY_AT_E85A706,
+        repository: None,
     },
     Source {
         file: "crates/bevy_pbr/src/pbr_material.rs",
         commit: BEVY_AT_E85A706,
+        repository: None,
     },
 ];
 

@@ -111,6 +111,7 @@ const BEVY_SOURCES: [Source; 7] = bevy_sources();
 pub const BEVY_SHADOW_SAMPLING: Source = Source {
     file: "crates/bevy_pbr/src/render/shadow_sampling.wgsl",
     commit: BEVY_AT_3971912,
+    repository: None,
 };
 
 /// Bevy's default filter; `source: 1` is `crates/bevy_pbr/src/light/mod.rs`

@@ -28,6 +28,7 @@ pub const BEVY_POINT: PortCard = PortCard {
         Source {
             file: "crates/bevy_pbr/src/light/point_light.rs",
             commit: BEVY_AT_E85A706,
+            repository: None,
         },
         // The files lesson 02's Bevy card (and lesson 03's) cites too.
         l02::BEVY_SOURCES[1],
@@ -37,12 +38,14 @@ pub const BEVY_POINT: PortCard = PortCard {
         Source {
             file: "crates/bevy_render/src/maths.wgsl",
             commit: BEVY_AT_E85A706,
+            repository: None,
         },
         l02::BEVY_SOURCES[4],
         l02::BEVY_SOURCES[5],
         Source {
             file: "crates/bevy_pbr/src/render/pbr_functions.wgsl",
             commit: BEVY_AT_E85A706,
+            repository: None,
         },
     ],
     constants: &[

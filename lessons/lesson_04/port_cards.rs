@@ -48,14 +48,17 @@ pub const LEARNOPENGL_1TAP: PortCard = PortCard {
         Source {
             file: "src/5.advanced_lighting/3.2.1.point_shadows/point_shadows.cpp",
             commit: LEARNOPENGL_AT_279E6BE,
+            repository: None,
         },
         Source {
             file: "src/5.advanced_lighting/3.2.1.point_shadows/3.2.1.point_shadows_depth.fs",
             commit: LEARNOPENGL_AT_279E6BE,
+            repository: None,
         },
         Source {
             file: "src/5.advanced_lighting/3.2.1.point_shadows/3.2.1.point_shadows.fs",
             commit: LEARNOPENGL_AT_279E6BE,
+            repository: None,
         },
     ],
     constants: &[
@@ -156,15 +159,18 @@ pub const LEARNOPENGL_PCF20: PortCard = PortCard {
         Source {
             file: "src/5.advanced_lighting/3.2.2.point_shadows_soft/point_shadows_soft.cpp",
             commit: LEARNOPENGL_AT_F844F7C,
+            repository: None,
         },
         // point_shadows_soft.cpp line 82 loads the 3.2.1 depth shaders.
         Source {
             file: "src/5.advanced_lighting/3.2.1.point_shadows/3.2.1.point_shadows_depth.fs",
             commit: LEARNOPENGL_AT_F844F7C,
+            repository: None,
         },
         Source {
             file: "src/5.advanced_lighting/3.2.2.point_shadows_soft/3.2.2.point_shadows.fs",
             commit: LEARNOPENGL_AT_F844F7C,
+            repository: None,
         },
     ],
     constants: &[

@@ -56,7 +56,7 @@ pub struct MomentsMap {
     /// The blurred moments, four 32-bit floats per texel, row by row: bound
     /// at group 2 binding 3 of the lit pass.
     pub buffer: wgpu::Buffer,
-    /// The first pass's output (blurred along x).
+    /// The first pass's output (blurred along x; along y for three.js, whose blur runs y first).
     first: wgpu::Buffer,
     size: u32,
     pipeline: wgpu::ComputePipeline,

@@ -14,44 +14,54 @@ use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
 const FILAMENT_SHADER: Source = Source {
     file: "shaders/src/surface_shadowing.fs",
     commit: "f366ac3a35118848a4b59182c286a09c3205d004",
+    repository: None,
 };
 const FILAMENT_MANAGER: Source = Source {
     file: "filament/src/ShadowMapManager.cpp",
     commit: "cb91a23a03f62cb09f2f77217e9e98ea69f0813d",
+    repository: None,
 };
 const FILAMENT_JAVA: Source = Source {
     file: "android/filament-android/src/main/java/com/google/android/filament/LightManager.java",
     commit: "c35a60808c9b24bb2699f72f36dc2aa0e1f5087a",
+    repository: None,
 };
 const FILAMENT_VIEW: Source = Source {
     file: "filament/src/PerViewUniforms.cpp",
     commit: "cb91a23a03f62cb09f2f77217e9e98ea69f0813d",
+    repository: None,
 };
 const FILAMENT_OPTIONS: Source = Source {
     file: "filament/include/filament/Options.h",
     commit: "2fac13e154fb1a64bbca70e5857838d319957e9c",
+    repository: None,
 };
 const FILAMENT_RENDER_PASS: Source = Source {
     file: FILAMENT_RENDER_PASS_FILE,
     commit: FILAMENT_RENDER_PASS_COMMIT,
+    repository: None,
 };
 const FILAMENT_RENDER_PASS_FILE: &str = "filament/src/RenderPass.cpp";
 const FILAMENT_RENDER_PASS_COMMIT: &str = "fc9e5e249800cbcd2b438eda1ae0001dcb25de5d";
 const FILAMENT_SHADOW_MAP: Source = Source {
     file: "filament/src/ShadowMap.cpp",
     commit: "0362f36ef6e6017426730cbbb68e7af1fda2f38c",
+    repository: None,
 };
 const FILAMENT_COMMON_SHADOWING: Source = Source {
     file: "shaders/src/common_shadowing.glsl",
     commit: "7c0643f122bbb9c7d61f15ba4e1c5f6db2460515",
+    repository: None,
 };
 const FILAMENT_GETTERS: Source = Source {
     file: "shaders/src/surface_getters.fs",
     commit: "24a7bc2799eee5e5694b5df2adea457727ae25d8",
+    repository: None,
 };
 const FILAMENT_MATERIAL_BUILDER: Source = Source {
     file: "libs/filamat/include/filamat/MaterialBuilder.h",
     commit: "cb91a23a03f62cb09f2f77217e9e98ea69f0813d",
+    repository: None,
 };
 /// The sources of the PCF and PCSS cards, in the order their constants
 /// index them.
@@ -248,40 +258,51 @@ pub const FILAMENT_EVSM: PortCard = PortCard {
 const BEVY_SAMPLING: Source = Source {
     file: "crates/bevy_pbr/src/render/shadow_sampling.wgsl",
     commit: BEVY_COMMIT,
+    repository: None,
 };
 const BEVY_SHADOWS: Source = Source {
     file: "crates/bevy_pbr/src/render/shadows.wgsl",
     commit: BEVY_COMMIT,
+    repository: None,
 };
 const BEVY_UTILS: Source = Source {
     file: "crates/bevy_pbr/src/render/utils.wgsl",
-    commit: "e705fe8ea8a7bfbe8b5f343b64910ab07ccd6368",
+    commit: BEVY_COMMIT,
+    repository: None,
 };
 const BEVY_LIGHT: Source = Source {
     file: "crates/bevy_pbr/src/render/light.rs",
     commit: BEVY_COMMIT,
+    repository: None,
 };
 const BEVY_SPOT: Source = Source {
     file: "crates/bevy_light/src/spot_light.rs",
     commit: BEVY_COMMIT,
+    repository: None,
 };
 const BEVY_DIRECTIONAL: Source = Source {
     file: "crates/bevy_light/src/directional_light.rs",
     commit: BEVY_COMMIT,
+    repository: None,
 };
 const BEVY_MATERIAL: Source = Source {
     file: "crates/bevy_pbr/src/pbr_material.rs",
     commit: BEVY_COMMIT,
+    repository: None,
 };
 const BEVY_PREPASS: Source = Source {
     file: "crates/bevy_pbr/src/prepass/mod.rs",
     commit: BEVY_COMMIT,
+    repository: None,
 };
 const BEVY_LIGHT_LIB: Source = Source {
     file: "crates/bevy_light/src/lib.rs",
     commit: BEVY_COMMIT,
+    repository: None,
 };
-const BEVY_COMMIT: &str = "00ef04ec8ad0f5b8abeea45c6461a003bcb1a0fa";
+/// A commit on Bevy's main line (#23083, 2026-02-22); every file cited
+/// below is byte-identical at 00ef04ec, where it was first read.
+const BEVY_COMMIT: &str = "ea0d43eb67ab99d3ce157feffa7d2ea4bebcafd2";
 
 /// Bevy's sources, in the order the two Bevy cards' constants index them.
 const BEVY_SOURCES: &[Source] = &[
@@ -402,9 +423,9 @@ pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
         Constant { name: "no blocker", value: Value::Text("z_blocker 0.0 (the filter still runs)"), unit: "", source: 0, lines: "250-252" },
         Constant { name: "blur_size", value: Value::Text("max((z_blocker - depth) * light_size / depth, 0.5)"), unit: "", source: 0, lines: "303" },
         Constant { name: "Jimenez spacing", value: Value::Text("map(0.00390625, 0.022949219, 0.015, 0.035, texel_size) * blur_size / (texel_size * shadow_map_size)"), unit: "uv", source: 0, lines: "169-175" },
-        Constant { name: "SPIRAL_OFFSET_0_..7_", value: Value::List(BEVY_SPIRAL_OFFSETS), unit: "filter radii", source: 2, lines: "75-82" },
+        Constant { name: "SPIRAL_OFFSET_0_..7_", value: Value::List(BEVY_SPIRAL_OFFSETS), unit: "filter radii", source: 2, lines: "88-95" },
         Constant { name: "random_rotation_matrix", value: Value::Text("2 PI * interleaved_gradient_noise(frag_coord, 1) when not temporal; mat2x2(m.y, -m.x, m.x, m.y), m = (sin, cos)"), unit: "", source: 0, lines: "156-164" },
-        Constant { name: "interleaved_gradient_noise", value: Value::Text("fract(52.9829189 * fract(0.06711056 * x + 0.00583715 * y)), xy + 5.588238 * (frame % 64)"), unit: "", source: 2, lines: "66-69" },
+        Constant { name: "interleaved_gradient_noise", value: Value::Text("fract(52.9829189 * fract(0.06711056 * x + 0.00583715 * y)), xy + 5.588238 * (frame % 64)"), unit: "", source: 2, lines: "72-75" },
         Constant { name: "PCSS taps", value: Value::Num(8.0), unit: "taps", source: 0, lines: "177-209, 221-254" },
         Constant { name: "soft_shadow_size (directional)", value: Value::Text("None by default: no PCSS on a sun"), unit: "", source: 5, lines: "116, 158" },
     ],
@@ -424,26 +445,32 @@ pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
 const GODOT_SHADER: Source = Source {
     file: "servers/rendering/renderer_rd/shaders/scene_forward_lights_inc.glsl",
     commit: "8bae2a49c6fb4ac65abbe9d0b5265fcb06e8b1d7",
+    repository: None,
 };
 const GODOT_STORAGE: Source = Source {
     file: "servers/rendering/renderer_rd/storage_rd/light_storage.cpp",
     commit: "8403baa5a1e36485516c769a6393e056ed55192a",
+    repository: None,
 };
 const GODOT_RENDER: Source = Source {
     file: "servers/rendering/renderer_rd/renderer_scene_render_rd.cpp",
     commit: "238862bddb647a832b4be38791b86f882b20af6a",
+    repository: None,
 };
 const GODOT_LIGHT: Source = Source {
     file: "scene/3d/light_3d.cpp",
     commit: "8ea4ec9531e385802c08b97cb214e2de03056ddc",
+    repository: None,
 };
 const GODOT_HEADER: Source = Source {
     file: "servers/rendering/renderer_rd/storage_rd/light_storage.h",
     commit: "05c838b763fd7907910773cd73e4d10c97f289dd",
+    repository: None,
 };
 const GODOT_CULL: Source = Source {
     file: "servers/rendering/renderer_scene_cull.cpp",
     commit: "e2deec67b9b3258f1c4fc7ee8c9a375676a0571a",
+    repository: None,
 };
 const GODOT_SOURCES: &[Source] = &[
     GODOT_SHADER,
@@ -476,7 +503,7 @@ const GODOT_DEPARTURES: [Departure; 7] = [
     Departure { what: "its shadow atlas and 4-split PSSM", why: "a spot's map is the 1024² slot of the 4096² atlas's first quadrant, a sun's the first of 4 splits of its 4096² directional atlas, 2048² (both the project settings' defaults, read in stored versions not pinned to a commit): the port runs those sizes; the normal bias's 10 / shadow_size per metre of light_length is taken as 10 / (2 tan(cone / 2)) of the map's texels at the receiver (the texel's larger side, at its distance along the axis, not its distance from the light)" },
     Departure { what: "the direction of its sun's normal bias", why: "Godot moves the receiver by n's part across the light, n − L (L·n), sin θ long; the port moves it the same length along n itself (lesson 03's peer_receiver), which also brings it sin θ cos θ nearer the light" },
     Departure { what: "its spot near plane", why: "the spot's reversed depth is taken with the lesson's near and far planes; Godot's own near was not read" },
-    Departure { what: "shadow_opacity and TAA (taa_frame_count)", why: "opacity 1 and one frame: nothing to emulate" },
+    Departure { what: "shadow_opacity and TAA (taa_frame_count)", why: "opacity 1 and one frame: nothing to emulate; Soft Low is the project's default quality on desktop (a mobile project's directional default is Hard, one tap), read in stored versions not pinned to a commit" },
     Departure { what: "the directional call's tex_scale", why: "uv_scale1 * (range_pos - range_begin) * softshadow_angle * soft_shadow_scale comes from Godot's forward shader, found by text search in the store but not resolved to a file and commit" },
 ];
 
@@ -606,35 +633,44 @@ pub const GODOT_SOFT_LOW: PortCard = PortCard {
 };
 
 const THREE_R182: &str = "ec1bc8aed59bd41f636ef19e420451a3f7975812";
+/// The mirror of three.js's releases whose commit `THREE_R182` is r182.0.
+const THREE_R182_MIRROR: &str = "pschroen/three-src";
 /// r182's files, from the `pschroen/three-src` mirror of release r182.0
 /// (`mrdoob/three.js` is stored only at other commits).
 const THREE_R182_SHADOW: Source = Source {
     file: "src/renderers/shaders/ShaderChunk/shadowmap_pars_fragment.glsl.js",
     commit: THREE_R182,
+    repository: Some(THREE_R182_MIRROR),
 };
 const THREE_R182_MAP: Source = Source {
     file: "src/renderers/webgl/WebGLShadowMap.js",
     commit: THREE_R182,
+    repository: Some(THREE_R182_MIRROR),
 };
 const THREE_R182_MATERIAL: Source = Source {
     file: "src/materials/Material.js",
     commit: THREE_R182,
+    repository: Some(THREE_R182_MIRROR),
 };
 const THREE_R182_LIGHT_SHADOW: Source = Source {
     file: "src/lights/LightShadow.js",
     commit: THREE_R182,
+    repository: Some(THREE_R182_MIRROR),
 };
 const THREE_R182_VSM: Source = Source {
     file: "src/renderers/shaders/ShaderLib/vsm.glsl.js",
     commit: THREE_R182,
+    repository: Some(THREE_R182_MIRROR),
 };
 const THREE_R182_PROGRAM: Source = Source {
     file: "src/renderers/webgl/WebGLProgram.js",
     commit: THREE_R182,
+    repository: Some(THREE_R182_MIRROR),
 };
 const THREE_SHADOW_R179: Source = Source {
     file: "src/renderers/shaders/ShaderChunk/shadowmap_pars_fragment.glsl.js",
     commit: "99e4d38509e60dccd471011b64d03975102dd25f",
+    repository: None,
 };
 /// three.js's sources, in the order the three cards' constants index them.
 const THREE_SOURCES: &[Source] = &[
