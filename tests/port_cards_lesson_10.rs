@@ -533,11 +533,7 @@ fn threejs_ports_run_their_cards() {
             );
             assert_eq!(c.list("bias, normalBias"), &[0.0, 0.0]);
             assert_eq!(p.receiver_bias(), ShadowBias::NONE);
-            assert_eq!(
-                p.params().receiver_plane,
-                false,
-                "three.js has no receiver plane"
-            );
+            assert!(!p.params().receiver_plane, "three.js has no receiver plane");
             assert_eq!(p.map_size() as f64, c.num("mapSize"));
         }
     }
