@@ -37,7 +37,7 @@ pub fn table(cards: &[PortCard]) -> String {
 const DEPARTURE_COLUMNS: &[(&str, &str)] = &[
     (
         "variant",
-        "the lesson's variant that ports a renderer's default (its `--variant` name)",
+        "the lesson's variant that ports a renderer's default or one of its options (its `--variant` name; the sources table below says which)",
     ),
     (
         "renderer",

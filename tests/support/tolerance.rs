@@ -179,8 +179,8 @@ pub const OVERRIDES: &[Override] = &[
             abs: 10.0,
             rel: 0.0,
         },
-        measured: "lesson 10's port of Godot's Soft Low, without Godot's own depth and \
-                   normal bias (its card's first departure): its untilted disk acnes \
+        measured: "lesson 10's port of Godot's Soft Low as it ran until 60a5198, without \
+                   Godot's own depth and normal bias (ported since): its untilted disk acnes \
                    the floor, and which tap self-shadows is decided by the last bit of \
                    a depth, over whole regions at once. At 640x360 on an NVIDIA H200 \
                    (2026-11-27) against lavapipe: misclassified 1.872 against 0.988 % \
