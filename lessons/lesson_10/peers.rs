@@ -400,8 +400,9 @@ impl Peer {
         }
     }
 
-    /// Texels along the normal × sin θ (Filament's normal bias, outside
-    /// VSM), which `ShadowBias` has no field for.
+    /// Texels along the normal × sin θ, which `ShadowBias` has no field
+    /// for: Filament's normal bias outside VSM, and Godot's on a sun (the
+    /// Godot port whose map is a sun's 2048² split).
     pub fn receiver_normal_sin(self) -> f32 {
         match self {
             Peer::GodotPcf { map, .. } | Peer::GodotSoft { map, .. }
