@@ -11,6 +11,8 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 use serde_json::Value;
 
+pub use crate::outcome::RunStatus;
+use crate::outcome::{failed_run, why_not_run};
 use crate::runner::{RunArgs, Runner};
 use crate::spec::{Check, Exercise, Side, Spec, Target};
 
@@ -49,6 +51,8 @@ pub struct CheckResult {
     /// Whether `feedback` came from one of the exercise's hints.
     pub hinted: bool,
     pub diff_image: Option<String>,
+    /// How the run on this scene ended.
+    pub status: RunStatus,
 }
 
 /// One exercise's grade: the grader's JSON has one per exercise.
@@ -58,6 +62,8 @@ pub struct ExerciseResult {
     pub exercise: String,
     pub title: String,
     pub passed: bool,
+    /// `did_not_finish` or `crashed` when a run of it did, else `finished`.
+    pub status: RunStatus,
     /// The deciding check: the first that failed, else the first.
     pub metric: String,
     pub scene: String,
@@ -174,12 +180,24 @@ fn resolve(t: &Target, report: &Value, metric_name: &str) -> Option<(f64, String
     }
 }
 
-/// The likely cause: of the hints whose condition holds on this run, the
-/// first about the failing check's own metric, else the first; filled in.
-fn likely_cause(ex: &Exercise, report: &Value, failing_metric: &str) -> Option<String> {
-    let holding: Vec<(&str, String)> = ex
+/// The likely cause: of the hints whose condition holds on this run (of
+/// scene `scene`), the first about the failing check's own metric, else
+/// the first; filled in. A hint for one scene only counts on that scene,
+/// and there comes before the others: it names what the scene is for.
+fn likely_cause(
+    ex: &Exercise,
+    report: &Value,
+    scene: &str,
+    failing_metric: &str,
+) -> Option<String> {
+    let mut hints: Vec<_> = ex
         .hints
         .iter()
+        .filter(|h| h.scene.as_deref().is_none_or(|s| s == scene))
+        .collect();
+    hints.sort_by_key(|h| h.scene.is_none());
+    let holding: Vec<(&str, String)> = hints
+        .into_iter()
         .filter_map(|h| {
             let value = metric(report, &ex.variant, &h.metric)?;
             let (limit, _) = resolve(&h.target(), report, &h.metric)?;
@@ -307,7 +325,7 @@ fn grade_check(
     let cause = if passed {
         None
     } else {
-        likely_cause(ex, report, &check.metric)
+        likely_cause(ex, report, &check.scene, &check.metric)
     };
     let hinted = cause.is_some();
     let feedback = (!passed).then(|| match (measured, &target) {
@@ -335,32 +353,8 @@ fn grade_check(
         feedback,
         hinted,
         diff_image: diff.is_file().then(|| diff.display().to_string()),
+        status: RunStatus::Finished,
     }
-}
-
-/// A failed run's result for every check on that scene.
-fn failed_run(
-    ex: &Exercise,
-    checks: &[&Check],
-    label: &str,
-    hidden: bool,
-    why: &str,
-) -> Vec<CheckResult> {
-    checks
-        .iter()
-        .map(|c| CheckResult {
-            scene: label.to_string(),
-            hidden,
-            metric: c.metric.clone(),
-            measured: None,
-            target: None,
-            target_text: "(not run)".into(),
-            passed: false,
-            feedback: Some(format!("{} did not run on {label}: {why}", ex.variant)),
-            hinted: false,
-            diff_image: None,
-        })
-        .collect()
 }
 
 /// Grades one exercise of `lesson`.
@@ -384,10 +378,25 @@ pub fn grade_exercise(
     } else {
         ex.scenes()
     };
+    // After a run that did not finish, the exercise's other scenes are not
+    // run: each would wait out the time limit again.
+    let mut stuck: Option<String> = None;
+    let not_again = |first: &str| format!("not run: {} did not finish on {first}", ex.variant);
     for scene in own_scenes {
         let (label, path) = scene_of(&opts.root, &scene);
         let out = base.join(label.trim_end_matches(".toml"));
         let on_scene: Vec<&Check> = ex.checks.iter().filter(|c| c.scene == scene).collect();
+        if let Some(first) = &stuck {
+            let why = not_again(first);
+            checks.extend(failed_run(
+                &on_scene,
+                &label,
+                false,
+                &why,
+                RunStatus::DidNotFinish,
+            ));
+            continue;
+        }
         match run_scene(runner, opts, lesson, ex, path.as_deref(), &out, &variants) {
             Ok(report) => {
                 let name = |k: &str| report["adapter"][k].as_str().unwrap_or("").to_string();
@@ -397,7 +406,13 @@ pub fn grade_exercise(
                     checks.push(grade_check(ex, c, &label, false, &report, &out));
                 }
             }
-            Err(e) => checks.extend(failed_run(ex, &on_scene, &label, false, &format!("{e:#}"))),
+            Err(e) => {
+                let (why, status) = why_not_run(&e, ex, lesson, &label);
+                if status == RunStatus::DidNotFinish {
+                    stuck = Some(label.clone());
+                }
+                checks.extend(failed_run(&on_scene, &label, false, &why, status));
+            }
         }
     }
     let mut skipped = Vec::new();
@@ -408,6 +423,17 @@ pub fn grade_exercise(
                 .file_name()
                 .map_or("hidden".into(), |n| n.to_string_lossy().to_string());
             let out = base.join("hidden").join(label.trim_end_matches(".toml"));
+            if let Some(first) = &stuck {
+                let why = not_again(first);
+                checks.extend(failed_run(
+                    &hidden,
+                    &label,
+                    true,
+                    &why,
+                    RunStatus::DidNotFinish,
+                ));
+                continue;
+            }
             match run_scene(runner, opts, lesson, ex, Some(&scene), &out, &variants) {
                 Ok(report) => {
                     for c in &hidden {
@@ -423,8 +449,11 @@ pub fn grade_exercise(
                     if refused {
                         skipped.push(format!("{label}: {e:#}"));
                     } else {
-                        let why = format!("{e:#}");
-                        checks.extend(failed_run(ex, &hidden, &label, true, &why));
+                        let (why, status) = why_not_run(&e, ex, lesson, &label);
+                        if status == RunStatus::DidNotFinish {
+                            stuck = Some(label.clone());
+                        }
+                        checks.extend(failed_run(&hidden, &label, true, &why, status));
                     }
                 }
             }
@@ -444,8 +473,13 @@ pub fn grade_exercise(
             feedback: Some("the lesson refused every hidden scene, so nothing was graded".into()),
             hinted: false,
             diff_image: None,
+            status: RunStatus::Finished,
         },
     };
+    let status = [RunStatus::DidNotFinish, RunStatus::Crashed]
+        .into_iter()
+        .find(|s| checks.iter().any(|c| c.status == *s))
+        .unwrap_or(RunStatus::Finished);
     let feedback = match &d.feedback {
         Some(f) => f.clone(),
         None => format!(
@@ -461,6 +495,7 @@ pub fn grade_exercise(
         exercise: ex.variant.clone(),
         title: ex.title.clone(),
         passed,
+        status,
         metric: d.metric.clone(),
         scene: d.scene.clone(),
         measured: d.measured,
@@ -500,7 +535,12 @@ pub fn grade_lesson(
 
 /// The lines a student reads for one exercise.
 pub fn describe(r: &ExerciseResult) -> String {
-    let verdict = if r.passed { "PASS" } else { "FAIL" };
+    let verdict = match (r.passed, r.status) {
+        (true, _) => "PASS",
+        (false, RunStatus::DidNotFinish) => "FAIL (did not finish)",
+        (false, RunStatus::Crashed) => "FAIL (crashed)",
+        (false, RunStatus::Finished) => "FAIL",
+    };
     let mut s = format!("{verdict} {} {}: {}\n", r.lesson, r.exercise, r.title);
     if !r.passed {
         s += &format!("     task: {}\n", r.task);

@@ -25,6 +25,7 @@
 mod runner;
 
 mod grading;
+mod outcome;
 mod spec;
 
 use std::path::{Path, PathBuf};
@@ -60,6 +61,12 @@ struct Cli {
     /// vulkan | gl | metal | dx12 (WGPU_BACKEND is honoured too).
     #[arg(long)]
     backend: Option<String>,
+    /// Seconds one lesson run (one exercise on one scene) may take; one
+    /// still running then is stopped, and its exercise fails as "did not
+    /// finish" (a loop that never ends?).
+    #[arg(long, value_name = "SECONDS", env = "WORKBOOK_RUN_TIME_LIMIT",
+          default_value_t = DEFAULT_TIME_LIMIT_S)]
+    time_limit: f64,
     /// For maintainers (CI): grade the starter code and succeed only if
     /// EVERY exercise fails with a likely cause from its hints, which
     /// proves that the checks can fail and that each says why.
@@ -72,7 +79,20 @@ struct Cli {
     /// proves that no chapter hands out its exercises' answers.
     #[arg(long)]
     check_copies: bool,
+    /// For maintainers (CI), built with `--features chapter_copies`: grade
+    /// each exercise answered half right (`tests/half_right/`: the mistake
+    /// a student is likely to make, the case its chapter warns about, left
+    /// out), and succeed only if EVERY one fails with a likely cause from
+    /// its hints, which proves that the graded scenes hold those cases.
+    #[arg(long)]
+    check_half_right: bool,
 }
+
+/// `--time-limit`'s default, in seconds: some 20 times the slowest run of
+/// a graded scene on lavapipe (lesson 09's default scene, 8 s on 2 shared
+/// cores), and above the lessons' own GPU watchdog (120 s,
+/// `common::gpu::watchdog`), whose line names a shader loop.
+const DEFAULT_TIME_LIMIT_S: f64 = 180.0;
 
 /// The variable that picks which chapter copy the lessons compile
 /// (`common::gpu::render::chapter_copy_calls`): `calls`, or the pasted one.
@@ -195,8 +215,13 @@ fn strip_ansi(line: &str) -> String {
 }
 
 fn run(cli: Cli) -> Result<bool> {
-    if cli.check_starters && cli.check_copies {
-        bail!("--check-starters and --check-copies: one check a run");
+    if [cli.check_starters, cli.check_copies, cli.check_half_right]
+        .iter()
+        .filter(|&&c| c)
+        .count()
+        > 1
+    {
+        bail!("--check-starters, --check-copies and --check-half-right: one check a run");
     }
     // The exercise set the lessons run with (`WORKBOOK_EXERCISES`, read by
     // them): the checks name theirs; else the environment's, or the
@@ -210,6 +235,13 @@ fn run(cli: Cli) -> Result<bool> {
             );
         }
         ExerciseSet::ChapterCopies
+    } else if cli.check_half_right {
+        if !ExerciseSet::HalfRight.built() {
+            bail!(
+                "--check-half-right grades tests/half_right/: build with --features chapter_copies"
+            );
+        }
+        ExerciseSet::HalfRight
     } else {
         ExerciseSet::from_env().map_err(anyhow::Error::msg)?
     };
@@ -230,6 +262,12 @@ fn run(cli: Cli) -> Result<bool> {
             bail!("--scenes: {} is not a folder", d.display());
         }
     }
+    if !(cli.time_limit > 0.0 && cli.time_limit < 1e9) {
+        bail!(
+            "--time-limit {}: give a number of seconds above 0 (or WORKBOOK_RUN_TIME_LIMIT)",
+            cli.time_limit
+        );
+    }
     let adapter = match &cli.adapter {
         Some(a) => {
             common::gpu::AdapterChoice::parse(a)?;
@@ -246,7 +284,12 @@ fn run(cli: Cli) -> Result<bool> {
     };
     rebuild_lessons()?;
     let exe = std::env::current_exe().context("cannot find the grade binary's own path")?;
-    let runner = runner::Runner::beside(&exe)?;
+    // The lessons from another folder: tests/grade_limits.rs's stand-ins.
+    let mut runner = match std::env::var_os("WORKBOOK_LESSON_BIN_DIR").filter(|d| !d.is_empty()) {
+        Some(dir) => runner::Runner::in_dir(dir.into()).context("WORKBOOK_LESSON_BIN_DIR")?,
+        None => runner::Runner::beside(&exe)?,
+    };
+    runner.time_limit = Some(std::time::Duration::from_secs_f64(cli.time_limit));
     let out = cli.out.clone().unwrap_or_else(|| root.join("target/grade"));
     // The copy check grades every exercise twice: answered with the
     // chapter's listing pasted, then with a call of the lesson's own
@@ -319,17 +362,24 @@ fn run(cli: Cli) -> Result<bool> {
             format!("{} ({})", r.adapter, r.backend)
         });
     println!(
-        "graded {} exercises: {passed} passed, {} failed ({}; on {on}; results in {})",
+        "graded {} exercises: {passed} passed, {} failed{} ({}; on {on}; results in {})",
         all.len(),
         all.len() - passed,
+        stopped_count(&all),
         match set {
             ExerciseSet::Solutions => "reference solutions",
             ExerciseSet::ChapterCopies => "the chapters' own code, copied",
+            ExerciseSet::HalfRight => "half-right answers",
             ExerciseSet::Starter => "your code",
         },
         json.display()
     );
-    if cli.check_starters {
+    if cli.check_starters || cli.check_half_right {
+        let what = if cli.check_starters {
+            "starters"
+        } else {
+            "half-right answers"
+        };
         let bad: Vec<String> = all
             .iter()
             .filter(|r| r.passed || !r.checks.iter().any(|c| c.hinted))
@@ -337,13 +387,13 @@ fn run(cli: Cli) -> Result<bool> {
             .collect();
         if !bad.is_empty() {
             println!(
-                "starter check FAILED: these starters pass, or fail without a hint naming the cause: {}",
+                "{what} check FAILED: these pass, or fail without a hint naming the cause: {}",
                 bad.join(", ")
             );
             return Ok(false);
         }
         println!(
-            "starter check passed: all {} starters fail, each with its likely cause",
+            "{what} check passed: all {} {what} fail, each with its likely cause",
             all.len()
         );
         return Ok(true);
@@ -370,6 +420,22 @@ fn run(cli: Cli) -> Result<bool> {
         return Ok(true);
     }
     Ok(passed == all.len())
+}
+
+/// The summary's count of the exercises that did not finish or crashed:
+/// `", of which 1 did not finish and 1 crashed"`, or nothing.
+fn stopped_count(all: &[grading::ExerciseResult]) -> String {
+    use grading::RunStatus::{Crashed, DidNotFinish};
+    let parts: Vec<String> = [(DidNotFinish, "did not finish"), (Crashed, "crashed")]
+        .into_iter()
+        .map(|(s, what)| (all.iter().filter(|r| r.status == s).count(), what))
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+    if parts.is_empty() {
+        return String::new();
+    }
+    format!(", of which {}", parts.join(" and "))
 }
 
 fn main() -> ExitCode {

@@ -119,6 +119,10 @@ pub struct Hint {
     pub factor: f64,
     #[serde(default)]
     pub slack: f64,
+    /// Only on this scene (a check's `scene`): a cause that one of the
+    /// exercise's scenes exists to catch. Every scene when unset.
+    #[serde(default)]
+    pub scene: Option<String>,
     /// The sentence; `{value}` is the hint metric's measured value.
     pub say: String,
     /// What to change (a `[[fix]]` of the file), printed after `say`.
@@ -140,6 +144,14 @@ pub struct Target<'a> {
     pub variant: Option<&'a str>,
     pub factor: f64,
     pub slack: f64,
+}
+
+impl Target<'_> {
+    /// A comparison with NaN or infinity passes or fails whatever is measured.
+    fn is_finite(&self) -> bool {
+        let value = self.value.is_none_or(f64::is_finite);
+        value && self.factor.is_finite() && self.slack.is_finite()
+    }
 }
 
 /// One side of a target: a number or a variant, and which way it points.
@@ -223,6 +235,12 @@ fn check_metric(metric: &str, at: &str) -> Result<()> {
     Ok(())
 }
 
+/// 1-based line of a byte offset, for error messages.
+fn line_of(text: &str, offset: usize) -> usize {
+    let before = &text.as_bytes()[..offset.min(text.len())];
+    before.iter().filter(|&&b| b == b'\n').count() + 1
+}
+
 impl Spec {
     /// The spec file of `lesson` under the workbook's `root`.
     pub fn path(root: &Path, lesson: &str) -> PathBuf {
@@ -234,8 +252,13 @@ impl Spec {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read the exercise spec", path.display()))?;
         let mut spec: Spec = toml::from_str(&text).map_err(|e| {
-            let msg = e.message().replace('\n', " ");
-            anyhow::anyhow!("{}: not a valid exercise spec: {msg}", path.display())
+            let msg = e.message().replace(['\n', '\r'], " ");
+            // The line: toml's message alone may name no key ("duplicate key").
+            let at = match e.span() {
+                Some(s) => format!("{}:{}", path.display(), line_of(&text, s.start)),
+                None => path.display().to_string(),
+            };
+            anyhow::anyhow!("{at}: not a valid exercise spec: {msg}")
         })?;
         if spec.exercises.is_empty() {
             bail!("{}: no [[exercise]] in the spec", path.display());
@@ -275,10 +298,11 @@ impl Spec {
                     bail!("{at}: give exactly one of at_most, at_least, at_most_variant, at_least_variant");
                 }
                 if c.scene != "default" && !scenes_dir.join(&c.scene).is_file() {
-                    bail!("{at}: scene file scenes/{} does not exist", c.scene);
+                    let file = c.scene.escape_debug();
+                    bail!("{at}: scene file scenes/{file} does not exist");
                 }
-                if !(c.bound.factor.is_finite() && c.bound.slack.is_finite()) {
-                    bail!("{at}: factor and slack must be finite numbers");
+                if !c.bound.target().is_finite() {
+                    bail!("{at}: at_most, at_least, factor and slack must be finite numbers");
                 }
             }
             for h in &ex.hints {
@@ -286,6 +310,14 @@ impl Spec {
                 check_metric(&h.metric, &at)?;
                 if given(&h.limits()) != 1 {
                     bail!("{at}: give exactly one of above, below, above_variant, below_variant");
+                }
+                if !h.target().is_finite() {
+                    bail!("{at}: above, below, factor and slack must be finite numbers");
+                }
+                if let Some(scene) = &h.scene {
+                    if !ex.checks.iter().any(|c| &c.scene == scene) {
+                        bail!("{at}: scene {scene:?} is not one of the exercise's check scenes");
+                    }
                 }
             }
         }
@@ -398,6 +430,20 @@ say = "acne {value}"
             let e = format!("{:#}", load(&bad).unwrap_err());
             assert!(e.contains("[[fix]]"), "{e}");
         }
+    }
+
+    #[test]
+    fn a_hint_for_one_scene_names_a_check_scene() {
+        let on = |scene: &str| {
+            GOOD.replace(
+                "metric = \"false_shadow_pct\"\nabove",
+                &format!("scene = \"{scene}\"\nmetric = \"false_shadow_pct\"\nabove"),
+            )
+        };
+        let s = load(&on("default")).unwrap();
+        assert_eq!(s.exercises[0].hints[0].scene.as_deref(), Some("default"));
+        let e = format!("{:#}", load(&on("other.toml")).unwrap_err());
+        assert!(e.contains("not one of the exercise's check scenes"), "{e}");
     }
 
     #[test]

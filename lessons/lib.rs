@@ -20,7 +20,7 @@ pub mod lesson_09;
 pub mod lesson_10;
 
 /// The environment variable that picks a run's exercise set:
-/// `starter`, `solutions` or `chapter_copies` ([`ExerciseSet`]).
+/// `starter`, `solutions`, `chapter_copies` or `half_right` ([`ExerciseSet`]).
 pub const EXERCISES_ENV: &str = "WORKBOOK_EXERCISES";
 
 /// Which answers a chapter's exercises run with. Every build holds the
@@ -37,6 +37,11 @@ pub enum ExerciseSet {
     Solutions,
     /// `tests/chapter_copies/lesson_NN.rs` and `.wgsl`.
     ChapterCopies,
+    /// `tests/half_right/lesson_NN.rs` and `.wgsl`: each exercise answered
+    /// with a mistake a student is likely to make, which `grade
+    /// --check-half-right` must see fail, each with its likely cause. Built
+    /// with `--features chapter_copies`, beside the chapters' copies.
+    HalfRight,
 }
 
 impl ExerciseSet {
@@ -46,6 +51,7 @@ impl ExerciseSet {
             ExerciseSet::Starter => "starter",
             ExerciseSet::Solutions => "solutions",
             ExerciseSet::ChapterCopies => "chapter_copies",
+            ExerciseSet::HalfRight => "half_right",
         }
     }
 
@@ -54,7 +60,9 @@ impl ExerciseSet {
         match self {
             ExerciseSet::Starter => true,
             ExerciseSet::Solutions => cfg!(feature = "solutions"),
-            ExerciseSet::ChapterCopies => cfg!(feature = "chapter_copies"),
+            ExerciseSet::ChapterCopies | ExerciseSet::HalfRight => {
+                cfg!(feature = "chapter_copies")
+            }
         }
     }
 
@@ -79,15 +87,21 @@ impl ExerciseSet {
             ExerciseSet::Starter,
             ExerciseSet::Solutions,
             ExerciseSet::ChapterCopies,
+            ExerciseSet::HalfRight,
         ]
         .into_iter()
         .find(|s| s.name() == v)
         .ok_or_else(|| {
-            format!("{EXERCISES_ENV}={v}: not an exercise set (starter, solutions, chapter_copies)")
+            format!("{EXERCISES_ENV}={v}: not an exercise set (starter, solutions, chapter_copies, half_right)")
         })?;
         if !set.built() {
             return Err(format!(
-                "{EXERCISES_ENV}={v}: this build does not hold that set; build with --features {v}"
+                "{EXERCISES_ENV}={v}: this build does not hold that set; build with --features {}",
+                if set == ExerciseSet::HalfRight {
+                    "chapter_copies"
+                } else {
+                    &v
+                }
             ));
         }
         Ok(set)
@@ -105,7 +119,8 @@ pub fn exercise_set() -> ExerciseSet {
 
 /// A chapter's exercise, from the set this run uses: `exercise!(lesson_05::
 /// volume_can_matter)` is the function (or constant) of that name in
-/// `lesson_05::exercises`, `::solutions` or `::chapter_copies`; with
+/// `lesson_05::exercises`, `::solutions`, `::chapter_copies` or
+/// `::half_right`; with
 /// arguments, `exercise!(lesson_05::volume_can_matter(a, b))` calls it.
 #[macro_export]
 macro_rules! exercise {
@@ -115,6 +130,8 @@ macro_rules! exercise {
             $crate::ExerciseSet::Solutions => $crate::$lesson::solutions::$($item)*,
             #[cfg(feature = "chapter_copies")]
             $crate::ExerciseSet::ChapterCopies => $crate::$lesson::chapter_copies::$($item)*,
+            #[cfg(feature = "chapter_copies")]
+            $crate::ExerciseSet::HalfRight => $crate::$lesson::half_right::$($item)*,
             _ => $crate::$lesson::exercises::$($item)*,
         }
     };
@@ -146,6 +163,7 @@ pub fn exercises_wgsl_path(lesson: &str) -> String {
     match exercise_set() {
         ExerciseSet::Solutions => format!("solutions/{lesson}.wgsl"),
         ExerciseSet::ChapterCopies => format!("tests/chapter_copies/{lesson}.wgsl"),
+        ExerciseSet::HalfRight => format!("tests/half_right/{lesson}.wgsl"),
         ExerciseSet::Starter => format!("shaders/{lesson}/exercises.wgsl"),
     }
 }

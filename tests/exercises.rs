@@ -21,6 +21,8 @@ mod spec;
 
 #[path = "../grade/grading.rs"]
 mod grading;
+#[path = "../grade/outcome.rs"]
+mod outcome;
 
 use std::path::{Path, PathBuf};
 
@@ -125,8 +127,8 @@ exercises! {
     l08_depth_bounds: lesson_08 exercise_depth_bounds,
     l09_practical_splits: lesson_09 exercise_practical_splits,
     l09_snap_tight_box: lesson_09 exercise_snap_tight_box,
-    l10_blocker_search: lesson_10 exercise_blocker_search,
-    l10_penumbra: lesson_10 exercise_penumbra,
+    l10_off_axis_radius: lesson_10 exercise_off_axis_radius,
+    l10_elliptic_footprint: lesson_10 exercise_elliptic_footprint,
 }
 
 /// Every exercise of every chapter's spec has its test above, and every

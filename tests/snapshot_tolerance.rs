@@ -246,11 +246,14 @@ fn broken_techniques_fail() {
     // (snapshot, the right variant, a broken one, what breaks)
     let broken = [
         ("lesson_02__lesson_02", "slope_hw", "none", "no bias"),
+        // A bias 4x too small (bias_1tx, 0.26 % against 0.06 %) is within
+        // the bound once the light's map moves too (±0.19, plus rounding):
+        // on another adapter the snapshot tells a bias 8x too small.
         (
             "lesson_02__lesson_02",
             "bias_4tx",
-            "bias_1tx",
-            "a bias 4x too small",
+            "bias_0.5tx",
+            "a bias 8x too small",
         ),
         (
             "lesson_02__lesson_02",
@@ -348,12 +351,14 @@ fn broken_techniques_fail() {
         &l05,
         &edit(&l05, "zpass_cpu ", "2199", "2197")
     ));
-    // Stencil updates 4 % off: beyond what rasterisers differ by (1.4 %),
-    // the bound and the depth-tested constant together.
+    // Stencil updates 9 % off: beyond what rasterisers differ by (1.4 %),
+    // the bound and the depth-tested constant together. The turned light
+    // finds `unbounded`'s volumes tied in depth with their casters over
+    // ±6947 updates (4.2 %): 4 % off is within that bound now.
     let l08 = snapshot("lesson_08__lesson_08");
     assert!(!matches_elsewhere(
         &l08,
-        &edit(&l08, "unbounded ", "163735", "170300")
+        &edit(&l08, "unbounded ", "163735", "178500")
     ));
     assert!(matches_elsewhere(
         &l08,
@@ -486,5 +491,181 @@ fn numbers_keys_and_words() {
     assert!(!matches(
         &deep.replace("deep_range", "results"),
         &gl.replace("deep_range", "results")
+    ));
+}
+
+// ---- the light side, and figures that are not portable ------------------
+
+/// `text` with every rasterised counter (`name N ±B`, a
+/// [`tolerance::Class::Fragments`] or `DepthTested` key) replaced by
+/// `f(N)`, and the counters' committed bounds.
+fn rasterised_counters(text: &str, f: impl Fn(u64) -> u64) -> (String, Vec<(String, u64)>) {
+    use tolerance::Class;
+    let mut found = Vec::new();
+    let lines: Vec<String> = text
+        .lines()
+        .map(|line| {
+            let words: Vec<&str> = line.split_whitespace().collect();
+            let mut out = line.to_string();
+            for w in words.windows(3) {
+                let (Ok(n), Some(b)) = (w[1].parse::<u64>(), w[2].strip_prefix('±')) else {
+                    continue;
+                };
+                if !matches!(
+                    tolerance::class_of(w[0]).0,
+                    Class::Fragments | Class::DepthTested
+                ) {
+                    continue;
+                }
+                let (from, to) = (format!("{} {n} ", w[0]), format!("{} {} ", w[0], f(n)));
+                out = out.replacen(&from, &to, 1);
+                found.push((w[0].to_string(), b.parse().expect("a counter's bound")));
+            }
+            out
+        })
+        .collect();
+    (lines.join("\n") + "\n", found)
+}
+
+/// Lesson 01's snapshot passes, as another adapter's run, with every
+/// rasterised counter 3 higher (an H100 drew 4 more fragments into a map
+/// of 275 000 than lavapipe), each within the bound the committed run
+/// measured by moving the light's map (before the map moved, they all
+/// read `±0`, and only the constant of their class let 3 pass), and fails
+/// with them 1.5 times higher.
+#[test]
+fn lesson_01_rasterised_counters_move_within_their_bounds() {
+    let l01 = snapshot("lesson_01__lesson_01");
+    let (plus3, found) = rasterised_counters(&l01, |n| n + 3);
+    assert!(
+        found.iter().any(|(k, _)| k == "shadow_fragments"),
+        "no rasterised counter in lesson 01's snapshot: {found:?}"
+    );
+    let diffs = compare_elsewhere(&l01, &plus3);
+    assert!(
+        diffs.len() == found.len() && diffs.iter().all(|d| d.within),
+        "+3: {diffs:#?}"
+    );
+    for (key, bound) in &found {
+        assert!(
+            *bound >= 3,
+            "lesson 01's {key} carries ±{bound}: the light's map did not move in its run"
+        );
+    }
+    let (times_1_5, _) = rasterised_counters(&l01, |n| n * 3 / 2);
+    let diffs = compare_elsewhere(&l01, &times_1_5);
+    assert!(diffs.iter().any(|d| !d.within), "x1.5: {diffs:#?}");
+}
+
+/// Every committed snapshot's error figures: the widest bound, as a share
+/// of its figure, of those compared by their bound (over a point), is
+/// printed; in the lessons' snapshots none is over `PORTABLE_SHARE`
+/// unless marked not portable. The exercises' snapshots are written by
+/// `grade`, which does not mark figures yet: theirs are listed.
+#[test]
+fn widest_bound_of_a_portable_figure() {
+    use support::portable::{portable, PORTABLE_FLOOR, PORTABLE_SHARE};
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .expect("tests/snapshots")
+        .filter_map(|e| {
+            let name = e.ok()?.file_name().to_string_lossy().to_string();
+            Some(name.strip_suffix(".snap")?.to_string())
+        })
+        .collect();
+    names.sort();
+    let mut widest = None::<(f64, String)>;
+    let (mut marked, mut unmarked, mut grade_unmarked) = (0, Vec::new(), Vec::new());
+    for name in &names {
+        for line in snapshot(name).lines() {
+            for b in tolerance::bounded(line) {
+                if b.class != tolerance::Class::Figure {
+                    continue;
+                }
+                let at = format!("`{}` {} ±{} in {name}", b.key, b.value, b.bound);
+                if b.marked.is_some() {
+                    marked += 1;
+                } else if !portable(b.value, b.bound) {
+                    match name.starts_with("lesson_") {
+                        true => unmarked.push(at),
+                        false => grade_unmarked.push(at),
+                    }
+                } else if b.bound > PORTABLE_FLOOR {
+                    let share = b.bound / b.value;
+                    if widest.as_ref().is_none_or(|w| share > w.0) {
+                        widest = Some((share, at));
+                    }
+                }
+            }
+        }
+    }
+    match &widest {
+        Some((share, at)) => eprintln!(
+            "widest bound: {:.0} % of its figure ({at}); {marked} figures marked not portable",
+            100.0 * share
+        ),
+        None => eprintln!(
+            "widest bound: none over {PORTABLE_FLOOR} point; {marked} figures marked not portable"
+        ),
+    }
+    for at in &grade_unmarked {
+        eprintln!("not portable, not marked (grade's snapshot): {at}");
+    }
+    assert!(
+        unmarked.is_empty(),
+        "bounds over {:.0} % of their figure, not marked not portable:\n{}",
+        100.0 * PORTABLE_SHARE,
+        unmarked.join("\n")
+    );
+    assert!(names.len() >= 30, "snapshots read: {}", names.len());
+}
+
+/// A figure marked not portable is compared by its side of a power of ten,
+/// whatever its bound: the same side passes however far, the other fails.
+/// Its line's counters and words are still compared.
+#[test]
+fn not_portable_figures_keep_their_side() {
+    let committed = "res_4096       misclassified  48.93% (not portable: ±93.69, above 10%)  false lit   0.00% ±0.40\ncounters: shadow_fragments 10094610 ±2205\n";
+    // Another run prints its own bound and side, or none of them.
+    let same_side = "res_4096       misclassified  23.10% ±11.00  false lit   0.00% ±0.50\ncounters: shadow_fragments 10094610 ±3000\n";
+    let d = compare_elsewhere(committed, same_side);
+    assert!(d.iter().all(|d| d.within), "{d:#?}");
+    let other_side = same_side.replace("23.10% ±11.00", " 9.90% (not portable: ±9.00, above 1%)");
+    let d = compare_elsewhere(committed, &other_side);
+    assert!(
+        d.iter()
+            .any(|d| !d.within && d.what.contains("must stay above 10%")),
+        "{d:#?}"
+    );
+    // The portable figure beside it keeps its bound (0.40).
+    let lit = same_side.replace("0.00% ±0.50", "0.50% ±0.50");
+    assert!(!matches_elsewhere(committed, &lit));
+    // A mark that does not parse is a change of words.
+    let broken = committed.replace("above 10%", "over 10%");
+    assert!(!matches_elsewhere(committed, &broken));
+    // Below a power of ten.
+    let small = "x false lit 0.02% (not portable: ±11.67, below 0.1%)\n";
+    assert!(matches_elsewhere(small, "x false lit 0.09% ±0.10\n"));
+    assert!(!matches_elsewhere(small, "x false lit 0.12% ±0.10\n"));
+    // The sides a figure gets.
+    use support::portable::{portable_side, Side};
+    assert_eq!(portable_side(48.93), Side::Above(10.0));
+    assert_eq!(portable_side(3.0), Side::Above(1.0));
+    assert_eq!(portable_side(0.02), Side::Below(0.1));
+    assert_eq!(portable_side(0.0), Side::Below(0.01));
+}
+
+/// A count the CPU makes stays exact, even where the turned light moved
+/// it (a grazing silhouette edge): no adapter turns the light.
+#[test]
+fn cpu_counts_stay_exact_whatever_their_bound() {
+    let c = "zpass_cpu  volume_triangles 2199 ±8  volume_fragments 185562 ±462";
+    assert!(!matches_elsewhere(
+        c,
+        "zpass_cpu  volume_triangles 2197 ±8  volume_fragments 185562 ±462"
+    ));
+    assert!(matches_elsewhere(
+        c,
+        "zpass_cpu  volume_triangles 2199 ±8  volume_fragments 186000 ±462"
     ));
 }

@@ -194,6 +194,12 @@ impl Lesson for DepthMap {
         Ok(())
     }
 
+    /// The runner moved the camera or the light (`--fragile`): the shadow
+    /// pass's depth writes are counted again on the next frame.
+    fn count_again(&mut self, variant: Variant) {
+        self.texels_written[variant as usize] = None;
+    }
+
     /// The texel's two sides, in micrometres: the acne's depth error, up to
     /// half a texel × tan θ (chapter 01), scales with them.
     /// Also the standard costs: the shadow pass's depth writes, one tap
@@ -297,8 +303,9 @@ impl DepthMap {
     }
 
     /// Before an exercise runs: its light matrix into the light buffer
-    /// (`exercise_tight_frustum`; the others put the lesson's back) and its
-    /// lit pipeline (`exercise_depth_compare`).
+    /// (`exercise_tight_frustum`; the others put the lesson's back), moved
+    /// as the runner moves the map (`--fragile`), and its lit pipeline
+    /// (`exercise_depth_compare`).
     fn exercise_setup(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) -> Result<()> {
         let tight = variant == Variant::ExerciseTightFrustum;
         if tight {
@@ -310,13 +317,16 @@ impl DepthMap {
                 .collect();
             self.tight_texel_at_1 = texel_at_1(&scene.scene, self.tight.first().copied().flatten());
         }
-        if tight || self.tight_written {
+        // The runner's sub-texel move of the map (`--fragile`), drawn and read.
+        let jitter = scene.light_jitter.matrix(self.resolution(variant));
+        let jittered = jitter != common::glam::Mat4::IDENTITY;
+        if tight || self.tight_written || jittered {
             for (k, m) in self.tight.iter().enumerate() {
                 let lesson = common::scene::camera::light_view_proj(&scene.scene, k);
                 let m = if tight { *m } else { lesson };
-                scene.write_light_view_proj(gpu, k, m.unwrap_or_default());
+                scene.write_light_view_proj(gpu, k, jitter * m.unwrap_or_default());
             }
-            self.tight_written = tight;
+            self.tight_written = tight || jittered;
         }
         if variant == Variant::ExerciseDepthCompare && self.exercise_lit.is_none() {
             let depths = exercise_pass::depths_layout(gpu);

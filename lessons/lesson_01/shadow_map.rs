@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use anyhow::Result;
+use common::glam::Mat4;
 use common::gpu::bindings::{self, float_texture_entry, sampler_entry, texture_entry};
 use common::gpu::fullscreen::{read_floats, Fullscreen, FLOAT_BYTES_FORMAT};
 use common::gpu::render::{
@@ -14,6 +15,7 @@ use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
 use common::run::headless::save;
 use common::run::lesson::BufferView;
+use common::scene::camera::light_view_proj;
 use common::scene::{LightKind, Scene};
 
 use super::tally::Tally;
@@ -328,6 +330,23 @@ fn count_lights<'p>(
         })?;
     }
     Ok(total)
+}
+
+/// The runner's sub-texel move of the maps (`--fragile`,
+/// `SceneGpu::light_jitter`), for lessons whose shadow pass and lit pass
+/// both read the light buffer's matrix (01, 02, 03, 10): each light's own
+/// matrix, moved for a `size`² map. Writes nothing unless the runner moves
+/// the maps; it uploads the lights' own matrices again when it stops.
+pub fn jitter_light_maps(gpu: &Gpu, scene: &SceneGpu, size: u32) {
+    let jitter = scene.light_jitter.matrix(size);
+    if jitter == Mat4::IDENTITY {
+        return;
+    }
+    for k in 0..scene.scene.lights.len() {
+        if let Some(m) = light_view_proj(&scene.scene, k) {
+            scene.write_light_view_proj(gpu, k, jitter * m);
+        }
+    }
 }
 
 /// Draw calls of a frame of a shadow-map lesson: the base pass (every

@@ -21,6 +21,9 @@ pub mod chapter_copies;
 /// fail). Which set a run uses: [`crate::exercise_set`]; the lesson calls
 /// them through [`crate::exercise!`].
 pub mod exercises;
+#[cfg(feature = "chapter_copies")]
+#[path = "../../tests/half_right/lesson_02.rs"]
+pub mod half_right;
 #[cfg(feature = "solutions")]
 #[path = "../../solutions/lesson_02.rs"]
 pub mod solutions;

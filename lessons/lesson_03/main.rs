@@ -367,6 +367,7 @@ impl Lesson for Pcf {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        shadow_map::jitter_light_maps(frame.gpu, scene, variant.map_size());
         self.count_texels_once(frame.gpu, scene, variant)?;
         self.count_adaptive_once(frame.gpu, scene, targets, variant)?;
         let pass = variant.pass();
@@ -393,6 +394,15 @@ impl Lesson for Pcf {
         Ok(())
     }
     // ANCHOR_END: render
+
+    /// The runner moved the camera or the light (`--fragile`, whose
+    /// sub-texel move of the map `render` applies): the shadow pass and
+    /// the adaptive filter are counted again on the next frame.
+    fn count_again(&mut self, variant: Variant) {
+        let key = (variant.pass(), variant.map_size());
+        self.texels_written.retain(|(k, _)| *k != key);
+        self.adaptive_paths[variant as usize] = None;
+    }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let (taps, texels) = self.filters[variant as usize].taps();

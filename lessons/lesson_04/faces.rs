@@ -87,6 +87,12 @@ pub struct FaceUniforms {
     pub origin: DVec3,
     lights: LightUniforms,
     written: Vec<Vec<u8>>,
+    /// The runner's sub-texel move of the faces (`--fragile`; the identity
+    /// otherwise), pre-multiplied onto each face's matrix. The lit pass
+    /// reads the cube by direction, not through these matrices: the faces'
+    /// images move under the texel grid, as another rasteriser's snapping
+    /// moves them.
+    pub jitter: Mat4,
 }
 
 impl FaceUniforms {
@@ -129,6 +135,7 @@ impl FaceUniforms {
             origin: scene.scene.origin(),
             lights: LightUniforms::default(),
             written: vec![Vec::new(); scene.scene.lights.len()],
+            jitter: Mat4::IDENTITY,
         }
     }
 
@@ -151,7 +158,7 @@ impl FaceUniforms {
         let mut slots = vec![0u8; 6 * SLOT as usize];
         for (face, slot) in slots.chunks_exact_mut(SLOT as usize).enumerate() {
             let mut u = base;
-            u.view_proj = face_view_proj(pos, face, near, far).to_cols_array_2d();
+            u.view_proj = (self.jitter * face_view_proj(pos, face, near, far)).to_cols_array_2d();
             // The faces' far plane in the range's slot: what the linear
             // storage divides the distance by (`fs_cube_linear`).
             u.color_range[3] = far as f32;

@@ -373,10 +373,19 @@ impl Lesson for CubeShadows {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        // The runner's sub-texel move of the faces (`--fragile`).
+        let size = variant.settings().size;
+        self.faces.jitter = scene.light_jitter.matrix(size);
         self.count_texels_once(frame, scene, variant)?;
         let drawn = self.draw(frame, scene, targets, variant);
         self.record_draws(scene, &drawn);
         Ok(())
+    }
+
+    /// The runner moved the camera or the light (`--fragile`): the face
+    /// passes' depth writes are counted again on the next frame.
+    fn count_again(&mut self, variant: Variant) {
+        self.texels_written[variant as usize] = None;
     }
 
     /// Also the standard costs: the face passes' depth writes and

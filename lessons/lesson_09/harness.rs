@@ -7,11 +7,41 @@ use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
 use common::Result;
 use workbook::lesson_01::tally::Tally;
+use workbook::lesson_09::cascades::Cascade;
 use workbook::lesson_09::csm::CascadeMaps;
+use workbook::lesson_09::setup::Setup;
 
 use super::{Csm, Variant};
 
 impl Csm {
+    /// The runner's sub-texel move of every cascade's map (`--fragile`):
+    /// each light's cascades `fits`, as `fit_cascades` uploaded them, are
+    /// uploaded again moved, for the shadow passes and the lit pass alike
+    /// (the later writes land last). Nothing unless the runner moves them.
+    pub(super) fn jitter_cascades(
+        &mut self,
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        setup: Setup,
+        fits: &[Vec<Cascade>],
+    ) {
+        let jitter = scene.light_jitter.matrix(setup.resolution).as_dmat4();
+        if jitter == common::glam::DMat4::IDENTITY {
+            return;
+        }
+        let (b, size) = (&self.scene_box, (scene.width, scene.height));
+        let lights = self.lights.iter_mut().zip(&self.params).enumerate();
+        for ((light, (lights, params)), fit) in lights.zip(fits) {
+            let mut moved = fit.clone();
+            for c in &mut moved {
+                c.view_proj = jitter * c.view_proj;
+            }
+            lights.write(gpu, scene, light, &moved);
+            let p = setup.params(&scene.scene, b, size, &moved);
+            gpu.queue.write_buffer(params, 0, bytemuck::bytes_of(&p));
+        }
+    }
+
     /// Draw calls of a frame: the base pass, then per light K shadow passes
     /// (every caster) and the lit pass (every object).
     pub(super) fn draws(&self, variant: Variant) -> u64 {

@@ -1,16 +1,18 @@
-//! Lesson 10's shader modules: the lesson's own, and one per exercise that
-//! leaves out the lesson's implementation of the function the exercise
-//! asks for, so that no exercise can be answered by calling it.
+//! Lesson 10's shader modules: the lesson's own, and one per exercise, in
+//! which PCSS places its taps where the student's function says.
 //!
 //! All three are lesson 03's exercises and `pcf.wgsl`, `soft.wgsl` and
-//! `peers.wgsl`. The lesson's module has no student code. Exercise 1's
-//! module has the student's `exercises.wgsl`, soft.wgsl without its
-//! `blocker_search` (the listing between its anchors is blanked), and
-//! `exercise_hooks.wgsl`'s `blocker_search`, which calls the student's
-//! function: `pcss` runs the student's search under its own name.
-//! Exercise 2's likewise without `filter_radius`. An exercise that calls
-//! the lesson's function then calls itself, and the module does not
-//! compile: the grader fails that exercise with the compiler's line.
+//! `peers.wgsl`. The lesson's module has no student code. An exercise's
+//! module has the student's `exercises.wgsl`, soft.wgsl without its `pcss`
+//! (the listing between its anchors is blanked), and two parts of
+//! `exercise_hooks.wgsl`: `shaped_pcss`, a `pcss` of the same three steps
+//! whose search and filter disks are a matrix `footprint_shape(s, d_r,
+//! d_b)`, and the exercise's own `footprint_shape`, which calls the
+//! student's function: a round disk of `exercise_off_axis_radius`, or the
+//! matrix of `exercise_footprint`. Neither is in the lesson, which ignores
+//! the footprint's stretch off the spot's axis (the chapter's "The
+//! penumbra's width"); answered with the lesson's `filter_radius`, either
+//! runs exactly as `pcss`.
 
 use common::gpu::Gpu;
 use common::Result;
@@ -21,31 +23,36 @@ use crate::lesson_01::shadow_map;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Module {
     Lesson,
-    BlockerSearch,
-    Penumbra,
+    OffAxisRadius,
+    Footprint,
 }
 
 const SOFT: &str = include_str!("../../shaders/lesson_10/soft.wgsl");
 const HOOKS: &str = include_str!("../../shaders/lesson_10/exercise_hooks.wgsl");
 
-impl Module {
-    pub const ALL: [Module; 3] = [Module::Lesson, Module::BlockerSearch, Module::Penumbra];
+/// The anchor of `soft.wgsl` an exercise's module leaves out, and the one
+/// of `exercise_hooks.wgsl` every exercise's module takes.
+const CUT: &str = "pcss";
+const SHAPED: &str = "shaped_pcss";
 
-    /// The anchor of `soft.wgsl` this module leaves out and of
-    /// `exercise_hooks.wgsl` it takes (none for the lesson's).
+impl Module {
+    pub const ALL: [Module; 3] = [Module::Lesson, Module::OffAxisRadius, Module::Footprint];
+
+    /// The exercise's own anchor of `exercise_hooks.wgsl` (none for the
+    /// lesson's module).
     fn anchor(self) -> Option<&'static str> {
         match self {
             Module::Lesson => None,
-            Module::BlockerSearch => Some("blocker_search"),
-            Module::Penumbra => Some("penumbra"),
+            Module::OffAxisRadius => Some("off_axis_radius"),
+            Module::Footprint => Some("footprint"),
         }
     }
 
     /// The module, compiled: an error names its file and line.
     pub fn compile(self, gpu: &Gpu) -> Result<wgpu::ShaderModule> {
-        let cut = self.anchor();
-        let soft = match cut {
-            Some(a) => anchored(SOFT, a, false),
+        let own = self.anchor();
+        let soft = match own {
+            Some(_) => anchored(SOFT, &[CUT], false),
             None => SOFT.to_string(),
         };
         let lesson_03 = crate::exercises_wgsl_path("lesson_03");
@@ -61,7 +68,7 @@ impl Module {
             ),
             ("shaders/lesson_10/soft.wgsl", soft.as_str()),
         ];
-        let hooks = cut.map(|a| anchored(HOOKS, a, true));
+        let hooks = own.map(|a| anchored(HOOKS, &[SHAPED, a], true));
         if let Some(hooks) = &hooks {
             files.push((
                 exercises.as_str(),
@@ -79,26 +86,26 @@ impl Module {
 }
 
 /// `text` with only the lines between `// ANCHOR: name` and its end kept
-/// (`keep`), or with only those left out: the others blank, so that a line
-/// keeps its number.
-pub fn anchored(text: &str, name: &str, keep: bool) -> String {
-    let (start, end) = (
-        format!("// ANCHOR: {name}"),
-        format!("// ANCHOR_END: {name}"),
-    );
+/// (`keep`), for any of `names`, or with only those left out: the others
+/// blank, so that a line keeps its number.
+pub fn anchored(text: &str, names: &[&str], keep: bool) -> String {
+    let marker = |kind: &str, t: &str| {
+        t.strip_prefix(kind)
+            .is_some_and(|name| names.contains(&name))
+    };
     let mut inside = false;
     let mut out = String::with_capacity(text.len());
     for line in text.lines() {
         let t = line.trim();
-        let marker = t == start || t == end;
-        if t == start {
+        let (start, end) = (marker("// ANCHOR: ", t), marker("// ANCHOR_END: ", t));
+        if start {
             inside = true;
         }
-        if !marker && inside == keep {
+        if !(start || end) && inside == keep {
             out += line;
         }
         out.push('\n');
-        if t == end {
+        if end {
             inside = false;
         }
     }
@@ -109,20 +116,25 @@ pub fn anchored(text: &str, name: &str, keep: bool) -> String {
 mod tests {
     use super::*;
 
-    /// Each exercise's module leaves the lesson's function out, and its
-    /// hooks give the name to the student's.
+    /// An exercise's module leaves the lesson's pcss out, and its hooks
+    /// give the name to a pcss that calls the exercise's footprint.
     #[test]
-    fn the_exercise_modules_leave_the_lessons_function_out() {
-        for (cut, f) in [
-            ("blocker_search", "fn blocker_search("),
-            ("penumbra", "fn filter_radius("),
+    fn the_exercise_modules_replace_the_lessons_pcss() {
+        let f = "fn pcss(";
+        assert!(SOFT.contains(f));
+        let soft = anchored(SOFT, &[CUT], false);
+        assert!(!soft.contains(f));
+        assert!(soft.contains("fn filter_radius("));
+        assert_eq!(soft.lines().count(), SOFT.lines().count());
+        for (m, student) in [
+            (Module::OffAxisRadius, "exercise_off_axis_radius("),
+            (Module::Footprint, "exercise_footprint("),
         ] {
-            assert!(SOFT.contains(f));
-            let soft = anchored(SOFT, cut, false);
-            assert!(!soft.contains(f), "{cut}");
-            assert_eq!(soft.lines().count(), SOFT.lines().count());
-            let hook = anchored(HOOKS, cut, true);
-            assert!(hook.contains(f), "{cut}");
+            let a = m.anchor().expect("an exercise's anchor");
+            let hook = anchored(HOOKS, &[SHAPED, a], true);
+            assert!(hook.contains(f), "{m:?}");
+            assert_eq!(hook.matches("fn footprint_shape(").count(), 1, "{m:?}");
+            assert!(hook.contains(student), "{m:?}");
         }
     }
 }

@@ -136,10 +136,10 @@ enum Variant {
     #[value(name = "threejs_vsm")]
     ThreejsVsm,
     /// The chapter's exercises (`exercises.wgsl`), run only when named.
-    #[value(name = "exercise_blocker_search")]
-    ExerciseBlockerSearch,
-    #[value(name = "exercise_penumbra")]
-    ExercisePenumbra,
+    #[value(name = "exercise_off_axis_radius")]
+    ExerciseOffAxisRadius,
+    #[value(name = "exercise_elliptic_footprint")]
+    ExerciseEllipticFootprint,
 }
 
 // ANCHOR: techniques
@@ -191,15 +191,15 @@ impl Variant {
     fn port_or_exercise(self, g: &LightGeometry) -> Technique {
         match self.module() {
             Module::Lesson => Technique::Peer(self.peer(g)),
-            Module::BlockerSearch | Module::Penumbra => Technique::Pcss(Technique::PCSS),
+            Module::OffAxisRadius | Module::Footprint => Technique::Pcss(Technique::PCSS),
         }
     }
 
     /// The shader module its lit pass is from (`exercise_shaders.rs`).
     fn module(self) -> Module {
         match self {
-            Variant::ExerciseBlockerSearch => Module::BlockerSearch,
-            Variant::ExercisePenumbra => Module::Penumbra,
+            Variant::ExerciseOffAxisRadius => Module::OffAxisRadius,
+            Variant::ExerciseEllipticFootprint => Module::Footprint,
             _ => Module::Lesson,
         }
     }
@@ -301,9 +301,9 @@ impl Lesson for Soft {
         // The lesson's module, then each exercise's (without the lesson's
         // function it asks for).
         let modules = Module::ALL.map(|m| m.compile(gpu));
-        let [module, search, penumbra] = modules;
+        let [module, radius, footprint] = modules;
         let module = module?;
-        let exercise_modules = [search?, penumbra?];
+        let exercise_modules = [radius?, footprint?];
         let map_layout = map_sets::map_layout(gpu);
         let stage = wgpu::ShaderStages::FRAGMENT;
         let params_layout = bindings::layout(
@@ -368,6 +368,8 @@ impl Lesson for Soft {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        // The runner's sub-texel move of the map (`--fragile`), drawn and read.
+        shadow_map::jitter_light_maps(frame.gpu, scene, self.first_map(variant).size);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
             let state = &self.per_light[variant as usize][light];

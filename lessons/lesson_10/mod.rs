@@ -5,7 +5,7 @@
 //! [`map_sets`], the maps of each size a variant reads; [`peers`], the
 //! renderers' ports; [`knobs`], their sizes and taps, as the window's
 //! widgets and `--knob`; [`exercise_shaders`], the shader modules, one per
-//! exercise without the lesson's function it asks for.
+//! exercise, whose PCSS places its taps by the student's footprint.
 
 pub mod exercise_shaders;
 pub mod knobs;
@@ -27,6 +27,9 @@ pub mod chapter_copies;
 /// fail). Which set a run uses: [`crate::exercise_set`]; the lesson calls
 /// them through [`crate::exercise!`].
 pub mod exercises;
+#[cfg(feature = "chapter_copies")]
+#[path = "../../tests/half_right/lesson_10.rs"]
+pub mod half_right;
 #[cfg(feature = "solutions")]
 #[path = "../../solutions/lesson_10.rs"]
 pub mod solutions;

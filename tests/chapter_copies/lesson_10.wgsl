@@ -1,43 +1,51 @@
 // lesson_10 exercises answered with the chapter's own code (grade
 // --check-copies must see every one fail). Appended to soft.wgsl in place
-// of shaders/lesson_10/exercises.wgsl.
+// of shaders/lesson_10/exercises.wgsl. The chapter prints the footprint's
+// stretch off the axis in words only; its code is the round disk.
 
-// ANCHOR: blocker_search
-// Copies the chapter's `disk_pcf` listing: the share of taps that see no
-// blocker, not where the blockers are; called a distance.
-fn exercise_blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
-    let lit = disk_pcf(s, radius, soft.search_taps, angle, gradient);
-    let d_r = light_distance(s.z);
-    if lit >= 1.0 {
-        return Blockers(0.0, 0u);
+// ANCHOR: off_axis_radius
+// Copies the radius of the chapter's `pcss` listing, as the chapter derives
+// it in "The penumbra's width" (an angle R (d_r − d_b) / (d_r d_b) times
+// map units per radian; a sun's (d_r − d_b) tan α times map units per
+// world unit): a disk square to the axis, the same off the axis as on it.
+fn exercise_off_axis_radius(s: vec3<f32>, d_r: f32, d_b: f32) -> vec2<f32> {
+    let h = max(d_r - d_b, 0.0);
+    if soft.perspective == 0u {
+        return h * soft.size * soft.uv_per;
     }
-    return Blockers(d_r * lit, 1u);
+    return soft.size * h / (d_r * max(d_b, 1e-6)) * soft.uv_per;
 }
-// ANCHOR_END: blocker_search
+// ANCHOR_END: off_axis_radius
 
-// ANCHOR: filter_radius
-// Copies the ratio of the chapter's `pcss` listing (Fernando's
-// (d_r − d_b) / d_b, the renderers' branch) times the light's size, as the
-// map's radius: the floor's penumbra, not the blockers' footprint.
-fn exercise_filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
-    return (d_r - d_b) / max(d_b, 1e-6) * soft.size * soft.uv_per;
+// ANCHOR: footprint
+// Copies the chapter's `disk_pcf` listing's taps, vogel(i, taps, angle) *
+// radius, with the radius of its `pcss` listing (as above): a round disk
+// as a matrix.
+fn exercise_footprint(s: vec3<f32>, d_r: f32, d_b: f32) -> mat2x2<f32> {
+    let h = max(d_r - d_b, 0.0);
+    var radius = h * soft.size * soft.uv_per;
+    if soft.perspective == 1u {
+        radius = soft.size * h / (d_r * max(d_b, 1e-6)) * soft.uv_per;
+    }
+    return mat2x2<f32>(radius.x, 0.0, 0.0, radius.y);
 }
-// ANCHOR_END: filter_radius
+// ANCHOR_END: footprint
 
 // ==== calls the lesson's own functions ====
 // The second pass of grade --check-copies (WORKBOOK_CHAPTER_COPY=calls):
-// each exercise answered with one call of the lesson's own function, as
-// the chapter's `pcss` listing calls it. Each exercise's module leaves
-// that function out and gives its name to the exercise
-// (lessons/lesson_10/exercise_shaders.rs): the call is a call of itself,
-// which WGSL refuses, and the exercise fails with the compiler's line.
+// each exercise answered with a call of the lesson's own function, as the
+// chapter's `pcss` listing calls it. The lesson has no function for the
+// stretch: its footprint is filter_radius's round disk.
 
-// Calls soft.wgsl's blocker_search, as the chapter's `pcss` listing does.
-fn exercise_blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
-    return blocker_search(s, radius, angle, gradient);
+// Calls soft.wgsl's filter_radius, as the chapter's `pcss` listing does
+// for both disks.
+fn exercise_off_axis_radius(s: vec3<f32>, d_r: f32, d_b: f32) -> vec2<f32> {
+    return filter_radius(d_r, d_b);
 }
 
-// Calls soft.wgsl's filter_radius, as the chapter's `pcss` listing does.
-fn exercise_filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
-    return filter_radius(d_r, d_b);
+// Calls soft.wgsl's filter_radius, as the chapter's `pcss` listing does,
+// its round disk as a matrix (the `disk_pcf` listing's taps).
+fn exercise_footprint(s: vec3<f32>, d_r: f32, d_b: f32) -> mat2x2<f32> {
+    let r = filter_radius(d_r, d_b);
+    return mat2x2<f32>(r.x, 0.0, 0.0, r.y);
 }

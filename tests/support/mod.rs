@@ -8,6 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+pub mod portable;
 pub mod tolerance;
 pub mod window;
 
@@ -220,14 +221,26 @@ pub fn error_line(v: &serde_json::Value, decimals: usize) -> String {
 /// `common::reference::fragile`), times `scale` (100 for a fraction
 /// printed in percent), rounded up to `decimals`. Empty when the run
 /// measured none. `tolerance::compare` allows the committed text's bound.
+/// A figure whose bound is too wide for it to be compared (as printed, to
+/// `decimals`: [`portable::portable`]) gets
+/// ` (not portable: ±B, above 10%)` instead, and is compared by its side.
 pub fn bound(v: &serde_json::Value, field: &str, scale: f64, decimals: usize) -> String {
-    match v["fragile"]["bounds"][field].as_f64() {
-        Some(b) => {
-            let step = 10f64.powi(-(decimals as i32));
-            let up = (b * scale / step - 1e-9).ceil().max(0.0) * step;
-            format!(" ±{up:.decimals$}")
+    let Some(b) = v["fragile"]["bounds"][field].as_f64() else {
+        return String::new();
+    };
+    let step = 10f64.powi(-(decimals as i32));
+    let up = (b * scale / step - 1e-9).ceil().max(0.0) * step;
+    let text = format!("{up:.decimals$}");
+    // The figure as the snapshot prints it.
+    let figure = v["error"][field].as_f64().map(|f| {
+        let printed = format!("{:.decimals$}", f * scale);
+        printed.parse::<f64>().unwrap_or(f64::NAN)
+    });
+    match figure {
+        Some(f) if !portable::portable(f, up) => {
+            portable::not_portable(&text, portable::portable_side(f))
         }
-        None => String::new(),
+        _ => format!(" ±{text}"),
     }
 }
 

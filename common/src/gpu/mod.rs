@@ -17,6 +17,7 @@
 //!   to the file, line and column they came from.
 //! - [`choice`]: which adapter, backend and depth format to open (flags, variables).
 //! - [`web`]: the device in a web page, on the browser's WebGPU (the web build).
+//! - [`watchdog`]: a frame the GPU does not finish in time ends the run.
 
 pub mod bindings;
 pub mod chapter_copy;
@@ -27,6 +28,7 @@ pub mod lit;
 pub mod readback;
 pub mod render;
 pub mod targets;
+pub mod watchdog;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 pub mod wgsl;
@@ -120,6 +122,7 @@ impl Gpu {
         display: Option<Box<dyn wgpu::wgt::WgpuHasDisplayHandle>>,
     ) -> Result<Gpu> {
         let choice = AdapterChoice::from_flag_or_env(adapter)?;
+        watchdog::limit()?;
         let (depth_choice, depth_source) = DepthFormatChoice::from_flag_or_env(depth_format)?;
         let backends = match backend {
             Some(b) => parse_backend(b)?,
@@ -265,7 +268,8 @@ impl Gpu {
         self.depth_format
     }
 
-    /// Blocks until the GPU has finished everything submitted so far.
+    /// Blocks until the GPU has finished everything submitted so far, at
+    /// most the [`watchdog`]'s limit: past it, the run ends with one line.
     /// In a web page nothing can block: the browser runs what was
     /// submitted in its own time, and this returns at once (a readback
     /// there goes through [`crate::gpu::readback::PendingRead`]).
@@ -273,10 +277,7 @@ impl Gpu {
         if cfg!(target_arch = "wasm32") {
             return Ok(());
         }
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| anyhow!("GPU wait failed: {e}"))?;
-        Ok(())
+        watchdog::wait(&self.device)
     }
 }
 

@@ -77,6 +77,10 @@ pub struct SceneGpu {
     pub jitter: Mat4,
     /// The view-projection before [`SceneGpu::set_jitter`] moved it.
     unjittered: Option<Mat4>,
+    /// The runner's sub-texel move of every light's shadow map
+    /// (`--fragile`; none otherwise): a lesson applies it where it builds
+    /// a light's matrix for a map.
+    pub light_jitter: crate::reference::fragile::LightJitter,
     pub meshes: Vec<GpuMesh>,
     camera_buf: wgpu::Buffer,
     light_buf: wgpu::Buffer,
@@ -224,6 +228,7 @@ impl SceneGpu {
             camera,
             jitter: Mat4::IDENTITY,
             unjittered: None,
+            light_jitter: Default::default(),
             meshes,
             camera_buf,
             light_buf,

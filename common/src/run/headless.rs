@@ -15,8 +15,9 @@ use crate::measure::report::VariantReport;
 use crate::measure::report::{combine, AdapterReport, BaselineReport, CameraPathReport, Report};
 use crate::measure::timing::{median_times, samples, spread_times, Timer};
 use crate::reference::metrics::{self, pixel_states, PixelState, ReferenceStates};
-use crate::reference::{cache, dv_view, fragile};
+use crate::reference::{cache, dv_view};
 use crate::run::cli::Args;
+use crate::run::jittered;
 use crate::run::lesson::{apply_cli_knobs, knob_values};
 use crate::run::lesson::{variant_name, Lesson};
 use crate::scene::camera_path::{check_path, path_cameras, CameraPath, Shimmer};
@@ -173,13 +174,13 @@ pub fn run_headless<L: Lesson>(
         // what a frame counts.
         let counters = lesson.counters(variant);
         let fragile = if args.fragile {
-            let run = Jittered {
+            let run = jittered::Measured {
                 reference: &reference,
                 images: &images,
                 counters: &counters,
                 classes: class_map.as_ref(),
             };
-            Some(fragile_of(
+            Some(jittered::fragile_of(
                 &gpu,
                 &mut sg,
                 &targets,
@@ -264,70 +265,6 @@ pub fn run_headless<L: Lesson>(
 
 /// Refuses a view with no receiver: every error figure would be 0.000 %
 /// of nothing. Names what the camera sees instead.
-/// What a variant's measured frame gave, for [`fragile_of`].
-struct Jittered<'a> {
-    reference: &'a crate::reference::Reference,
-    images: &'a FrameImages,
-    counters: &'a std::collections::BTreeMap<String, u64>,
-    classes: Option<&'a (Vec<String>, Vec<u8>)>,
-}
-
-/// The variant drawn again at each of [`fragile::JITTERS`] (the camera
-/// moved by a sixteenth of a pixel), against the frame measured in
-/// `images`: which receivers a rasteriser could flip ([`fragile`]). The
-/// camera is put back afterwards.
-fn fragile_of<L: Lesson>(
-    gpu: &Gpu,
-    sg: &mut SceneGpu,
-    targets: &FrameTargets,
-    timer: &mut Timer,
-    lesson: &mut L,
-    variant: L::Variant,
-    measured: Jittered,
-) -> Result<fragile::Fragile> {
-    let Jittered {
-        reference,
-        images,
-        counters,
-        classes,
-    } = measured;
-    let (w, h) = (sg.width, sg.height);
-    let (mut moved, mut moved_counters) = (Vec::new(), Vec::new());
-    for j in fragile::JITTERS {
-        let px = [j[0] * fragile::JITTER_PX, j[1] * fragile::JITTER_PX];
-        sg.set_jitter(gpu, fragile::jitter_matrix(px, w, h));
-        // Some lessons count on their second frame.
-        lesson.count_again(variant);
-        for _ in 0..L::COUNTED_ON_FRAME {
-            let mut frame = timer.frame(gpu);
-            lesson.render(&mut frame, sg, targets, variant)?;
-            frame.finish()?;
-        }
-        moved.push(targets.read(gpu)?);
-        moved_counters.push(lesson.counters(variant));
-    }
-    sg.set_jitter(gpu, glam::Mat4::IDENTITY);
-    lesson.count_again(variant);
-    let mut tally = match classes {
-        Some((names, _)) => fragile::Tally::with_classes(names),
-        None => fragile::Tally::default(),
-    };
-    let class_of = classes.map(|(_, c)| c.as_slice());
-    for k in 0..sg.scene.lights.len() {
-        fn at(f: &FrameImages, k: usize) -> fragile::Images<'_> {
-            fragile::Images {
-                id: &f.id,
-                visibility: &f.visibility[k],
-            }
-        }
-        let moved: Vec<fragile::Images> = moved.iter().map(|f| at(f, k)).collect();
-        tally.add(reference, k, at(images, k), &moved, class_of);
-    }
-    let mut out = tally.finish(fragile::JITTERS.len());
-    out.counters = fragile::counter_moves(counters, &moved_counters);
-    Ok(out)
-}
-
 fn check_receivers(sg: &SceneGpu, reference: &crate::reference::Reference) -> Result<()> {
     if metrics::reference_receivers(reference) > 0 {
         return Ok(());

@@ -5,6 +5,7 @@
 //! - [`lesson`]: the [`lesson::Lesson`] trait and its typed variants.
 //! - [`knobs`]: a technique's parameters, set by the window's widgets and `--knob`.
 //! - [`headless`]: the headless runner that writes the outputs of INTERFACES.md.
+//! - [`jittered`]: its `--fragile` frames, the camera, maps and lights moved.
 //! - [`view`]: what the window shows (frame, visibility, diff, buffer).
 //! - [`window`]: the interactive window (winit), a workbench.
 //! - [`display`]: a private Xvfb for the window's tests and screenshots.
@@ -14,6 +15,7 @@ pub mod app;
 pub mod cli;
 pub mod display;
 pub mod headless;
+pub mod jittered;
 pub mod knobs;
 pub mod lesson;
 pub mod view;

@@ -86,11 +86,26 @@ pub fn directional_light_view_proj(scene: &Scene, direction: DVec3) -> Mat4 {
         a = a.min(v);
         b = b.max(v);
     }
+    let (a, b) = unflatten(a, b);
     // View space looks down -z: near = -max z, far = -min z.
     let proj = webgpu::orthographic(a.x, b.x, a.y, b.y, -b.z, -a.z);
     (proj * view).as_mat4()
 }
 // ANCHOR_END: light_view_proj
+
+/// A box `a..b` with no side thinner than a thousandth of its widest. A
+/// flat scene seen face-on or edge-on (a lone floor lit from straight
+/// above) has no depth or no width, and its projection would divide by
+/// zero; any other box is returned as it is.
+fn unflatten(a: DVec3, b: DVec3) -> (DVec3, DVec3) {
+    let size = (b - a).max_element().max(1e-6);
+    let flat = (b - a).cmple(DVec3::splat(1e-9 * size));
+    let pad = DVec3::splat(1e-3 * size);
+    (
+        DVec3::select(flat, a - pad, a),
+        DVec3::select(flat, b + pad, b),
+    )
+}
 
 /// A directional light's view (origin-relative): from outside the scene's
 /// bounding sphere, looking along `direction` at its centre. Also the

@@ -55,7 +55,9 @@ use anyhow::{anyhow, bail, Result};
 use glam::{DVec3, Vec3};
 
 use crate::scene::file::LightFile;
-use crate::scene::limits::{check_coord, check_direction, color3, positive, short, MAX_COORD};
+use crate::scene::limits::{
+    check_coord, check_direction, color3, positive, short, MAX_COORD, MIN_FOV_DEG,
+};
 
 pub(crate) fn parse_light(l: LightFile, i: usize) -> Result<Light> {
     let p = format!("lights[{i}]");
@@ -80,8 +82,9 @@ pub(crate) fn parse_light(l: LightFile, i: usize) -> Result<Light> {
         },
         "spot" => {
             let a = l.spot_angle_deg.ok_or_else(|| anyhow!("{p}.spot_angle_deg: required for a spot light"))?;
-            if !(a.is_finite() && a > 0.0 && a < 179.0) {
-                bail!("{p}.spot_angle_deg: must be in (0, 179), got {}", short(a));
+            // The spot's shadow map is a perspective, like the camera's.
+            if !(a.is_finite() && (MIN_FOV_DEG..179.0).contains(&a)) {
+                bail!("{p}.spot_angle_deg: must be in [{}, 179), got {}", short(MIN_FOV_DEG), short(a));
             }
             LightKind::Spot {
                 position: check_coord(need(l.position, "position")?, &format!("{p}.position"))?,

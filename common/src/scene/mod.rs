@@ -10,6 +10,7 @@
 //! - [`mesh`]: the mesh type, built-in unit meshes, welding, smooth normals.
 //! - [`mesh_dense`]: the dense built-ins (`holed_sphere`, `dense_knot`).
 //! - [`obj`]: OBJ files, read through tobj and written for `gen_assets`.
+//! - [`obj_errors`]: the line of an OBJ file an error is on (tobj names none).
 //! - [`camera`]: camera and light matrices.
 //! - [`lights`]: the `[[lights]]` tables, their kinds and sizes.
 //! - [`camera_path`]: a scene's `[camera_path]` (pan, dolly) and its shimmer.
@@ -22,6 +23,7 @@ pub mod limits;
 pub mod mesh;
 pub mod mesh_dense;
 pub mod obj;
+pub mod obj_errors;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -108,7 +110,8 @@ impl Scene {
     pub fn parse(text: &str, name: &str, dir: &Path) -> Result<Scene> {
         let file: SceneFile = toml::from_str(text).map_err(|e| {
             let line = e.span().map(|s| line_of(text, s.start));
-            let mut msg = e.message().trim().to_string();
+            // One line, even where a quoted key or a value holds a newline.
+            let mut msg = e.message().trim().replace(['\n', '\r'], " ");
             if msg == "duplicate key" {
                 // toml names neither the key nor the table; the span does.
                 let span = e.span().unwrap_or_default();

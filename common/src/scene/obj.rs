@@ -2,7 +2,6 @@
 //! where missing, degenerate triangles dropped) and writing (`gen_assets`).
 
 use std::fmt::Write as _;
-use std::io::{BufRead, Read};
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Result};
@@ -10,6 +9,9 @@ use glam::Vec3;
 
 use crate::scene::limits::{short, MAX_COORD};
 use crate::scene::mesh::{face_normal, smooth_normals, Mesh};
+use crate::scene::obj_errors::{
+    find_line, is_non_finite_vertex, line_of, tobj_error, vertex_has, LineCounter,
+};
 
 // ---- writing OBJ ---------------------------------------------------------
 
@@ -213,45 +215,6 @@ pub fn parse_obj(text: &str, file: &str) -> Result<Mesh> {
     Ok(mesh)
 }
 
-/// Reads lines for tobj and remembers how far it got, for error messages.
-struct LineCounter<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-}
-
-impl LineCounter<'_> {
-    /// The 1-based line tobj read last.
-    fn line(&self) -> usize {
-        line_of(self.bytes, self.pos.saturating_sub(1))
-    }
-}
-
-impl Read for LineCounter<'_> {
-    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
-        let n = (&self.bytes[self.pos..]).read(buf)?;
-        self.pos += n;
-        Ok(n)
-    }
-}
-
-impl BufRead for LineCounter<'_> {
-    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
-        Ok(&self.bytes[self.pos..])
-    }
-    fn consume(&mut self, amount: usize) {
-        self.pos += amount;
-    }
-}
-
-/// 1-based line of a byte offset.
-fn line_of(bytes: &[u8], offset: usize) -> usize {
-    bytes[..offset.min(bytes.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
-}
-
 /// A triangle's corners as bits, rotated to start at the smallest: the same
 /// key for `abc`, `bca` and `cab`, another for the reversed winding `acb`
 /// (a two-sided sheet keeps both of its faces).
@@ -259,106 +222,6 @@ fn winding_key(corners: [Vec3; 3]) -> [[u32; 3]; 3] {
     let k = corners.map(|v| v.to_array().map(f32::to_bits));
     let first = (0..3).min_by_key(|&i| k[i]).unwrap_or(0);
     [k[first], k[(first + 1) % 3], k[(first + 2) % 3]]
-}
-
-/// The first line (1-based) for which `bad` says why it is wrong.
-fn find_line(text: &str, mut bad: impl FnMut(&str) -> bool) -> Option<(usize, &str)> {
-    text.lines()
-        .enumerate()
-        .find(|(_, l)| bad(l))
-        .map(|(i, l)| (i + 1, l.trim()))
-}
-
-fn is_non_finite_vertex(line: &str) -> bool {
-    vertex_has(line, |x| !x.is_finite())
-}
-
-/// A `v` line with a coordinate for which `bad` holds.
-fn vertex_has(line: &str, bad: impl Fn(f32) -> bool) -> bool {
-    let mut words = line.split_whitespace();
-    words.next() == Some("v") && words.take(3).any(|w| w.parse::<f32>().is_ok_and(&bad))
-}
-
-/// One line naming the file, and the line where the problem is.
-fn tobj_error(e: tobj::LoadError, text: &str, file: &str, line: usize) -> anyhow::Error {
-    use tobj::LoadError as E;
-    let what = match e {
-        E::PositionParseError => "cannot parse a vertex (expected `v x y z`)".to_string(),
-        E::ScalingByZeroError => "vertex has w = 0".to_string(),
-        E::ColorParseError => "vertex has a wrong number of values (expected `v x y z`, `v x y z w` or `v x y z r g b`)".to_string(),
-        E::NormalParseError => "cannot parse a normal (expected `vn x y z`)".to_string(),
-        E::TexcoordParseError => "cannot parse a texture coordinate (expected `vt u v`)".to_string(),
-        E::FaceParseError => "cannot parse a face (expected `f` and indices like `1`, `1/2`, `1//3` or `1/2/3`)".to_string(),
-        // tobj checks face indices only when an object ends: find the face ourselves.
-        E::FaceVertexOutOfBounds
-        | E::FaceTexCoordOutOfBounds
-        | E::FaceNormalOutOfBounds
-        | E::FaceColorOutOfBounds
-        | E::InvalidPolygon => {
-            return match find_bad_face(text) {
-                Some((line, why)) => anyhow!("{file}:{line}: {why}"),
-                None => anyhow!("{file}: {e}"),
-            };
-        }
-        other => other.to_string(),
-    };
-    anyhow!("{file}:{line}: {what}")
-}
-
-/// The first face with an index out of range, and what is wrong with it.
-/// Indices count from 1; negative ones count back from the last element read.
-fn find_bad_face(text: &str) -> Option<(usize, String)> {
-    let tags = ["v", "vt", "vn"];
-    let mut total = [0usize; 3];
-    for line in text.lines() {
-        if let Some(k) = tags
-            .iter()
-            .position(|t| line.split_whitespace().next() == Some(t))
-        {
-            total[k] += 1;
-        }
-    }
-    let mut seen = [0usize; 3];
-    for (number, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        let tag = words.next();
-        if let Some(k) = tags.iter().position(|t| tag == Some(t)) {
-            seen[k] += 1;
-            continue;
-        }
-        if tag != Some("f") {
-            continue;
-        }
-        for word in words {
-            for (k, part) in word.split('/').enumerate().take(3) {
-                let Ok(x) = part.parse::<i64>() else { continue };
-                // tobj ignores vt and vn indices when the file has none.
-                if k > 0 && total[k] == 0 {
-                    continue;
-                }
-                let what = ["vertex", "texture coordinate", "normal"][k];
-                let why = if x == 0 {
-                    Some(format!("face index 0 in {word:?} (OBJ indices start at 1)"))
-                } else if x > 0 && x as usize > total[k] {
-                    Some(format!(
-                        "face refers to {what} {x} but the file has {} ({word:?})",
-                        total[k]
-                    ))
-                } else if x < 0 && x.unsigned_abs() as usize > seen[k] {
-                    Some(format!(
-                        "face refers to {what} {x} but only {} come before it ({word:?})",
-                        seen[k]
-                    ))
-                } else {
-                    None
-                };
-                if let Some(why) = why {
-                    return Some((number + 1, why));
-                }
-            }
-        }
-    }
-    None
 }
 
 #[cfg(test)]
