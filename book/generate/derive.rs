@@ -11,7 +11,8 @@ use crate::manifest::{Run, RUNS};
 use crate::record::Record;
 use crate::{
     adapters, choosing, claims, diagrams, gpu_costs, lesson09, lesson10, manifest, ports, prose,
-    scaling, sets, soft_diagrams, summary, table, taps, views, volume_diagrams, volumes_gpu, write,
+    scaling, sets, soft_diagrams, summary, table, tap_floor, views, volume_diagrams, volumes_gpu,
+    write,
 };
 
 /// Everything made from the committed records: the scenes' tables, the
@@ -40,7 +41,7 @@ pub(super) fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()
     adapters::write_all(root, generated, &records)?;
     let sets = sets::load_sets(generated)?;
     sets::write_other_adapters(generated, &sets)?;
-    taps::write_all(generated, &records, &sets)?;
+    tap_floor::write_all(generated, &records, &sets)?;
     let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
     write_plots(figures, &defaults)?;
     for chapter in prose::write_chapters(&root.join("book/src"), generated)? {

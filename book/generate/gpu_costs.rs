@@ -57,8 +57,10 @@ pub fn write(_root: &Path, generated: &Path, records: &[Record]) -> Result<()> {
             generated.join(DIR).join(ORIGIN.set).display()
         );
     }
+    let sets = crate::origins::load_sets(generated)?;
+    let note = crate::gpus::set_note(ORIGIN.set, &sets);
     let files = [
-        ("gpu_costs.md", table(&full, records)?),
+        ("gpu_costs.md", table(&full, records, note.as_deref())?),
         ("gpu_budget.md", budget(&full)),
     ];
     for (name, text) in files {

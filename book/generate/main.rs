@@ -28,12 +28,15 @@ mod diagrams;
 mod error_plots;
 mod figures;
 mod gpu_costs;
+mod gpus;
 mod grade_times;
 mod legend;
 mod lesson09;
 mod lesson10;
 mod manifest;
 mod origins;
+mod over_floor;
+mod pass_model;
 mod plots;
 mod ports;
 mod prose;
@@ -46,12 +49,14 @@ mod soft_diagrams;
 mod stability;
 mod summary;
 mod table;
+mod tap_floor;
 mod taps;
 mod views;
 mod volume_diagrams;
 mod volumes_gpu;
 mod web;
 mod web_sources;
+mod why;
 mod window_shots;
 
 use std::path::{Path, PathBuf};
@@ -318,7 +323,7 @@ fn run(cli: Cli) -> Result<()> {
         bar.finish_with_message("runs done");
         let sets = sets::load_sets(&generated)?;
         sets::write_other_adapters(&generated, &sets)?;
-        taps::write_all(&generated, &load_records(&generated)?, &sets)?;
+        tap_floor::write_all(&generated, &load_records(&generated)?, &sets)?;
         println!(
             "another adapter's set written under {} in {:.0} s",
             generated.join(sets::SETS_DIR).display(),

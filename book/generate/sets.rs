@@ -136,18 +136,23 @@ pub fn set_dir(generated: &Path, adapter: &str, backend: &str) -> PathBuf {
     generated.join(SETS_DIR).join(slug(adapter, backend))
 }
 
-/// A set's heading: its adapter and the commit it ran.
-fn heading(name: &str, records: &[Record]) -> String {
+/// A set's heading: its adapter and the commit it ran, and what its GPU
+/// is ([`crate::gpus`]).
+fn heading(name: &str, records: &[Record], sets: &[(String, Vec<Record>)]) -> String {
     let who = records
         .first()
         .map_or(name.to_string(), |r| r.adapter_label());
-    match origin(name) {
+    let mut s = match origin(name) {
         Some(o) => format!(
             "**{who}, the code of commit `{}`** (measured {}; lavapipe's tables are of the code as it is now)\n\n",
             o.commit, o.measured
         ),
         None => format!("**{who}**\n\n"),
+    };
+    if let Some(note) = crate::gpus::set_note(name, sets) {
+        s += &format!("What this GPU is: {note}.\n\n");
     }
+    s
 }
 
 /// A run's table without the variants changed since the set's commit, and
@@ -172,9 +177,14 @@ fn table_of(r: &Record, commit: Option<&str>) -> Result<(String, Vec<String>)> {
 /// One set's part of a lesson's `results_other_adapters.md`: its default
 /// run and its run at the window's size, less the variants changed since
 /// its commit (returned, by name); or that it has no run of the lesson.
-fn set_part(name: &str, records: &[Record], lesson: &str) -> Result<(String, Vec<String>)> {
+fn set_part(
+    name: &str,
+    records: &[Record],
+    lesson: &str,
+    sets: &[(String, Vec<Record>)],
+) -> Result<(String, Vec<String>)> {
     let commit = origin(name).map(|o| o.commit);
-    let mut s = heading(name, records);
+    let mut s = heading(name, records, sets);
     let runs: Vec<&Record> = ["results", HD]
         .iter()
         .filter_map(|run| records.iter().find(|r| r.lesson == lesson && r.run == *run))
@@ -228,7 +238,7 @@ pub fn write_other_adapters(generated: &Path, sets: &[(String, Vec<Record>)]) ->
         let mut parts = Vec::new();
         for (name, records) in sets {
             let commit = origin(name).map(|o| o.commit);
-            let (mut part, mut left_out) = set_part(name, records, lesson)?;
+            let (mut part, mut left_out) = set_part(name, records, lesson, sets)?;
             // The reference's changes touch the errors: only where the set
             // shows this lesson's.
             let lesson_wide = records.iter().any(|r| r.lesson == lesson);

@@ -1,45 +1,57 @@
-//! What the taps cost: each adapter's rate of shadow-map comparisons, and
-//! the floor it puts under every filter of lessons 03 and 10 (chapters 03
-//! and 10, `generated/lesson_NN/tap_floor.md`).
+//! What a shadow-map lookup and a shadow map cost, against what their work
+//! alone should cost on the same adapter: the floor under each variant's
+//! lit pass and the model of its map passes, for every lesson that looks
+//! up a shadow map (01, 02, 03, 04, 09 and 10; the volume lessons 05 to 08
+//! have no lookups) and every set the book holds
+//! (`generated/lesson_NN/tap_floor.md`, on each lesson's record page).
 //!
-//! The rate comes from the same run of the book as the figures it is set
-//! against: lesson 03's grids (`pcf_1x1` … `pcf_7x7`) differ only in their
-//! comparisons a pixel (1 to 49, neighbouring texels), so a straight line
-//! through their lighting passes' medians gives the milliseconds a frame
-//! that one more comparison a pixel costs. A variant's floor is its
-//! comparisons a pixel times that slope: what its taps alone cost at the
-//! best rate the adapter showed, over the no-shadow lit pass. The rest of
-//! its measured cost is not taps (the lookup's setup, the blocker search's
-//! arithmetic, a wider footprint's cache misses), and no arrangement of the
-//! same taps takes the floor away: only fewer taps do.
+//! **The floor.** The rate comes from the same set's run of lesson 03:
+//! its grids (`pcf_1x1` … `pcf_7x7`) differ only in their comparisons a
+//! pixel (1 to 49, neighbouring texels), so a straight line through their
+//! lighting passes' medians gives the milliseconds a frame that one more
+//! comparison a pixel costs. A variant's floor is its comparisons a pixel
+//! times that slope: what its taps alone cost at the best rate the adapter
+//! showed, over the no-shadow lit pass. The rest of its measured cost is
+//! not taps (the lookup's setup, which the line's intercept shows, the
+//! blocker search's arithmetic, a wider footprint's cache misses), and no
+//! arrangement of the same taps takes the floor away: only fewer taps do.
+//!
+//! **The map passes** are set against [`crate::pass_model`]'s model of the
+//! set, fitted on its own runs.
+//!
+//! A variant more than [`OVER`] times its floor or its model is listed
+//! under the tables with the reason [`crate::why`] gives for it; the
+//! generator fails on one with no reason, and on a reason that no longer
+//! explains a listed variant. This file measures; [`crate::tap_floor`]
+//! writes the page.
 
-use crate::legend::legend_own;
-use crate::origins::{changed, changes_note, origin};
+use crate::gpus;
+use crate::origins::{changed, origin};
+use crate::pass_model::{self, PassModel};
 use crate::plots::{line_fit, Line};
-use crate::record::{Record, VariantRecord};
-use crate::table::{header, ms, row};
+use crate::record::{Record, Stat, Timing, VariantRecord};
+use crate::why::{On, Pass};
 
-/// The file each chapter includes, under `generated/<lesson>/`.
-pub const TABLE: &str = "tap_floor.md";
-
-/// The lessons whose chapters show their floors.
-pub const LESSONS: &[&str] = &["lesson_03", "lesson_10"];
+/// The lessons that look up a shadow map.
+pub const LESSONS: &[&str] = &[
+    "lesson_01",
+    "lesson_02",
+    "lesson_03",
+    "lesson_04",
+    "lesson_09",
+    "lesson_10",
+];
 
 /// Lesson 03's grids: the comparisons a pixel, and nothing else, differ.
-const LADDER: &[&str] = &["pcf_1x1", "pcf_3x3", "pcf_5x5", "pcf_7x7"];
+pub const LADDER: &[&str] = &["pcf_1x1", "pcf_3x3", "pcf_5x5", "pcf_7x7"];
 
-/// The resolution the choosing chapter holds a technique to half a
-/// millisecond at.
-const FULL_HD: (u32, u32) = (1920, 1080);
-const HALF_MS: f64 = 0.5;
+/// A variant over this many times its floor or its model must say why.
+pub const OVER: f64 = 1.5;
 
-/// The lighting pass's median, when the variant's times are quotable.
-fn lighting(t: Option<&crate::record::Timing>) -> Option<f64> {
-    let t = t?;
-    if !t.stable() {
-        return None;
-    }
-    t.passes.get("lighting").map(|s| s.median)
+/// The lighting pass's median and spread, when the times are quotable.
+fn lighting(t: Option<&Timing>) -> Option<Stat> {
+    let t = t.filter(|t| t.stable())?;
+    t.passes.get("lighting").copied()
 }
 
 /// The least-squares line of the grids' lighting pass against their
@@ -50,9 +62,51 @@ pub fn rate(lesson_03: &Record) -> Option<Line> {
     for name in LADDER {
         let v = lesson_03.variants.iter().find(|v| v.name == *name)?;
         let taps = *v.counters.get("filter_taps_per_pixel")? as f64;
-        points.push((taps, lighting(v.timing.as_ref())?));
+        points.push((taps, lighting(v.timing.as_ref())?.median));
     }
     line_fit(&points)
+}
+
+/// An adapter's rate of comparisons, from its run of lesson 03.
+#[derive(Debug, Clone, Copy)]
+pub struct Rate {
+    /// Lighting ms against comparisons a pixel.
+    pub line: Line,
+    /// Lesson 03's no-shadow lit pass, median ms.
+    pub base: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Rate {
+    /// The rate of a set's lesson 03 default run, unless a grid changed
+    /// since the set's `commit`.
+    pub fn of(records: &[Record], commit: Option<&str>) -> Option<Rate> {
+        if commit.is_some_and(|c| LADDER.iter().any(|g| changed(c, "lesson_03", g).is_some())) {
+            return None;
+        }
+        let r03 = records
+            .iter()
+            .find(|r| r.lesson == "lesson_03" && r.run == "results")?;
+        Some(Rate {
+            line: rate(r03)?,
+            base: lighting(r03.baseline.as_ref())?.median,
+            width: r03.width,
+            height: r03.height,
+        })
+    }
+
+    /// Comparisons a second, in billions: every pixel of the frame one
+    /// more comparison, over the milliseconds that costs.
+    pub fn per_second_g(&self) -> f64 {
+        f64::from(self.width) * f64::from(self.height) / self.line.slope / 1e6
+    }
+
+    /// Where the line meets no comparison, over the no-shadow lit pass:
+    /// the grids' lookup before its first comparison.
+    pub fn setup(&self) -> f64 {
+        self.line.intercept - self.base
+    }
 }
 
 /// A variant's comparisons a pixel: the mean where the lesson counts each
@@ -71,197 +125,237 @@ pub fn taps(v: &VariantRecord) -> Option<(f64, bool)> {
     Some(((filter + search) as f64, at_most))
 }
 
-/// One adapter's part: its rate and, per variant, the lighting pass over
-/// the no-shadow one against the floor of its taps. `commit`: the set's,
-/// whose variants changed since are left out and named.
-fn part(lesson: &str, records: &[Record], heading: &str, commit: Option<&str>) -> Option<String> {
-    let r03 = records
-        .iter()
-        .find(|r| r.lesson == "lesson_03" && r.run == "results")?;
-    let run = records
+/// One variant of one set: its lit pass against its floor, its map passes
+/// against the model.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub variant: String,
+    /// Comparisons a pixel, and whether that is the most a pixel takes.
+    pub comparisons: Option<(f64, bool)>,
+    pub lit: Option<Stat>,
+    /// The run's no-shadow lit pass.
+    pub base: Option<Stat>,
+    /// Comparisons × the rate, ms.
+    pub floor: Option<f64>,
+    /// The map passes' median, ms.
+    pub map: Option<f64>,
+    /// The model's time for the variant's map, ms.
+    pub model: Option<f64>,
+}
+
+impl Row {
+    /// The lit pass over the no-shadow one, ms (medians).
+    pub fn lit_over(&self) -> Option<f64> {
+        Some(self.lit?.median - self.base?.median)
+    }
+
+    /// Measured over floor, when the lit pass is measurably slower than
+    /// the no-shadow one (their spreads do not overlap); a lower bound
+    /// where the comparisons are the most a pixel takes.
+    pub fn lit_ratio(&self) -> Option<f64> {
+        let (lit, base, floor) = (self.lit?, self.base?, self.floor?);
+        (lit.differs_from(&base) && lit.median > base.median && floor > 0.0)
+            .then(|| (lit.median - base.median) / floor)
+    }
+
+    /// Measured over model, for the map passes.
+    pub fn map_ratio(&self) -> Option<f64> {
+        let model = self.model.filter(|m| *m > 0.0)?;
+        Some(self.map? / model)
+    }
+
+    /// Whether the comparisons are the most a pixel takes.
+    pub fn at_most(&self) -> bool {
+        self.comparisons.is_some_and(|c| c.1)
+    }
+}
+
+/// One set as the tables show it: the book's own (`set: None`) or another.
+pub struct Adapter<'a> {
+    /// The set's folder name, `None` for the book's own.
+    pub set: Option<&'a str>,
+    pub records: &'a [Record],
+}
+
+impl Adapter<'_> {
+    /// The commit the set ran, when it is another adapter's.
+    pub fn commit(&self) -> Option<&'static str> {
+        self.set.and_then(origin).map(|o| o.commit)
+    }
+
+    /// Which reasons apply to it.
+    pub fn on(&self) -> On {
+        if self.set.is_none() {
+            On::Lavapipe
+        } else {
+            On::Gpu
+        }
+    }
+
+    /// Its short name in the list of reasons: `lavapipe`, `the H100`.
+    pub fn short(&self) -> String {
+        match self.set.and_then(gpus::gpu) {
+            None if self.set.is_none() => "lavapipe".into(),
+            Some(g) => format!("the {g:?}"),
+            None => self
+                .records
+                .first()
+                .map_or("?".into(), |r| r.adapter_label()),
+        }
+    }
+
+    pub fn rate(&self) -> Option<Rate> {
+        Rate::of(self.records, self.commit())
+    }
+
+    pub fn model(&self) -> Option<PassModel> {
+        pass_model::fit(&pass_model::points(self.records, self.commit()))
+    }
+}
+
+/// A lesson's rows on one set, less the variants changed since the set's
+/// commit (returned by name); `None` when the set has no default run of
+/// the lesson.
+pub fn rows(
+    lesson: &str,
+    a: &Adapter,
+    rate: Option<&Rate>,
+    model: Option<&PassModel>,
+) -> Option<(Vec<Row>, Vec<String>)> {
+    let run = a
+        .records
         .iter()
         .find(|r| r.lesson == lesson && r.run == "results")?;
-    // A grid changed since the set's commit: no rate from it.
-    if commit.is_some_and(|c| LADDER.iter().any(|g| changed(c, "lesson_03", g).is_some())) {
-        return None;
-    }
-    let rate = rate(r03)?;
-    let base = lighting(run.baseline.as_ref())?;
-    let pixels = f64::from(run.width) * f64::from(run.height);
-    let full_hd = f64::from(FULL_HD.0) * f64::from(FULL_HD.1) / pixels;
-    let mut s = format!(
-        "{heading}: each comparison a pixel costs the grids' lighting pass {} µs a frame at {}×{} (a line through `{}` … `{}`, r² {:.3}), {:.1} G comparisons a second.\n\n",
-        ms(rate.slope * 1000.0),
-        r03.width,
-        r03.height,
-        LADDER[0],
-        LADDER[LADDER.len() - 1],
-        rate.r2,
-        f64::from(r03.width) * f64::from(r03.height) / rate.slope / 1e6,
-    );
-    let columns = [
-        "variant".to_string(),
-        "comparisons a pixel".into(),
-        "lighting pass over the no-shadow one (ms)".into(),
-        "floor, comparisons × the rate (ms)".into(),
-        "floor's share".into(),
-        format!("floor at {}×{} (ms)", FULL_HD.0, FULL_HD.1),
-    ];
-    s += &header(&columns);
+    let base = lighting(run.baseline.as_ref());
+    let mut rows = Vec::new();
     let mut left_out = Vec::new();
-    // Whether the floor at 1920×1080 alone is over half a millisecond.
-    let (mut over_half, mut under_half) = (Vec::new(), Vec::new());
     for v in &run.variants {
-        if commit.is_some_and(|c| changed(c, lesson, &v.name).is_some()) {
-            left_out.push(v.name.as_str());
+        if a.commit()
+            .is_some_and(|c| changed(c, lesson, &v.name).is_some())
+        {
+            left_out.push(v.name.clone());
             continue;
         }
-        let (Some((n, at_most)), Some(lit)) = (taps(v), lighting(v.timing.as_ref())) else {
-            continue;
-        };
-        let over = lit - base;
-        let floor = n * rate.slope;
-        let share = if over > 0.0 {
-            format!("{:.0} %", 100.0 * floor / over)
-        } else {
-            "—".into()
-        };
-        let (n, floor_cell, hd_cell) = if at_most {
-            (
-                format!("≤ {n:.0}"),
-                format!("≤ {}", fine_ms(floor)),
-                format!("≤ {}", fine_ms(floor * full_hd)),
-            )
-        } else {
-            (
-                if n.fract() == 0.0 {
-                    format!("{n:.0}")
-                } else {
-                    format!("{n:.2}")
-                },
-                fine_ms(floor),
-                fine_ms(floor * full_hd),
-            )
-        };
-        let share = if at_most { "—".into() } else { share };
-        let named = format!("`{}`", v.name);
-        match (floor * full_hd > HALF_MS, at_most) {
-            (true, false) => over_half.push(named),
-            (false, _) => under_half.push(named),
-            (true, true) => {}
-        }
-        s += &row(&[
-            format!("`{}`", v.name),
-            n,
-            fine_ms(over),
-            floor_cell,
-            share,
-            hd_cell,
-        ]);
+        let comparisons = taps(v);
+        let texels = pass_model::map_texels(lesson, v);
+        let fragments = v.counters.get("shadow_fragments").map(|&f| f as f64);
+        rows.push(Row {
+            variant: v.name.clone(),
+            comparisons,
+            lit: lighting(v.timing.as_ref()),
+            base,
+            floor: comparisons.zip(rate).map(|((n, _), r)| n * r.line.slope),
+            map: pass_model::map_ms(v.timing.as_ref()),
+            model: texels.zip(model).and_then(|(t, m)| m.predict(t, fragments)),
+        });
     }
-    s += &legend_own(
-        &columns,
-        &[
-            ("variant", "the lesson's variant (its `--variant` name)"),
-            ("comparisons a pixel", "depth comparisons the lit pass makes at a pixel: the blocker search's taps plus the filter's (`blocker_search_taps` + `filter_taps_per_pixel`), or, where the lesson counts each pixel's path, their mean over the probed pixels (`filter_taps` / `probed_pixels`); ≤: the most a pixel takes, where the lesson does not count the paths"),
-            ("lighting pass over the no-shadow one (ms)", "the variant's `lighting` pass, median, less the no-shadow frame's (the passes table): what the shadow lookup adds to the lit pass"),
-            ("floor, comparisons × the rate (ms)", "the comparisons a pixel times the rate above: what the comparisons alone cost at the best rate the adapter showed"),
-            ("floor's share", "the floor over the measured lookup cost: near 100 %, the variant is its comparisons; over 100 %, its comparison is cheaper than a grid's (a hardware 2×2 compare)"),
-            (&columns[5], "the floor times the pixels of 1920×1080 over this run's: the comparisons grow with the pixels (an extrapolation, not a run at that size)"),
-        ],
-    );
-    let list = |names: &[String]| match names {
-        [] => "none".to_string(),
-        _ => names.join(", "),
-    };
-    s += &format!(
-        "\nTheir comparisons alone at {}×{}, at this rate: over half a millisecond in {}; under it in {}.\n",
-        FULL_HD.0,
-        FULL_HD.1,
-        list(&over_half),
-        list(&under_half)
-    );
-    if let Some(c) = commit {
-        s += &changes_note(c, lesson, &left_out, false, None);
-    }
-    Some(s)
+    Some((rows, left_out))
 }
 
-/// A time in milliseconds, to the microsecond under 1 ms (a GPU's lit
-/// pass at 640×360 is a tenth of one).
-fn fine_ms(x: f64) -> String {
-    if x.abs() < 1.0 {
-        format!("{x:.3}")
+/// A variant over [`OVER`] times its floor or its model on one set.
+#[derive(Debug, Clone)]
+pub struct Over {
+    pub lesson: String,
+    pub variant: String,
+    pub pass: Pass,
+    pub on: On,
+    /// The set's short name ([`Adapter::short`]).
+    pub adapter: String,
+    pub ratio: f64,
+    /// The ratio is a lower bound (the comparisons are the most a pixel takes).
+    pub at_least: bool,
+}
+
+/// Every variant of `lesson` over [`OVER`], set by set.
+pub fn overs(lesson: &str, adapters: &[Adapter]) -> Vec<Over> {
+    let mut out = Vec::new();
+    for a in adapters {
+        let (rate, model) = (a.rate(), a.model());
+        let Some((rows, _)) = rows(lesson, a, rate.as_ref(), model.as_ref()) else {
+            continue;
+        };
+        for r in rows {
+            let passes = [
+                (Pass::Lighting, r.lit_ratio(), r.at_most()),
+                (Pass::Map, r.map_ratio(), false),
+            ];
+            for (pass, ratio, at_least) in passes {
+                if let Some(ratio) = ratio.filter(|x| *x > OVER) {
+                    out.push(Over {
+                        lesson: lesson.into(),
+                        variant: r.variant.clone(),
+                        pass,
+                        on: a.on(),
+                        adapter: a.short(),
+                        ratio,
+                        at_least,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A ratio as the tables print it: `5.45×`, `52×` (two places under 10,
+/// so that one just under [`OVER`] does not print as it).
+pub fn times(x: f64) -> String {
+    if x >= 9.995 {
+        format!("{x:.0}×")
     } else {
-        ms(x)
+        format!("{x:.2}×")
     }
 }
 
-/// Writes every [`LESSONS`]' [`TABLE`].
-pub fn write_all(
-    generated: &std::path::Path,
-    main: &[Record],
-    sets: &[(String, Vec<Record>)],
-) -> anyhow::Result<()> {
-    use anyhow::Context as _;
-    for lesson in LESSONS {
-        let path = generated.join(lesson).join(TABLE);
-        std::fs::write(&path, table(lesson, main, sets))
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
-    Ok(())
+/// [`OVER`] as the text writes it, `1.5×`.
+pub fn over() -> String {
+    format!("{OVER}×")
 }
 
-/// `lesson`'s `tap_floor.md`: lavapipe's records, then each other set
-/// that holds lesson 03's and this lesson's default runs.
-pub fn table(lesson: &str, main: &[Record], sets: &[(String, Vec<Record>)]) -> String {
-    let mut parts = Vec::new();
-    let name_of = |records: &[Record]| {
-        records
-            .iter()
-            .find(|r| r.lesson == lesson)
-            .map_or_else(|| "?".to_string(), |r| r.adapter_label())
-    };
-    if let Some(p) = part(lesson, main, &format!("**{}**", name_of(main)), None) {
-        parts.push(p);
-    }
-    for (set, records) in sets {
-        let o = origin(set);
-        let heading = match o {
-            Some(o) => format!(
-                "**{}, the code of commit `{}`** (measured {})",
-                name_of(records),
-                o.commit,
-                o.measured
-            ),
-            None => format!("**{}**", name_of(records)),
-        };
-        if let Some(p) = part(lesson, records, &heading, o.map(|o| o.commit)) {
-            parts.push(p);
-        }
-    }
-    let mut s = String::from(
-        "*The lighting pass's medians of each adapter's default run (640×360), less the no-shadow lit pass's; the floor is the variant's comparisons a pixel times that adapter's rate, and at 1920×1080 it is scaled by the pixels (the comparisons grow with the pixels; not a run at that size)*\n\n",
-    );
-    s += &parts.join("\n");
-    if !s.ends_with('\n') {
-        s.push('\n');
-    }
-    s
+/// Every set as [`Adapter`]s: the book's own first.
+pub fn adapters<'a>(main: &'a [Record], sets: &'a [(String, Vec<Record>)]) -> Vec<Adapter<'a>> {
+    let mut out = vec![Adapter {
+        set: None,
+        records: main,
+    }];
+    out.extend(sets.iter().map(|(name, records)| Adapter {
+        set: Some(name.as_str()),
+        records,
+    }));
+    out
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    #[test]
-    fn a_straight_line_is_fitted_exactly() {
+    /// The committed records of the book's own set and the other sets.
+    pub(crate) fn committed() -> (Vec<Record>, Vec<(String, Vec<Record>)>) {
+        let generated = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated");
+        let main = crate::manifest::RUNS
+            .iter()
+            .map(|r| {
+                let path = generated.join(r.lesson).join(format!("{}.json", r.name));
+                let text = std::fs::read_to_string(&path).expect("a record");
+                serde_json::from_str(&text).expect("a record")
+            })
+            .collect();
+        let sets = crate::origins::load_sets(&generated).expect("the sets");
+        (main, sets)
+    }
+
+    fn lesson_03() -> Record {
         let text = std::fs::read_to_string(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/book/src/generated/lesson_03/results.json"
         ))
         .expect("lesson 03's record");
-        let mut r: Record = serde_json::from_str(&text).expect("a record");
+        serde_json::from_str(&text).expect("a record")
+    }
+
+    #[test]
+    fn a_straight_line_is_fitted_exactly() {
+        let mut r = lesson_03();
         // Lighting = 2 ms + 0.5 ms a comparison, exactly.
         for v in &mut r.variants {
             if let (Some(t), Some(&n)) = (&mut v.timing, v.counters.get("filter_taps_per_pixel")) {
@@ -272,5 +366,45 @@ mod tests {
         assert!((rate.slope - 0.5).abs() < 1e-12, "{rate:?}");
         assert!((rate.intercept - 2.0).abs() < 1e-12, "{rate:?}");
         assert!((rate.r2 - 1.0).abs() < 1e-12, "{rate:?}");
+    }
+
+    #[test]
+    fn a_variant_is_over_only_where_its_excess_is_measured() {
+        let stat = |m: f64, lo: f64, hi: f64| Stat {
+            median: m,
+            q25: lo,
+            q75: hi,
+        };
+        let mut r = Row {
+            variant: "v".into(),
+            comparisons: Some((4.0, false)),
+            lit: Some(stat(14.0, 13.0, 15.0)),
+            base: Some(stat(2.0, 1.5, 2.5)),
+            floor: Some(4.0),
+            map: Some(3.0),
+            model: Some(1.0),
+        };
+        // 12 ms over the no-shadow pass against a 4 ms floor: 3×.
+        assert_eq!(r.lit_ratio(), Some(3.0));
+        assert_eq!(r.map_ratio(), Some(3.0));
+        // The same medians, spreads that overlap: not measured, no ratio.
+        r.base = Some(stat(2.0, 1.0, 13.5));
+        assert_eq!(r.lit_ratio(), None);
+        // Faster than the no-shadow pass: no ratio either.
+        r.base = Some(stat(20.0, 19.0, 21.0));
+        assert_eq!(r.lit_ratio(), None);
+    }
+
+    #[test]
+    fn the_volume_lessons_look_nothing_up() {
+        let (main, _) = committed();
+        for lesson in ["lesson_05", "lesson_06", "lesson_07", "lesson_08"] {
+            assert!(!LESSONS.contains(&lesson));
+            let run = main
+                .iter()
+                .find(|r| r.lesson == lesson && r.run == "results")
+                .expect("a default run");
+            assert!(run.variants.iter().all(|v| taps(v).is_none()), "{lesson}");
+        }
     }
 }

@@ -37,6 +37,7 @@ use workbook::lesson_02::bias::{
 };
 use workbook::lesson_03::adaptive_count::AdaptivePaths;
 use workbook::lesson_03::knobs;
+use workbook::lesson_03::lit_pipelines::{LitKey, LitPipelines};
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
 mod harness;
@@ -155,14 +156,13 @@ impl Variant {
         }
     }
 
-    /// The receiver-side bias: none for ours (the shadow pass has it).
-    /// Which lit pipeline draws the variant: its filter's `MODE`, plus
-    /// `Filter::MODES` if it takes a renderer's receiver bias.
-    fn lit_key(self) -> u32 {
-        let renderer_bias = self.receiver_bias() != ShadowBias::NONE;
-        self.filter().mode() + Filter::MODES * renderer_bias as u32
+    /// Whether the lit pipeline takes a renderer's receiver bias
+    /// (`RENDERER_BIAS`).
+    fn renderer_bias(self) -> bool {
+        self.receiver_bias() != ShadowBias::NONE
     }
 
+    /// The receiver-side bias: none for ours (the shadow pass has it).
     fn receiver_bias(self) -> ShadowBias {
         match self {
             Variant::LearnOpenGlPcf => ShadowBias::LEARNOPENGL,
@@ -185,8 +185,8 @@ struct Pcf {
     filter_groups: Vec<wgpu::BindGroup>,
     /// One map per size the variants use, with its nearest and linear groups.
     maps: PerSize<SizedMap>,
-    /// Per [`Variant::lit_key`], the pipelines some variant uses.
-    lit_pipelines: Vec<Option<wgpu::RenderPipeline>>,
+    /// The lit pipelines, one per filter's constants.
+    lit_pipelines: LitPipelines,
     /// Per shadow pass of [`PASSES`], one pipeline per light.
     shadow_pipelines: Vec<Vec<wgpu::RenderPipeline>>,
     /// Their counting copies ([`shadow_map::shadow_tally_pipelines`]).
@@ -258,38 +258,13 @@ impl Lesson for Pcf {
         let layout = pcf::pcf_map_layout(gpu);
         let filter_layout =
             params_layout(gpu, "filter", std::mem::size_of::<FilterUniform>() as u64);
-        // One lit pipeline per filter (`MODE` in pcf.wgsl) and receiver
-        // bias (`RENDERER_BIAS`), compiled with only that code.
-        let used: Vec<u32> = Variant::value_variants()
-            .iter()
-            .map(|v| v.lit_key())
-            .collect();
-        let lit_pipelines = (0..2 * Filter::MODES)
-            .map(|k| {
-                if !used.contains(&k) {
-                    return None;
-                }
-                let constants = [
-                    ("MODE", (k % Filter::MODES) as f64),
-                    ("RENDERER_BIAS", (k / Filter::MODES) as f64),
-                ];
-                Some(scene.lit_pipeline_with_depth(
-                    gpu,
-                    &module,
-                    "fs_lit",
-                    &[&layout, &filter_layout],
-                    scene.lit_depth_state(Default::default()),
-                    &constants,
-                ))
-            })
-            .collect();
         let adaptive_count = scene.lit_pipeline_with_depth(
             gpu,
             &module,
             "fs_adaptive_count",
             &[&layout, &filter_layout],
             scene.lit_depth_state(Default::default()),
-            &[],
+            &[("RECEIVER_PLANE", 1.0)],
         );
         let sizes = Variant::value_variants().iter().map(|v| v.map_size());
         let maps = PerSize::new(sizes, |size| {
@@ -344,7 +319,7 @@ impl Lesson for Pcf {
         Ok(Pcf {
             filter_groups,
             maps,
-            lit_pipelines,
+            lit_pipelines: LitPipelines::new(module, [layout, filter_layout.clone()]),
             shadow_pipelines,
             tally_pipelines,
             texels_written: Vec::new(),
@@ -372,9 +347,9 @@ impl Lesson for Pcf {
         self.count_adaptive_once(frame.gpu, scene, targets, variant)?;
         let pass = variant.pass();
         let filter_group = &self.filter_groups[variant as usize];
-        let lit_pipeline = self.lit_pipelines[variant.lit_key() as usize]
-            .as_ref()
-            .expect("every variant's lit pipeline is built in new");
+        let key = LitKey::new(self.filters[variant as usize], variant.renderer_bias());
+        self.lit_pipelines.build(frame.gpu, scene, key);
+        let lit_pipeline = self.lit_pipelines.get(key);
         let (map, map_group) = (self.map(variant), self.map_group(variant));
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
@@ -442,8 +417,8 @@ impl Lesson for Pcf {
         }
     }
 
-    /// A new filter uniform for the variant: the kernel's size is read by
-    /// the shader's loop, so the pipeline stays.
+    /// A new filter uniform for the variant; a grid's new side gets its
+    /// pipeline the next time the variant draws.
     fn set_knob(
         &mut self,
         gpu: &Gpu,

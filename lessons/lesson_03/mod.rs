@@ -4,6 +4,8 @@
 
 pub mod pcf;
 
+pub mod lit_pipelines;
+
 pub mod adaptive_count;
 
 pub mod knobs;

@@ -59,6 +59,21 @@ impl Filter {
         }
     }
 
+    /// The shader's `N` and `RECEIVER_PLANE`: the grid's (and the depth
+    /// average's) side, and whether each tap compares with the receiver's
+    /// plane there, compiled into the lit pipeline with its `MODE`.
+    pub fn grid_constants(self) -> (u32, bool) {
+        match self {
+            Filter::Grid { n, receiver_plane } => (n, receiver_plane),
+            Filter::DepthAverage { n } => (n, false),
+            Filter::ExerciseGrid { n } => (n, true),
+            Filter::Poisson { .. }
+            | Filter::AdaptivePoisson { .. }
+            | Filter::ExerciseDisk { .. } => (1, true),
+            Filter::Hardware2x2 | Filter::Castano13 => (1, false),
+        }
+    }
+
     /// The shader's `MODE`: which filter the lit pipeline is compiled with.
     pub fn mode(self) -> u32 {
         match self {
@@ -106,9 +121,9 @@ pub const BEVY_GAUSSIAN: Filter = Filter::Castano13;
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FilterUniform {
-    n: u32,
-    receiver_plane: u32,
-    taps: u32,
+    /// Where the grid's N, the receiver-plane switch and the disk's taps
+    /// were: the lit pipeline's constants now ([`Filter::grid_constants`]).
+    _pad_abc: [u32; 3],
     radius: f32,
     depth: f32,
     depth_slope: f32,
@@ -148,9 +163,7 @@ impl FilterUniform {
 impl From<Filter> for FilterUniform {
     fn from(f: Filter) -> Self {
         let u = FilterUniform {
-            n: 1,
-            receiver_plane: 0,
-            taps: 0,
+            _pad_abc: [0; 3],
             radius: 0.0,
             depth: 0.0,
             depth_slope: 0.0,
@@ -161,34 +174,15 @@ impl From<Filter> for FilterUniform {
             _pad: [0.0; 2],
         };
         match f {
-            Filter::Grid { n, receiver_plane } => FilterUniform {
-                n,
-                receiver_plane: receiver_plane as u32,
-                ..u
-            },
-            Filter::Hardware2x2 => u,
-            Filter::Poisson { taps, radius } | Filter::AdaptivePoisson { taps, radius } => {
-                FilterUniform {
-                    taps,
-                    radius,
-                    receiver_plane: 1,
-                    ..u
-                }
+            Filter::Poisson { radius, .. } | Filter::AdaptivePoisson { radius, .. } => {
+                FilterUniform { radius, ..u }
             }
-            Filter::DepthAverage { n } => FilterUniform { n, ..u },
-            Filter::ExerciseGrid { n } => FilterUniform {
-                n,
-                receiver_plane: 1,
-                ..u
-            },
             // The shader's `radius` carries metres here.
             Filter::ExerciseDisk { radius_m } => FilterUniform {
-                taps: 16,
                 radius: radius_m,
-                receiver_plane: 1,
                 ..u
             },
-            Filter::Castano13 => u,
+            _ => u,
         }
     }
 }

@@ -20,7 +20,7 @@ use common::Result;
 use crate::lesson_01::shadow_map;
 
 /// Which module: the lesson's variants, or one exercise's.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Module {
     Lesson,
     OffAxisRadius,

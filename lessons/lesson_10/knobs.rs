@@ -9,8 +9,8 @@ use common::run::knobs::{Knob, KnobRange};
 use super::soft::{Search, Technique};
 use crate::lesson_02::knobs::float;
 
-/// The most taps a search or a filter may take.
-pub const MAX_TAPS: u32 = 64;
+/// The most taps a search or a filter may take: the disk table's points.
+pub const MAX_TAPS: u32 = super::soft::DISK_POINTS as u32;
 
 /// The knobs of `t`, with its values now.
 pub fn technique_knobs(t: Technique) -> Vec<Knob> {

@@ -18,7 +18,7 @@
 //! Run: `cargo run --release --bin lesson_10 -- --headless`
 //! Book: chapter "10 Soft shadows" (`book/src/lesson_10.md`).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use clap::ValueEnum;
 use common::gpu::bindings::{self, storage_entry};
@@ -37,7 +37,9 @@ use workbook::lesson_10::knobs;
 use workbook::lesson_10::map_sets::{self, MapSet, MapSets};
 use workbook::lesson_10::moments::MomentsPasses;
 use workbook::lesson_10::peers::{self, Peer};
-use workbook::lesson_10::soft::{LightGeometry, Pcss, SoftUniform, Technique, Variance};
+use workbook::lesson_10::soft::{
+    LightGeometry, Pcss, SoftConstants, SoftUniform, Technique, Variance,
+};
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -239,9 +241,13 @@ struct PerLight {
 struct Soft {
     maps: MapSets,
     geometry: Vec<LightGeometry>,
+    map_layout: wgpu::BindGroupLayout,
     params_layout: wgpu::BindGroupLayout,
-    /// fs_soft of the lesson's module, then of each exercise's.
-    lit_pipelines: [wgpu::RenderPipeline; 3],
+    /// The lesson's module, then each exercise's.
+    modules: [wgpu::ShaderModule; 3],
+    /// fs_soft of a module, compiled with a variant's constants: built the
+    /// first time a variant runs, one per module and set of constants.
+    lit_pipelines: HashMap<(Module, SoftConstants), wgpu::RenderPipeline>,
     /// `per_light[variant][light]`.
     per_light: Vec<Vec<PerLight>>,
     draws: u64,
@@ -267,6 +273,24 @@ impl Soft {
             moments: t
                 .variance()
                 .map(|(var, three)| set.moments.passes(gpu, &set.map, &var, three, g)),
+        }
+    }
+
+    /// The variant's lit pipeline for every light, built if not yet.
+    fn build_lit_pipelines(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) {
+        let module = variant.module();
+        for state in &self.per_light[variant as usize] {
+            let key = (module, SoftConstants::new(state.technique));
+            self.lit_pipelines.entry(key).or_insert_with(|| {
+                scene.lit_pipeline_with_depth(
+                    gpu,
+                    &self.modules[module as usize],
+                    "fs_soft",
+                    &[&self.map_layout, &self.params_layout],
+                    scene.lit_depth_state(Default::default()),
+                    &key.1.pairs(),
+                )
+            });
         }
     }
 
@@ -300,10 +324,8 @@ impl Lesson for Soft {
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         // The lesson's module, then each exercise's (without the lesson's
         // function it asks for).
-        let modules = Module::ALL.map(|m| m.compile(gpu));
-        let [module, radius, footprint] = modules;
-        let module = module?;
-        let exercise_modules = [radius?, footprint?];
+        let [module, radius, footprint] = Module::ALL.map(|m| m.compile(gpu));
+        let modules = [module?, radius?, footprint?];
         let map_layout = map_sets::map_layout(gpu);
         let stage = wgpu::ShaderStages::FRAGMENT;
         let params_layout = bindings::layout(
@@ -314,17 +336,6 @@ impl Lesson for Soft {
                 storage_entry(1, stage, false, None),
             ],
         );
-        let lit = |module| {
-            scene.lit_pipeline_with_depth(
-                gpu,
-                module,
-                "fs_soft",
-                &[&map_layout, &params_layout],
-                scene.lit_depth_state(Default::default()),
-                &[("MODE", 2.0)],
-            )
-        };
-        let lit_pipelines = [&module, &exercise_modules[0], &exercise_modules[1]].map(lit);
         let geometry = (0..scene.scene.lights.len())
             .map(|k| {
                 LightGeometry::new(&scene.scene, k)
@@ -339,13 +350,15 @@ impl Lesson for Soft {
             })
         });
         let maps = MapSets::new(keys, |size, pass| {
-            MapSet::new(gpu, scene, &module, &map_layout, size, pass)
+            MapSet::new(gpu, scene, &modules[0], &map_layout, size, pass)
         });
         let mut soft = Soft {
             maps,
             geometry,
+            map_layout,
             params_layout,
-            lit_pipelines,
+            modules,
+            lit_pipelines: HashMap::new(),
             per_light: Vec::new(),
             draws: shadow_map::shadow_map_draws(scene),
         };
@@ -368,6 +381,7 @@ impl Lesson for Soft {
         targets: &FrameTargets,
         variant: Variant,
     ) -> Result<()> {
+        self.build_lit_pipelines(frame.gpu, scene, variant);
         // The runner's sub-texel move of the map (`--fragile`), drawn and read.
         shadow_map::jitter_light_maps(frame.gpu, scene, self.first_map(variant).size);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
@@ -389,7 +403,8 @@ impl Lesson for Soft {
             let map_group = set.group(state.technique.sampler());
             frame.pass("lighting", |enc, ts| {
                 let groups = [map_group, &state.group];
-                let pipeline = &self.lit_pipelines[variant.module() as usize];
+                let key = (variant.module(), SoftConstants::new(state.technique));
+                let pipeline = &self.lit_pipelines[&key];
                 let pass = LitPass::new(light, pipeline, &groups);
                 scene.lit_pass(enc, targets, pass, ts.render())
             });
@@ -425,7 +440,8 @@ impl Lesson for Soft {
     }
 
     /// New parameters (and variance-map passes) for the variant on every
-    /// light: the pipeline reads them, so it stays.
+    /// light; a knob that changes a constant (taps, the receiver plane, the
+    /// search) gets its pipeline the next time the variant renders.
     fn set_knob(
         &mut self,
         gpu: &Gpu,

@@ -3,6 +3,9 @@
 //! depth moments box-blurred along x, then along y, into a storage buffer.
 //! The lit pass reads it with `soft.wgsl`'s Chebyshev bound.
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+
 use common::gpu::bindings::{self, storage_entry, texture_entry};
 use common::gpu::Gpu;
 
@@ -34,21 +37,39 @@ pub struct ThreeVsmBlur {
     pub radius: f32,
 }
 
-/// `Blur` in `moments.wgsl`.
+/// `Blur` in `moments.wgsl`: the light's geometry and the warp's exponents.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct BlurUniform {
-    radius: i32,
-    vertical: u32,
-    exponential: u32,
     perspective: u32,
     exponent: f32,
     near: f32,
     far: f32,
     negative: f32,
-    samples: u32,
     spread: f32,
     _pad: [u32; 2],
+}
+
+/// A blur pass's constants (`moments.wgsl`'s `override`s): its pipeline
+/// holds only its own direction, warp and width.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BlurKey {
+    pub vertical: bool,
+    pub exponential: bool,
+    pub radius: u32,
+    /// three.js's samples; 0: the box.
+    pub samples: u32,
+}
+
+impl BlurKey {
+    fn pairs(self) -> [(&'static str, f64); 4] {
+        [
+            ("VERTICAL", self.vertical as u32 as f64),
+            ("EXPONENTIAL", self.exponential as u32 as f64),
+            ("RADIUS", self.radius as f64),
+            ("SAMPLES", self.samples as f64),
+        ]
+    }
 }
 
 /// The variance map and the passes that make it.
@@ -59,14 +80,18 @@ pub struct MomentsMap {
     /// The first pass's output (blurred along x; along y for three.js, whose blur runs y first).
     first: wgpu::Buffer,
     size: u32,
-    pipeline: wgpu::ComputePipeline,
+    module: wgpu::ShaderModule,
+    pipeline_layout: wgpu::PipelineLayout,
+    /// One pipeline per pass's constants, built when a variant first asks.
+    pipelines: RefCell<HashMap<BlurKey, wgpu::ComputePipeline>>,
     layout: wgpu::BindGroupLayout,
 }
 
-/// One variance map's passes for one light: the groups of its two passes.
+/// One variance map's passes for one light: the groups and pipelines of
+/// its two passes.
 pub struct MomentsPasses {
-    along_x: wgpu::BindGroup,
-    along_y: wgpu::BindGroup,
+    along_x: (wgpu::BindGroup, wgpu::ComputePipeline),
+    along_y: (wgpu::BindGroup, wgpu::ComputePipeline),
 }
 
 impl MomentsMap {
@@ -111,23 +136,35 @@ impl MomentsMap {
                 bind_group_layouts: &[Some(&layout)],
                 immediate_size: 0,
             });
-        let pipeline = gpu
-            .device
-            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("moments"),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some("cs_blur"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
         MomentsMap {
             buffer: buffer("moments"),
             first: buffer("moments along x"),
             size,
-            pipeline,
+            module,
+            pipeline_layout,
+            pipelines: RefCell::new(HashMap::new()),
             layout,
         }
+    }
+
+    /// The pipeline of a pass with constants `key`.
+    fn pipeline(&self, gpu: &Gpu, key: BlurKey) -> wgpu::ComputePipeline {
+        let mut pipelines = self.pipelines.borrow_mut();
+        let made = pipelines.entry(key).or_insert_with(|| {
+            gpu.device
+                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("moments"),
+                    layout: Some(&self.pipeline_layout),
+                    module: &self.module,
+                    entry_point: Some("cs_blur"),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &key.pairs(),
+                        ..Default::default()
+                    },
+                    cache: None,
+                })
+        });
+        made.clone()
     }
 
     /// The two passes' groups for variance map `v` of `map`, for a light of
@@ -140,21 +177,23 @@ impl MomentsMap {
         three: Option<ThreeVsmBlur>,
         g: &LightGeometry,
     ) -> MomentsPasses {
+        let u = BlurUniform {
+            perspective: g.perspective as u32,
+            exponent: v.exponent.unwrap_or(0.0),
+            near: g.near,
+            far: g.far,
+            negative: v.negative.unwrap_or(0.0),
+            spread: three.map_or(0.0, |t| t.radius),
+            _pad: [0; 2],
+        };
+        let params = bindings::params_buffer(gpu, "blur", bytemuck::bytes_of(&u));
         let group = |vertical: bool| {
-            let u = BlurUniform {
-                radius: v.blur as i32,
-                vertical: vertical as u32,
-                exponential: v.exponent.is_some() as u32,
-                perspective: g.perspective as u32,
-                exponent: v.exponent.unwrap_or(0.0),
-                near: g.near,
-                far: g.far,
-                negative: v.negative.unwrap_or(0.0),
+            let key = BlurKey {
+                vertical,
+                exponential: v.exponent.is_some(),
+                radius: v.blur,
                 samples: three.map_or(0, |t| t.samples),
-                spread: three.map_or(0.0, |t| t.radius),
-                _pad: [0; 2],
             };
-            let params = bindings::params_buffer(gpu, "blur", bytemuck::bytes_of(&u));
             // Along x: the depths into `first` (reading the map's buffer,
             // unused); along y: `first` into the map's buffer.
             let (input, output) = match vertical {
@@ -167,7 +206,8 @@ impl MomentsMap {
                 params.as_entire_binding(),
                 output.as_entire_binding(),
             ];
-            bindings::group(gpu, "moments", &self.layout, &resources)
+            let group = bindings::group(gpu, "moments", &self.layout, &resources);
+            (group, self.pipeline(gpu, key))
         };
         MomentsPasses {
             along_x: group(false),
@@ -185,7 +225,7 @@ impl MomentsMap {
         vertical: bool,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites>,
     ) {
-        let group = if vertical {
+        let (group, pipeline) = if vertical {
             &passes.along_y
         } else {
             &passes.along_x
@@ -194,7 +234,7 @@ impl MomentsMap {
             label: Some("moments"),
             timestamp_writes,
         });
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, group, &[]);
         let groups = self.size.div_ceil(8);
         pass.dispatch_workgroups(groups, groups, 1);

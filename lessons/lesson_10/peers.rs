@@ -464,7 +464,9 @@ impl Peer {
     }
 }
 
-/// What a port sets in the lit pass's uniform (`soft.rs` `SoftUniform`).
+/// What a port sets in the lit pass: its taps and receiver plane as its
+/// pipeline's constants (`soft.rs` `SoftConstants`), the rest in its
+/// uniform (`SoftUniform`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PeerParams {
     /// Search and filter taps (Godot's, which its shader reads).

@@ -173,21 +173,88 @@ impl Technique {
     }
 }
 
-/// `Soft` in `soft.wgsl`: a variant's technique with one light's geometry.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct SoftUniform {
+/// What a variant's lit pipeline is built with: `soft.wgsl`'s `override`s
+/// (and lesson 03's `RENDERER_BIAS`). The shader never reads a mode, a tap
+/// count or a switch of the variant from a buffer: the compiler keeps only
+/// the variant's own path and unrolls its loops.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SoftConstants {
     pub mode: u32,
     pub search_taps: u32,
     pub filter_taps: u32,
-    pub receiver_plane: u32,
-    pub perspective: u32,
-    pub exponential: u32,
-    /// 1: the receiver moves by a renderer's offsets (lesson 03's
-    /// `peer_receiver`, from group 3's filter) before the lookup.
-    pub renderer_bias: u32,
-    /// 1: PCSS's step 3 probes the disk's rim first.
-    pub adaptive: u32,
+    pub receiver_plane: bool,
+    pub adaptive: bool,
+    pub exponential: bool,
+    pub negative_warp: bool,
+    pub renderer_bias: bool,
+}
+
+impl SoftConstants {
+    pub fn new(t: Technique) -> SoftConstants {
+        // A count the variant's path does not read: 1, so that variants
+        // that differ only there share a pipeline.
+        let mut c = SoftConstants {
+            mode: t.mode(),
+            search_taps: 1,
+            filter_taps: 1,
+            receiver_plane: false,
+            adaptive: false,
+            exponential: false,
+            negative_warp: false,
+            renderer_bias: t.moves_receiver(),
+        };
+        let mut variance = |v: &Variance| {
+            c.exponential = v.exponent.is_some();
+            c.negative_warp = v.negative.is_some_and(|n| n > 0.0);
+        };
+        match t {
+            Technique::HardPcf => c.receiver_plane = true,
+            Technique::FixedDisk { taps, .. } => {
+                c.filter_taps = taps;
+                c.receiver_plane = true;
+            }
+            Technique::Pcss(p) => {
+                c.search_taps = p.search_taps;
+                c.filter_taps = p.filter_taps;
+                c.receiver_plane = p.receiver_plane;
+                c.adaptive = p.adaptive;
+            }
+            Technique::Variance(v) => variance(&v),
+            Technique::Peer(p) => {
+                let params = p.params();
+                c.search_taps = params.taps.max(1);
+                c.filter_taps = params.taps.max(1);
+                c.receiver_plane = params.receiver_plane;
+                if let Some(v) = &params.variance {
+                    variance(v);
+                }
+            }
+        }
+        c
+    }
+
+    /// The pipeline's constants by name (lesson 03's `MODE` 2: its Poisson
+    /// disk, which `HardPcf` calls).
+    pub fn pairs(self) -> [(&'static str, f64); 9] {
+        [
+            ("MODE", 2.0),
+            ("SOFT_MODE", self.mode as f64),
+            ("SEARCH_TAPS", self.search_taps as f64),
+            ("FILTER_TAPS", self.filter_taps as f64),
+            ("RECEIVER_PLANE", self.receiver_plane as u32 as f64),
+            ("ADAPTIVE", self.adaptive as u32 as f64),
+            ("EXPONENTIAL", self.exponential as u32 as f64),
+            ("NEGATIVE_WARP", self.negative_warp as u32 as f64),
+            ("RENDERER_BIAS", self.renderer_bias as u32 as f64),
+        ]
+    }
+}
+
+/// `Soft` in `soft.wgsl`: one light's geometry and a variant's continuous
+/// parameters (its switches are [`SoftConstants`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct SoftUniform {
     pub near: f32,
     pub far: f32,
     pub size: f32,
@@ -201,19 +268,28 @@ pub struct SoftUniform {
     pub exponent: f32,
     pub negative: f32,
     pub scale: f32,
+    pub perspective: u32,
+    pub _pad: u32,
+    /// Vogel's disk, [`vogel_table`].
+    pub disk: [[f32; 2]; 64],
+}
+
+/// The most taps a disk has: the knobs' limit, the table's length.
+pub const DISK_POINTS: usize = 64;
+
+/// Vogel's golden-angle spiral for n = 1, unturned: point i at radius
+/// sqrt(i + 0.5) and angle i × 2.39996323. `soft.wgsl`'s `vogel` scales it
+/// by 1/sqrt(n) and turns it once per pixel.
+pub fn vogel_table() -> [[f32; 2]; DISK_POINTS] {
+    std::array::from_fn(|i| {
+        let (r, t) = ((i as f64 + 0.5).sqrt(), i as f64 * 2.39996323);
+        [(r * t.cos()) as f32, (r * t.sin()) as f32]
+    })
 }
 
 impl SoftUniform {
     pub fn new(t: Technique, g: &LightGeometry) -> SoftUniform {
         let mut u = SoftUniform {
-            mode: t.mode(),
-            search_taps: 0,
-            filter_taps: 0,
-            receiver_plane: 0,
-            perspective: g.perspective as u32,
-            exponential: 0,
-            renderer_bias: t.moves_receiver() as u32,
-            adaptive: 0,
             near: g.near,
             far: g.far,
             size: g.size,
@@ -227,35 +303,24 @@ impl SoftUniform {
             exponent: 0.0,
             negative: 0.0,
             scale: 0.0,
+            perspective: g.perspective as u32,
+            _pad: 0,
+            disk: vogel_table(),
         };
         match t {
-            Technique::HardPcf => u.receiver_plane = 1,
-            Technique::FixedDisk {
-                taps,
-                radius_texels,
-            } => {
-                u.filter_taps = taps;
+            Technique::FixedDisk { radius_texels, .. } => {
                 u.fixed_radius_texels = radius_texels;
-                u.receiver_plane = 1;
             }
-            Technique::Pcss(p) => {
-                u.search_taps = p.search_taps;
-                u.filter_taps = p.filter_taps;
-                u.receiver_plane = p.receiver_plane as u32;
-                u.min_filter_texels = p.min_filter_texels;
-                u.adaptive = p.adaptive as u32;
-            }
+            Technique::Pcss(p) => u.min_filter_texels = p.min_filter_texels,
             Technique::Variance(v) => u.set_variance(&v),
             Technique::Peer(p) => u.set_peer(p.params()),
+            Technique::HardPcf => {}
         }
         u
     }
 
     /// A renderer's port's parameters.
     pub fn set_peer(&mut self, p: PeerParams) {
-        self.search_taps = p.taps;
-        self.filter_taps = p.taps;
-        self.receiver_plane = p.receiver_plane as u32;
         if let Some(size) = p.size {
             self.size = size;
         }
@@ -267,7 +332,6 @@ impl SoftUniform {
 
     /// A variance map's parameters.
     pub fn set_variance(&mut self, v: &Variance) {
-        self.exponential = v.exponent.is_some() as u32;
         self.exponent = v.exponent.unwrap_or(0.0);
         self.negative = v.negative.unwrap_or(0.0);
         self.min_variance = v.min_variance;

@@ -19,17 +19,20 @@ override MODE: u32 = 0u;
 // A renderer's receiver bias (peer_receiver) in this pipeline: the
 // lesson's own filters compile without it (their bias fields are all 0).
 override RENDERER_BIAS: bool = false;
+// The grid's and the depth average's N (N×N taps), and whether each tap
+// compares with the receiver's plane there (RPDB): constants too, so a
+// grid's loops unroll (Rust: `Filter::grid_constants`).
+override N: u32 = 3u;
+override RECEIVER_PLANE: bool = false;
 // Set by pcf_adaptive where its probes disagreed (fs_adaptive_count).
 var<private> took_full_disk: bool = false;
 
-// Rust: lessons/lesson_03/pcf.rs `FilterUniform`.
+// Rust: lessons/lesson_03/pcf.rs `FilterUniform`: a filter's continuous
+// parameters (its switches and counts are the constants above).
 struct Filter {
-    // Grid and depth average: N.
-    n: u32,
-    // 1: each tap compares with the receiver's plane at the tap (RPDB).
-    receiver_plane: u32,
-    // Poisson disk: taps (16, the disk's size).
-    taps: u32,
+    _pad_a: u32,
+    _pad_b: u32,
+    _pad_c: u32,
     // Poisson disk: radius in texels.
     radius: f32,
     // A renderer's receiver bias (lesson 02's ShadowBias fields; 0 for ours):
@@ -255,13 +258,13 @@ fn fs_lit(in: VertexOut) -> LitOut {
     s.z -= r.w;
     // Derivatives before any branch: they need all four pixels of the quad.
     var gradient = receiver_plane_gradient(in.world);
-    if pcf.receiver_plane == 0u {
+    if !RECEIVER_PLANE {
         gradient = vec2<f32>(0.0);
     }
     var v = 1.0;
     if !outside_shadow_map(r.xyz, s) {
         switch MODE {
-            case 0u: { v = pcf_grid(s, i32(pcf.n), gradient); }
+            case 0u: { v = pcf_grid(s, i32(N), gradient); }
             // One tap; the sampler compares the 4 nearest texels and blends.
             case 1u: { v = textureSampleCompareLevel(shadow_map, shadow_compare, s.xy, s.z); }
             case 2u: { v = pcf_poisson(s, in.clip.xy, gradient); }
@@ -269,7 +272,7 @@ fn fs_lit(in: VertexOut) -> LitOut {
             case 4u, 5u: { v = coursework_filter(s, in, gradient); }
             case 6u: { v = pcf_castano13(s); }
             case 7u: { v = pcf_adaptive(s, in.clip.xy, gradient); }
-            default: { v = depth_average(s, i32(pcf.n)); }
+            default: { v = depth_average(s, i32(N)); }
         }
     }
     return lit_output(in, v);
@@ -280,7 +283,7 @@ fn fs_lit(in: VertexOut) -> LitOut {
 // exercises.wgsl, called as fs_lit would call a filter of the lesson.
 fn coursework_filter(s: vec3<f32>, in: VertexOut, gradient: vec2<f32>) -> f32 {
     if MODE == 4u {
-        return exercise_pcf_kernel(s, i32(pcf.n) / 2, gradient);
+        return exercise_pcf_kernel(s, i32(N) / 2, gradient);
     }
     return exercise_world_disk(s, in.world, in.clip.xy, pcf.radius, gradient);
 }
@@ -294,7 +297,7 @@ fn coursework_filter(s: vec3<f32>, in: VertexOut, gradient: vec2<f32>) -> f32 {
 fn fs_adaptive_count(in: VertexOut) -> LitOut {
     let s = shadow_coords(in.world);
     var gradient = receiver_plane_gradient(in.world);
-    if pcf.receiver_plane == 0u {
+    if !RECEIVER_PLANE {
         gradient = vec2<f32>(0.0);
     }
     var v = 0.0;

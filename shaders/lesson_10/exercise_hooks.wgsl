@@ -8,25 +8,26 @@
 // ANCHOR: shaped_pcss
 // The lesson's pcss, its two disks given as a matrix from the unit disk
 // to map units (the lesson's round disk of radius r is diag(r.x, r.y)):
-// tap i of a disk `shape` lies at s.xy + shape * vogel(i, n, angle).
+// tap i of a disk `shape` lies at s.xy + shape * vogel(i, n, rot), rot the
+// disk's rotation at this pixel.
 fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
     let d_r = light_distance(s.z);
     let search = footprint_shape(s, d_r, min(soft.nearest_caster, d_r));
-    let blockers = shaped_blocker_search(s, search, angle, gradient);
+    let blockers = shaped_blocker_search(s, search, disk_rotation(angle), gradient);
     if blockers.count == 0u {
         return 1.0;
     }
     let shape = footprint_shape(s, d_r, blockers.distance);
-    return shaped_disk_pcf(s, shape, soft.filter_taps, angle + 1.0, gradient);
+    return shaped_disk_pcf(s, shape, FILTER_TAPS, disk_rotation(angle + 1.0), gradient);
 }
 
 // soft.wgsl's blocker_search, its taps placed by `shape`.
-fn shaped_blocker_search(s: vec3<f32>, shape: mat2x2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
+fn shaped_blocker_search(s: vec3<f32>, shape: mat2x2<f32>, rot: mat2x2<f32>, gradient: vec2<f32>) -> Blockers {
     let size = vec2<f32>(textureDimensions(shadow_depths));
     var sum = 0.0;
     var count = 0u;
-    for (var i = 0u; i < soft.search_taps; i++) {
-        let o = shape * vogel(i, soft.search_taps, angle);
+    for (var i = 0u; i < SEARCH_TAPS; i++) {
+        let o = shape * vogel(i, SEARCH_TAPS, rot);
         let texel = clamp(vec2<i32>(floor((s.xy + o) * size)), vec2<i32>(0), vec2<i32>(size) - 1);
         let depth = textureLoad(shadow_depths, texel, 0).r;
         if depth < s.z + dot(gradient, o) {
@@ -38,10 +39,10 @@ fn shaped_blocker_search(s: vec3<f32>, shape: mat2x2<f32>, angle: f32, gradient:
 }
 
 // soft.wgsl's disk_pcf, its taps placed by `shape`.
-fn shaped_disk_pcf(s: vec3<f32>, shape: mat2x2<f32>, taps: u32, angle: f32, gradient: vec2<f32>) -> f32 {
+fn shaped_disk_pcf(s: vec3<f32>, shape: mat2x2<f32>, taps: u32, rot: mat2x2<f32>, gradient: vec2<f32>) -> f32 {
     var lit = 0.0;
     for (var i = 0u; i < taps; i++) {
-        let o = shape * vogel(i, taps, angle);
+        let o = shape * vogel(i, taps, rot);
         lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
     }
     return lit / f32(taps);

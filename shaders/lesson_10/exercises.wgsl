@@ -24,7 +24,7 @@ fn exercise_off_axis_radius(s: vec3<f32>, d_r: f32, d_b: f32) -> vec2<f32> {
 // ANCHOR: footprint
 // Exercise 2: the footprint's shape. Return the matrix that takes the unit
 // disk onto that footprint in map units: the variant's PCSS puts tap i of
-// each disk at s.xy + m * vogel(i, n, angle). The lesson's round disk of
+// each disk at s.xy + m * vogel(i, n, rot). The lesson's round disk of
 // radius r is mat2x2<f32>(r.x, 0.0, 0.0, r.y).
 fn exercise_footprint(s: vec3<f32>, d_r: f32, d_b: f32) -> mat2x2<f32> {
     // Starter: the lesson's round disk.

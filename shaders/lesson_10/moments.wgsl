@@ -6,21 +6,30 @@
 // of them along x; the second averages the first's along y: a (2r + 1)²
 // box filter, separable.
 
-// Rust: lessons/lesson_10/moments.rs `BlurUniform`.
+// The pass, fixed when its pipeline is built (Rust: moments.rs
+// `BlurKey`): which way it blurs, what it stores, how wide; a blur radius
+// read from a buffer would keep the loop from unrolling, and a software
+// rasteriser would run both directions' reads, masked, at every texel.
+// 0: along x, from the depth map; 1: along y, from the first pass.
+override VERTICAL: bool = false;
+// The moments of exp(c (2z − 1)) (and of −exp(−c⁻ (2z − 1))), else of z.
+override EXPONENTIAL: bool = false;
+// The box's radius, texels: 2 RADIUS + 1 taps a pass.
+override RADIUS: i32 = 4;
+// three.js's blur (peers.rs `ThreeVsmBlur`): SAMPLES > 0 takes SAMPLES
+// depths over ±`spread` texels, along y then along x, in place of the box.
+override SAMPLES: u32 = 0u;
+
+// Rust: lessons/lesson_10/moments.rs `BlurUniform`: the light's geometry
+// and the warp's exponents.
 struct Blur {
-    radius: i32,
-    // 0: along x, from the depth map; 1: along y, from the first pass.
-    vertical: u32,
-    exponential: u32,
     perspective: u32,
     exponent: f32,
     near: f32,
     far: f32,
     // The negative warp's exponent (EVSM4); 0: none.
     negative: f32,
-    // three.js's blur (peers.rs `ThreeVsmBlur`): `samples` > 0 takes
-    // `samples` depths over ±`spread` texels, along y then along x.
-    samples: u32,
+    // three.js's spread, texels.
     spread: f32,
     _pad1: u32,
     _pad2: u32,
@@ -44,7 +53,7 @@ fn depth_moments(stored: f32) -> vec4<f32> {
         dist = blur.far * blur.near / (blur.far - stored * (blur.far - blur.near));
     }
     let z = (dist - blur.near) / (blur.far - blur.near);
-    if blur.exponential == 0u {
+    if !EXPONENTIAL {
         return vec4<f32>(z, z * z, 0.0, 0.0);
     }
     let warped = exp(blur.exponent * (2.0 * z - 1.0));
@@ -54,13 +63,13 @@ fn depth_moments(stored: f32) -> vec4<f32> {
 // ANCHOR_END: moments
 
 // ANCHOR: threejs_blur
-// three.js's VSM blur (vsm.glsl.js): `samples` reads evenly spaced over
+// three.js's VSM blur (vsm.glsl.js): SAMPLES reads evenly spaced over
 // ±spread texels; the first pass (along y) reads the map's own depth with
 // nearest filtering (its depth texture's NearestFilter), the second (along
 // x) the first's (mean, standard deviation), linearly filtered; both write
 // (mean, standard deviation).
 fn threejs_blur(p: vec2<i32>, size: vec2<i32>) -> vec4<f32> {
-    let n = f32(blur.samples);
+    let n = f32(SAMPLES);
     var stride = 0.0;
     var start = 0.0;
     if n > 1.0 {
@@ -69,11 +78,11 @@ fn threejs_blur(p: vec2<i32>, size: vec2<i32>) -> vec4<f32> {
     }
     var mean = 0.0;
     var squared_mean = 0.0;
-    for (var i = 0u; i < blur.samples; i++) {
+    for (var i = 0u; i < SAMPLES; i++) {
         let offset = (start + f32(i) * stride) * blur.spread;
         let at = floor(offset);
         let f = offset - at;
-        if blur.vertical == 0u {
+        if !VERTICAL {
             // The nearest texel to the texel's centre plus the offset.
             let t = clamp(p + vec2<i32>(0, i32(floor(offset + 0.5))), vec2<i32>(0), size - 1);
             let d = textureLoad(depth, t, 0).r;
@@ -100,13 +109,13 @@ fn cs_blur(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(p >= size) {
         return;
     }
-    if blur.samples > 0u {
+    if SAMPLES > 0u {
         out[p.y * size.x + p.x] = threejs_blur(p, size);
         return;
     }
     var sum = vec4<f32>(0.0);
-    for (var k = -blur.radius; k <= blur.radius; k++) {
-        if blur.vertical == 0u {
+    for (var k = -RADIUS; k <= RADIUS; k++) {
+        if !VERTICAL {
             let t = clamp(p + vec2<i32>(k, 0), vec2<i32>(0), size - 1);
             sum += depth_moments(textureLoad(depth, t, 0).r);
         } else {
@@ -114,5 +123,5 @@ fn cs_blur(@builtin(global_invocation_id) id: vec3<u32>) {
             sum += first[t.y * size.x + t.x];
         }
     }
-    out[p.y * size.x + p.x] = sum / f32(2 * blur.radius + 1);
+    out[p.y * size.x + p.x] = sum / f32(2 * RADIUS + 1);
 }

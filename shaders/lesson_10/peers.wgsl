@@ -8,8 +8,9 @@
 // perspective alike), so each reversed port turns our depths into its
 // renderer's before its arithmetic.
 
-// The peer's mode in `soft.mode` (peers.rs `Peer::mode`; soft.rs
-// `Technique::mode` for our PCSS with Filament's and Bevy's search).
+// The peer's mode in `SOFT_MODE` (peers.rs `Peer::mode`; soft.rs
+// `Technique::mode` for our PCSS with Filament's and Bevy's search), a
+// constant of the variant's pipeline: it holds only its own port.
 const PCSS_SEARCH_AT_RECEIVER: u32 = 4u;
 const FILAMENT_PCSS: u32 = 7u;
 const BEVY_PCSS: u32 = 8u;
@@ -22,7 +23,7 @@ const GODOT_PCF: u32 = 12u;
 const THREEJS_PCF: u32 = 13u;
 
 fn peer(s: vec3<f32>, pixel: vec2<f32>, gradient: vec2<f32>) -> f32 {
-    switch soft.mode {
+    switch SOFT_MODE {
         case PCSS_SEARCH_AT_RECEIVER: { return pcss_search_at_receiver(s, rotation_angle(pixel), gradient); }
         case FILAMENT_PCSS: { return filament_pcss(s, pixel, gradient); }
         case BEVY_PCSS: { return bevy_pcss(s, pixel); }
@@ -71,13 +72,13 @@ fn pcss_search_at_receiver(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32
     if soft.perspective == 1u {
         search = search / d_r;
     }
-    let b = blocker_search(s, search, angle, gradient);
+    let b = blocker_search(s, search, SEARCH_TAPS, disk_rotation(angle), gradient);
     if b.count == 0u {
         return 1.0;
     }
     let texel = 1.0 / f32(textureDimensions(shadow_map).x);
     let radius = max(filter_radius(d_r, b.distance), vec2<f32>(soft.min_filter_texels * texel));
-    return penumbra_pcf(s, radius, angle + 1.0, gradient);
+    return penumbra_pcf(s, radius, FILTER_TAPS, angle + 1.0, gradient);
 }
 
 // ANCHOR: filament_pcss
@@ -229,7 +230,7 @@ fn godot_rotation(pixel: vec2<f32>) -> mat2x2<f32> {
 
 fn godot_soft(s: vec3<f32>, pixel: vec2<f32>) -> f32 {
     let rotation = godot_rotation(pixel);
-    let n = soft.search_taps;
+    let n = SEARCH_TAPS;
     // Reversed depth, as Godot's atlas holds it.
     let z = 1.0 - s.z;
     var uv_size: vec2<f32>;
@@ -358,7 +359,7 @@ fn filament_pcf_low(position: vec3<f32>) -> f32 {
 // (soft_shadow_kernel), turned per pixel by quick_hash, on a disk of
 // soft_shadow_scale (shadow_blur × the quality's radius) texels, averaged.
 fn godot_pcf(s: vec3<f32>, pixel: vec2<f32>) -> f32 {
-    let n = soft.filter_taps;
+    let n = FILTER_TAPS;
     let texel = 1.0 / vec2<f32>(textureDimensions(shadow_map));
     let shadow_pixel_size = soft.scale * texel;
     let disk_rotation = godot_rotation(pixel);

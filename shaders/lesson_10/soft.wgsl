@@ -10,26 +10,32 @@
 
 @group(2) @binding(3) var<storage, read> moments: array<vec4<f32>>;
 
-// Rust: lessons/lesson_10/soft.rs `SoftUniform`, one per variant and light.
+// The variant, fixed when its pipeline is built (Rust: soft.rs
+// `Technique::constants`): `override`s, not fields of `Soft`. A switch or a
+// loop bound read from a buffer keeps every variant's path in every
+// variant's pipeline, and a loop whose count is not known does not unroll;
+// a software rasteriser runs every case, masked, texture reads included
+// (lesson 03's `MODE` says more). With constants the compiler keeps only
+// this variant's code.
+// 0: lesson 03's Poisson PCF; 1: a fixed disk; 2: PCSS; 3: variance map;
+// from 4: PCSS searching the light's size at the receiver, and the
+// renderers' ports (peers.wgsl).
+override SOFT_MODE: u32 = 2u;
+override SEARCH_TAPS: u32 = 16u;
+override FILTER_TAPS: u32 = 16u;
+// (Each tap compares with the receiver's plane there: lesson 03's
+// RECEIVER_PLANE.)
+// PCSS's step 3 probes the filter disk's rim first (penumbra_pcf).
+override ADAPTIVE: bool = false;
+// Variance maps: the moments of exp(c (2z − 1)), z the linear depth
+// (else plain); with NEGATIVE_WARP also of −exp(−c⁻ (2z − 1)) (EVSM4).
+override EXPONENTIAL: bool = false;
+override NEGATIVE_WARP: bool = false;
+// (A renderer's receiver offsets: lesson 03's RENDERER_BIAS.)
+
+// Rust: lessons/lesson_10/soft.rs `SoftUniform`, one per variant and light:
+// the light's geometry and the variant's continuous parameters.
 struct Soft {
-    // 0: lesson 03's Poisson PCF; 1: a fixed disk; 2: PCSS; 3: variance
-    // map; from 4: PCSS searching the light's size at the receiver, and
-    // the renderers' ports (peers.wgsl).
-    mode: u32,
-    search_taps: u32,
-    filter_taps: u32,
-    // 1: each tap compares with the receiver's plane there.
-    receiver_plane: u32,
-    // The light: 0 orthographic (directional), 1 perspective (spot).
-    perspective: u32,
-    // Variance maps: 0 plain; 1 exponential (the moments of exp(c (2z − 1)),
-    // z the linear depth).
-    exponential: u32,
-    // 1: the receiver moves by a renderer's offsets first (lesson 03's
-    // peer_receiver, from the filter at group 3 binding 0).
-    renderer_bias: u32,
-    // 1: PCSS's step 3 probes the filter disk's rim first (penumbra_pcf).
-    adaptive: u32,
     // Orthographic: world distance from the light's plane at depth 0 and 1.
     // Perspective: the near and far planes.
     near: f32,
@@ -51,10 +57,16 @@ struct Soft {
     bleed_lo: f32,
     bleed_hi: f32,
     exponent: f32,
-    // The negative warp's exponent c⁻ (EVSM4); 0: the positive warp alone.
+    // The negative warp's exponent c⁻ (EVSM4, with NEGATIVE_WARP).
     negative: f32,
     // A port's second size (Godot's soft_shadow_scale).
     scale: f32,
+    // The light: 0 orthographic (directional), 1 perspective (spot): the
+    // light's, not the variant's (one pipeline serves both).
+    perspective: u32,
+    _pad: u32,
+    // Vogel's disk for n = 1 (`vogel`).
+    disk: array<vec2<f32>, 64>,
 };
 @group(3) @binding(1) var<storage, read> soft: Soft;
 
@@ -87,13 +99,19 @@ fn filter_radius(d_r: f32, d_b: f32) -> vec2<f32> {
 // ANCHOR_END: penumbra
 
 // ANCHOR: vogel
-// Point i of an n-point disk: Vogel's golden-angle spiral, turned by
-// `angle`. Equal areas per point, no two close: a Poisson-like disk for
-// any n (Godot's kernels are the same spiral).
-fn vogel(i: u32, n: u32, angle: f32) -> vec2<f32> {
-    let rho = sqrt((f32(i) + 0.5) / f32(n));
-    let turn = f32(i) * 2.39996323 + angle;
-    return rho * vec2<f32>(cos(turn), sin(turn));
+// Point i of an n-point disk: Vogel's golden-angle spiral, radius
+// sqrt((i + 0.5) / n), angle i × 2.39996323, turned by `rot`. Equal areas
+// per point, no two close, for any n. The points are a table the lesson
+// writes once (`soft.disk`, soft.rs `vogel_table`), scaled by 1/sqrt(n),
+// a pipeline constant: no root, sine or cosine per tap. (A WGSL `const`
+// array read at a loop's index is copied whole per read: 8 times the lit
+// pass on lavapipe.)
+fn disk_rotation(angle: f32) -> mat2x2<f32> {
+    return mat2x2<f32>(cos(angle), sin(angle), -sin(angle), cos(angle));
+}
+
+fn vogel(i: u32, n: u32, rot: mat2x2<f32>) -> vec2<f32> {
+    return rot * soft.disk[i] * inverseSqrt(f32(n));
 }
 // ANCHOR_END: vogel
 
@@ -107,12 +125,12 @@ struct Blockers {
 // ANCHOR: blocker_search
 // The taps of a disk of `radius` (map units) that see something in front of
 // the receiver's plane, and their mean distance from the light.
-fn blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> Blockers {
+fn blocker_search(s: vec3<f32>, radius: vec2<f32>, taps: u32, rot: mat2x2<f32>, gradient: vec2<f32>) -> Blockers {
     let size = vec2<f32>(textureDimensions(shadow_depths));
     var sum = 0.0;
     var count = 0u;
-    for (var i = 0u; i < soft.search_taps; i++) {
-        let o = vogel(i, soft.search_taps, angle) * radius;
+    for (var i = 0u; i < taps; i++) {
+        let o = vogel(i, taps, rot) * radius;
         let texel = clamp(vec2<i32>(floor((s.xy + o) * size)), vec2<i32>(0), vec2<i32>(size) - 1);
         let depth = textureLoad(shadow_depths, texel, 0).r;
         if depth < s.z + dot(gradient, o) {
@@ -127,10 +145,10 @@ fn blocker_search(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f3
 // ANCHOR: disk_pcf
 // `taps` bilinear comparisons on a disk of `radius` (map units): the
 // fraction of the taps the receiver's plane is not behind.
-fn disk_pcf(s: vec3<f32>, radius: vec2<f32>, taps: u32, angle: f32, gradient: vec2<f32>) -> f32 {
+fn disk_pcf(s: vec3<f32>, radius: vec2<f32>, taps: u32, rot: mat2x2<f32>, gradient: vec2<f32>) -> f32 {
     var lit = 0.0;
     for (var i = 0u; i < taps; i++) {
-        let o = vogel(i, taps, angle) * radius;
+        let o = vogel(i, taps, rot) * radius;
         lit += textureSampleCompareLevel(shadow_map, shadow_compare, s.xy + o, s.z + dot(gradient, o));
     }
     return lit / f32(taps);
@@ -145,7 +163,7 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
     // 1. Blocker search, wherever blockers can be: the emitter seen
     // through the receiver, on the nearest caster's plane.
     let search = filter_radius(d_r, min(soft.nearest_caster, d_r));
-    let blockers = blocker_search(s, search, angle, gradient);
+    let blockers = blocker_search(s, search, SEARCH_TAPS, disk_rotation(angle), gradient);
     if blockers.count == 0u {
         return 1.0;
     }
@@ -153,7 +171,7 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
     let texel = 1.0 / f32(textureDimensions(shadow_map).x);
     let radius = max(filter_radius(d_r, blockers.distance), vec2<f32>(soft.min_filter_texels * texel));
     // 3. Filter: a PCF that wide.
-    return penumbra_pcf(s, radius, angle + 1.0, gradient);
+    return penumbra_pcf(s, radius, FILTER_TAPS, angle + 1.0, gradient);
 }
 // ANCHOR_END: pcss
 
@@ -163,14 +181,14 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
 // shadow, and the pixel is lit or in umbra, for 4 taps instead of the
 // disk's 16. Only where they disagree, the full disk (a caster thinner
 // than the disk between the probes is missed).
-fn penumbra_pcf(s: vec3<f32>, radius: vec2<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
-    if soft.adaptive == 1u {
+fn penumbra_pcf(s: vec3<f32>, radius: vec2<f32>, taps: u32, angle: f32, gradient: vec2<f32>) -> f32 {
+    if ADAPTIVE {
         let sum = rim_probes(s, radius, 1.0, angle, gradient);
         if sum == 0.0 || sum == 4.0 {
             return sum / 4.0;
         }
     }
-    return disk_pcf(s, radius, soft.filter_taps, angle, gradient);
+    return disk_pcf(s, radius, taps, disk_rotation(angle), gradient);
 }
 // ANCHOR_END: penumbra_pcf
 
@@ -225,13 +243,13 @@ fn variance_map(s: vec3<f32>) -> f32 {
     let t = linear_depth(s.z);
     let m = moments_at(s.xy);
     var p_max = 1.0;
-    if soft.exponential == 0u {
+    if !EXPONENTIAL {
         p_max = chebyshev(m.xy, t, soft.min_variance);
     } else {
         // exp(c (2t − 1)); the least variance scales with it.
         let warped = exp(soft.exponent * (2.0 * t - 1.0));
         p_max = chebyshev(m.xy, warped, soft.min_variance * warped * warped);
-        if soft.negative > 0.0 {
+        if NEGATIVE_WARP {
             let warped_neg = -exp(-soft.negative * (2.0 * t - 1.0));
             p_max = min(p_max, chebyshev(m.zw, warped_neg, soft.min_variance * warped_neg * warped_neg));
         }
@@ -249,24 +267,24 @@ fn linear_depth(depth: f32) -> f32 {
 @fragment
 fn fs_soft(in: VertexOut) -> LitOut {
     var r = vec4<f32>(in.world, 0.0);
-    if soft.renderer_bias == 1u {
+    if RENDERER_BIAS {
         r = peer_receiver(in.world, in.normal);
     }
     var s = shadow_coords(r.xyz);
     s.z -= r.w;
     // Derivatives before any branch: they need all four pixels of the quad.
     var gradient = receiver_plane_gradient(in.world);
-    if soft.receiver_plane == 0u {
+    if !RECEIVER_PLANE {
         gradient = vec2<f32>(0.0);
     }
     let angle = rotation_angle(in.clip.xy);
     var v = 1.0;
     if !outside_shadow_map(r.xyz, s) {
-        switch soft.mode {
+        switch SOFT_MODE {
             case 0u: { v = pcf_poisson(s, in.clip.xy, gradient); }
             case 1u: {
                 let texel = 1.0 / f32(textureDimensions(shadow_map).x);
-                v = disk_pcf(s, vec2<f32>(soft.fixed_radius_texels * texel), soft.filter_taps, angle, gradient);
+                v = disk_pcf(s, vec2<f32>(soft.fixed_radius_texels * texel), FILTER_TAPS, disk_rotation(angle), gradient);
             }
             case 2u: { v = pcss(s, angle, gradient); }
             case 3u: { v = variance_map(s); }

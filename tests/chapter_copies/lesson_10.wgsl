@@ -18,7 +18,7 @@ fn exercise_off_axis_radius(s: vec3<f32>, d_r: f32, d_b: f32) -> vec2<f32> {
 // ANCHOR_END: off_axis_radius
 
 // ANCHOR: footprint
-// Copies the chapter's `disk_pcf` listing's taps, vogel(i, taps, angle) *
+// Copies the chapter's `disk_pcf` listing's taps, vogel(i, taps, rot) *
 // radius, with the radius of its `pcss` listing (as above): a round disk
 // as a matrix.
 fn exercise_footprint(s: vec3<f32>, d_r: f32, d_b: f32) -> mat2x2<f32> {

@@ -69,7 +69,9 @@ fn why(records: &[Record], lesson: &str, variant: &str) -> Result<String> {
     Ok(format!("{accuracy}; {reason}"))
 }
 
-fn caption(full: &FullHd) -> String {
+/// The table's caption: the GPU, the runs, the protocol, and what the
+/// GPU is (`note`, [`crate::gpus::set_note`]).
+fn caption(full: &FullHd, note: Option<&str>) -> String {
     let Some(r) = full.reports.first() else {
         return String::new();
     };
@@ -80,8 +82,15 @@ fn caption(full: &FullHd) -> String {
         )
     });
     format!(
-        "*{}, {} · {}×{} · the default scenes · the code of commit `{}` (measured {}) · each lesson alone, its variants warmed up{warm} and timed, {} frames each, between blocks of the no-shadow frame · GPU ms from timestamps: median [spread: the frames' interquartile range]*\n\n",
-        r.adapter.name, r.adapter.backend, r.width, r.height, ORIGIN.commit, ORIGIN.measured, r.frames
+        "*{}, {} · {}×{} · the default scenes · the code of commit `{}` (measured {}) · each lesson alone, its variants warmed up{warm} and timed, {} frames each, between blocks of the no-shadow frame · GPU ms from timestamps: median [spread: the frames' interquartile range]{}*\n\n",
+        r.adapter.name,
+        r.adapter.backend,
+        r.width,
+        r.height,
+        ORIGIN.commit,
+        ORIGIN.measured,
+        r.frames,
+        note.map_or(String::new(), |n| format!(" · what this GPU is: {n}"))
     )
 }
 
@@ -95,8 +104,8 @@ fn verdict_cell(c: Option<Cost>) -> String {
 }
 
 /// The table.
-pub fn table(full: &FullHd, records: &[Record]) -> Result<String> {
-    let mut s = caption(full);
+pub fn table(full: &FullHd, records: &[Record], note: Option<&str>) -> Result<String> {
+    let mut s = caption(full, note);
     let head = [
         "lesson".to_string(),
         "variant".into(),
