@@ -256,7 +256,7 @@ pub const WHY: &[Why] = &[
         ],
         pass: Lighting,
         on: Lavapipe,
-        why: "Every variant's lit pass is one shader that picks its filter with `switch soft.mode`, a value read from a buffer, and lavapipe runs every case of such a switch at every pixel, masked (as lessons 03 and 04 measured before their modes became pipeline constants): each variant pays for the PCSS search and filter, the variance maps' reads and every renderer's port.",
+        why: "In the code these records ran (before issue 50 made the technique a pipeline constant, `SOFT_MODE`), every variant's lit pass was one shader that picked its filter with `switch soft.mode`, a value read from a buffer, and lavapipe runs every case of such a switch at every pixel, masked (as lessons 03 and 04 measured before their modes became pipeline constants): each variant paid for the PCSS search and filter, the variance maps' reads and every renderer's port.",
     },
     Why {
         lesson: "lesson_10",
@@ -270,7 +270,7 @@ pub const WHY: &[Why] = &[
         variants: &["pcf_wide_16", "pcf_wide_32"],
         pass: Lighting,
         on: Gpu,
-        why: "Each tap's position is computed on Vogel's spiral (a square root, a cosine and a sine a tap; `hard_pcf` turns a constant disk once), and the taps spread over a disk of 8 texels' radius.",
+        why: "In the code these records ran, each tap's position was computed on Vogel's spiral (a square root, a cosine and a sine a tap; since issue 50 a table turned once a pixel; `hard_pcf` turns a constant disk once), and the taps spread over a disk of 8 texels' radius.",
     },
     Why {
         lesson: "lesson_10",
