@@ -124,34 +124,10 @@ const SCENE_DATA: &[(&str, &str, &str)] = &[
     ),
 ];
 
-/// Variants' choices still read from a buffer: the rules let them
-/// through, named here until their lessons move them into `override`s
-/// (issue 50: lesson 04's range clamp and lesson 09's cascade count and
-/// blend band, whose changes did not land with lesson 10's and lesson
-/// 03's). Each is a defect this list keeps in sight, not scene data.
-const PENDING: &[(&str, &str, &str)] = &[
-    (
-        "params",
-        "clamp_range",
-        "lesson 04: `no_range_clamp_1024`'s choice, a branch in every variant's pipeline",
-    ),
-    (
-        "cascades",
-        "forward",
-        "lesson 09: its w is the cascade count, the loop bound of `select_cascade`",
-    ),
-    (
-        "cascades",
-        "options",
-        "lesson 09: its x, the blend band, read in the blend's condition",
-    ),
-];
-
 fn allowed(var: &str, ty: &str, field: &str) -> bool {
     field.starts_with('_')
         || SCENE_DATA
             .iter()
-            .chain(PENDING)
             .any(|&(v, f, _)| (v == var || v == ty) && f == field)
 }
 

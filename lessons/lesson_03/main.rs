@@ -69,6 +69,18 @@ enum Variant {
     /// 4 probes decide lit or umbra; the full poisson_16 only between.
     #[value(name = "poisson_16_adaptive")]
     Poisson16Adaptive,
+    /// Castaño's 5×5 from 9 bilinear comparisons on the lesson's map and bias.
+    ///
+    /// Castaño 2013, "Shadow Mapping Summary – Part 1" (The Witness): each
+    /// bilinear tap, placed and weighted by the receiver's position in its
+    /// texel, stands for a 2×2 block of a 5×5 tent-like Gaussian. Bevy runs
+    /// it as its default filter (`sample_shadow_map_castano_thirteen`,
+    /// `port_cards::BEVY_SHADOW_SAMPLING`); here it is `bevy`'s `MODE` 6
+    /// without Bevy's offsets, map and shadow pass, beside `poisson_16`.
+    /// Every tap compares with the centre's depth (`MODE` 6 takes no
+    /// receiver plane), so lit slopes take a wide flat kernel's veil.
+    #[value(name = "castano_5x5")]
+    Castano5x5,
     #[value(name = "depth_avg_3x3")]
     DepthAvg3x3,
     /// LearnOpenGL "Shadow Mapping": no bias in the shadow pass, `max(0.05
@@ -124,6 +136,7 @@ impl Variant {
                 taps: 16,
                 radius: 2.5,
             },
+            Variant::Castano5x5 => Filter::Castano13,
             Variant::DepthAvg3x3 => Filter::DepthAverage { n: 3 },
             Variant::LearnOpenGlPcf => pcf::LEARNOPENGL_3X3,
             Variant::WgpuExampleHw2x2 => pcf::WGPU_EXAMPLE_HW2X2,

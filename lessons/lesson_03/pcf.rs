@@ -27,9 +27,11 @@ pub enum Filter {
     /// Adaptive: 4 bilinear probes on the disk's rim decide lit or umbra;
     /// only where they disagree, the full `taps` Poisson disk.
     AdaptivePoisson { taps: u32, radius: f32 },
-    /// Bevy's default (`ShadowFilteringMethod::Gaussian`): Castaño's 5×5
-    /// Gaussian from 9 bilinear comparisons (The Witness), ported from
-    /// bevy_pbr/src/render/shadow_sampling.wgsl `sample_shadow_map_castano_thirteen`.
+    /// Castaño's 5×5 Gaussian from 9 bilinear comparisons (The Witness),
+    /// as Bevy's default (`ShadowFilteringMethod::Gaussian`) runs it,
+    /// ported from bevy_pbr/src/render/shadow_sampling.wgsl
+    /// `sample_shadow_map_castano_thirteen`: `castano_5x5` on the lesson's
+    /// bias, `bevy` with Bevy's.
     Castano13,
     // ... then the two exercises' filters (the chapter's end).
     // ANCHOR_END: filter

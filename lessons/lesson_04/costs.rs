@@ -11,7 +11,7 @@ use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
 
 use super::cube_map::{cube_pipeline_with, DepthStorage, CUBE_FORMAT};
-use super::faces::FaceUniforms;
+use super::faces::{FaceRects, FaceUniforms};
 use crate::lesson_01::tally::{Tally, TallyShader, TALLY_TARGETS};
 
 /// Texture lookups per lit pixel of the 3D PCF variants: the 20 directions
@@ -53,24 +53,28 @@ pub fn cube_tally_pipelines(
 
 /// Light `light`'s face passes, counted: `.0` the depth writes (fragments
 /// that pass the faces' `Less` test, in draw order), `.1` the fragments
-/// rasterised, over the faces with casters (`casters(face)`, as the
-/// frame draws them; a face without is not rendered). `faces` must hold
-/// the light's uniforms ([`FaceUniforms::write`]); each face is counted
-/// into a fresh `size`² depth target, not the frame's cube.
+/// rasterised, over the faces with casters (`casters(face)`) and a
+/// rectangle, inside it (`rects`), as the frame draws them (a face without
+/// is not rendered). `faces` must hold the light's uniforms
+/// ([`FaceUniforms::write`]); each face is counted into a fresh `size`²
+/// depth target, not the frame's cube.
 pub fn count_light_texels(
     gpu: &Gpu,
     scene: &SceneGpu,
     pipelines: &[wgpu::RenderPipeline; 2],
     faces: &FaceUniforms,
     size: u32,
-    light: usize,
+    (light, rects): (usize, &FaceRects),
     casters: impl Fn(usize) -> Vec<usize>,
 ) -> Result<(u64, u64)> {
     let texture = depth_texture(gpu, "cube face count", size, 1, CUBE_FORMAT);
     let view = texture.create_view(&Default::default());
     let tally = Tally::new(gpu, size, size);
     let mut total = [0, 0];
-    for face in 0..6 {
+    for (face, rect) in rects.iter().enumerate() {
+        let Some(rect) = rect else {
+            continue;
+        };
         let list = casters(face);
         if list.is_empty() {
             continue;
@@ -87,6 +91,7 @@ pub fn count_light_texels(
             *total += tally.count(gpu, Some(depth), |pass| {
                 pass.set_pipeline(pipeline);
                 faces.bind(pass, light, face);
+                pass.set_scissor_rect(rect.x, rect.y, rect.w, rect.h);
                 scene.draw_objects(pass, |i| list.contains(&i));
             })?;
         }

@@ -13,6 +13,8 @@ use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
 
+use super::faces::FaceRects;
+
 pub const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// A cube of six square depth layers: one `D2` view per face to render
@@ -120,8 +122,6 @@ pub struct CubeParams {
     pub near: f32,
     /// 2 / face resolution: a texel's width 1 m from the light.
     pub texel_at_1m: f32,
-    /// 1: clamp the receiver to the far plane.
-    pub clamp_range: u32,
     /// The faces' far plane in metres; 0: the light's range.
     pub far: f32,
     /// A constant bias in world units.
@@ -134,7 +134,6 @@ pub struct CubeParams {
     /// LearnOpenGL: the disk's radius per (1 + view distance / range), in
     /// world units; Bevy: the normal bias per unit of major-axis distance.
     pub peer_scale: f32,
-    pub _pad: [f32; 3],
 }
 
 /// The lit pipeline's constants (`override`s in `cube_map.wgsl`): the
@@ -150,6 +149,9 @@ pub struct LitKey {
     pub peer: u32,
     /// 3D PCF (20 taps) instead of one tap.
     pub filtered: bool,
+    /// Receivers past the far plane compare at 1.0 (lit) instead of
+    /// behind the cleared cube (shadowed).
+    pub clamp_range: bool,
 }
 
 impl LitKey {
@@ -165,6 +167,7 @@ impl LitKey {
             ("STORAGE", self.storage as f64),
             ("PEER", self.peer as f64),
             ("FILTERED", self.filtered as u32 as f64),
+            ("CLAMP_RANGE", self.clamp_range as u32 as f64),
         ];
         // The exercise's lookup has its own entry point (no cube bound).
         let entry = if self.storage == Storage::DepthExercise as u32 {
@@ -254,21 +257,23 @@ pub(crate) fn cube_pipeline_with(
 }
 
 // ANCHOR: cube_shadow_passes
-/// Renders light `light`'s six faces, one render pass each. `casters(face)`
-/// lists the objects to draw into a face; a face with none is skipped (it
-/// is cleared once, then left alone). Returns each face's draws.
+/// Renders light `light`'s six faces, one render pass each, each only over
+/// its rectangle in `rects` (the texels a visible receiver can look up:
+/// [`super::face_rects`]). `casters(face)` lists the objects to draw into
+/// a face; a face with none, or with no rectangle, is skipped (it is
+/// cleared once, then left alone). Returns each face's draws.
 pub fn cube_shadow_passes(
     frame: &mut Frame,
     scene: &SceneGpu,
     pipeline: &wgpu::RenderPipeline,
     map: &mut CubeShadowMap,
     faces: &super::faces::FaceUniforms,
-    light: usize,
+    (light, rects): (usize, &FaceRects),
     casters: impl Fn(usize) -> Vec<usize>,
 ) -> [u32; 6] {
     let mut drawn = [0; 6];
     for (face, draws) in drawn.iter_mut().enumerate() {
-        let list = casters(face);
+        let list = rects[face].map_or_else(Vec::new, |_| casters(face));
         if list.is_empty() && map.empty[face] {
             continue;
         }
@@ -278,6 +283,7 @@ pub fn cube_shadow_passes(
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &map.face_views[face],
                     depth_ops: Some(wgpu::Operations {
+                        // The whole face: the scissor does not hold back a clear.
                         load: wgpu::LoadOp::Clear(1.0),
                         store: wgpu::StoreOp::Store,
                     }),
@@ -288,6 +294,9 @@ pub fn cube_shadow_passes(
             });
             pass.set_pipeline(pipeline);
             faces.bind(&mut pass, light, face);
+            if let Some(r) = rects[face] {
+                pass.set_scissor_rect(r.x, r.y, r.w, r.h);
+            }
             *draws = scene.draw_objects(&mut pass, |i| list.contains(&i));
         });
         map.empty[face] = list.is_empty();

@@ -6,6 +6,7 @@ use common::glam::DVec3;
 use common::gpu::render::SceneGpu;
 use common::scene::Scene;
 
+use super::face_rects::Bounds;
 use super::faces::CUBE_FACES;
 
 /// A bounding sphere, origin-relative, around the world-space box of
@@ -15,6 +16,16 @@ pub struct Sphere {
     pub centre: DVec3,
     pub radius: f64,
     pub half: DVec3,
+}
+
+impl Sphere {
+    /// The box inside the sphere: the object's bounds as a receiver.
+    pub fn bounds(&self) -> Bounds {
+        Bounds {
+            lo: self.centre - self.half,
+            hi: self.centre + self.half,
+        }
+    }
 }
 
 /// Each object's bounding sphere: around its world-space bounding box.

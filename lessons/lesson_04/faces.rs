@@ -35,6 +35,49 @@ pub fn face_view_proj(light: DVec3, face: usize, near: f64, far: f64) -> Mat4 {
 }
 // ANCHOR_END: cube_faces
 
+/// One face's scissor rectangle, in texels from the face's top left
+/// ([`super::face_rects`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TexelRect {
+    pub x: u32,
+    pub y: u32,
+    pub w: u32,
+    pub h: u32,
+}
+
+impl TexelRect {
+    /// The whole face.
+    pub fn full(size: u32) -> TexelRect {
+        TexelRect {
+            x: 0,
+            y: 0,
+            w: size,
+            h: size,
+        }
+    }
+
+    /// Texels inside.
+    pub fn area(self) -> u64 {
+        u64::from(self.w) * u64::from(self.h)
+    }
+
+    /// The smallest rectangle holding both.
+    pub fn union(self, o: TexelRect) -> TexelRect {
+        let (x, y) = (self.x.min(o.x), self.y.min(o.y));
+        let x1 = (self.x + self.w).max(o.x + o.w);
+        let y1 = (self.y + self.h).max(o.y + o.h);
+        TexelRect {
+            x,
+            y,
+            w: x1 - x,
+            h: y1 - y,
+        }
+    }
+}
+
+/// Each face's rectangle; `None`: no visible receiver looks into the face.
+pub type FaceRects = [Option<TexelRect>; 6];
+
 /// Uniform slots are spaced by the dynamic-offset alignment.
 const SLOT: u64 = 256;
 

@@ -1,14 +1,21 @@
 //! Lesson 04's harness: what the report counts around the frame that
 //! `main.rs` draws (the face passes' depth writes, counted once per
-//! variant in their own submits, and the faces and draws of each frame).
+//! variant in their own submits, and the faces, draws and scissored
+//! texels of each frame), and the faces' rectangles with the knob that
+//! turns them off.
 
+use std::collections::BTreeMap;
+
+use common::glam::DVec3;
 use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
+use common::run::knobs::{Knob, KnobRange};
 use common::Result;
-use workbook::lesson_04::costs;
+use workbook::lesson_04::costs::{self, PCF3D_TAPS};
 use workbook::lesson_04::culling::face_casters;
-use workbook::lesson_04::faces::point_light;
+use workbook::lesson_04::faces::{point_light, FaceRects};
+use workbook::lesson_04::footprint::lookup_footprint;
 
 use super::{CubeShadows, Variant};
 
@@ -17,6 +24,8 @@ use super::{CubeShadows, Variant};
 pub struct CubeStats {
     pub faces_rendered: u64,
     pub caster_draws: u64,
+    /// Texels inside the drawn faces' scissor rectangles.
+    pub texels_scissored: u64,
 }
 
 impl CubeShadows {
@@ -36,15 +45,90 @@ impl CubeShadows {
         Ok(())
     }
 
-    /// The faces rendered and caster draws of a frame, from what
-    /// [`CubeShadows::draw`] returned (each light's draws per face).
-    pub(super) fn record_draws(&mut self, scene: &SceneGpu, drawn: &[[u32; 6]]) {
-        let faces = drawn.iter().flatten();
+    /// The report's counters: the standard costs (the face passes' depth
+    /// writes and fragments, the lit pass's taps per pixel, the frame's
+    /// draw calls) and the lesson's own (faces, caster draws, scissored
+    /// texels, the faces' planes and bias).
+    pub(super) fn cube_counters(&self, variant: Variant) -> BTreeMap<String, u64> {
+        let p = &self.prepared[variant as usize];
+        let v = variant.settings();
+        let taps = v
+            .peer
+            .taps()
+            .unwrap_or(if v.pcf > 0.0 { PCF3D_TAPS } else { 1 });
+        let mut c = BTreeMap::from([
+            ("filter_taps_per_pixel".into(), taps),
+            ("draws".into(), self.draws),
+            ("faces_rendered".into(), self.stats.faces_rendered),
+            ("caster_draws".into(), self.stats.caster_draws),
+            ("unclipped_depth".into(), u64::from(p.unclipped)),
+            ("near_plane_mm".into(), (p.near * 1000.0).round() as u64),
+            // The slope bias, in thousandths of a texel per unit of tan θ.
+            (
+                "slope_bias_millitexels".into(),
+                (variant.settings().slope * 1000.0).round() as u64,
+            ),
+        ]);
+        if let Some((written, fragments)) = self.texels_written[variant as usize] {
+            c.insert("shadow_texels_written".into(), written);
+            c.insert("shadow_fragments".into(), fragments);
+        }
+        c.insert(
+            "shadow_texels_scissored".into(),
+            self.stats.texels_scissored,
+        );
+        c
+    }
+
+    /// The faces rendered, caster draws and scissored texels of a frame,
+    /// from what [`CubeShadows::draw`] returned (each light's draws and
+    /// rectangle per face).
+    pub(super) fn record_draws(&mut self, scene: &SceneGpu, drawn: &[([u32; 6], FaceRects)]) {
+        let faces = drawn.iter().flat_map(|(d, r)| d.iter().zip(r));
+        let drawn_into = faces.clone().filter(|(&d, _)| d > 0);
         self.stats = CubeStats {
-            faces_rendered: faces.clone().filter(|&&d| d > 0).count() as u64,
-            caster_draws: faces.map(|&d| u64::from(d)).sum(),
+            faces_rendered: drawn_into.clone().count() as u64,
+            caster_draws: faces.map(|(&d, _)| u64::from(d)).sum(),
+            texels_scissored: drawn_into.filter_map(|(_, r)| r.map(|r| r.area())).sum(),
         };
         self.draws = costs::frame_draws(scene, self.stats.caster_draws);
+    }
+
+    /// Light `light`'s face rectangles for `variant` (at `at`, with this
+    /// range): the texels its visible receivers can look up
+    /// ([`workbook::lesson_04::face_rects`]), or whole faces with the knob
+    /// off and for the unculled frame (`nocull_1024` leaves out nothing).
+    pub(super) fn face_rects(
+        &mut self,
+        scene: &SceneGpu,
+        variant: Variant,
+        light: usize,
+        (at, range): (DVec3, f64),
+    ) -> FaceRects {
+        let v = variant.settings();
+        let peer = (v.peer, v.bias_world);
+        let far = v.far.unwrap_or(range);
+        let footprint = lookup_footprint(v.storage, v.pcf, peer, v.size, far)
+            .filter(|_| self.scissor[variant as usize] && v.cull.is_some());
+        let receivers: Vec<_> = self.spheres.iter().map(|s| s.bounds()).collect();
+        let camera = (scene.camera.view_proj, scene.camera.eye);
+        self.rects
+            .get((light, at), v.size, &receivers, camera, footprint)
+    }
+
+    /// The knob `face_scissor` (on by default): each face drawn only over
+    /// its rectangle. The unculled frame and the exercise's lookup, whose
+    /// texels the student's function picks, keep whole faces and have none.
+    pub(super) fn scissor_knob(&self, variant: Variant) -> Vec<Knob> {
+        if variant.settings().cull.is_none() || variant == Variant::ExerciseCubeFaces {
+            return Vec::new();
+        }
+        vec![Knob {
+            name: "face_scissor",
+            doc: "each cube face drawn only over the texels a visible receiver's lookup can read (off: whole faces)",
+            range: KnobRange::Toggle,
+            value: f64::from(u8::from(self.scissor[variant as usize])),
+        }]
     }
 
     /// Every light's face passes for `variant`, counted ([`costs::count_light_texels`]).
@@ -54,19 +138,24 @@ impl CubeShadows {
         scene: &SceneGpu,
         variant: Variant,
     ) -> Result<(u64, u64)> {
-        let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
+        let v = variant.settings();
+        let (near, far, pipeline) = {
+            let p = &self.prepared[variant as usize];
+            (p.near, p.far, p.pipeline)
+        };
         let mut total = (0, 0);
         for light in 0..scene.scene.lights.len() {
-            self.faces.write(gpu, &scene.scene, light, p.near, p.far);
+            self.faces.write(gpu, &scene.scene, light, near, far);
             let at = point_light(&scene.scene, self.faces.origin, light)
                 .expect("check_scene allows point and spot lights");
+            let rects = self.face_rects(scene, variant, light, at);
             let (written, fragments) = costs::count_light_texels(
                 gpu,
                 scene,
-                &self.tally_pipelines[p.pipeline],
+                &self.tally_pipelines[pipeline],
                 &self.faces,
                 v.size,
-                light,
+                (light, &rects),
                 |face| face_casters(scene, &self.spheres, at, v.cull, face),
             )?;
             total = (total.0 + written, total.1 + fragments);

@@ -23,15 +23,17 @@ use common::gpu::render::{shader_module_from_files, SceneGpu};
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
+use common::run::knobs::Knob;
 use common::run::lesson::{variant_name, BufferView, Lesson};
 use common::scene::{LightKind, Scene};
 use common::Result;
 use workbook::lesson_01::tally::TallyShader;
-use workbook::lesson_04::costs::{self, PCF3D_TAPS};
+use workbook::lesson_04::costs;
 use workbook::lesson_04::cross::{cross_view, write_cross_png};
 use workbook::lesson_04::cube_map::{self, CubeParams, CubeShadowMap, LitKey, Storage};
 use workbook::lesson_04::culling::{self, face_casters, FaceTest, Sphere};
-use workbook::lesson_04::faces::{point_light, FaceUniforms};
+use workbook::lesson_04::face_rects::FaceRectCache;
+use workbook::lesson_04::faces::{point_light, FaceRects, FaceUniforms};
 use workbook::lesson_04::peers::{self, Peer, Port};
 
 mod harness;
@@ -209,6 +211,10 @@ struct CubeShadows {
     stats: CubeStats,
     /// The last frame's draw calls ([`costs::frame_draws`]).
     draws: u64,
+    /// Each face's rectangle per light, and per variant the knob
+    /// `face_scissor` (`harness.rs`).
+    rects: FaceRectCache,
+    scissor: Vec<bool>,
 }
 
 impl Lesson for CubeShadows {
@@ -306,6 +312,7 @@ impl Lesson for CubeShadows {
                 storage: v.storage as u32,
                 peer,
                 filtered: v.pcf > 0.0,
+                clamp_range: v.clamp_range,
             };
             let lit = lit_keys.iter().position(|k| *k == key).unwrap_or_else(|| {
                 let layout = if faces { &faces_layout } else { &layout };
@@ -316,14 +323,12 @@ impl Lesson for CubeShadows {
             let params = CubeParams {
                 near: near as f32,
                 texel_at_1m: 2.0 / v.size as f32,
-                clamp_range: v.clamp_range.into(),
                 far: v.far.unwrap_or(0.0) as f32,
                 bias_world: v.bias_world,
                 bias_texels: v.bias_texels,
                 slope: v.slope,
                 pcf: v.pcf,
                 peer_scale,
-                _pad: [0.0; 3],
             };
             let filter = if v.pcf > 0.0 || v.peer.linear() {
                 wgpu::FilterMode::Linear
@@ -360,6 +365,8 @@ impl Lesson for CubeShadows {
             spheres,
             stats: CubeStats::default(),
             draws: 0,
+            rects: FaceRectCache::default(),
+            scissor: vec![true; Variant::value_variants().len()],
         })
     }
 
@@ -388,33 +395,19 @@ impl Lesson for CubeShadows {
         self.texels_written[variant as usize] = None;
     }
 
-    /// Also the standard costs: the face passes' depth writes and
-    /// fragments, the lit pass's taps per pixel, the frame's draw calls.
+    /// The standard costs and the lesson's own (`harness.rs`).
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let p = &self.prepared[variant as usize];
-        let v = variant.settings();
-        let taps = v
-            .peer
-            .taps()
-            .unwrap_or(if v.pcf > 0.0 { PCF3D_TAPS } else { 1 });
-        let mut c = BTreeMap::from([
-            ("filter_taps_per_pixel".into(), taps),
-            ("draws".into(), self.draws),
-            ("faces_rendered".into(), self.stats.faces_rendered),
-            ("caster_draws".into(), self.stats.caster_draws),
-            ("unclipped_depth".into(), u64::from(p.unclipped)),
-            ("near_plane_mm".into(), (p.near * 1000.0).round() as u64),
-            // The slope bias, in thousandths of a texel per unit of tan θ.
-            (
-                "slope_bias_millitexels".into(),
-                (variant.settings().slope * 1000.0).round() as u64,
-            ),
-        ]);
-        if let Some((written, fragments)) = self.texels_written[variant as usize] {
-            c.insert("shadow_texels_written".into(), written);
-            c.insert("shadow_fragments".into(), fragments);
-        }
-        c
+        self.cube_counters(variant)
+    }
+
+    fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        self.scissor_knob(variant)
+    }
+
+    fn set_knob(&mut self, _: &Gpu, _: &SceneGpu, v: Variant, _: &str, value: f64) -> Result<()> {
+        self.scissor[v as usize] = value == 1.0;
+        self.count_again(v);
+        Ok(())
     }
 
     fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
@@ -430,30 +423,40 @@ impl Lesson for CubeShadows {
 impl CubeShadows {
     // ANCHOR: render
     /// One frame: per light, the six faces' matrices for where it is, the
-    /// face passes (each face's casters culled as the variant says), then
-    /// the lit pass. Returns each light's draws per face.
+    /// face passes (each face's casters culled as the variant says, each
+    /// face drawn over its rectangle), then the lit pass. Returns each
+    /// light's draws and rectangle per face.
     fn draw(
         &mut self,
         frame: &mut Frame,
         scene: &SceneGpu,
         targets: &FrameTargets,
         variant: Variant,
-    ) -> Vec<[u32; 6]> {
-        let (v, p) = (variant.settings(), &self.prepared[variant as usize]);
+    ) -> Vec<([u32; 6], FaceRects)> {
+        let v = variant.settings();
+        let (near, far) = (self.prepared[variant as usize].near, v.far);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = Vec::new();
         for light in 0..scene.scene.lights.len() {
-            self.faces
-                .write(frame.gpu, &scene.scene, light, p.near, p.far);
+            self.faces.write(frame.gpu, &scene.scene, light, near, far);
             let at = point_light(&scene.scene, self.faces.origin, light)
                 .expect("check_scene allows point and spot lights");
+            let rects = self.face_rects(scene, variant, light, at);
+            let p = &self.prepared[variant as usize];
             let casters = |face| face_casters(scene, &self.spheres, at, v.cull, face);
             let map = &mut self.maps[p.map];
             let pipeline = &self.shadow_pipelines[p.pipeline];
             let faces = &self.faces;
-            drawn.push(cube_map::cube_shadow_passes(
-                frame, scene, pipeline, map, faces, light, casters,
-            ));
+            let drawn_here = cube_map::cube_shadow_passes(
+                frame,
+                scene,
+                pipeline,
+                map,
+                faces,
+                (light, &rects),
+                casters,
+            );
+            drawn.push((drawn_here, rects));
             let lit = &self.lit_pipelines[p.lit];
             frame.pass("lighting", |enc, ts| {
                 scene.lit_pass(

@@ -6,7 +6,9 @@ pub mod costs;
 pub mod cross;
 pub mod cube_map;
 pub mod culling;
+pub mod face_rects;
 pub mod faces;
+pub mod footprint;
 pub mod peers;
 pub mod port_cards;
 

@@ -30,6 +30,9 @@ pub enum SplitScheme {
 /// test `lesson_09_practical_beats_uniform_and_log` keeps it honest.
 pub const PRACTICAL_LAMBDA: f64 = 0.9;
 
+/// The receiver's normal offset, in texels of its cascade (`cascade_lookup`).
+pub const NORMAL_OFFSET_TEXELS: f32 = 1.0;
+
 // ANCHOR: splits
 /// The `k + 1` view depths that bound `k` cascades: `[near, ..., far]`.
 /// Cascade `i` covers view depths `[d[i], d[i + 1]]`.

@@ -12,6 +12,7 @@ use common::scene::camera::LightUniform;
 use common::scene::Scene;
 
 use super::cascades::Cascade;
+use super::caster_culling::Kept;
 use crate::lesson_01::shadow_map::{
     begin_shadow_pass, comparison_sampler, ShadowMap, SHADOW_FORMAT,
 };
@@ -133,8 +134,10 @@ impl CascadeLights {
 }
 
 // ANCHOR: cascade_pass
-/// Renders every caster into layer `i` with cascade `i`'s matrix, through
-/// lesson 01's shadow pipeline.
+/// Renders the casters that cascade `i` keeps ([`super::caster_culling`])
+/// into layer `i` with cascade `i`'s matrix, through lesson 01's shadow
+/// pipeline.
+#[allow(clippy::too_many_arguments)]
 pub fn cascade_pass(
     encoder: &mut wgpu::CommandEncoder,
     scene: &SceneGpu,
@@ -142,15 +145,34 @@ pub fn cascade_pass(
     maps: &CascadeMaps,
     lights: &CascadeLights,
     i: usize,
+    kept: &Kept,
     ts: Option<wgpu::RenderPassTimestampWrites>,
 ) -> u32 {
     let view = &maps.layer_views[i];
     let mut pass = begin_shadow_pass(encoder, "cascade shadow pass", view, ts);
     pass.set_pipeline(pipeline);
     lights.bind(&mut pass, i);
-    scene.draw_objects(&mut pass, |o| scene.casts_shadow(o))
+    draw_kept(&mut pass, scene, kept)
 }
 // ANCHOR_END: cascade_pass
+
+/// Draws each object once per rectangle `kept` holds for it, with that
+/// rectangle as the scissor; the number of draws.
+pub fn draw_kept(pass: &mut wgpu::RenderPass<'_>, scene: &SceneGpu, kept: &Kept) -> u32 {
+    let mut drawn = 0;
+    for (o, rects) in kept.iter().enumerate().filter(|(_, r)| !r.is_empty()) {
+        let mesh = &scene.meshes[o];
+        scene.bind_object(pass, o);
+        pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+        pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+        for &[x, y, w, h] in rects {
+            pass.set_scissor_rect(x, y, w, h);
+            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+            drawn += 1;
+        }
+    }
+    drawn
+}
 
 /// `Cascades` in `csm.wgsl`: what the lit pass needs to pick a cascade and
 /// sample it.
@@ -162,7 +184,8 @@ pub struct CsmParams {
     pub split_far: [f32; MAX_CASCADES],
     /// Cascade i's texel, in metres.
     pub texel: [f32; MAX_CASCADES],
-    /// xyz: the camera's view axis; w: the cascade count.
+    /// xyz: the camera's view axis; w: unused (the cascade count is the
+    /// pipeline's `CASCADES`, [`super::pipelines::Shape`]).
     pub forward: [f32; 4],
     /// x: the blend band (a fraction of the cascade's length, 0: none),
     /// y: the normal offset in texels, z: the first cascade's near depth.
@@ -175,7 +198,7 @@ impl CsmParams {
             view_proj: [[[0.0; 4]; 4]; MAX_CASCADES],
             split_far: [f32::MAX; MAX_CASCADES],
             texel: [0.0; MAX_CASCADES],
-            forward: forward.as_vec3().extend(cascades.len() as f32).to_array(),
+            forward: forward.as_vec3().extend(0.0).to_array(),
             options: [blend, normal, cascades[0].near as f32, 0.0],
         };
         for (i, c) in cascades.iter().enumerate() {

@@ -18,12 +18,14 @@ const TINT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const TINT_DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// The pipeline of `fs_cascade_tint` (`csm.wgsl`): the scene from the
-/// camera, into its own colour and depth targets.
+/// camera, into its own colour and depth targets, with the variant's
+/// `constants` (its cascade count and blend, [`super::pipelines::Shape`]).
 pub fn tint_pipeline(
     gpu: &Gpu,
     scene: &SceneGpu,
     module: &wgpu::ShaderModule,
     csm_layout: &wgpu::BindGroupLayout,
+    constants: &[(&str, f64)],
 ) -> wgpu::RenderPipeline {
     let layout = pipeline_layout_for(
         gpu,
@@ -48,9 +50,8 @@ pub fn tint_pipeline(
             fragment: Some(wgpu::FragmentState {
                 module,
                 entry_point: Some("fs_cascade_tint"),
-                // The band decides (0: none): the picture is not timed.
                 compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &[("BLEND", 1.0)],
+                    constants,
                     ..Default::default()
                 },
                 targets: &[Some(TINT_FORMAT.into())],

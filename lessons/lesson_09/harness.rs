@@ -1,14 +1,15 @@
 //! Lesson 09's harness: what the report counts around the frame that
 //! `main.rs` draws: a frame's draw calls, and the shadow passes' depth
 //! writes and fragments over every light and cascade (lesson 01's tally,
-//! in submits of their own).
+//! in submits of their own), each cascade drawing the casters it keeps.
 
 use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
+use common::measure::timing::Frame;
 use common::Result;
 use workbook::lesson_01::tally::Tally;
 use workbook::lesson_09::cascades::Cascade;
-use workbook::lesson_09::csm::CascadeMaps;
+use workbook::lesson_09::csm::{self, CascadeMaps};
 use workbook::lesson_09::setup::Setup;
 
 use super::{Csm, Variant};
@@ -42,29 +43,46 @@ impl Csm {
         }
     }
 
-    /// Draw calls of a frame: the base pass, then per light K shadow passes
-    /// (every caster) and the lit pass (every object).
-    pub(super) fn draws(&self, variant: Variant) -> u64 {
-        let k = self.setup(variant).count as u64;
+    /// Draw calls of a frame whose shadow passes drew `casters` times: the
+    /// base pass and each light's lit pass draw every object.
+    pub(super) fn draws(&self, casters: u64) -> u64 {
         let lights = self.lights.len() as u64;
-        self.objects + lights * (k * self.casters + self.objects)
+        self.objects * (1 + lights) + casters
+    }
+
+    /// Once per variant (and again after the runner or a knob moved
+    /// something): this frame's caster draws, and, where the GPU can be
+    /// waited on, its shadow passes' texels, in submits of their own that
+    /// are left out of the frame's times.
+    pub(super) fn count_once(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        setup: Setup,
+        variant: Variant,
+    ) -> Result<()> {
+        let v = variant as usize;
+        if self.caster_draws[v].is_none() {
+            let rects = self.kept.iter().flatten().flatten();
+            self.caster_draws[v] = Some(rects.map(|r| r.len() as u64).sum());
+        }
+        if self.texels_written[v].is_none() && frame.gpu.can_wait() {
+            let (size, k) = (setup.resolution, setup.count);
+            let n = frame.untimed(|gpu| self.count_texels(gpu, scene, size, k))?;
+            self.texels_written[v] = Some(n);
+        }
+        Ok(())
     }
 
     /// The shadow passes' depth writes and rasterised fragments over every
     /// light and cascade, counted through lesson 01's tally. Untimed.
-    pub(super) fn count_texels(
-        &self,
-        gpu: &Gpu,
-        scene: &SceneGpu,
-        size: u32,
-        k: usize,
-    ) -> Result<(u64, u64)> {
+    fn count_texels(&self, gpu: &Gpu, scene: &SceneGpu, size: u32, k: usize) -> Result<(u64, u64)> {
         let scratch = CascadeMaps::new(gpu, size, 1);
         let tally = Tally::new(gpu, size, size);
         let mut total = [0u64; 2];
         for (which, total) in total.iter_mut().enumerate() {
-            for lights in &self.lights {
-                for i in 0..k {
+            for (lights, kept) in self.lights.iter().zip(&self.kept) {
+                for (i, kept) in kept.iter().enumerate().take(k) {
                     let depth = wgpu::RenderPassDepthStencilAttachment {
                         view: &scratch.layer_views[0],
                         depth_ops: Some(wgpu::Operations {
@@ -76,7 +94,7 @@ impl Csm {
                     *total += tally.count(gpu, Some(depth), |pass| {
                         pass.set_pipeline(&self.tally_pipeline[which]);
                         lights.bind(pass, i);
-                        scene.draw_objects(pass, |o| scene.casts_shadow(o));
+                        csm::draw_kept(pass, scene, kept);
                     })?;
                 }
             }

@@ -11,9 +11,10 @@
 //! every frame, from the camera as it is then (`[camera_path]`).
 //!
 //! The math is in [`cascades`], the GPU side in [`csm`] and
-//! `shaders/lesson_09/csm.wgsl`; the cascade count and the split's λ are
-//! knobs ([`knobs`]). What the report counts around the frame (draw calls,
-//! the shadow passes' texels) is in `harness.rs`.
+//! `shaders/lesson_09/csm.wgsl`; each cascade draws only the casters that
+//! can shadow its receivers ([`caster_culling`]); the cascade count and
+//! the split's λ are knobs ([`knobs`]). What the report counts around the
+//! frame (draw calls, the shadow passes' texels) is in `harness.rs`.
 //!
 //! Run: `cargo run --release --bin lesson_09 -- --headless`
 //! Book: chapter "09 cascaded shadow maps" (`book/src/lesson_09.md`).
@@ -35,7 +36,9 @@ use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowPassState};
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_09::cascades::{self, Cascade, Fit, FitOptions, SplitScheme};
+use workbook::lesson_09::caster_culling::{CasterCulling, Kept};
 use workbook::lesson_09::csm::{self, CascadeLights, CascadeMaps};
+use workbook::lesson_09::pipelines::{CsmPipelines, Shape};
 use workbook::lesson_09::setup::{Exercise, Setup};
 use workbook::lesson_09::{extras, knobs, setup};
 
@@ -77,6 +80,9 @@ enum Variant {
     /// k4, fading into the next cascade over the last 10 % of each.
     #[value(name = "k4_blend")]
     K4Blend,
+    /// k4 drawing every caster into every cascade, over the whole map.
+    #[value(name = "k4_nocull")]
+    K4NoCull,
     // Then the chapter's exercises.
     // ANCHOR_END: variants
     /// Exercise 1: k4 with the student's `fitted_splits`.
@@ -112,6 +118,7 @@ impl Variant {
             Variant::K4AabbNoSnap => k4.with_fit(Fit::Aabb, false, true),
             Variant::K4NoExtend => k4.with_fit(Fit::Sphere, true, false),
             Variant::K4Blend => Setup { blend: 0.1, ..k4 },
+            Variant::K4NoCull => Setup { cull: false, ..k4 },
             // The chapter's exercises (below).
             _ => self.exercise(),
         }
@@ -141,12 +148,15 @@ const ALIASING_AT: [u32; 4] = [2, 10, 50, 200];
 struct Csm {
     shadow_pipeline: wgpu::RenderPipeline,
     tally_pipeline: [wgpu::RenderPipeline; 2],
-    /// The lit pass without and with the blend band (`BLEND` in csm.wgsl).
-    lit_pipelines: [wgpu::RenderPipeline; 2],
-    tint_pipeline: wgpu::RenderPipeline,
+    /// The lit pass and the cascade picture, per cascade count and blend.
+    pipelines: CsmPipelines,
     layout: wgpu::BindGroupLayout,
     /// Per light: its cascades' matrices (shadow pass), its lit parameters.
     lights: Vec<CascadeLights>,
+    /// Per light: its view of the objects, and per cascade of this frame,
+    /// which objects the cascade draws.
+    culling: Vec<CasterCulling>,
+    kept: Vec<Vec<Kept>>,
     /// The scene's origin and bounds, found once ([`setup::SceneBox`]).
     scene_box: setup::SceneBox,
     params: Vec<wgpu::Buffer>,
@@ -156,9 +166,11 @@ struct Csm {
     /// pass's depth writes and fragments (counted once, first frame).
     fitted: Vec<Option<Vec<Cascade>>>,
     texels_written: Vec<Option<(u64, u64)>>,
-    /// The scene's objects and shadow casters (for `draws`).
+    /// Per variant: the shadow passes' draws in the frame whose texels were
+    /// counted (for `draws` and `casters_drawn`).
+    caster_draws: Vec<Option<u64>>,
+    /// The scene's objects (for `draws`).
     objects: u64,
-    casters: u64,
     /// Per variant, its setup with the knobs' values ([`Csm::setup`]).
     setups: Vec<Setup>,
 }
@@ -177,15 +189,17 @@ impl Lesson for Csm {
 
     /// The cascade each pixel samples ([`extras::cascade_view`]), light 0.
     fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        let setup = v.setup();
-        let Some(m) = self.find_maps(setup.resolution, setup.count) else {
+        let setup = self.setup(v);
+        let (Some(m), Some(p)) = (
+            self.find_maps(setup.resolution, setup.count),
+            self.pipelines.get(Shape::of(&setup)),
+        ) else {
             return Ok(None); // not drawn yet
         };
         let Some(group) = self.maps[m].1.first() else {
             return Ok(None); // no light: no cascades
         };
-        let tint = &self.tint_pipeline;
-        extras::cascade_view(gpu, scene, tint, group, setup.count).map(Some)
+        extras::cascade_view(gpu, scene, &p.tint, group, setup.count).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -196,34 +210,25 @@ impl Lesson for Csm {
             bias: setup::shadow_pass_bias(),
         };
         let layout = csm::csm_layout(gpu);
-        let lit_pipelines = [false, true].map(|blend| {
-            scene.lit_pipeline_with_depth(
-                gpu,
-                &module,
-                "fs_lit",
-                &[&layout],
-                scene.lit_depth_state(Default::default()),
-                &[("BLEND", blend as u32 as f64)],
-            )
-        });
         let tally = TallyShader::new(gpu);
         let n = scene.scene.lights.len();
+        let scene_box = setup::SceneBox::new(&scene.scene);
+        let variants = Variant::value_variants().len();
         Ok(Csm {
             shadow_pipeline: shadow_map::shadow_pipeline(gpu, scene, &module, state),
             tally_pipeline: shadow_map::shadow_tally_pipelines(gpu, scene, &module, state, &tally),
-            lit_pipelines,
-            tint_pipeline: extras::tint_pipeline(gpu, scene, &module, &layout),
+            pipelines: CsmPipelines::new(&module, &layout),
             lights: (0..n).map(|_| CascadeLights::new(gpu, scene)).collect(),
-            scene_box: setup::SceneBox::new(&scene.scene),
+            culling: CasterCulling::for_lights(&scene.scene, scene_box.origin),
+            kept: Vec::new(),
+            scene_box,
             params: (0..n).map(|_| setup::params_buffer(gpu)).collect(),
             layout,
             maps: Vec::new(),
-            fitted: vec![None; Variant::value_variants().len()],
-            texels_written: vec![None; Variant::value_variants().len()],
+            fitted: vec![None; variants],
+            texels_written: vec![None; variants],
+            caster_draws: vec![None; variants],
             objects: scene.scene.objects.len() as u64,
-            casters: (0..scene.meshes.len())
-                .filter(|&i| scene.casts_shadow(i))
-                .count() as u64,
             setups: Variant::value_variants()
                 .iter()
                 .map(|v| v.setup())
@@ -240,16 +245,13 @@ impl Lesson for Csm {
     ) -> Result<()> {
         let setup = self.setup(variant);
         let m = self.maps_for(frame.gpu, setup.resolution, setup.count);
+        self.pipelines.make(frame.gpu, scene, Shape::of(&setup));
         let fits = self.fit_cascades(frame, scene, setup)?;
+        self.choose_casters(frame, scene, setup, &fits);
         self.jitter_cascades(frame.gpu, scene, setup, &fits);
         // Light 0's cascades, for the report.
         self.fitted[variant as usize] = fits.into_iter().next();
-        if self.texels_written[variant as usize].is_none() && frame.gpu.can_wait() {
-            // Once per variant, its own submits: left out of the frame's times.
-            let (size, k) = (setup.resolution, setup.count);
-            let n = frame.untimed(|gpu| self.count_texels(gpu, scene, size, k))?;
-            self.texels_written[variant as usize] = Some(n);
-        }
+        self.count_once(frame, scene, setup, variant)?;
         self.cascade_passes(frame, scene, targets, setup, m);
         Ok(())
     }
@@ -276,11 +278,11 @@ impl Lesson for Csm {
     /// passes' depth writes are counted again on the next frame.
     fn count_again(&mut self, variant: Variant) {
         self.texels_written[variant as usize] = None;
+        self.caster_draws[variant as usize] = None;
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         let setup = self.setup(variant);
-        let draws = self.draws(variant);
         let mut c = BTreeMap::from([
             ("cascades".into(), setup.count as u64),
             ("shadow_map_size".into(), setup.resolution as u64),
@@ -289,8 +291,11 @@ impl Lesson for Csm {
                 "filter_taps_per_pixel".into(),
                 if setup.blend > 0.0 { 2 } else { 1 },
             ),
-            ("draws".into(), draws),
         ]);
+        if let Some(casters) = self.caster_draws[variant as usize] {
+            c.insert("draws".into(), self.draws(casters));
+            c.insert("casters_drawn".into(), casters);
+        }
         if let Some((written, fragments)) = self.texels_written[variant as usize] {
             c.insert("shadow_texels_written".into(), written);
             c.insert("shadow_fragments".into(), fragments);
@@ -333,7 +338,7 @@ impl Lesson for Csm {
     ) -> Result<()> {
         knobs::set_setup_knob(&mut self.setups[variant as usize], name, value)?;
         self.fitted[variant as usize] = None;
-        self.texels_written[variant as usize] = None;
+        self.count_again(variant);
         Ok(())
     }
 
@@ -345,7 +350,10 @@ impl Lesson for Csm {
         out: &Path,
     ) -> Result<()> {
         let setup = self.setup(variant);
-        let Some(m) = self.find_maps(setup.resolution, setup.count) else {
+        let (Some(m), Some(p)) = (
+            self.find_maps(setup.resolution, setup.count),
+            self.pipelines.get(Shape::of(&setup)),
+        ) else {
             return Ok(());
         };
         let (maps, groups) = &self.maps[m];
@@ -354,7 +362,7 @@ impl Lesson for Csm {
         };
         let name = variant_name(variant);
         let path = out.join(format!("{name}_cascades.png"));
-        extras::write_cascade_png(gpu, scene, &self.tint_pipeline, group, &path)?;
+        extras::write_cascade_png(gpu, scene, &p.tint, group, &path)?;
         extras::write_layers(gpu, maps, out, &name)
     }
 }
@@ -388,9 +396,33 @@ impl Csm {
     }
     // ANCHOR_END: fit_cascades
 
+    /// Per light and cascade of `fits`, the casters the cascade draws
+    /// ([`CasterCulling::casters`]): those that can shadow a surface the
+    /// lit pass reads the cascade for, seen by the camera as the scene's
+    /// uniforms hold it now; every caster where the variant does not cull.
+    fn choose_casters(
+        &mut self,
+        frame: &mut Frame,
+        scene: &SceneGpu,
+        setup: Setup,
+        fits: &[Vec<Cascade>],
+    ) {
+        let view = setup::lit_view(scene, self.scene_box.origin);
+        let (res, band) = (setup.resolution, setup.blend as f64);
+        self.kept = frame.cpu("cull", || {
+            let culling = self.culling.iter().zip(fits);
+            let kept = |(c, fit): (&CasterCulling, &Vec<Cascade>)| match setup.cull {
+                true => c.casters(&view, fit, res, band),
+                false => c.every_caster(fit.len(), res),
+            };
+            culling.map(kept).collect()
+        });
+    }
+
     // ANCHOR: cascade_passes
     /// A frame: per light, K shadow passes, one per layer of the array
-    /// `m`; then one lit pass that picks a layer per pixel.
+    /// `m`, each drawing the casters its cascade keeps; then one lit pass
+    /// that picks a layer per pixel.
     fn cascade_passes(
         &self,
         frame: &mut Frame,
@@ -404,13 +436,14 @@ impl Csm {
         for (light, (lights, group)) in self.lights.iter().zip(groups).enumerate() {
             for i in 0..setup.count {
                 frame.pass("shadow", |enc, ts| {
-                    let p = &self.shadow_pipeline;
-                    csm::cascade_pass(enc, scene, p, maps, lights, i, ts.render())
+                    let (p, kept) = (&self.shadow_pipeline, &self.kept[light][i]);
+                    csm::cascade_pass(enc, scene, p, maps, lights, i, kept, ts.render())
                 });
             }
             frame.pass("lighting", |enc, ts| {
                 let group = [group];
-                let pipeline = &self.lit_pipelines[(setup.blend > 0.0) as usize];
+                let made = self.pipelines.get(Shape::of(&setup));
+                let pipeline = &made.expect("made by render").lit;
                 let lit = LitPass::new(light, pipeline, &group);
                 scene.lit_pass(enc, targets, lit, ts.render())
             });

@@ -1,15 +1,23 @@
 //! Lesson 09, cascaded shadow maps: the view frustum split by depth, one
 //! fitted, snapped map per slice, all in one depth texture array;
-//! [`knobs`]: the cascade count and the split's λ, as the window's widgets
-//! and `--knob`.
+//! [`caster_culling`]: each cascade draws only the casters that can shadow
+//! its [`receivers`], where they can; [`pipelines`]: a lit pipeline per
+//! cascade count and blend; [`knobs`]: the cascade count and the split's
+//! λ, as the window's widgets and `--knob`.
 
 pub mod cascades;
+
+pub mod caster_culling;
 
 pub mod csm;
 
 pub mod extras;
 
 pub mod knobs;
+
+pub mod pipelines;
+
+pub mod receivers;
 
 pub mod setup;
 

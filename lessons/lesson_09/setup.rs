@@ -4,19 +4,19 @@
 
 use anyhow::Result;
 use common::glam::{DVec2, DVec3, Mat4};
-use common::gpu::render::SCENE_BUFFER_USAGE;
+use common::gpu::render::{SceneGpu, SCENE_BUFFER_USAGE};
 use common::gpu::Gpu;
 use common::scene::{Far, LightKind, Scene};
 
-use super::cascades::{self, Cascade, Fit, FitOptions, LightBox, SplitScheme, ViewFrustum};
+use super::cascades::{
+    self, Cascade, Fit, FitOptions, LightBox, SplitScheme, ViewFrustum, NORMAL_OFFSET_TEXELS,
+};
 use super::csm::CsmParams;
+use super::receivers::LitView;
 use crate::lesson_02::bias::SlopeScaledBias;
 
 /// The texels every variant spends: one 2048² map's worth.
 pub const TOTAL_TEXELS: u64 = 2048 * 2048;
-
-/// The receiver's normal offset, in texels of its cascade (`cascade_lookup`).
-pub const NORMAL_OFFSET_TEXELS: f32 = 1.0;
 
 /// A variant's cascades.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,6 +31,9 @@ pub struct Setup {
     pub blend: f32,
     /// The chapter's exercise this variant runs, if any.
     pub exercise: Option<Exercise>,
+    /// Each cascade draws only the casters that can shadow its receivers
+    /// ([`super::caster_culling`]); false: every caster into every cascade.
+    pub cull: bool,
 }
 
 /// The chapter's exercises (`exercises.rs`): k4 (exercise 2: k4_aabb) with the
@@ -53,6 +56,7 @@ impl Setup {
             options: None,
             blend: 0.0,
             exercise: None,
+            cull: true,
         }
     }
 
@@ -65,6 +69,7 @@ impl Setup {
             options: Some(options),
             blend: 0.0,
             exercise: None,
+            cull: true,
         }
     }
 
@@ -204,6 +209,19 @@ pub fn view_frustum(scene: &Scene, o: DVec3, width: u32, height: u32) -> ViewFru
     let c = &scene.camera;
     let aspect = width as f64 / height as f64;
     ViewFrustum::new(c.eye - o, c.target - o, c.up, c.fov_y_deg, aspect)
+}
+
+/// What the lit pass sees now ([`LitView`]): the camera as the scene's
+/// uniforms hold it (moved by the runner's jitter, or the frame before's
+/// in its world-locked probe), and the view axis the cascades are split
+/// along, from the scene's camera.
+pub fn lit_view(scene: &SceneGpu, origin: DVec3) -> LitView {
+    let (w, h) = (scene.width, scene.height);
+    LitView {
+        view_proj: scene.camera.view_proj.as_dmat4(),
+        eye: scene.camera.eye.as_dvec3(),
+        forward: view_frustum(&scene.scene, origin, w, h).forward,
+    }
 }
 
 /// The cascade a pixel at view depth `d` samples, as `select_cascade` in

@@ -19,14 +19,16 @@ override STORAGE: u32 = 0u;
 override PEER: u32 = 0u;
 // 3D PCF (params.pcf texels) instead of one tap.
 override FILTERED: bool = false;
+// Receivers past the far plane compared at 1.0, so they read lit (the
+// lesson's, Bevy's); false: behind the cleared cube, shadowed
+// (no_range_clamp_1024, LearnOpenGL's). A variant's choice, not the scene's.
+override CLAMP_RANGE: bool = true;
 
 // Rust: lesson_04::cube_map::CubeParams.
 struct CubeParams {
     near: f32,
     // 2 / face resolution: a texel's width 1 m from the light.
     texel_at_1m: f32,
-    // 1: clamp the receiver to the far plane.
-    clamp_range: u32,
     // The faces' far plane (m); 0: the light's range (a renderer's own
     // far plane otherwise).
     far: f32,
@@ -39,9 +41,6 @@ struct CubeParams {
     // A renderer's lookup's scale (LearnOpenGL: disk per (1 + view
     // distance / range); Bevy: normal bias per metre of major-axis distance).
     peer_scale: f32,
-    _pad1: f32,
-    _pad2: f32,
-    _pad3: f32,
 };
 @group(2) @binding(2) var<storage, read> params: CubeParams;
 const STORAGE_LINEAR: u32 = 0u;
@@ -109,7 +108,7 @@ fn receiver_depth(v: vec3<f32>, d: f32) -> f32 {
         }
         z = far * (m - near) / ((far - near) * m);
     }
-    if params.clamp_range == 1u {
+    if CLAMP_RANGE {
         // Past the far plane (the range) the cube holds 1.0 (cleared, or
         // clamped): compare at 1.0, and "nothing in range" reads lit.
         z = min(z, 1.0);

@@ -14,7 +14,7 @@ struct Cascades {
     split_far: vec4<f32>,
     // Cascade i's texel, in metres.
     texel: vec4<f32>,
-    // xyz: the camera's view axis, w: the cascade count.
+    // xyz: the camera's view axis, w: unused (the count is CASCADES).
     forward: vec4<f32>,
     // x: blend band (fraction of a cascade), y: normal offset in texels,
     // z: the first cascade's near depth.
@@ -22,18 +22,22 @@ struct Cascades {
 };
 @group(2) @binding(2) var<storage, read> cascades: Cascades;
 
-// Blend across the splits (options.x > 0), fixed when the pipeline is
-// compiled (Rust: lesson_09 `Csm::lit_pipelines`): a branch on a buffer
-// value stays in the shader, and a software rasteriser runs its second
-// lookup, masked, in every pixel of every variant.
+// The variant's choices, fixed when its pipeline is compiled (Rust:
+// lesson_09 `CsmPipelines`): a loop or a branch on a buffer value stays in
+// the shader, and a software rasteriser runs every iteration and the
+// second lookup, masked, in every pixel of every variant.
+// The cascade count, 1 to 4 (no default: every pipeline sets it).
+override CASCADES: u32;
+// Blend across the splits; the band's width is options.x.
 override BLEND: bool = false;
 
 // ANCHOR: select_cascade
 // The first cascade whose far split lies beyond the pixel's view depth
 // (the distance along the view axis, not to the eye: the splits are
-// planes). Past the last split: the last cascade.
+// planes). Past the last split: the last cascade. CASCADES, the count,
+// is a constant of the variant's pipeline.
 fn select_cascade(view_depth: f32) -> u32 {
-    let count = u32(cascades.forward.w);
+    let count = CASCADES;
     var i = 0u;
     while i + 1u < count && view_depth >= cascades.split_far[i] {
         i += 1u;
@@ -69,8 +73,8 @@ fn csm_visibility(world: vec3<f32>, n: vec3<f32>) -> f32 {
     // ANCHOR: blend
     // In the last `band` of cascade i, fade into cascade i + 1: the step in
     // texel size at the split becomes a ramp instead of a visible seam.
-    let band = cascades.options.x;
-    if BLEND && band > 0.0 && i + 1u < u32(cascades.forward.w) {
+    if BLEND && i + 1u < CASCADES {
+        let band = cascades.options.x;
         var start = cascades.options.z;
         if i > 0u {
             start = cascades.split_far[i - 1u];
