@@ -47,6 +47,7 @@ pub const COUNTERS: &[(&str, &str)] = &[
     ("caster_draws", "caster draw calls into the shadow maps (one per caster and face it can touch)"),
     ("shadow_fragments", "fragments the shadow pass rasterised, every map, face and cascade"),
     ("shadow_texels_written", "shadow-map texels that pass's fragments wrote (depth test passed)"),
+    ("shadow_texels_scissored", "cube-face texels inside the faces' scissor rectangles, the texels a visible receiver's lookup can read (lesson 04's `face_rects`); a whole face where there is no rectangle"),
     ("taps", "depth comparisons per shadow lookup"),
     ("blocker_search_taps", "the blocker search's depth reads per pixel and light, one texel each, before the filter (PCSS's first step; a pixel whose search finds no blocker stops there); 0 for a fixed filter or a variance map"),
     ("filter_taps_per_pixel", "depth comparisons the lit pass makes per pixel and light"),
@@ -120,6 +121,14 @@ pub const PASSES: &[(&str, &str)] = &[
     (
         "cpu_camera",
         "CPU time fitting a variant's own camera and uploading it",
+    ),
+    (
+        "cpu_fit",
+        "CPU time fitting the cascades to the view and uploading them",
+    ),
+    (
+        "cpu_cull",
+        "CPU time choosing, per cascade, the casters that can shadow its receivers and their scissor rectangles",
     ),
     (
         "cpu_record",

@@ -81,10 +81,10 @@ pub const WHY: &[Why] = &[
     // Lesson 03: the filters (shaders/lesson_03/pcf.wgsl).
     Why {
         lesson: "lesson_03",
-        variants: &["pcf_1x1", "pcf_3x3", "pcf_5x5", "pcf_7x7", "pcf_7x7_flat"],
+        variants: &["pcf_1x1", "pcf_3x3", "pcf_7x7"],
         pass: Lighting,
         on: Lavapipe,
-        why: "The grids' setup, which the line's intercept above measures, is paid once a pixel whatever the grid's size: most of a small grid's cost, less of a larger one's, so the ratio falls towards 1× as the comparisons grow (`pcf_7x7_flat` computes the receiver plane's gradient too, and drops it).",
+        why: "The grids' setup, which the line's intercept above measures, is paid once a pixel whatever the grid's size: most of a small grid's cost, less of a larger one's, so the ratio falls towards 1× as the comparisons grow.",
     },
     Why {
         lesson: "lesson_03",
@@ -165,6 +165,13 @@ pub const WHY: &[Why] = &[
     },
     Why {
         lesson: "lesson_03",
+        variants: &["castano_5x5"],
+        pass: Lighting,
+        on: Lavapipe,
+        why: "Castaño's nine bilinear comparisons, each four texel reads and a blend in software where a grid's tap reads one texel, with their weights and positions computed at every pixel (six divisions), after the grids' setup.",
+    },
+    Why {
+        lesson: "lesson_03",
         variants: &["bevy"],
         pass: Lighting,
         on: Gpu,
@@ -197,6 +204,30 @@ pub const WHY: &[Why] = &[
     },
     Why {
         lesson: "lesson_04",
+        variants: &[
+            "linear_1024", "linear_2048", "depth_1024", "depth_euclid_1024", "const_bias_1024",
+            "nocull_1024", "clipped_1024", "no_range_clamp_1024", "learnopengl_1tap",
+        ],
+        pass: Lighting,
+        on: Lavapipe,
+        why: "A floor of one comparison on a 2D map leaves out the cube lookup: the flat normal from the derivatives (a cross product), the distance and tan θ of the bias, the depth the major axis gives (`receiver_depth`), and the face the direction picks with its coordinates, which lavapipe works out per pixel in software.",
+    },
+    Why {
+        lesson: "lesson_04",
+        variants: &["learnopengl_pcf20"],
+        pass: Lighting,
+        on: Lavapipe,
+        why: "LearnOpenGL's 20 taps are nearest cube comparisons, each picking its own face and coordinates in software, after its disk's radius from the view distance and the one-tap variants' setup.",
+    },
+    Why {
+        lesson: "lesson_04",
+        variants: &["bevy_point"],
+        pass: Lighting,
+        on: Lavapipe,
+        why: "One cube comparison after Bevy's own setup: its normal bias along the interpolated normal, scaled by the major axis' distance, and its depth bias, then the face and its coordinates picked in software.",
+    },
+    Why {
+        lesson: "lesson_04",
         variants: &["pcf3d_1024", "pcf3d_slope1_1024"],
         pass: Lighting,
         on: Lavapipe,
@@ -205,7 +236,7 @@ pub const WHY: &[Why] = &[
     Why {
         lesson: "lesson_04",
         variants: &[
-            "linear_256", "linear_1024", "linear_2048", "const_bias_1024", "pcf3d_1024",
+            "linear_256", "linear_1024", "const_bias_1024", "pcf3d_1024",
             "pcf3d_slope1_1024", "nocull_1024", "clipped_1024", "no_range_clamp_1024",
             "learnopengl_1tap", "learnopengl_pcf20",
         ],
@@ -213,37 +244,20 @@ pub const WHY: &[Why] = &[
         on: Lavapipe,
         why: "Its faces store the distance to the light, written by a fragment shader as each fragment's depth (`fs_cube_linear`): a fragment stage that the depth-only passes the model is fitted on do not have, and no early depth test.",
     },
-    Why {
-        lesson: "lesson_04",
-        variants: &["depth_1024", "depth_euclid_1024", "bevy_point"],
-        pass: Map,
-        on: Lavapipe,
-        why: "Not explained yet: hardware depth, like the passes the model is fitted on, drawn into five cube faces, each its own render pass; `depth_1024` and `depth_euclid_1024` draw the same map and took very different times in lavapipe's run.",
-    },
     // Lesson 09: the cascades (shaders/lesson_09/csm.wgsl).
     Why {
         lesson: "lesson_09",
-        variants: &["k3", "k4", "k4_log", "k4_aabb", "k4_nosnap", "k4_aabb_nosnap", "k4_blend"],
+        variants: &["k2", "k3", "k4", "k4_aabb_nosnap", "k4_blend"],
         pass: Lighting,
         on: Lavapipe,
-        why: "A floor of one comparison (two where the blend takes its second) leaves out the lookup's setup: the cascade chosen by a loop over the splits (its count read from a buffer), the normal offset by that cascade's texel, its matrix read by index from a buffer, and the bounds test.",
+        why: "A floor of one comparison (two where the blend takes its second) leaves out the lookup's setup: the cascade chosen by a loop over the splits, the normal offset by that cascade's texel, its matrix read by index from a buffer, and the bounds test.",
     },
     Why {
         lesson: "lesson_09",
-        variants: &[
-            "single_2048", "k1", "k2", "k3", "k4", "k4_uniform", "k4_log", "k4_aabb",
-            "k4_nosnap", "k4_aabb_nosnap", "k4_noextend",
-        ],
-        pass: Lighting,
-        on: Gpu,
-        why: "A floor of one comparison leaves out the lookup's setup: the cascade chosen by a loop over the splits (its count read from a buffer), the normal offset by that cascade's texel, its matrix read by index from a buffer, and the bounds test.",
-    },
-    Why {
-        lesson: "lesson_09",
-        variants: &["k4_aabb_nosnap"],
+        variants: &["k4_nocull"],
         pass: Map,
         on: Lavapipe,
-        why: "Not explained yet: it draws the same fragments as `k4_aabb` within a few, whose map passes are not listed here.",
+        why: "Not explained yet: it draws every caster into all four cascades over the whole map, the 600 m ground covering each; the model is fitted on the other variants' passes, which draw only the casters each cascade keeps, inside their scissors.",
     },
     // Lesson 10: soft shadows (shaders/lesson_10/soft.wgsl, moments.wgsl).
     Why {
@@ -256,14 +270,7 @@ pub const WHY: &[Why] = &[
         ],
         pass: Lighting,
         on: Lavapipe,
-        why: "In the code these records ran (before issue 50 made the technique a pipeline constant, `SOFT_MODE`), every variant's lit pass was one shader that picked its filter with `switch soft.mode`, a value read from a buffer, and lavapipe runs every case of such a switch at every pixel, masked (as lessons 03 and 04 measured before their modes became pipeline constants): each variant paid for the PCSS search and filter, the variance maps' reads and every renderer's port.",
-    },
-    Why {
-        lesson: "lesson_10",
-        variants: &["vsm", "vsm_bleed_cut", "evsm", "filament_evsm", "threejs_vsm"],
-        pass: Map,
-        on: Lavapipe,
-        why: "Two compute passes over the whole map build what the lookup reads: the first turns each stored depth into its moments (EVSM: exponentials) and averages them along x, the second along y (three.js's blur: its own samples along y, then x); the model counts only the depth map.",
+        why: "Each comparison is a bilinear one, four texel reads and a blend in software where a grid's tap reads one texel, on a disk turned by a per-pixel angle (a cosine and a sine) with its points read from a buffer (`soft.disk`), after the light's setup (the receiver plane's gradient, the distance from the light); PCSS's blocker search adds plain reads (`textureLoad`) and, for each blocker found, its distance inside a branch; the variance maps blend four moments by hand; the ports add their renderers' own setups.",
     },
     Why {
         lesson: "lesson_10",
