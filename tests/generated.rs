@@ -676,7 +676,8 @@ fn h100_default_scenes_are_within_tolerance_of_the_records() {
         for v in &mut rec.variants {
             let h100 = report.variants.iter().find(|w| w.name == v.name);
             let held = |k: &String| h100.is_some_and(|w| w.counters.contains_key(k));
-            v.counters.retain(|k, _| held(k) && !culled.contains(&k.as_str()));
+            v.counters
+                .retain(|k, _| held(k) && !culled.contains(&k.as_str()));
         }
         let mut fresh = fresh_record(&run.id(), &rec, &report);
         for v in &mut fresh.variants {
