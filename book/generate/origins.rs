@@ -61,8 +61,18 @@ pub struct Change {
 /// `git log d7678c5..HEAD -- lessons/ shaders/ common/src/reference/` (and
 /// from `8768674`, the H200 set's) and
 /// checked against the book's own records of those commits.
-/// Lesson 09's change to every variant's shadow passes.
-const CASCADE_CULLING: &str = "each cascade draws only the casters that can shadow its receivers, inside scissor rectangles (it drew every caster into every cascade, over the whole map): fewer shadow fragments, the same image";
+/// Lesson 09's change, since the H100's run, to every variant's shadow
+/// passes.
+const fn cascade_culling(variant: &'static str) -> Change {
+    Change {
+        since: "d7678c5",
+        lesson: "lesson_09",
+        variant: Some(variant),
+        now: None,
+        commits: &["63f08fc"],
+        what: "each cascade draws only the casters that can shadow its receivers, inside scissor rectangles (it drew every caster into every cascade, over the whole map): fewer shadow fragments, the same image",
+    }
+}
 
 pub const CHANGES: &[Change] = &[
     Change {
@@ -208,102 +218,18 @@ pub const CHANGES: &[Change] = &[
         commits: &["122f8ed"],
         what: "three.js's front faces, no offsets, and r182's variance floor",
     },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("single_2048"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k1"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k2"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k3"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k4"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k4_uniform"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k4_log"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k4_aabb"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k4_nosnap"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k4_aabb_nosnap"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k4_noextend"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
-    Change {
-        since: "d7678c5",
-        lesson: "lesson_09",
-        variant: Some("k4_blend"),
-        now: None,
-        commits: &["63f08fc"],
-        what: CASCADE_CULLING,
-    },
+    cascade_culling("single_2048"),
+    cascade_culling("k1"),
+    cascade_culling("k2"),
+    cascade_culling("k3"),
+    cascade_culling("k4"),
+    cascade_culling("k4_uniform"),
+    cascade_culling("k4_log"),
+    cascade_culling("k4_aabb"),
+    cascade_culling("k4_nosnap"),
+    cascade_culling("k4_aabb_nosnap"),
+    cascade_culling("k4_noextend"),
+    cascade_culling("k4_blend"),
 ];
 
 /// The origin of the set in folder `set`, when [`ORIGINS`] has it.

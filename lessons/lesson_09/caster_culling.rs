@@ -19,7 +19,8 @@
 //!   depth, which lesson 02's bias only pushes farther than the caster's
 //!   nearest point. A lookup starts from a surface point moved by at most
 //!   a texel (`NORMAL_OFFSET_TEXELS`). So a caster matters only to surface
-//!   points deeper than its largest z less [`ALONG_TEXELS`].
+//!   points whose z is below its largest z plus [`ALONG_TEXELS`] (z grows
+//!   towards the light).
 //! - **Only near its footprint.** A caster writes the texels whose
 //!   centres it covers; a lookup reads the 2×2 texels whose centres lie
 //!   within a texel of it, a texel at most from its surface point. So a
