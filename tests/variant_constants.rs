@@ -275,8 +275,8 @@ fn branches_on_buffers(sources: &BTreeMap<String, String>) -> Vec<String> {
     let buffers = buffers(sources);
     let mut bad = Vec::new();
     for (file, text) in sources {
-        // `let x = var.field;` (or `u32(var.field)`, `i32(…)`, `f32(…)`):
-        // x is a copy of the field.
+        // `let x = var.field;` (or `var.field.w`, `u32(var.field)`,
+        // `i32(…)`, `f32(…)`): x is a copy of the field.
         let mut aliases: Vec<(String, String, String, String)> = Vec::new();
         for line in text.lines().map(code) {
             let t = line.trim();
@@ -294,10 +294,14 @@ fn branches_on_buffers(sources: &BTreeMap<String, String>) -> Vec<String> {
                 }
             }
             for (_, var, ty) in &buffers {
-                if let Some(field) = value.strip_prefix(&format!("{var}.")) {
-                    if field.chars().all(is_ident) {
-                        aliases.push((name.into(), var.clone(), ty.clone(), field.into()));
-                    }
+                let Some(path) = value.strip_prefix(&format!("{var}.")) else {
+                    continue;
+                };
+                // The field, then at most a swizzle (`forward.w`).
+                let (field, swizzle) = path.split_once('.').unwrap_or((path, "x"));
+                let swizzle = swizzle.chars().all(|c| "xyzwrgba".contains(c));
+                if field.chars().all(is_ident) && swizzle {
+                    aliases.push((name.into(), var.clone(), ty.clone(), field.into()));
                 }
             }
         }
@@ -372,6 +376,23 @@ fn the_rules_catch_a_mode_read_from_a_buffer() {
     let branches = branches_on_buffers(&sources);
     assert!(
         branches.iter().any(|b| b.contains("`soft.size`")),
+        "{branches:?}"
+    );
+
+    // Lesson 09's cascade count back in the buffer, as it was: the w of a
+    // vec4, through a conversion and a `let`, bounding a loop.
+    let mut sources = self::sources();
+    let csm = "shaders/lesson_09/csm.wgsl";
+    let text = sources[csm].clone();
+    assert!(text.contains("    let count = CASCADES;"));
+    let count_back = text.replace(
+        "    let count = CASCADES;",
+        "    let count = u32(cascades.forward.w);",
+    );
+    sources.insert(csm.into(), count_back);
+    let branches = branches_on_buffers(&sources);
+    assert!(
+        branches.iter().any(|b| b.contains("`cascades.forward`")),
         "{branches:?}"
     );
     assert!(integer("vec4<u32>") && integer("bool") && !integer("f32"));
