@@ -346,3 +346,60 @@ fn lesson_10_adaptive_filter_keeps_pcss_error() {
         "pcss_adaptive bleeding {a:.3} % against pcss's {b:.3} %"
     );
 }
+
+/// `pcss_min_max`'s chain answers only where PCSS's taps would answer the
+/// same: with the chain and without it (`--knob min_max=0`, the same map
+/// without the flat ground) every visibility pixel and every error figure
+/// is the same, under the default scene's spot and the grazing scene's sun.
+/// And it answers: with `--knob chain_only=1` (its answers alone, the rest
+/// black) at least a third of the receiver pixels are answered lit, each
+/// lit in the full image too. A chain that answered wrongly anywhere, or
+/// never, fails here.
+#[test]
+fn lesson_10_min_max_chain_answers_as_the_taps_would() {
+    let v = ["--variant", "pcss_min_max"];
+    for scene in [None, Some("lesson_10_grazing.toml")] {
+        let name = |k: &str| format!("lesson_10_min_max_{}_{k}", scene.unwrap_or("default"));
+        let knob = |k: &'static str| [&v[..], &["--knob", k]].concat();
+        let Some(on) = run(&name("on"), scene, &v) else {
+            return;
+        };
+        let off = run(&name("off"), scene, &knob("min_max=0")).expect("an adapter");
+        let only = run(&name("only"), scene, &knob("chain_only=1")).expect("an adapter");
+        let image = |r: &support::LessonRun| {
+            support::read_visibility(&r.out.join("pcss_min_max_visibility_l0.png"))
+        };
+        let ((ids, with, ..), (_, without, ..), (_, answers, ..)) =
+            (image(&on), image(&off), image(&only));
+        let differ = with.iter().zip(&without).filter(|(a, b)| a != b).count();
+        assert_eq!(
+            differ, 0,
+            "{scene:?}: {differ} pixels differ with the chain and without it"
+        );
+        let figures =
+            |r: &support::LessonRun| support::variant(&r.report, "pcss_min_max")["error"].clone();
+        assert_eq!(
+            figures(&on),
+            figures(&off),
+            "{scene:?}: the error figures differ"
+        );
+        let receivers = ids.iter().filter(|&&i| i == 1).count();
+        let answered: Vec<usize> = (0..ids.len())
+            .filter(|&i| ids[i] == 1 && answers[i] == 1.0)
+            .collect();
+        let wrong = answered.iter().filter(|&&i| with[i] != 1.0).count();
+        eprintln!(
+            "{scene:?}: the chain answered {} of {receivers} receiver pixels lit",
+            answered.len()
+        );
+        assert_eq!(
+            wrong, 0,
+            "{scene:?}: {wrong} pixels answered lit are not lit"
+        );
+        assert!(
+            answered.len() * 3 >= receivers,
+            "{scene:?}: the chain answered only {} of {receivers} receiver pixels lit",
+            answered.len()
+        );
+    }
+}

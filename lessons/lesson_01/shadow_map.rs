@@ -281,6 +281,23 @@ pub fn begin_shadow_pass<'e>(
 }
 // ANCHOR_END: shadow_pass
 
+/// [`shadow_pass`] drawing only the casters `keep` keeps (lesson 10's map
+/// without the objects that hide nothing); the count drawn.
+pub fn shadow_pass_keeping(
+    encoder: &mut wgpu::CommandEncoder,
+    scene: &SceneGpu,
+    pipeline: &wgpu::RenderPipeline,
+    map: &ShadowMap,
+    light: usize,
+    ts: Option<wgpu::RenderPassTimestampWrites>,
+    keep: impl Fn(usize) -> bool,
+) -> u32 {
+    let mut pass = begin_shadow_pass(encoder, "shadow pass", &map.view, ts);
+    pass.set_pipeline(pipeline);
+    scene.bind_frame(&mut pass, light);
+    scene.draw_objects(&mut pass, |i| scene.casts_shadow(i) && keep(i))
+}
+
 /// The shadow pass's costs over every light, for a `size`² map, counted by
 /// a [`Tally`] through `pipelines(light)` ([`shadow_tally_pipelines`]) into
 /// a fresh map: `.0` its depth writes (the fragments that pass its `Less`

@@ -281,7 +281,7 @@ fn scissor(rect: Rect, to_map: DMat4, resolution: u32) -> Option<Scissor> {
 /// twice its area); a closed mesh's cancel. A mesh counts as flat when
 /// every vertex lies within a millionth of its size of that plane, far
 /// less than any cascade's bias.
-fn flat_plane(points: &[DVec3], indices: &[u32]) -> Option<(DVec3, f64)> {
+pub fn flat_plane(points: &[DVec3], indices: &[u32]) -> Option<(DVec3, f64)> {
     let normal: DVec3 = (indices.chunks_exact(3))
         .map(|t| {
             let [a, b, c] = [0, 1, 2].map(|k| points[t[k] as usize]);

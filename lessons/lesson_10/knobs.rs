@@ -46,6 +46,18 @@ pub fn technique_knobs(t: Technique) -> Vec<Knob> {
                 value: (p.search == Search::LightSizeAtReceiver) as u32 as f64,
             },
             Knob {
+                name: "min_max",
+                doc: "ask the map's min/max chain first: lit or umbra without a tap where it can tell, the same answer",
+                range: KnobRange::Toggle,
+                value: p.min_max as u32 as f64,
+            },
+            Knob {
+                name: "chain_only",
+                doc: "with min_max: the chain's answers only, black where it cannot tell and the taps would run",
+                range: KnobRange::Toggle,
+                value: p.chain_only as u32 as f64,
+            },
+            Knob {
                 name: "receiver_plane",
                 doc: "compare each tap with the receiver's plane there (off: acne under wide kernels at grazing light)",
                 range: KnobRange::Toggle,
@@ -79,6 +91,8 @@ pub fn set_technique_knob(t: &mut Technique, name: &str, value: f64) -> Result<(
         (Technique::Pcss(p), "search_taps") => p.search_taps = value as u32,
         (Technique::Pcss(p), "filter_taps") => p.filter_taps = value as u32,
         (Technique::Pcss(p), "receiver_plane") => p.receiver_plane = value != 0.0,
+        (Technique::Pcss(p), "min_max") => p.min_max = value != 0.0,
+        (Technique::Pcss(p), "chain_only") => p.chain_only = value != 0.0,
         (Technique::Pcss(p), "min_filter_texels") => p.min_filter_texels = value as f32,
         (Technique::Pcss(p), "search_at_receiver") => {
             p.search = match value != 0.0 {

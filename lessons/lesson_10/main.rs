@@ -40,6 +40,7 @@ use workbook::lesson_10::peers::{self, Peer};
 use workbook::lesson_10::soft::{
     LightGeometry, Pcss, SoftConstants, SoftUniform, Technique, Variance,
 };
+use workbook::lesson_10::split::{lit_keys, Stencil};
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -64,6 +65,11 @@ enum Variant {
     /// disk's rim decide lit or umbra, the 16 taps only where they disagree.
     #[value(name = "pcss_adaptive")]
     PcssAdaptive,
+    /// The same PCSS, asking the map's min/max mip chain first (Dmitriev
+    /// and Uralsky 2007): where it proves a pixel lit or in umbra, PCSS's
+    /// own answer without a tap; the taps only where it cannot.
+    #[value(name = "pcss_min_max")]
+    PcssMinMax,
     /// A variance map (Donnelly and Lauritzen 2006), blurred 9×9 texels.
     #[value(name = "vsm")]
     Vsm,
@@ -171,6 +177,11 @@ impl Variant {
                 adaptive: true,
                 ..ours
             }),
+            Variant::PcssMinMax => Technique::Pcss(Pcss {
+                min_max: true,
+                leave_out_flat: true,
+                ..ours
+            }),
             Variant::Vsm => variance(4, None, 1e-6, (0.0, 1.0)),
             Variant::VsmBleedCut => variance(4, None, 1e-6, (0.3, 1.0)),
             Variant::Evsm => Technique::Variance(Variance {
@@ -221,6 +232,7 @@ impl Variant {
                 | Variant::PcfWide32
                 | Variant::Pcss
                 | Variant::PcssAdaptive
+                | Variant::PcssMinMax
                 | Variant::Vsm
                 | Variant::VsmBleedCut
                 | Variant::Evsm
@@ -245,9 +257,9 @@ struct Soft {
     params_layout: wgpu::BindGroupLayout,
     /// The lesson's module, then each exercise's.
     modules: [wgpu::ShaderModule; 3],
-    /// fs_soft of a module, compiled with a variant's constants: built the
-    /// first time a variant runs, one per module and set of constants.
-    lit_pipelines: HashMap<(Module, SoftConstants), wgpu::RenderPipeline>,
+    /// fs_soft of a module, compiled with a variant's constants and a
+    /// stencil role: built the first time a variant runs.
+    lit_pipelines: HashMap<(Module, SoftConstants, Stencil), wgpu::RenderPipeline>,
     /// `per_light[variant][light]`.
     per_light: Vec<Vec<PerLight>>,
     draws: u64,
@@ -276,21 +288,22 @@ impl Soft {
         }
     }
 
-    /// The variant's lit pipeline for every light, built if not yet.
+    /// The variant's lit pipelines for every light, built if not yet.
     fn build_lit_pipelines(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) {
         let module = variant.module();
         for state in &self.per_light[variant as usize] {
-            let key = (module, SoftConstants::new(state.technique));
-            self.lit_pipelines.entry(key).or_insert_with(|| {
-                scene.lit_pipeline_with_depth(
-                    gpu,
-                    &self.modules[module as usize],
-                    "fs_soft",
-                    &[&self.map_layout, &self.params_layout],
-                    scene.lit_depth_state(Default::default()),
-                    &key.1.pairs(),
-                )
-            });
+            for key in lit_keys(module, state.technique).into_iter().flatten() {
+                self.lit_pipelines.entry(key).or_insert_with(|| {
+                    scene.lit_pipeline_with_depth(
+                        gpu,
+                        &self.modules[module as usize],
+                        "fs_soft",
+                        &[&self.map_layout, &self.params_layout],
+                        scene.lit_depth_state(key.2.state()),
+                        &key.1.pairs(),
+                    )
+                });
+            }
         }
     }
 
@@ -388,10 +401,13 @@ impl Lesson for Soft {
         for light in 0..scene.scene.lights.len() {
             let state = &self.per_light[variant as usize][light];
             let set = self.maps.at(state.map);
-            let shadow = &set.shadow_pipelines[light];
             frame.pass("shadow", |enc, ts| {
-                shadow_map::shadow_pass(enc, scene, shadow, &set.map, light, ts.render())
+                set.shadow_pass(enc, scene, light, ts.render())
             });
+            let [first, then] = lit_keys(variant.module(), state.technique);
+            if then.is_some() {
+                frame.pass("min_max", |enc, ts| set.min_max.record(enc, ts.compute()));
+            }
             if let Some(passes) = &state.moments {
                 frame.pass("moments", |enc, ts| {
                     set.moments.record(enc, passes, false, ts.compute())
@@ -403,9 +419,12 @@ impl Lesson for Soft {
             let map_group = set.group(state.technique.sampler());
             frame.pass("lighting", |enc, ts| {
                 let groups = [map_group, &state.group];
-                let key = (variant.module(), SoftConstants::new(state.technique));
-                let pipeline = &self.lit_pipelines[&key];
-                let pass = LitPass::new(light, pipeline, &groups);
+                let pipeline = &self.lit_pipelines[&first.expect("a lit pipeline")];
+                let mut pass = LitPass::new(light, pipeline, &groups);
+                let chain_only = matches!(state.technique, Technique::Pcss(p) if p.chain_only);
+                if let Some(then) = then.filter(|_| !chain_only) {
+                    pass = pass.then(&self.lit_pipelines[&then], light as u32 + 1);
+                }
                 scene.lit_pass(enc, targets, pass, ts.render())
             });
         }

@@ -41,6 +41,18 @@ pub struct Pcss {
     /// Step 3 probes the filter disk's rim first (4 taps): where they
     /// agree, the pixel is lit or in umbra without the full filter.
     pub adaptive: bool,
+    /// The map's min/max chain first ([`super::min_max`]): where it shows
+    /// the search region all behind the receiver (lit) or it and the
+    /// widest filter all in front (umbra), the lit pass answers with no
+    /// tap; a second draw takes the taps where it could not tell. Ours
+    /// search only (with `LightSizeAtReceiver` the chain is not asked).
+    pub min_max: bool,
+    /// A map without the flat objects that hide nothing
+    /// ([`super::casters`]), where the chain can tell.
+    pub leave_out_flat: bool,
+    /// With the chain: its answers only, the second draw left out, so
+    /// that the pixels it cannot tell stay black (the `chain_only` knob).
+    pub chain_only: bool,
 }
 
 /// Where the blocker search looks.
@@ -69,6 +81,9 @@ impl Technique {
         search: Search::NearestCaster,
         min_filter_texels: 0.0,
         adaptive: false,
+        min_max: false,
+        leave_out_flat: false,
+        chain_only: false,
     };
 
     /// Depth comparisons per pixel and light (blocker-search taps and
@@ -79,12 +94,13 @@ impl Technique {
             Technique::HardPcf => (0, 16, 64),
             Technique::FixedDisk { taps, .. } => (0, taps as u64, 4 * taps as u64),
             // Adaptive: at most 4 probes, then the full filter.
+            // The chain: two regions of four blocks, each two depths.
             Technique::Pcss(p) => {
                 let filter = p.filter_taps + 4 * p.adaptive as u32;
                 (
                     p.search_taps as u64,
                     filter as u64,
-                    (p.search_taps + 4 * filter) as u64,
+                    (p.search_taps + 4 * filter + 16 * p.min_max as u32) as u64,
                 )
             }
             // Four texels of the blurred moments; the blur reads its own.
@@ -136,6 +152,7 @@ impl Technique {
     pub fn map_pass(self) -> MapPass {
         match self {
             Technique::Peer(p) => p.map_pass(),
+            Technique::Pcss(p) if p.leave_out_flat => MapPass::LessonHidingOnly,
             _ => MapPass::Lesson,
         }
     }
@@ -184,6 +201,7 @@ pub struct SoftConstants {
     pub filter_taps: u32,
     pub receiver_plane: bool,
     pub adaptive: bool,
+    pub min_max: bool,
     pub exponential: bool,
     pub negative_warp: bool,
     pub renderer_bias: bool,
@@ -199,6 +217,7 @@ impl SoftConstants {
             filter_taps: 1,
             receiver_plane: false,
             adaptive: false,
+            min_max: false,
             exponential: false,
             negative_warp: false,
             renderer_bias: t.moves_receiver(),
@@ -218,6 +237,7 @@ impl SoftConstants {
                 c.filter_taps = p.filter_taps;
                 c.receiver_plane = p.receiver_plane;
                 c.adaptive = p.adaptive;
+                c.min_max = p.min_max && p.search == Search::NearestCaster;
             }
             Technique::Variance(v) => variance(&v),
             Technique::Peer(p) => {
@@ -235,7 +255,7 @@ impl SoftConstants {
 
     /// The pipeline's constants by name (lesson 03's `MODE` 2: its Poisson
     /// disk, which `HardPcf` calls).
-    pub fn pairs(self) -> [(&'static str, f64); 9] {
+    pub fn pairs(self) -> [(&'static str, f64); 10] {
         [
             ("MODE", 2.0),
             ("SOFT_MODE", self.mode as f64),
@@ -243,6 +263,7 @@ impl SoftConstants {
             ("FILTER_TAPS", self.filter_taps as f64),
             ("RECEIVER_PLANE", self.receiver_plane as u32 as f64),
             ("ADAPTIVE", self.adaptive as u32 as f64),
+            ("MIN_MAX", self.min_max as u32 as f64),
             ("EXPONENTIAL", self.exponential as u32 as f64),
             ("NEGATIVE_WARP", self.negative_warp as u32 as f64),
             ("RENDERER_BIAS", self.renderer_bias as u32 as f64),

@@ -5,10 +5,11 @@
 // part of exercise_hooks.wgsl; then peers.wgsl (the renderers' ports,
 // and PCSS with their search). Group 2:
 // the map (lesson 03's bindings) and
-// binding 3, the blurred moments of the filterable maps (moments.wgsl).
-// Group 3: lesson 03's `pcf` filter at binding 0 and `soft` at binding 1.
+// binding 3, the blurred moments of the filterable maps (moments.wgsl),
+// binding 4, the map's min/max mip chain (min_max.wgsl). Group 3: lesson 03's `pcf` filter at binding 0 and `soft` at binding 1.
 
 @group(2) @binding(3) var<storage, read> moments: array<vec4<f32>>;
+@group(2) @binding(4) var<storage, read> min_max: array<vec2<f32>>;
 
 // The variant, fixed when its pipeline is built (Rust: soft.rs
 // `Technique::constants`): `override`s, not fields of `Soft`. A switch or a
@@ -27,6 +28,13 @@ override FILTER_TAPS: u32 = 16u;
 // RECEIVER_PLANE.)
 // PCSS's step 3 probes the filter disk's rim first (penumbra_pcf).
 override ADAPTIVE: bool = false;
+// The first of PCSS's two draws with the min/max chain: it answers where
+// the chain tells lit or umbra (`pcss_decided`) and discards the rest,
+// which the second draw, plain PCSS, takes where the stencil shows no
+// answer (Rust: main.rs `Soft::render`). A branch would not do on a
+// software rasteriser: it runs a branch's taps, masked, for pixels that
+// skip it; a stencil test skips them before the shader.
+override MIN_MAX: bool = false;
 // Variance maps: the moments of exp(c (2z − 1)), z the linear depth
 // (else plain); with NEGATIVE_WARP also of −exp(−c⁻ (2z − 1)) (EVSM4).
 override EXPONENTIAL: bool = false;
@@ -175,6 +183,76 @@ fn pcss(s: vec3<f32>, angle: f32, gradient: vec2<f32>) -> f32 {
 }
 // ANCHOR_END: pcss
 
+// ANCHOR: region_min_max
+// The nearest and farthest depth of the map's texels from `lo` to `hi`
+// (inclusive): four blocks of the chain's level l, the first whose
+// 2^l-texel blocks are as wide as the region, so that it spans two of them
+// at most along each axis. Level l starts after levels 1 to l − 1, each
+// a quarter of the one before.
+fn region_min_max(lo: vec2<i32>, hi: vec2<i32>) -> vec2<f32> {
+    let side = textureDimensions(shadow_depths).x;
+    let width = u32(max(hi.x - lo.x, hi.y - lo.y));
+    let top = countTrailingZeros(side);
+    let l = clamp(32u - countLeadingZeros(width), 1u, top);
+    let below = side >> (l - 1u);
+    let start = (side * side - below * below) / 3u;
+    let n = side >> l;
+    let a = vec2<u32>(lo) >> vec2<u32>(l);
+    let b = vec2<u32>(hi) >> vec2<u32>(l);
+    let m00 = min_max[start + a.y * n + a.x];
+    let m10 = min_max[start + a.y * n + b.x];
+    let m01 = min_max[start + b.y * n + a.x];
+    let m11 = min_max[start + b.y * n + b.x];
+    return vec2<f32>(min(min(m00.x, m10.x), min(m01.x, m11.x)), max(max(m00.y, m10.y), max(m01.y, m11.y)));
+}
+
+// The texels a disk of `radius` (map units) around uv touches, a texel more
+// on each side for rounding; `half` 0.5 for bilinear taps (their 2×2
+// starts half a texel back), 0 for point loads.
+fn texel_region(uv: vec2<f32>, radius: vec2<f32>, half: f32) -> array<vec2<i32>, 2> {
+    let size = vec2<f32>(textureDimensions(shadow_depths));
+    let last = vec2<i32>(size) - 1;
+    let lo = vec2<i32>(floor((uv - radius) * size - half)) - 1;
+    let hi = vec2<i32>(floor((uv + radius) * size - half)) + 2;
+    return array<vec2<i32>, 2>(clamp(lo, vec2<i32>(0), last), clamp(hi, vec2<i32>(0), last));
+}
+// ANCHOR_END: region_min_max
+
+// ANCHOR: pcss_decided
+// What PCSS would answer, where the chain alone can tell: 1 where every
+// texel the search can read is at or behind the receiver's plane (the
+// search finds no blocker), 0 where every texel the search and then the
+// widest filter its blockers allow can read is in front of it (every
+// comparison is in shadow); −1 where it cannot tell. The plane's height
+// over a box of half-widths r is at most |gradient| · r either way; the
+// margin covers the rounding of the taps' own sums.
+fn pcss_decided(s: vec3<f32>, gradient: vec2<f32>) -> f32 {
+    let d_r = light_distance(s.z);
+    let search = filter_radius(d_r, min(soft.nearest_caster, d_r));
+    let tilt = dot(abs(gradient), search);
+    let margin = 1e-6 + 1e-5 * tilt;
+    let r = texel_region(s.xy, search, 0.0);
+    let near_far = region_min_max(r[0], r[1]);
+    if near_far.x >= s.z + tilt + margin {
+        return 1.0;
+    }
+    if near_far.y >= s.z - tilt - margin {
+        return -1.0;
+    }
+    // Every search tap finds a blocker, none nearer than the region's
+    // nearest: the filter is no wider than that blocker makes it.
+    let texel = 1.0 / f32(textureDimensions(shadow_map).x);
+    let widest = max(filter_radius(d_r, light_distance(near_far.x)) * 1.001, vec2<f32>(soft.min_filter_texels * texel));
+    let tilt_f = dot(abs(gradient), widest);
+    let f = texel_region(s.xy, widest, 0.5);
+    let far = region_min_max(f[0], f[1]).y;
+    if far < min(s.z - tilt_f, 1.0) - 1e-6 - 1e-5 * tilt_f {
+        return 0.0;
+    }
+    return -1.0;
+}
+// ANCHOR_END: pcss_decided
+
 // ANCHOR: penumbra_pcf
 // PCSS's filter. Adaptive: lesson 03's 4 probes on the disk's rim first
 // (`rim_probes`, its radius already in map units); all lit or all in
@@ -279,7 +357,14 @@ fn fs_soft(in: VertexOut) -> LitOut {
     }
     let angle = rotation_angle(in.clip.xy);
     var v = 1.0;
-    if !outside_shadow_map(r.xyz, s) {
+    if MIN_MAX {
+        if !outside_shadow_map(r.xyz, s) {
+            v = pcss_decided(s, gradient);
+        }
+        if v < 0.0 {
+            discard;
+        }
+    } else if !outside_shadow_map(r.xyz, s) {
         switch SOFT_MODE {
             case 0u: { v = pcf_poisson(s, in.clip.xy, gradient); }
             case 1u: {

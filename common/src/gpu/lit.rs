@@ -18,6 +18,12 @@ pub struct LitPass<'a> {
     /// can reach, when the lesson knows it. Empty: draw nothing. The
     /// light's visibility image is cleared whole either way.
     pub scissor: Option<[u32; 4]>,
+    /// A second pipeline drawn after the first in the same pass, and the
+    /// stencil reference of both (lesson 10's `pcss_min_max`: the first
+    /// answers where it can and marks those pixels, the second takes the
+    /// taps where it could not). Else none, and the reference 0.
+    pub then: Option<&'a wgpu::RenderPipeline>,
+    pub stencil_reference: u32,
 }
 
 impl<'a> LitPass<'a> {
@@ -31,6 +37,18 @@ impl<'a> LitPass<'a> {
             pipeline,
             groups,
             scissor: None,
+            then: None,
+            stencil_reference: 0,
+        }
+    }
+
+    /// The same pass, then `then` over the same objects, with the stencil
+    /// reference `reference`.
+    pub fn then(self, then: &'a wgpu::RenderPipeline, reference: u32) -> LitPass<'a> {
+        LitPass {
+            then: Some(then),
+            stencil_reference: reference,
+            ..self
         }
     }
 
@@ -127,8 +145,8 @@ impl SceneGpu {
     }
 
     /// Adds `lit.light` to the frame through `lit.pipeline`, writing its
-    /// visibility. The stencil reference is 0: stencil techniques light
-    /// where the count is 0.
+    /// visibility. The stencil reference is 0 unless [`LitPass::then`] set
+    /// it: stencil techniques light where the count is 0.
     pub fn lit_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -141,6 +159,8 @@ impl SceneGpu {
             pipeline,
             groups,
             scissor,
+            then,
+            stencil_reference,
         } = lit;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("lit pass"),
@@ -168,10 +188,15 @@ impl SceneGpu {
             pass.set_scissor_rect(x, y, w, h);
         }
         pass.set_pipeline(pipeline);
+        pass.set_stencil_reference(stencil_reference);
         self.bind_frame(&mut pass, light);
         for (i, g) in groups.iter().enumerate() {
             pass.set_bind_group(2 + i as u32, *g, &[]);
         }
         self.draw_objects(&mut pass, |_| true);
+        if let Some(then) = then {
+            pass.set_pipeline(then);
+            self.draw_objects(&mut pass, |_| true);
+        }
     }
 }

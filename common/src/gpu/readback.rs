@@ -172,10 +172,14 @@ impl PendingRead {
         })
     }
 
+    /// The rows without their padding, a row at a time (a byte-wise
+    /// iterator here took 16 % of lesson 09's headless run on lavapipe).
     fn unpad(&self, data: &[u8]) -> Vec<u8> {
-        data.chunks_exact(self.padded as usize)
-            .flat_map(|r| &r[..self.row as usize])
-            .copied()
-            .collect()
+        let rows = data.chunks_exact(self.padded as usize);
+        let mut out = Vec::with_capacity(rows.len() * self.row as usize);
+        for r in rows {
+            out.extend_from_slice(&r[..self.row as usize]);
+        }
+        out
     }
 }
