@@ -23,6 +23,26 @@ use std::path::{Path, PathBuf};
 /// a variant's choice. (buffer variable or struct, field, why).
 const SCENE_DATA: &[(&str, &str, &str)] = &[
     (
+        "Level",
+        "below",
+        "lesson 10's min/max chain: where the level below starts in the buffer, the map's geometry",
+    ),
+    (
+        "Level",
+        "start",
+        "lesson 10's min/max chain: where the level starts in the buffer, the map's geometry",
+    ),
+    (
+        "Level",
+        "side",
+        "lesson 10's min/max chain: the level's side, the map's geometry",
+    ),
+    (
+        "level",
+        "side",
+        "lesson 10's min/max chain: the threads past the level's side write nothing",
+    ),
+    (
         "light",
         "position_or_dir",
         "its w says the light's kind (directional or not): the scene's",

@@ -109,6 +109,10 @@ pub const PASSES: &[(&str, &str)] = &[
         "blur",
         "the compute pass that blurs the moments again, along y",
     ),
+    (
+        "min_max",
+        "the compute passes that build the map's min/max mip chain, one a level (`pcss_min_max`)",
+    ),
     ("lighting", "the lit passes, one per light"),
     (
         "cpu_silhouette",

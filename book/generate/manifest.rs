@@ -196,7 +196,7 @@ pub const RUNS: &[Run] = &[
     case("lesson_09", "offscreen_caster", "scenes/lesson_09_offscreen_caster.toml", "a caster outside the view shadows what is inside it"),
     case("lesson_09", "contact_boundary", "scenes/lesson_09_contact_boundary.toml", "a cascade boundary across a contact shadow"),
     default("lesson_10"),
-    interactive("lesson_10", &["pcss", "filament_pcss"]),
+    interactive("lesson_10", &["pcss", "pcss_min_max", "filament_pcss"]),
     case("lesson_10", "contact", "scenes/lesson_10_contact.toml", "cube and sphere resting on the floor, a 2° sun"),
     case("lesson_10", "large_light", "scenes/lesson_10_large_light.toml", "a spot light of 1 m radius"),
     case("lesson_10", "overlap", "scenes/lesson_10_overlap.toml", "blockers at two heights side by side"),

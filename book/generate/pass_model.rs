@@ -28,8 +28,9 @@
 //!
 //! A variant's map passes are its `shadow` pass plus, where it has them,
 //! the passes that turn the map into what its lookup reads (a variance
-//! map's `moments` and `blur`): the model counts only the depth map, so a
-//! variance map's extra passes show as its excess over the model.
+//! map's `moments` and `blur`, the min/max chain's `min_max`): the model
+//! counts only the depth map, so those extra passes show as the variant's
+//! excess over the model.
 
 use glam::{DMat2, DMat3, DVec2, DVec3};
 
@@ -37,7 +38,7 @@ use crate::origins::changed;
 use crate::record::{Record, Timing, VariantRecord};
 
 /// The passes that build a variant's map.
-pub const MAP_PASSES: &[&str] = &["shadow", "moments", "blur"];
+pub const MAP_PASSES: &[&str] = &["shadow", "moments", "blur", "min_max"];
 
 /// Why a model keeps the texels alone.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -182,7 +182,7 @@ fn legend() -> Vec<(&'static str, &'static str)> {
         ("floor, comparisons × the rate (ms)", "the comparisons a pixel times the rate above: what the comparisons alone cost at the best rate the adapter showed"),
         ("measured / floor", "the lit pass over the no-shadow one, divided by the floor: near 1×, the variant is its comparisons; under 1×, its comparison is cheaper than a grid's (a hardware 2×2 compare); ≥: a lower bound, where the floor counts the most a pixel takes; — where the lit pass is not measurably slower than the no-shadow one (their spreads overlap)"),
         ("floor at 1920×1080 (ms)", "the floor times the pixels of 1920×1080 over this run's: the comparisons grow with the pixels (an extrapolation, not a run at that size)"),
-        ("map passes (ms)", "the passes that build the variant's map, medians: its `shadow` pass, plus a variance map's `moments` and `blur` passes"),
+        ("map passes (ms)", "the passes that build the variant's map, medians: its `shadow` pass, plus a variance map's `moments` and `blur` passes, or the min/max chain's `min_max`"),
         ("model (ms)", "what the set's model above gives for the variant's map: its texels (the map's size² × its cascades or cube faces drawn) and, where the model has a cost per fragment, its `shadow_fragments`; — where the variant does not count what the model needs"),
         ("measured / model", "the map passes over the model: near 1×, the map costs what its texels and fragments cost on this adapter; over it, something else (another pass, a fragment shader the depth-only pass does not have)"),
     ]

@@ -263,14 +263,14 @@ pub const WHY: &[Why] = &[
     Why {
         lesson: "lesson_10",
         variants: &[
-            "hard_pcf", "pcf_wide_16", "pcf_wide_32", "pcss", "pcss_adaptive", "vsm",
+            "hard_pcf", "pcf_wide_16", "pcf_wide_32", "pcss", "pcss_adaptive", "pcss_min_max", "vsm",
             "vsm_bleed_cut", "evsm", "filament_pcf", "filament_pcss", "filament_evsm",
             "bevy_gaussian", "bevy_pcss_or_pcf", "godot_pcf", "godot_soft_low", "threejs_pcf",
             "threejs_pcf_soft", "threejs_vsm",
         ],
         pass: Lighting,
         on: Lavapipe,
-        why: "Each comparison is a bilinear one, four texel reads and a blend in software where a grid's tap reads one texel, on a disk turned by a per-pixel angle (a cosine and a sine) with its points read from a buffer (`soft.disk`), after the light's setup (the receiver plane's gradient, the distance from the light); PCSS's blocker search adds plain reads (`textureLoad`) and, for each blocker found, its distance inside a branch; the variance maps blend four moments by hand; the ports add their renderers' own setups.",
+        why: "Each comparison is a bilinear one, four texel reads and a blend in software where a grid's tap reads one texel, on a disk turned by a per-pixel angle (a cosine and a sine) with its points read from a buffer (`soft.disk`), after the light's setup (the receiver plane's gradient, the distance from the light); PCSS's blocker search adds plain reads (`textureLoad`) and, for each blocker found, its distance inside a branch; the variance maps blend four moments by hand; `pcss_min_max`, whose floor counts PCSS's 32 at every pixel, draws the scene twice, the first draw reading eight blocks of its chain at every pixel, and its taps fall where blockers are near, the dearest pixels; the ports add their renderers' own setups.",
     },
     Why {
         lesson: "lesson_10",

@@ -37,10 +37,8 @@ use workbook::lesson_10::knobs;
 use workbook::lesson_10::map_sets::{self, MapSet, MapSets};
 use workbook::lesson_10::moments::MomentsPasses;
 use workbook::lesson_10::peers::{self, Peer};
-use workbook::lesson_10::soft::{
-    LightGeometry, Pcss, SoftConstants, SoftUniform, Technique, Variance,
-};
-use workbook::lesson_10::split::{lit_keys, Stencil};
+use workbook::lesson_10::soft::{LightGeometry, Pcss, SoftUniform, Technique, Variance};
+use workbook::lesson_10::split::{lit_keys, LitKey};
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -259,10 +257,11 @@ struct Soft {
     modules: [wgpu::ShaderModule; 3],
     /// fs_soft of a module, compiled with a variant's constants and a
     /// stencil role: built the first time a variant runs.
-    lit_pipelines: HashMap<(Module, SoftConstants, Stencil), wgpu::RenderPipeline>,
+    lit_pipelines: HashMap<LitKey, wgpu::RenderPipeline>,
     /// `per_light[variant][light]`.
     per_light: Vec<Vec<PerLight>>,
-    draws: u64,
+    /// The scene's objects: the base pass draws each, and each lit draw.
+    objects: u64,
 }
 
 impl Soft {
@@ -292,7 +291,8 @@ impl Soft {
     fn build_lit_pipelines(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) {
         let module = variant.module();
         for state in &self.per_light[variant as usize] {
-            for key in lit_keys(module, state.technique).into_iter().flatten() {
+            let (first, then) = lit_keys(module, state.technique);
+            for key in std::iter::once(first).chain(then) {
                 self.lit_pipelines.entry(key).or_insert_with(|| {
                     scene.lit_pipeline_with_depth(
                         gpu,
@@ -373,7 +373,7 @@ impl Lesson for Soft {
             modules,
             lit_pipelines: HashMap::new(),
             per_light: Vec::new(),
-            draws: shadow_map::shadow_map_draws(scene),
+            objects: scene.scene.objects.len() as u64,
         };
         soft.per_light = Variant::value_variants()
             .iter()
@@ -404,8 +404,8 @@ impl Lesson for Soft {
             frame.pass("shadow", |enc, ts| {
                 set.shadow_pass(enc, scene, light, ts.render())
             });
-            let [first, then] = lit_keys(variant.module(), state.technique);
-            if then.is_some() {
+            let (first, then) = lit_keys(variant.module(), state.technique);
+            if first.1.min_max {
                 frame.pass("min_max", |enc, ts| set.min_max.record(enc, ts.compute()));
             }
             if let Some(passes) = &state.moments {
@@ -419,10 +419,9 @@ impl Lesson for Soft {
             let map_group = set.group(state.technique.sampler());
             frame.pass("lighting", |enc, ts| {
                 let groups = [map_group, &state.group];
-                let pipeline = &self.lit_pipelines[&first.expect("a lit pipeline")];
+                let pipeline = &self.lit_pipelines[&first];
                 let mut pass = LitPass::new(light, pipeline, &groups);
-                let chain_only = matches!(state.technique, Technique::Pcss(p) if p.chain_only);
-                if let Some(then) = then.filter(|_| !chain_only) {
+                if let Some(then) = then {
                     pass = pass.then(&self.lit_pipelines[&then], light as u32 + 1);
                 }
                 scene.lit_pass(enc, targets, pass, ts.render())
@@ -435,9 +434,14 @@ impl Lesson for Soft {
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
         // The most over the lights (the same technique on each).
         let (mut search, mut filter, mut texels) = (0, 0, 0);
-        for s in &self.per_light[variant as usize] {
+        // The base pass, then per light its shadow pass and lit draws.
+        let mut draws = self.objects;
+        for (k, s) in self.per_light[variant as usize].iter().enumerate() {
             let (a, b, c) = s.technique.taps();
             (search, filter, texels) = (search.max(a), filter.max(b), texels.max(c));
+            let casters = self.maps.at(s.map).drawn[k].iter().filter(|&&d| d).count() as u64;
+            let then = lit_keys(variant.module(), s.technique).1;
+            draws += casters + self.objects * (1 + then.is_some() as u64);
         }
         BTreeMap::from([
             ("blocker_search_taps".into(), search),
@@ -447,7 +451,7 @@ impl Lesson for Soft {
                 "shadow_map_size".into(),
                 self.first_map(variant).size as u64,
             ),
-            ("draws".into(), self.draws),
+            ("draws".into(), draws),
         ])
     }
 

@@ -42,7 +42,9 @@ pub struct MapSet {
     pub map: ShadowMap,
     pub moments: MomentsMap,
     pub min_max: MinMaxChain,
-    /// Per light, per object: whether the shadow pass draws it.
+    /// Per light, per object: whether the shadow pass draws it (a
+    /// caster, and with [`MapPass::LessonHidingOnly`] not a flat object
+    /// that hides nothing).
     pub drawn: Vec<Vec<bool>>,
     /// Group 2 with nearest and with linear comparisons.
     pub nearest: wgpu::BindGroup,
@@ -78,7 +80,7 @@ impl MapSet {
         let drawn = (0..scene.scene.lights.len())
             .map(|k| match pass {
                 MapPass::LessonHidingOnly => casters::drawn(&scene.scene, k),
-                _ => vec![true; scene.scene.objects.len()],
+                _ => scene.scene.objects.iter().map(|o| o.casts_shadow).collect(),
             })
             .collect();
         let nearest = map_group(

@@ -23,7 +23,7 @@ struct LevelUniform {
 /// Where level `l` (1 to log2 of the map's side) starts in the chain, in
 /// (min, max) pairs: the levels below it, `(side >> k)²` pairs each, a
 /// geometric sum, `(side² − (side >> (l − 1))²) / 3`. `soft.wgsl`'s
-/// `level_start` is the same sum.
+/// `region_min_max` computes the same sum (its `start`).
 pub fn level_start(side: u32, l: u32) -> u32 {
     (side * side - (side >> (l - 1)) * (side >> (l - 1))) / 3
 }

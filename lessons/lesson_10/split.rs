@@ -56,23 +56,24 @@ impl Stencil {
     }
 }
 
+/// A lit pipeline's key: its shader module, constants and stencil part.
+pub type LitKey = (Module, SoftConstants, Stencil);
+
 /// A technique's lit pipelines: its own, and for `pcss_min_max` the
-/// plain PCSS after it.
-pub fn lit_keys(module: Module, t: Technique) -> [Option<(Module, SoftConstants, Stencil)>; 2] {
+/// plain PCSS after it (none with the knob `chain_only`).
+pub fn lit_keys(module: Module, t: Technique) -> (LitKey, Option<LitKey>) {
     let c = SoftConstants::new(t);
+    let chain_only = matches!(t, Technique::Pcss(p) if p.chain_only);
+    let plain = SoftConstants {
+        min_max: false,
+        ..c
+    };
     match c.min_max {
-        false => [Some((module, c, Stencil::None)), None],
-        true => [
-            Some((module, c, Stencil::Answer)),
-            Some((
-                module,
-                SoftConstants {
-                    min_max: false,
-                    ..c
-                },
-                Stencil::Rest,
-            )),
-        ],
+        false => ((module, c, Stencil::None), None),
+        true => (
+            (module, c, Stencil::Answer),
+            (!chain_only).then_some((module, plain, Stencil::Rest)),
+        ),
     }
 }
 // ANCHOR_END: split

@@ -20,6 +20,7 @@ const NOT_THE_MOST_ACCURATE: &[(&str, &str, &str)] = &[
     ("08", "bounds_scissor", "the decision table's pick: the bounds cut each light's fill to its range ([lesson 08](lesson_08.md#counting-the-work))"),
     ("08", "cull_bounds_scissor", "`bounds_scissor` with the cull: a caster whose bounding sphere misses the light's range casts no volume ([lesson 08](lesson_08.md#counting-the-work))"),
     ("09", "k4", "the decision table's pick: the snapped sphere does not shimmer, where `k4_aabb`'s box follows the camera and does ([lesson 09](lesson_09.md#shimmer-along-a-camera-path))"),
+    ("10", "pcss", "the GPU sets ran before `pcss_min_max` (issue 50), PCSS itself on a map without the ground, its chain answering where the taps would agree ([lesson 10](lesson_10.md))"),
     ("10", "hard_pcf", "lesson 03's rotated 16-tap Poisson disk, no light size: the hard shadow's edge, filtered ([lesson 10](lesson_10.md))"),
     ("10", "pcf_wide_16", "PCSS's 16 filter taps on a fixed 8-texel disk, one width everywhere: what PCSS's blocker search sizes per pixel ([lesson 10](lesson_10.md))"),
     ("10", "pcf_wide_32", "32 taps on the same disk, as many as PCSS's search and filter together ([lesson 10](lesson_10.md))"),
