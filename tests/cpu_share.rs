@@ -148,11 +148,7 @@ fn check(bin: &str, lesson: &str, light: &str, variants: &[&str]) {
             args.extend(["--scene", s.as_str()]);
             let name = format!("cpu_share_{lesson}_{size}");
             // The tests skip the timed blocks unless asked (WORKBOOK_NO_TIMING).
-            // A short warm-up (the first block ten times as long): the CPU's
-            // unnamed time needs no settled GPU clock, only the first
-            // frames' allocations out of the timed ones. The protocol's
-            // default warm-up took 5 s of each dense run's 12 on lavapipe.
-            let timed = [("WORKBOOK_NO_TIMING", "0"), ("WORKBOOK_WARM_UP_MS", "30")];
+            let timed = [("WORKBOOK_NO_TIMING", "0")];
             let Some(run) = support::run_lesson_env(bin, &name, &args, &timed) else {
                 return;
             };
