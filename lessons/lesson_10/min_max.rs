@@ -5,7 +5,7 @@
 //! one level to learn what a whole disk of the map holds, before it reads
 //! a single texel (`soft.wgsl`'s `region_min_max`).
 
-use common::gpu::bindings::{self, storage_entry, texture_entry};
+use common::gpu::bindings;
 use common::gpu::Gpu;
 
 use crate::lesson_01::shadow_map::ShadowMap;
@@ -56,33 +56,13 @@ impl MinMaxChain {
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        let stage = wgpu::ShaderStages::COMPUTE;
-        let depth = wgpu::TextureSampleType::Float { filterable: false };
-        let mut depth_entry = texture_entry(0, depth, wgpu::TextureViewDimension::D2);
-        depth_entry.visibility = stage;
-        let mut out = storage_entry(2, stage, false, None);
-        out.ty = wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        };
-        let entries = [depth_entry, storage_entry(1, stage, false, None), out];
-        let layout = bindings::layout(gpu, "min/max chain", &entries);
-        let module = gpu
-            .device
-            .create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("shaders/lesson_10/min_max.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(
-                    include_str!("../../shaders/lesson_10/min_max.wgsl").into(),
-                ),
-            });
-        let pipeline_layout = gpu
-            .device
-            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("min/max chain"),
-                bind_group_layouts: &[Some(&layout)],
-                immediate_size: 0,
-            });
+        let (layout, module, pipeline_layout) = bindings::compute_over_map(
+            gpu,
+            "min/max chain",
+            1,
+            "shaders/lesson_10/min_max.wgsl",
+            include_str!("../../shaders/lesson_10/min_max.wgsl"),
+        );
         let pipeline = |from_depth: bool| {
             gpu.device
                 .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

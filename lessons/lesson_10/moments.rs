@@ -6,7 +6,7 @@
 use std::cell::RefCell;
 use std::collections::HashMap;
 
-use common::gpu::bindings::{self, storage_entry, texture_entry};
+use common::gpu::bindings;
 use common::gpu::Gpu;
 
 use crate::lesson_01::shadow_map::ShadowMap;
@@ -104,38 +104,13 @@ impl MomentsMap {
                 mapped_at_creation: false,
             })
         };
-        let stage = wgpu::ShaderStages::COMPUTE;
-        let depth = wgpu::TextureSampleType::Float { filterable: false };
-        let mut depth_entry = texture_entry(0, depth, wgpu::TextureViewDimension::D2);
-        depth_entry.visibility = stage;
-        let mut out = storage_entry(3, stage, false, None);
-        out.ty = wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        };
-        let entries = [
-            depth_entry,
-            storage_entry(1, stage, false, None),
-            storage_entry(2, stage, false, None),
-            out,
-        ];
-        let layout = bindings::layout(gpu, "moments", &entries);
-        let module = gpu
-            .device
-            .create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("shaders/lesson_10/moments.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(
-                    include_str!("../../shaders/lesson_10/moments.wgsl").into(),
-                ),
-            });
-        let pipeline_layout = gpu
-            .device
-            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("moments"),
-                bind_group_layouts: &[Some(&layout)],
-                immediate_size: 0,
-            });
+        let (layout, module, pipeline_layout) = bindings::compute_over_map(
+            gpu,
+            "moments",
+            2,
+            "shaders/lesson_10/moments.wgsl",
+            include_str!("../../shaders/lesson_10/moments.wgsl"),
+        );
         MomentsMap {
             buffer: buffer("moments"),
             first: buffer("moments along x"),

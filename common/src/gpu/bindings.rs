@@ -165,3 +165,48 @@ pub fn params_group(
     let buffer = params_buffer(gpu, label, bytes);
     group(gpu, label, layout, &[buffer.as_entire_binding()])
 }
+
+/// A compute pass over a depth map (lesson 10's variance map and min/max
+/// chain): its group's layout (binding 0 the map, read as floats, then
+/// `inputs` read-only storage buffers, then one read-write buffer, the
+/// output), its shader module from WGSL `source` (named `path`), and its
+/// pipeline layout.
+pub fn compute_over_map(
+    gpu: &Gpu,
+    label: &str,
+    inputs: u32,
+    path: &str,
+    source: &'static str,
+) -> (
+    wgpu::BindGroupLayout,
+    wgpu::ShaderModule,
+    wgpu::PipelineLayout,
+) {
+    let stage = wgpu::ShaderStages::COMPUTE;
+    let depth = wgpu::TextureSampleType::Float { filterable: false };
+    let mut entries = vec![texture_entry(0, depth, wgpu::TextureViewDimension::D2)];
+    entries[0].visibility = stage;
+    entries.extend((1..=inputs).map(|b| storage_entry(b, stage, false, None)));
+    let mut out = storage_entry(inputs + 1, stage, false, None);
+    out.ty = wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Storage { read_only: false },
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    };
+    entries.push(out);
+    let layout = self::layout(gpu, label, &entries);
+    let module = gpu
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(path),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+    let pipeline_layout = gpu
+        .device
+        .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+    (layout, module, pipeline_layout)
+}
