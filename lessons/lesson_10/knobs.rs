@@ -53,7 +53,7 @@ pub fn technique_knobs(t: Technique) -> Vec<Knob> {
             },
             Knob {
                 name: "chain_only",
-                doc: "with min_max: the chain's answers only, black where it cannot tell and the taps would run",
+                doc: "with min_max: the chain's answers only (a diagnostic: its error figures are of this image), black where it answers umbra or cannot tell",
                 range: KnobRange::Toggle,
                 value: p.chain_only as u32 as f64,
             },
