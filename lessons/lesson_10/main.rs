@@ -405,6 +405,9 @@ impl Lesson for Soft {
                 set.shadow_pass(enc, scene, light, ts.render())
             });
             let (first, then) = lit_keys(variant.module(), state.technique);
+            if first.1.min_max || state.moments.is_some() {
+                frame.render_output_ready_for_compute();
+            }
             if first.1.min_max {
                 frame.pass("min_max", |enc, ts| set.min_max.record(enc, ts.compute()));
             }

@@ -231,6 +231,23 @@ impl<'a> Frame<'a> {
         self.waited_ms += t.elapsed().as_secs_f64() * 1e3;
     }
 
+    /// Before a compute pass that reads what a render pass of this frame
+    /// drew (lesson 10's variance map and min/max chain read the shadow
+    /// map). WebGPU orders the two and every backend's barrier holds on
+    /// Vulkan, Metal and D3D12; on GL, Mesa's llvmpipe (22.3) can start
+    /// the dispatch while the render pass's last tiles are still being
+    /// rasterised, so the compute pass reads part of the map the frame
+    /// before drew (`vsm_bleed_cut` after `vsm`'s moved frames: 7 runs in
+    /// 16 read a stale map with four runs side by side; a submit alone
+    /// did not help, a wait did, 20 in 20). So on GL, and only there,
+    /// the frame submits what it has recorded and waits, a wait counted
+    /// out of the frame's CPU time as the wall-clock path's are.
+    pub fn render_output_ready_for_compute(&mut self) {
+        if self.gpu.info.backend == wgpu::Backend::Gl {
+            self.submit_and_wait();
+        }
+    }
+
     /// Direct access for copies outside any timed pass.
     pub fn encoder(&mut self) -> &mut wgpu::CommandEncoder {
         &mut self.encoder
