@@ -156,28 +156,14 @@ pub fn compare(
 
     // Interior receivers: no pixel within EDGE_MARGIN_PX sees another
     // surface or the other side of the reference's lit/shadowed boundary.
-    let class = |p: usize| {
-        let object = reference.hits[p].map_or(0, |h| h.object + 1);
-        (object, ref_vis[p] >= LIT_THRESHOLD)
-    };
+    let near_edge = near_edge(reference, ref_vis);
     let (mut interior, mut interior_wrong) = (0u64, 0u64);
-    let m = EDGE_MARGIN_PX;
     for (p, colour) in diff.pixels().enumerate() {
         let wrong = *colour == FALSE_SHADOW || *colour == FALSE_LIT;
         if !wrong && (colour.0[3] != 255 || *colour == NOT_RECEIVER) {
             continue;
         }
-        let (x, y) = ((p % w as usize) as i64, (p / w as usize) as i64);
-        let c = class(p);
-        let near_edge = (-m..=m).any(|dy| {
-            (-m..=m).any(|dx| {
-                let (nx, ny) = (x + dx, y + dy);
-                (0..w as i64).contains(&nx)
-                    && (0..h as i64).contains(&ny)
-                    && class((ny * w as i64 + nx) as usize) != c
-            })
-        });
-        if !near_edge {
+        if !near_edge[p] {
             interior += 1;
             interior_wrong += u64::from(wrong);
         }
@@ -213,6 +199,46 @@ pub fn compare(
         }),
     };
     Comparison { stats, diff }
+}
+
+/// Per pixel: whether a pixel within [`EDGE_MARGIN_PX`] (in the image)
+/// sees another surface, or the other side of the reference's
+/// lit/shadowed boundary. Each pixel's class is a key; a pixel is near an
+/// edge unless the least and the greatest key over its square window are
+/// both its own, found a row and then a column at a time.
+fn near_edge(reference: &Reference, ref_vis: &[f32]) -> Vec<bool> {
+    let (w, h) = (reference.width as usize, reference.height as usize);
+    let key: Vec<u64> = (0..w * h)
+        .map(|p| {
+            let object = reference.hits[p].map_or(0, |h| h.object as u64 + 1);
+            object * 2 + u64::from(ref_vis[p] >= LIT_THRESHOLD)
+        })
+        .collect();
+    let m = EDGE_MARGIN_PX as usize;
+    // Least and greatest over [i − m, i + m] ∩ [0, len) of `at(i)`.
+    let window =
+        |len: usize, at: &dyn Fn(usize) -> (u64, u64), out: &mut dyn FnMut(usize, (u64, u64))| {
+            for i in 0..len {
+                let (lo, hi) = (i.saturating_sub(m), (i + m).min(len - 1));
+                let range = (lo..=hi).map(at);
+                let least = range.clone().map(|r| r.0).min().unwrap_or(u64::MAX);
+                let most = range.map(|r| r.1).max().unwrap_or(0);
+                out(i, (least, most));
+            }
+        };
+    let mut rows = vec![(0u64, 0u64); w * h];
+    for y in 0..h {
+        let row = &key[y * w..(y + 1) * w];
+        window(w, &|x| (row[x], row[x]), &mut |x, r| rows[y * w + x] = r);
+    }
+    let mut near = vec![false; w * h];
+    for x in 0..w {
+        window(h, &|y| rows[y * w + x], &mut |y, (least, most)| {
+            let k = key[y * w + x];
+            near[y * w + x] = least != k || most != k;
+        });
+    }
+    near
 }
 // ANCHOR_END: compare
 
