@@ -220,10 +220,12 @@ fn near_edge(reference: &Reference, ref_vis: &[f32]) -> Vec<bool> {
         |len: usize, at: &dyn Fn(usize) -> (u64, u64), out: &mut dyn FnMut(usize, (u64, u64))| {
             for i in 0..len {
                 let (lo, hi) = (i.saturating_sub(m), (i + m).min(len - 1));
-                let range = (lo..=hi).map(at);
-                let least = range.clone().map(|r| r.0).min().unwrap_or(u64::MAX);
-                let most = range.map(|r| r.1).max().unwrap_or(0);
-                out(i, (least, most));
+                let both = (lo..=hi)
+                    .map(at)
+                    .fold((u64::MAX, 0), |(least, most), (l, m)| {
+                        (least.min(l), most.max(m))
+                    });
+                out(i, both);
             }
         };
     let mut rows = vec![(0u64, 0u64); w * h];

@@ -413,8 +413,8 @@ fn in_view(r: &crate::reference::Reference, view_proj: glam::Mat4) -> Vec<bool> 
 
 /// Saves an image as a PNG, naming the file on failure. Fast compression:
 /// a run writes a few PNGs per variant and light, and the default's
-/// adaptive filtering took about a tenth of a lesson's headless run (a
-/// third larger files, for working outputs).
+/// adaptive filtering took about a tenth of a lesson 10 headless run (the
+/// Sub filter: 1.3 %, for files 14 % larger; the same pixels).
 pub fn save<P, C>(img: &image::ImageBuffer<P, C>, path: &Path) -> Result<()>
 where
     P: image::PixelWithColorType,
