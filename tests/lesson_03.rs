@@ -24,6 +24,12 @@ fn run(name: &str, scene: Option<&str>, extra: &[&str]) -> Option<support::Lesso
     support::run_small(BIN, name, scene, extra)
 }
 
+/// The default scene with every variant: the snapshot's run, which the
+/// best-variant test reads too (one run, not two).
+fn default_run() -> Option<&'static support::LessonRun> {
+    support::shared_run(BIN, "lesson_03_snapshot", &support::SMALL)
+}
+
 /// Pixels of a visibility PNG that are neither 0 nor 1: a penumbra.
 fn fractional_pixels(run: &support::LessonRun, variant: &str) -> usize {
     let (ids, vis, _, _) =
@@ -36,7 +42,7 @@ fn fractional_pixels(run: &support::LessonRun, variant: &str) -> usize {
 
 #[test]
 fn lesson_03_snapshot() {
-    let Some(run) = run("lesson_03_snapshot", None, &[]) else {
+    let Some(run) = default_run() else {
         return;
     };
     let mut text = String::from(
@@ -73,7 +79,7 @@ fn lesson_03_snapshot() {
 /// most 1% of the receivers; so does every filter that averages comparisons.
 #[test]
 fn lesson_03_best_variant_is_within_one_percent() {
-    let Some(run) = run("lesson_03_best", None, &[]) else {
+    let Some(run) = default_run() else {
         return;
     };
     for v in SOUND {

@@ -9,9 +9,15 @@ mod support;
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_06");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
+/// The default scene with every variant: the snapshot's run, which the
+/// counters' test reads too (one run, not two).
+fn default_run() -> Option<&'static support::LessonRun> {
+    support::shared_run(BIN, "lesson_06_snapshot", &SIZE)
+}
+
 #[test]
 fn lesson_06_snapshot() {
-    let Some(run) = support::run_lesson(BIN, "lesson_06_snapshot", &SIZE) else {
+    let Some(run) = default_run() else {
         return;
     };
     let mut text =
@@ -281,7 +287,7 @@ fn lesson_06_finite_far_back_cap_in_front_of_the_surface() {
 /// as an update.
 #[test]
 fn lesson_06_counters_show_work_saved() {
-    let Some(run) = support::run_lesson(BIN, "lesson_06_counters", &SIZE) else {
+    let Some(run) = default_run() else {
         return;
     };
     let c = |v, k| support::counter(&run.report, v, k);

@@ -95,9 +95,15 @@ fn check_identical_and_cheaper(run: &support::LessonRun) {
     assert!(f("cull_bounds_scissor") <= f("bounds_scissor"));
 }
 
+/// The default scene with every variant: the snapshot's run, which the
+/// identical-pixels test reads too (one run, not two).
+fn default_run() -> Option<&'static support::LessonRun> {
+    support::shared_run(BIN, "lesson_08_snapshot", &SIZE)
+}
+
 #[test]
 fn lesson_08_snapshot() {
-    let Some(run) = support::run_lesson(BIN, "lesson_08_snapshot", &SIZE) else {
+    let Some(run) = default_run() else {
         return;
     };
     let mut text = String::from("bounds_scissor visibility, light 3 ('#' shadow, '.' lit, ' ' background;\nout of the light's range the lit pass draws nothing: '#'):\n");
@@ -130,10 +136,10 @@ fn lesson_08_snapshot() {
 /// and depth bounds + scissor pass at most half the unbounded stencil work.
 #[test]
 fn lesson_08_bounds_and_scissor_keep_pixels_identical() {
-    let Some(run) = support::run_lesson(BIN, "lesson_08_identical", &SIZE) else {
+    let Some(run) = default_run() else {
         return;
     };
-    check_identical_and_cheaper(&run);
+    check_identical_and_cheaper(run);
     let (all, both) = (
         counter(&run.report, "unbounded", "stencil_fragments"),
         counter(&run.report, "bounds_scissor", "stencil_fragments"),

@@ -141,6 +141,39 @@ pub fn run_lesson_env(
     })
 }
 
+/// One run for every test of a test binary that reads the same run: the
+/// lesson runs once, at the first test that asks, and a test that asks
+/// while it runs waits for it (the tests of a binary run in parallel
+/// threads). Keyed on the binary, the run's name and its arguments; a
+/// snapshot's run (`*_snapshot`, with `--fragile`) gives the same figures as
+/// one without (`--fragile` adds the bounds' jittered draws after them;
+/// compared on lesson 09's default scene, 2026-12-03), so a test that reads
+/// figures shares the snapshot's. Each lesson's default scene is run by its
+/// snapshot and by its claims: once, not twice.
+pub fn shared_run(bin: &str, name: &str, args: &[&str]) -> Option<&'static LessonRun> {
+    use std::sync::{Mutex, OnceLock};
+    type Key = (String, String, Vec<String>);
+    type Cell = &'static OnceLock<Option<LessonRun>>;
+    static RUNS: Mutex<Vec<(Key, Cell)>> = Mutex::new(Vec::new());
+    let key: Key = (
+        bin.to_string(),
+        name.to_string(),
+        args.iter().map(|a| a.to_string()).collect(),
+    );
+    let cell = {
+        let mut runs = RUNS.lock().unwrap_or_else(|e| e.into_inner());
+        match runs.iter().find(|(k, _)| *k == key) {
+            Some((_, cell)) => *cell,
+            None => {
+                let cell: Cell = Box::leak(Box::new(OnceLock::new()));
+                runs.push((key, cell));
+                cell
+            }
+        }
+    };
+    cell.get_or_init(|| run_lesson(bin, name, args)).as_ref()
+}
+
 /// Reads a visibility PNG (gray + alpha) as (object covered 0/1, visibility 0..1).
 pub fn read_visibility(path: &Path) -> (Vec<u32>, Vec<f32>, u32, u32) {
     let img = image::open(path)
@@ -278,13 +311,15 @@ pub fn scene_path(name: &str) -> PathBuf {
 /// `scenes/`) or the lesson's own, with `extra` arguments.
 pub fn run_small(bin: &str, name: &str, scene: Option<&str>, extra: &[&str]) -> Option<LessonRun> {
     let scene = scene.map(|s| scene_path(s).display().to_string());
-    let size = ["--width", "640", "--height", "360", "--frames", "1"];
-    let mut args: Vec<&str> = [&size[..], extra].concat();
+    let mut args: Vec<&str> = [&SMALL[..], extra].concat();
     if let Some(s) = &scene {
         args.extend(["--scene", s.as_str()]);
     }
     run_lesson(bin, name, &args)
 }
+
+/// The size and frames of [`run_small`].
+pub const SMALL: [&str; 6] = ["--width", "640", "--height", "360", "--frames", "1"];
 
 /// A variant's misclassified %, the figure most pass criteria use.
 pub fn misclassified(run: &LessonRun, variant_name: &str) -> f64 {
