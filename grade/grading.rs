@@ -33,6 +33,30 @@ pub struct Options {
     /// Measure how far each figure may move on another adapter
     /// (`--fragile`): the snapshot prints the exercise's bounds.
     pub fragile: bool,
+    /// CI's checks (`--check-starters`, `--check-copies`,
+    /// `--check-half-right`) only need each exercise to fail, as [`Proof`]
+    /// says: once it has, its other scenes are not run (listed as skipped).
+    /// A student's grading runs every scene (`None`).
+    pub stop_at: Option<Proof>,
+}
+
+/// The failure one of CI's checks needs from every exercise.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Proof {
+    /// Any check failed (`--check-copies`).
+    Failed,
+    /// A check failed with a hint naming the likely cause
+    /// (`--check-starters`, `--check-half-right`).
+    FailedWithCause,
+}
+
+impl Proof {
+    /// Whether `checks` hold the failure this proof needs.
+    pub fn shown_by(self, checks: &[CheckResult]) -> bool {
+        checks
+            .iter()
+            .any(|c| !c.passed && (self == Proof::Failed || c.hinted))
+    }
 }
 
 /// One check's outcome (the JSON's `checks`).
@@ -382,8 +406,15 @@ pub fn grade_exercise(
     // run: each would wait out the time limit again.
     let mut stuck: Option<String> = None;
     let not_again = |first: &str| format!("not run: {} did not finish on {first}", ex.variant);
+    let mut skipped = Vec::new();
+    let proven = |checks: &[CheckResult]| opts.stop_at.is_some_and(|p| p.shown_by(checks));
+    const PROVEN: &str = "not run: the exercise has already failed as the check needs";
     for scene in own_scenes {
         let (label, path) = scene_of(&opts.root, &scene);
+        if proven(&checks) {
+            skipped.push(format!("{label}: {PROVEN}"));
+            continue;
+        }
         let out = base.join(label.trim_end_matches(".toml"));
         let on_scene: Vec<&Check> = ex.checks.iter().filter(|c| c.scene == scene).collect();
         if let Some(first) = &stuck {
@@ -415,7 +446,6 @@ pub fn grade_exercise(
             }
         }
     }
-    let mut skipped = Vec::new();
     if let Some(dir) = &opts.hidden {
         let hidden: Vec<&Check> = ex.checks.iter().filter(|c| c.hidden).collect();
         for scene in hidden_scenes(dir, lesson)? {
@@ -423,6 +453,10 @@ pub fn grade_exercise(
                 .file_name()
                 .map_or("hidden".into(), |n| n.to_string_lossy().to_string());
             let out = base.join("hidden").join(label.trim_end_matches(".toml"));
+            if proven(&checks) {
+                skipped.push(format!("{label} (hidden scene): {PROVEN}"));
+                continue;
+            }
             if let Some(first) = &stuck {
                 let why = not_again(first);
                 checks.extend(failed_run(
@@ -569,4 +603,44 @@ pub fn describe(r: &ExerciseResult) -> String {
         s += &format!("     reread: {}\n", r.section);
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(passed: bool, hinted: bool) -> CheckResult {
+        CheckResult {
+            scene: "default".into(),
+            hidden: false,
+            metric: "misclassified_pct".into(),
+            measured: Some(1.0),
+            target: Some(0.5),
+            target_text: "<= 0.5".into(),
+            passed,
+            feedback: hinted.then(|| "a cause".into()),
+            hinted,
+            diff_image: None,
+            status: RunStatus::Finished,
+        }
+    }
+
+    /// A copy check stops at any failure; a starter's or a half-right
+    /// answer's only at one whose hint names the cause; passes prove
+    /// nothing.
+    #[test]
+    fn each_check_stops_at_the_failure_it_needs() {
+        let passed = [check(true, false), check(true, false)];
+        let unhinted = [check(true, false), check(false, false)];
+        let hinted = [check(false, false), check(false, true)];
+        for (checks, failed, with_cause) in [
+            (&passed[..], false, false),
+            (&unhinted[..], true, false),
+            (&hinted[..], true, true),
+            (&[][..], false, false),
+        ] {
+            assert_eq!(Proof::Failed.shown_by(checks), failed);
+            assert_eq!(Proof::FailedWithCause.shown_by(checks), with_cause);
+        }
+    }
 }

@@ -313,6 +313,13 @@ fn run(cli: Cli) -> Result<bool> {
             hidden: cli.scenes.clone(),
             hidden_only: false,
             fragile: false,
+            stop_at: if cli.check_copies {
+                Some(grading::Proof::Failed)
+            } else if cli.check_starters || cli.check_half_right {
+                Some(grading::Proof::FailedWithCause)
+            } else {
+                None
+            },
         };
         for l in &lessons {
             let mut results = grading::grade_lesson(&runner, &opts, l, cli.exercise.as_deref())?;

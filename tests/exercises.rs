@@ -43,6 +43,7 @@ fn options(hidden: Option<PathBuf>) -> grading::Options {
         // The snapshots print each figure's bound (`±B`), which
         // tests/support/tolerance.rs allows on another adapter.
         fragile: !hidden_only,
+        stop_at: None,
     }
 }
 
