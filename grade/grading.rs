@@ -51,11 +51,21 @@ pub enum Proof {
 }
 
 impl Proof {
-    /// Whether `checks` hold the failure this proof needs.
-    pub fn shown_by(self, checks: &[CheckResult]) -> bool {
+    /// The scene of the first check that failed as this proof needs: none
+    /// until `checks` hold that failure.
+    pub fn failed_on(self, checks: &[CheckResult]) -> Option<&str> {
         checks
             .iter()
-            .any(|c| !c.passed && (self == Proof::Failed || c.hinted))
+            .find(|c| !c.passed && (self == Proof::Failed || c.hinted))
+            .map(|c| c.scene.as_str())
+    }
+
+    /// What the proof needs, for the `skip` lines.
+    fn needs(self) -> &'static str {
+        match self {
+            Proof::Failed => "a failed check",
+            Proof::FailedWithCause => "a failed check with its likely cause",
+        }
     }
 }
 
@@ -100,7 +110,9 @@ pub struct ExerciseResult {
     pub section: String,
     pub task: String,
     pub checks: Vec<CheckResult>,
-    /// Hidden scenes the lesson itself refuses (its own line), not graded.
+    /// Scenes not graded, each with why: hidden scenes the lesson itself
+    /// refuses (its own line), and, under a `--check-*` flag, the scenes
+    /// after the one where the exercise failed as the check needs.
     pub skipped_scenes: Vec<String>,
     /// The adapter and backend the runs used (`"llvmpipe (LLVM 15.0.6,
     /// 256 bits)"`, `"Vulkan"`); empty when nothing ran.
@@ -407,12 +419,21 @@ pub fn grade_exercise(
     let mut stuck: Option<String> = None;
     let not_again = |first: &str| format!("not run: {} did not finish on {first}", ex.variant);
     let mut skipped = Vec::new();
-    let proven = |checks: &[CheckResult]| opts.stop_at.is_some_and(|p| p.shown_by(checks));
-    const PROVEN: &str = "not run: the exercise has already failed as the check needs";
+    // CI's checks: once the exercise has failed as the check needs, the
+    // line that says why the rest is not run.
+    let proven = |checks: &[CheckResult]| {
+        let p = opts.stop_at?;
+        let scene = p.failed_on(checks)?;
+        Some(format!(
+            "not run: {} already failed on {scene} ({}), all the --check flag needs",
+            ex.variant,
+            p.needs()
+        ))
+    };
     for scene in own_scenes {
         let (label, path) = scene_of(&opts.root, &scene);
-        if proven(&checks) {
-            skipped.push(format!("{label}: {PROVEN}"));
+        if let Some(why) = proven(&checks) {
+            skipped.push(format!("{label}: {why}"));
             continue;
         }
         let out = base.join(label.trim_end_matches(".toml"));
@@ -453,8 +474,8 @@ pub fn grade_exercise(
                 .file_name()
                 .map_or("hidden".into(), |n| n.to_string_lossy().to_string());
             let out = base.join("hidden").join(label.trim_end_matches(".toml"));
-            if proven(&checks) {
-                skipped.push(format!("{label} (hidden scene): {PROVEN}"));
+            if let Some(why) = proven(&checks) {
+                skipped.push(format!("{label} (hidden scene): {why}"));
                 continue;
             }
             if let Some(first) = &stuck {
@@ -639,8 +660,11 @@ mod tests {
             (&hinted[..], true, true),
             (&[][..], false, false),
         ] {
-            assert_eq!(Proof::Failed.shown_by(checks), failed);
-            assert_eq!(Proof::FailedWithCause.shown_by(checks), with_cause);
+            assert_eq!(Proof::Failed.failed_on(checks).is_some(), failed);
+            assert_eq!(
+                Proof::FailedWithCause.failed_on(checks).is_some(),
+                with_cause
+            );
         }
     }
 }

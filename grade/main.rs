@@ -44,7 +44,8 @@ struct Cli {
     #[arg(long)]
     exercise: Option<String>,
     /// A folder of hidden scene files: `DIR/*.toml` for every chapter,
-    /// `DIR/lesson_NN/*.toml` for one. Every exercise's hidden checks run on them.
+    /// `DIR/lesson_NN/*.toml` for one. Every exercise's hidden checks run on
+    /// them (under a `--check-*` flag, only until the exercise has failed).
     #[arg(long, value_name = "DIR")]
     scenes: Option<PathBuf>,
     /// Where to write the results as JSON (default `<out>/grade.json`).
@@ -69,21 +70,28 @@ struct Cli {
     time_limit: f64,
     /// For maintainers (CI): grade the starter code and succeed only if
     /// EVERY exercise fails with a likely cause from its hints, which
-    /// proves that the checks can fail and that each says why.
+    /// proves that each exercise's checks can fail and that one says why.
+    /// An exercise is graded scene by scene only until a check fails with
+    /// a hint; its other scenes are listed as `skip` (grade it without the
+    /// flag to see them all).
     #[arg(long)]
     check_starters: bool,
     /// For maintainers (CI), built with `--features chapter_copies`: grade
     /// each exercise answered with the nearest code its chapter prints
     /// (`tests/chapter_copies/`), then again with the copies that call the
     /// lesson's own function, and succeed only if EVERY one fails, which
-    /// proves that no chapter hands out its exercises' answers.
+    /// proves that no chapter hands out its exercises' answers. An exercise
+    /// is graded scene by scene only until a check fails; its other scenes
+    /// are listed as `skip`.
     #[arg(long)]
     check_copies: bool,
     /// For maintainers (CI), built with `--features chapter_copies`: grade
     /// each exercise answered half right (`tests/half_right/`: the mistake
     /// a student is likely to make, the case its chapter warns about, left
     /// out), and succeed only if EVERY one fails with a likely cause from
-    /// its hints, which proves that the graded scenes hold those cases.
+    /// its hints, which proves that a graded scene holds that case. An
+    /// exercise is graded scene by scene only until a check fails with a
+    /// hint; its other scenes are listed as `skip`.
     #[arg(long)]
     check_half_right: bool,
 }

@@ -40,10 +40,12 @@ fn run(name: &str, scene: Option<&str>, variants: &[&str]) -> Option<support::Le
     support::run_lesson(BIN, name, &args)
 }
 
-/// The default scene with every variant: the snapshot's run, which the
-/// claims, the shimmer and the split schemes read too (one 17 s run on
-/// lavapipe, not four; each variant is drawn and measured on its own, so
-/// a variant's figures do not depend on which others run).
+/// The default scene with the lesson's variants (its default list, no
+/// exercise): the snapshot's run, which the claims, the shimmer and the
+/// split schemes read too (one run of 17 s on lavapipe, its camera path's
+/// 16 frames for each of 13 variants included, not four runs; each variant
+/// is drawn and measured on its own, so a variant's figures do not depend
+/// on which others run).
 fn default_run() -> Option<&'static support::LessonRun> {
     support::shared_run(
         BIN,

@@ -141,15 +141,19 @@ pub fn run_lesson_env(
     })
 }
 
-/// One run for every test of a test binary that reads the same run: the
-/// lesson runs once, at the first test that asks, and a test that asks
-/// while it runs waits for it (the tests of a binary run in parallel
-/// threads). Keyed on the binary, the run's name and its arguments; a
-/// snapshot's run (`*_snapshot`, with `--fragile`) gives the same figures as
-/// one without (`--fragile` adds the bounds' jittered draws after them;
-/// compared on lesson 09's default scene, 2026-12-03), so a test that reads
-/// figures shares the snapshot's. Each lesson's default scene is run by its
-/// snapshot and by its claims: once, not twice.
+/// One run for every test of a test binary that asks for it with the same
+/// binary, name and arguments: the lesson runs at the first test that
+/// asks, and a test that asks while it runs waits for it (the tests of a
+/// binary run in parallel threads). A run that panics is not kept: the
+/// next test to ask runs it again (and fails the same way). The name is
+/// the output folder's (`out_dir`), so a run made here must not share its
+/// name with one made by [`run_lesson`]. A snapshot's run (`*_snapshot`,
+/// with `--fragile`) gives the same figures as one without: `--fragile`
+/// only adds the bounds' moved draws after the measured frame (compared on
+/// the default scenes of lessons 02, 03, 06, 08 and 09, every figure of
+/// every variant, 2026-12-03). So the tests of lessons 02, 03, 06, 08 and
+/// 09 that read their lesson's default run read the snapshot's: one run,
+/// where there were two to four.
 pub fn shared_run(bin: &str, name: &str, args: &[&str]) -> Option<&'static LessonRun> {
     use std::sync::{Mutex, OnceLock};
     type Key = (String, String, Vec<String>);
