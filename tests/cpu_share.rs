@@ -267,6 +267,85 @@ fn untimed_work_is_left_out_of_the_frame() {
     );
 }
 
+/// The web page's timer ([`Timer::later`]) waits for nothing, and the GPU
+/// times it reads back frames later are a frame's: every pass timed,
+/// under its own name, about as long as the waiting timer measures the
+/// same work. An adapter without timestamps gets no GPU time from it,
+/// and no wall-clock time either (that would wait).
+#[test]
+fn timestamps_read_later_are_a_frames_times() {
+    use common::measure::timing::{quantile, Timer, TOTAL};
+    use common::measure::timing_later::RING;
+    let Some(gpu) = support::test_gpu() else {
+        return;
+    };
+    let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("timed"),
+        size: wgpu::Extent3d { width: 1024, height: 1024, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    });
+    let view = target.create_view(&Default::default());
+    let frame_of = |timer: &mut Timer| {
+        let mut frame = timer.frame(&gpu);
+        for name in ["clear_a", "clear_b", "clear_a"] {
+            frame.pass(name, |enc, ts| {
+                enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(name),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: ts.render(),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+            });
+        }
+        frame.finish().unwrap().ms
+    };
+    let mut later = Timer::later(&gpu);
+    if !gpu.has(wgpu::Features::TIMESTAMP_QUERY) {
+        let ms = frame_of(&mut later);
+        assert!(later.late().is_none() && !later.times_gpu());
+        assert!(!ms.contains_key(TOTAL), "no timestamps, yet a GPU total: {ms:?}");
+        return;
+    }
+    let mut wait = Timer::new(&gpu);
+    let (mut waited, mut late_totals, mut seen) = (Vec::new(), Vec::new(), 0);
+    for _ in 0..16 {
+        waited.push(frame_of(&mut wait)[TOTAL]);
+        let ms = frame_of(&mut later);
+        let late = later.late().expect("late times within the first frames");
+        assert!(late.frames_late <= RING as u64, "read {} frames late", late.frames_late);
+        assert_eq!(ms[TOTAL], late.ms[TOTAL], "the frame's GPU total is the late one's");
+        let keys: Vec<&str> = late.ms.keys().map(String::as_str).collect();
+        assert_eq!(keys, ["clear_a", "clear_b", TOTAL]);
+        assert!(late.ms.values().all(|&v| v > 0.0), "a pass untimed: {:?}", late.ms);
+        assert!(late.ms[TOTAL] >= late.ms["clear_b"], "{:?}", late.ms);
+        if late.frame > seen {
+            late_totals.push(late.ms[TOTAL]);
+            seen = late.frame;
+        }
+    }
+    assert!(late_totals.len() >= 8, "only {} frames' times came back", late_totals.len());
+    let (a, b) = (quantile(&waited, 0.5), quantile(&late_totals, 0.5));
+    assert!(
+        b > a / 4.0 && b < a * 4.0,
+        "read later {b:.3} ms, waited for {a:.3} ms: not the same work's time"
+    );
+}
+
 /// The most CPU time per frame (median) that no `cpu_*` pass may name, in
 /// any variant of any lesson's default scene: the glue between passes
 /// (a few uniform writes, bookkeeping). A pass over the default scene's

@@ -11,11 +11,22 @@
 //     frame (a few pixels along edges may differ between rasterisers);
 //  3. V changes the variant, and the new figure equals the native run's of
 //     that variant;
-//  4. the page logged no error (console errors and uncaught exceptions).
+//  4. for both variants, the overlay's counters (read back a frame or more
+//     late, common/src/gpu/read_later.rs) equal the native run's on the
+//     same view, by the snapshots' rule between adapters, and for the
+//     first, the overlay shows GPU times (timestamps read back frames
+//     later, common/src/measure/timing_later.rs);
+//  5. the camera is dragged for a second, then let go, and the full figure
+//     of the view it stopped at comes: meanwhile no task holds the page's
+//     thread for LONGEST_TASK_MS or more (the live reference runs in a Web
+//     Worker, common/src/run/window/live_page.rs); the longest is printed;
+//  6. the page logged no error (console errors and uncaught exceptions).
 //
 // Each lesson's figures are printed, web beside native. Exits non-zero if
 // any check failed. With WEB_CHECK_ALL_VARIANTS=1, step 3 goes on through
-// every variant of each lesson.
+// every variant of each lesson. With WEB_CHECK_GPU_TABLE=1, the page's GPU
+// times are printed at the end beside a native timed run on the same
+// adapter (SwiftShader's Vulkan driver, which Chromium ships).
 //
 // Environment: WEB_CHECK_URL (the served repository's root, ending in /),
 // WEB_CHECK_BIN (the folder of the lesson binaries), WEB_CHECK_OUT (a
@@ -41,6 +52,29 @@ const lessons = process.argv.slice(2).length
 // (`--fragile`: the pixels a sixteenth of a pixel's camera jitter flips),
 // and where it measured none, by FIGURE: 0.03 points plus 0.5 % of itself.
 const FIGURE = { abs: 0.03, rel: 0.005 };
+// The same rule for the counters: a count the CPU makes (any key not
+// listed) is exact; a count of fragments may move by its measured bound
+// plus its class's constant; an adapter-defined one is not compared.
+// tests/snapshot_tolerance.rs checks these against tolerance.rs's.
+const FRAGMENTS = { abs: 8, rel: 2e-4 };
+const DEPTH_TESTED = { abs: 16, rel: 0.03 };
+const COUNTER_CLASSES = [
+  ["volume_fragments", "fragments"],
+  ["stencil_fragments", "fragments"],
+  ["shadow_fragments", "fragments"],
+  ["pixels", "fragments"],
+  ["stencil_updates", "depth_tested"],
+  ["shadow_texels_written", "depth_tested"],
+  ["probed_pixels", "fragments"],
+  ["full_disk_pixels", "depth_tested"],
+  ["filter_taps", "depth_tested"],
+  ["fragment_shader_invocations", "adapter_defined"],
+  ["depth_gap_ppb_at_half_far", "adapter_defined"],
+  ["depth_gap_ppb_at_sqrt_near_far", "adapter_defined"],
+];
+// How long the page's counters may take to come back (a frame or more
+// after the variant's first frames, each readback one frame at least).
+const COUNTERS_WAIT_MS = 20_000;
 // The canvas against the native frame: the share of pixels whose colour
 // differs by more than PIXEL_STEP (of 255) in a channel may be at most
 // MAX_DIFFERING plus the share the native run's jitter flipped (acne, in
@@ -93,7 +127,15 @@ async function native(lesson, variant, w, h) {
   // The share of pixels the jitter flipped: those may differ on screen too.
   const flipped = (v.fragile?.flipped_pixels ?? 0) / (w * h);
   // `out` is relative to the served root (the repository).
-  return { figures: figures(v.error), bounds, flipped, frame: path.join(dir, `${variant}.png`) };
+  return {
+    figures: figures(v.error),
+    bounds,
+    flipped,
+    frame: path.join(dir, `${variant}.png`),
+    counters: v.counters,
+    counterBounds: v.fragile?.counters ?? {},
+    timing: v.timing_ms,
+  };
 }
 
 /// The variant V leads to from `variant`: the next of the lesson's own
@@ -148,6 +190,123 @@ function compare(lesson, variant, web, nat) {
   }
 }
 
+/// A counter's class in tolerance.rs's KEYS: the longest key it ends with.
+function counterClass(key) {
+  const found = COUNTER_CLASSES.filter(([k]) => key.endsWith(k)).sort((a, b) => b[0].length - a[0].length);
+  return found.length ? found[0][1] : "exact";
+}
+
+/// Waits until the page's overlay shows the lesson's counters (the page
+/// reads them back a frame or more late), and compares them with the
+/// native run's on the same view, by the snapshots' rule between adapters.
+async function compareCounters(page, lesson, variant, nat) {
+  const start = Date.now();
+  const want = Object.keys(nat.counters ?? {});
+  let f = await shown(page);
+  const missing = (f) => want.filter((k) => counterClass(k) !== "adapter_defined" && !(k in (f?.counters ?? {})));
+  while (missing(f).length && Date.now() - start < COUNTERS_WAIT_MS) {
+    await page.waitForTimeout(250);
+    f = await shown(page);
+  }
+  if (missing(f).length) {
+    fail(lesson, `${variant}: the page shows no ${missing(f).join(", ")} within ${COUNTERS_WAIT_MS / 1000} s`);
+    return;
+  }
+  let compared = 0;
+  const off = [];
+  for (const k of want) {
+    const cls = counterClass(k);
+    if (cls === "adapter_defined") continue;
+    const [a, b] = [nat.counters[k], f.counters[k]];
+    const bound = nat.counterBounds[k] ?? 0;
+    const t = cls === "fragments" ? FRAGMENTS : cls === "depth_tested" ? DEPTH_TESTED : null;
+    const allowed = t ? bound + t.abs + t.rel * Math.max(Math.abs(a), Math.abs(b)) : 0;
+    compared++;
+    if (!(Math.abs(a - b) <= allowed)) {
+      off.push(k);
+      fail(lesson, `${variant} counter ${k}: page ${b} against native ${a} (allowed ±${allowed.toFixed(1)}, ${cls})`);
+    }
+  }
+  // Counters the page has and the native run has not (or the reverse) are reported too.
+  const extra = Object.keys(f.counters).filter((k) => !(k in nat.counters));
+  if (extra.length) fail(lesson, `${variant}: the page counts ${extra.join(", ")}, the native run does not`);
+  console.log(
+    `  ${variant}: counters: ${compared} compared with the native run's, ${compared - off.length} within the snapshots' bounds; came ${((Date.now() - start) / 1000).toFixed(1)} s after the figure`,
+  );
+}
+
+/// The GPU times the overlay shows, once the page has timed enough frames
+/// with nothing else running (the native runs done): each pass's median
+/// and the total's quartiles, as the overlay computes them. Kept for the
+/// table at the end, beside a native run on the same adapter.
+async function gpuTimes(page, lesson, variant) {
+  // For the table, every frame the overlay's 30 hold timed with nothing
+  // else running; else a few frames timed, whatever runs beside.
+  if (GPU_TABLE) await Promise.allSettled([...runs.values()]);
+  const from = (await shown(page))?.frame ?? 0;
+  const start = Date.now();
+  let f = await shown(page);
+  const enough = (f) => (GPU_TABLE ? (f?.frame ?? 0) >= from + 40 : (f?.gpu_frames ?? 0) >= 5);
+  while (!enough(f) && Date.now() - start < 30_000) {
+    await page.waitForTimeout(250);
+    f = await shown(page);
+  }
+  const total = f?.gpu_ms?.total;
+  if (!total) {
+    fail(lesson, `${variant}: the page shows no GPU time (read late: ${f?.gpu_read_late})`);
+    return;
+  }
+  const q = f.timestamp_quantum_ns;
+  console.log(
+    `  ${variant}: GPU in the page ${total[1].toFixed(3)} ms [${total[0].toFixed(3)}–${total[2].toFixed(3)}] over ${f.gpu_frames} frames, read ${f.gpu_read_late} frames late${q >= 1000 ? `, timestamps rounded to ${(q / 1000).toFixed(0)} µs` : ""}`,
+  );
+  gpuShown.push({ lesson, variant, w: f.width, h: f.height, gpu: f.gpu_ms, frames: f.gpu_frames, late: f.gpu_read_late, quantum: q });
+}
+
+/// Each lesson's page GPU times ([`gpuTimes`]).
+const gpuShown = [];
+
+/// WEB_CHECK_GPU_TABLE=1: the page's GPU times beside a native run's on
+/// the same adapter, at the end (by hand, for the book and the closing
+/// notes: it adds about 80 s on 2 cores; CI checks that the page shows
+/// GPU times and counters, and compares the counters).
+const GPU_TABLE = Boolean(process.env.WEB_CHECK_GPU_TABLE);
+
+/// Chromium's SwiftShader as a Vulkan driver: the page's adapter, for a
+/// native run on it (Debian's chromium package ships it).
+const SWIFTSHADER_ICD = process.env.WEB_CHECK_SWIFTSHADER_ICD || "/usr/lib/chromium/vk_swiftshader_icd.json";
+
+/// The page's GPU times beside a native timed run of the same variant,
+/// size and view on the same adapter (SwiftShader's Vulkan driver), one
+/// lesson at a time after the browser closed: printed, pass by pass.
+/// Every pass the page times must be one the native run times.
+async function gpuTable() {
+  if (!fs.existsSync(SWIFTSHADER_ICD)) {
+    failures.push(`no SwiftShader Vulkan driver at ${SWIFTSHADER_ICD} (WEB_CHECK_SWIFTSHADER_ICD): no native run on the page's adapter`);
+    return;
+  }
+  console.log("\nGPU times on SwiftShader, ms: the page (median [quartiles] of its last frames timed) beside the native run (median of 10 frames, waited for)");
+  for (const g of gpuShown) {
+    const dir = path.join(out, "native_swiftshader", `${g.lesson}_${g.variant}`);
+    const args = ["--headless", "--variant", g.variant, "--width", String(g.w), "--height", String(g.h), "--frames", "10", "--out", dir];
+    const env = { ...process.env, VK_ICD_FILENAMES: SWIFTSHADER_ICD, WGPU_BACKEND: "vulkan", WORKBOOK_ADAPTER: "any" };
+    try {
+      await execFileAsync(path.join(bin, g.lesson), args, { env });
+    } catch (e) {
+      failures.push(`${g.lesson}: the native run on SwiftShader failed: ${String(e.stderr || e.message).trim().split("\n").pop()}`);
+      continue;
+    }
+    const report = JSON.parse(fs.readFileSync(path.join(dir, "report.json"), "utf8"));
+    const nt = report.variants[0].timing_ms ?? {};
+    console.log(`${g.lesson} ${g.variant} (${g.w}×${g.h}, native on ${report.adapter?.name} (${report.adapter?.backend})):`);
+    for (const [k, [lo, m, hi]] of Object.entries(g.gpu)) {
+      const n = nt[k];
+      console.log(`  ${k.padEnd(24)} page ${m.toFixed(3).padStart(8)} [${lo.toFixed(3)}–${hi.toFixed(3)}]   native ${n === undefined ? "–" : n.toFixed(3).padStart(8)}`);
+      if (n === undefined) failures.push(`${g.lesson}: the page times a pass "${k}" the native run does not`);
+    }
+  }
+}
+
 /// The page's latest log line (the canvas's data-figure), parsed.
 async function shown(page) {
   const text = await page.evaluate(() => document.getElementById("workbook-canvas")?.dataset.figure);
@@ -155,7 +314,7 @@ async function shown(page) {
 }
 
 /// Waits for the full figure of the view on screen, of a variant `ok` accepts.
-async function fullFigure(page, lesson, ok) {
+async function fullFigure(page, lesson, ok, of = () => true) {
   const start = Date.now();
   while (Date.now() - start < FIGURE_WAIT_MS) {
     const error = await page.evaluate(() => document.getElementById("workbook-error")?.textContent);
@@ -163,7 +322,7 @@ async function fullFigure(page, lesson, ok) {
       throw new Error(`the page says: ${error}`);
     }
     const f = await shown(page);
-    if (f && ok(f.variant) && f.error_current && f.error && f.error.level === "full") {
+    if (f && ok(f.variant) && of(f) && f.error_current && f.error && f.error.level === "full") {
       return f;
     }
     await page.waitForTimeout(250);
@@ -179,6 +338,78 @@ async function framesDrawn(page, n) {
     if (Date.now() - start > 10_000) throw new Error(`the page drew no ${n} frames in 10 s`);
     await page.waitForTimeout(50);
   }
+}
+
+/// The longest a task may hold the page's thread while the camera moves
+/// and the live reference works (the issue's bound: a page that locks for
+/// longer reads as broken).
+const LONGEST_TASK_MS = 100;
+/// The drag: this many steps of the mouse, one every STEP_MS.
+const DRAG_STEPS = 20;
+const DRAG_STEP_MS = 50;
+
+/// Drags the camera for two seconds, lets go, and waits for the full
+/// figure of the view it stopped at, while the page records its
+/// thread's long tasks (the Long Tasks API: every task of 50 ms or more)
+/// and the longest gap between ticks of a timer the page runs (an upper
+/// bound on any one task, whatever its length). Returns both, in ms.
+async function moveWithReference(page, lesson) {
+  const before = await shown(page);
+  await page.evaluate(() => {
+    const probe = { long: [], gap: 0, running: true };
+    window.__probe = probe;
+    probe.observer = new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) probe.long.push(e.duration);
+    });
+    probe.observer.observe({ type: "longtask" });
+    let last = performance.now();
+    const tick = () => {
+      const now = performance.now();
+      probe.gap = Math.max(probe.gap, now - last);
+      last = now;
+      if (probe.running) setTimeout(tick, 0);
+    };
+    setTimeout(tick, 0);
+  });
+  // Right of the overlay's panel (at the canvas's top left), which takes its own drags.
+  await page.locator("#workbook-canvas").scrollIntoViewIfNeeded();
+  const box = await page.locator("#workbook-canvas").boundingBox();
+  const [x0, y0] = [box.x + 0.7 * box.width, box.y + box.height / 2];
+  await page.mouse.move(x0, y0);
+  await page.mouse.down();
+  for (let i = 1; i <= DRAG_STEPS; i++) {
+    await page.mouse.move(x0 + 3 * i, y0 + (i % 2));
+    await page.waitForTimeout(DRAG_STEP_MS);
+  }
+  await page.mouse.up();
+  const moved = await shown(page);
+  if (!moved || moved.scene_gen === before?.scene_gen) {
+    fail(lesson, "dragging on the canvas did not move the camera");
+  }
+  const started = Date.now();
+  // The full figure of the view the drag stopped at: the page's figure is
+  // of the view on screen (error_current), one the drag made.
+  const full = await fullFigure(page, lesson, () => true, (f) => f.scene_gen > (before?.scene_gen ?? 0));
+  const took = (Date.now() - started) / 1000;
+  // A last tick after the full figure, so that the probe sees the task it came in.
+  await page.waitForTimeout(200);
+  const probe = await page.evaluate(() => {
+    const p = window.__probe;
+    p.running = false;
+    p.observer.disconnect();
+    return { long: p.long, gap: p.gap };
+  });
+  const longest = probe.long.length ? Math.max(...probe.long) : 0;
+  const tasks = probe.long.length
+    ? `${probe.long.length} over 50 ms, the longest ${longest.toFixed(0)} ms`
+    : "none over 50 ms";
+  console.log(
+    `  camera moved for ${(DRAG_STEPS * DRAG_STEP_MS) / 1000} s, the full figure ${took.toFixed(1)} s after it stopped (the reference took ${(full.error.worker_ms / 1000).toFixed(2)} s): the page's thread's tasks: ${tasks}; longest gap between its timer's ticks ${probe.gap.toFixed(0)} ms`,
+  );
+  if (longest >= LONGEST_TASK_MS) {
+    fail(lesson, `a task held the page's thread for ${longest.toFixed(0)} ms while the camera moved and the reference ran (at most ${LONGEST_TASK_MS} ms)`);
+  }
+  return { longest, gap: probe.gap, full };
 }
 
 /// The canvas as the reader sees it, against the native frame.
@@ -290,6 +521,8 @@ for (const lesson of lessons) {
     // (on the page's one thread).
     console.log(`  ${w}×${h}, on ${first.adapter}; the page's exact reference took ${(first.error.worker_ms / 1000).toFixed(2)} s`);
     compare(lesson, first.variant, figures(first.error), nat);
+    await compareCounters(page, lesson, first.variant, nat);
+    await gpuTimes(page, lesson, first.variant);
 
     // The scene on the canvas: overlay hidden, frame view.
     await page.locator("#workbook-canvas").focus();
@@ -307,6 +540,7 @@ for (const lesson of lessons) {
     const second = await fullFigure(page, lesson, (v) => v !== first.variant);
     const nat2 = await native(lesson, second.variant, w, h);
     compare(lesson, second.variant, figures(second.error), nat2);
+    await compareCounters(page, lesson, second.variant, nat2);
     // The key changed what the figure measures as natively: where the two
     // variants' native figures differ, the page's must differ too.
     const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
@@ -325,6 +559,8 @@ for (const lesson of lessons) {
         compare(lesson, current, figures(next.error), await native(lesson, current, w, h));
       }
     }
+    // The camera moved with the reference on: the page's thread stays free.
+    await moveWithReference(page, lesson);
     if (lesson === "lesson_05") {
       await page.locator("#workbook-canvas").scrollIntoViewIfNeeded();
       await page.screenshot({ path: path.join(out, "lesson_05_page.png") });
@@ -337,6 +573,7 @@ for (const lesson of lessons) {
   console.log(`  ${((Date.now() - started) / 1000).toFixed(1)} s`);
 }
 await browser.close();
+if (GPU_TABLE) await gpuTable();
 
 if (failures.length) {
   console.log(`\nweb check FAILED (${failures.length}):`);

@@ -2,7 +2,8 @@
 // `.live-bar`) becomes the lesson itself when the reader asks: the
 // lesson's own code, compiled to WebAssembly (`workbook web`), drawing on
 // the reader's GPU through WebGPU, with the window's overlay and its error
-// figure against the exact reference, computed in the page.
+// figure against the exact reference, computed in the page's own worker
+// thread (a Web Worker), so that the page never waits for it.
 //
 // Nothing loads until the button is pressed; a browser without WebGPU keeps
 // the screenshot and says why. `?live` in the address starts the page's
@@ -40,6 +41,10 @@
     canvas.id = "workbook-canvas";
     canvas.className = "live-canvas";
     canvas.dataset.args = bar.dataset.args;
+    // The lesson's reference worker starts the same module from the same
+    // glue, with the same flags (common/src/run/window/live_page.rs).
+    canvas.dataset.lesson = bar.dataset.lesson;
+    canvas.dataset.glue = at("web/workbook_web.js");
     canvas.tabIndex = 0;
     // The lesson's keys are the lesson's: mdBook's own (arrows turn the
     // page, S searches) must not see them.

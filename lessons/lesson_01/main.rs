@@ -17,6 +17,7 @@ use std::path::Path;
 
 use clap::ValueEnum;
 use common::gpu::lit::LitPass;
+use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
@@ -176,14 +177,17 @@ impl Lesson for DepthMap {
         variant: Variant,
     ) -> Result<()> {
         self.exercise_setup(frame.gpu, scene, variant)?;
-        if self.texels_written[variant as usize].is_none() && frame.gpu.can_wait() {
-            let n = shadow_map::count_shadow_texels(
-                frame.gpu,
-                scene,
-                self.resolution(variant),
-                |_| &self.tally_pipeline,
-            )?;
-            self.texels_written[variant as usize] = Some(n);
+        if self.texels_written[variant as usize].is_none() {
+            // In a web page the count comes back a frame or more later.
+            let n = later(|| {
+                shadow_map::count_shadow_texels(
+                    frame.gpu,
+                    scene,
+                    self.resolution(variant),
+                    |_| &self.tally_pipeline,
+                )
+            })?;
+            self.texels_written[variant as usize] = n;
         }
         let (map, group) = &self.maps[variant as usize];
         let (lit, groups) = match (variant, &self.exercise_lit, &self.exercise_depths) {

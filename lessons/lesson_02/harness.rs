@@ -2,6 +2,7 @@
 //! pass's depth writes counted once per variant (their own submits), and
 //! the exercises' lit pipelines, compiled when an exercise first runs.
 
+use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
 use common::Result;
@@ -19,19 +20,22 @@ impl Bias {
         scene: &SceneGpu,
         variant: Variant,
     ) -> Result<()> {
-        if self.texels_written[variant as usize].is_some() || !gpu.can_wait() {
+        if self.texels_written[variant as usize].is_some() {
             return Ok(());
         }
         let tally_slope = &self.tally_slope[variant as usize];
         let size = variant.map_size();
-        let n = shadow_map::count_shadow_texels(gpu, scene, size, |k| {
-            match (variant.fix(), tally_slope) {
-                (Fix::CullFrontFaces, _) => &self.tally_cull,
-                (_, Some(hw)) => &hw[k],
-                _ => &self.tally_plain,
-            }
+        // In a web page the count comes back a frame or more later.
+        let n = later(|| {
+            shadow_map::count_shadow_texels(gpu, scene, size, |k| {
+                match (variant.fix(), tally_slope) {
+                    (Fix::CullFrontFaces, _) => &self.tally_cull,
+                    (_, Some(hw)) => &hw[k],
+                    _ => &self.tally_plain,
+                }
+            })
         })?;
-        self.texels_written[variant as usize] = Some(n);
+        self.texels_written[variant as usize] = n;
         Ok(())
     }
 

@@ -2,6 +2,7 @@
 //! `main.rs` draws, each in its own submits, once: the shadow pass's depth
 //! writes (per shadow pass and map size) and the adaptive filter's paths.
 
+use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
@@ -23,11 +24,14 @@ impl Pcf {
     ) -> Result<()> {
         let (pass, size) = (variant.pass(), variant.map_size());
         let counted = self.texels_written.iter().any(|(k, _)| *k == (pass, size));
-        if !counted && gpu.can_wait() {
-            let n = shadow_map::count_shadow_texels(gpu, scene, size, |k| {
-                &self.tally_pipelines[pass][k]
+        if !counted {
+            // In a web page the count comes back a frame or more later.
+            let n = later(|| {
+                shadow_map::count_shadow_texels(gpu, scene, size, |k| &self.tally_pipelines[pass][k])
             })?;
-            self.texels_written.push(((pass, size), n));
+            if let Some(n) = n {
+                self.texels_written.push(((pass, size), n));
+            }
         }
         Ok(())
     }
@@ -42,7 +46,7 @@ impl Pcf {
         v: Variant,
     ) -> Result<()> {
         let adaptive = matches!(self.filters[v as usize], Filter::AdaptivePoisson { .. });
-        if !adaptive || self.adaptive_paths[v as usize].is_some() || !gpu.can_wait() {
+        if !adaptive || self.adaptive_paths[v as usize].is_some() {
             return Ok(());
         }
         let count = CountPass {
@@ -51,8 +55,8 @@ impl Pcf {
             count_pipeline: &self.adaptive_count,
             groups: &[self.map_group(v), &self.filter_groups[v as usize]],
         };
-        let paths = adaptive_count::count_adaptive_paths(gpu, scene, targets, count)?;
-        self.adaptive_paths[v as usize] = Some(paths);
+        let paths = later(|| adaptive_count::count_adaptive_paths(gpu, scene, targets, count))?;
+        self.adaptive_paths[v as usize] = paths;
         Ok(())
     }
 }

@@ -26,6 +26,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use clap::ValueEnum;
+use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
@@ -313,10 +314,6 @@ impl Lesson for DepthClamp {
             Variant::Infinite => (&self.infinite_scene, &mut self.infinite),
         };
         let draws = zfail_frame(frame, sg, targets, route)?;
-        // The counts read the GPU back: not in a web page.
-        if !frame.gpu.can_wait() {
-            return Ok(());
-        }
         let c = &mut self.counters[variant as usize];
         if !c.contains_key("casters_drawn") {
             c.insert(
@@ -331,12 +328,14 @@ impl Lesson for DepthClamp {
             // The depth is this frame's, not yet drawn: the first frame's
             // costs wait for the second call, untimed in their own submits.
             self.pending[variant as usize] = true;
-        } else if std::mem::take(&mut self.pending[variant as usize]) {
-            let costs =
-                route
-                    .volumes
-                    .count_costs(frame.gpu, sg, targets, Extrusion::Quads, &draws)?;
-            costs.insert_into(c, base_and_lit_draws(sg));
+        } else if self.pending[variant as usize] {
+            // In a web page the costs come back a frame or more later.
+            let (gpu, ext) = (frame.gpu, Extrusion::Quads);
+            let costs = later(|| route.volumes.count_costs(gpu, sg, targets, ext, &draws))?;
+            if let Some(costs) = costs {
+                self.pending[variant as usize] = false;
+                costs.insert_into(c, base_and_lit_draws(sg));
+            }
         }
         Ok(())
     }

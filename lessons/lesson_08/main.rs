@@ -35,6 +35,7 @@ use std::collections::BTreeMap;
 use clap::ValueEnum;
 use common::glam::DVec3;
 use common::gpu::lit::LitPass;
+use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
@@ -263,11 +264,12 @@ impl Lesson for DepthBounds {
         (self.spheres, self.bounds) = (spheres, bounds);
         // What the "buffer" view reads: this frame's stencil.
         self.depth_stencil = Some(targets.depth.clone());
-        // The second call finds the first frame's depth in place: count then.
+        // The second call finds the first frame's depth in place: count
+        // then (in a web page the counts come back a frame or more later).
         let n = &mut self.frames[variant as usize];
         *n += 1;
-        if *n == 2 && frame.gpu.can_wait() {
-            frame.untimed(|gpu| self.count(gpu, scene, targets, variant))?;
+        if *n >= 2 && self.counters[variant as usize].is_empty() {
+            frame.untimed(|gpu| later(|| self.count(gpu, scene, targets, variant)))?;
         }
         Ok(())
     }
@@ -275,6 +277,7 @@ impl Lesson for DepthBounds {
 
     fn count_again(&mut self, variant: Variant) {
         self.frames[variant as usize] = 0;
+        self.counters[variant as usize].clear();
     }
 
     fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {

@@ -10,8 +10,7 @@ use crate::gpu::Gpu;
 pub fn read_buffer(gpu: &Gpu, buf: &wgpu::Buffer, bytes: u64, what: &str) -> Result<Vec<u8>> {
     if cfg!(target_arch = "wasm32") {
         anyhow::bail!(
-            "{what} readback: a web page cannot wait for the GPU; the web build reads back only the error figure's images ({})",
-            "PendingRead"
+            "{what} readback: a web page cannot wait for the GPU (read a copy with read_buffer_copy or read_texture inside read_later::later: it comes back a frame or more later)"
         );
     }
     let slice = buf.slice(..bytes);
@@ -61,18 +60,96 @@ impl QueryReadback {
     /// The first `n` results, after the encoder with [`Self::resolve`] was submitted.
     pub fn read(&self, gpu: &Gpu, n: u32) -> Result<Vec<u64>> {
         let bytes = read_buffer(gpu, &self.read, 8 * n as u64, self.what)?;
-        Ok(bytes
-            .chunks_exact(8)
-            .map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes")))
-            .collect())
+        Ok(to_u64s(&bytes))
+    }
+
+    /// Asks for the mapping of the first `n` results without waiting for
+    /// it (`done` is called once it is mapped): [`Self::take_mapped`] then.
+    pub fn map(
+        &self,
+        n: u32,
+        done: impl FnOnce(Result<(), wgpu::BufferAsyncError>) + wgpu::WasmNotSend + 'static,
+    ) {
+        self.read
+            .slice(..8 * n.max(1) as u64)
+            .map_async(wgpu::MapMode::Read, done);
+    }
+
+    /// The first `n` results of a mapping [`Self::map`] asked for, once
+    /// it is done; unmaps the buffer.
+    pub fn take_mapped(&self, n: u32) -> Result<Vec<u64>> {
+        let out = {
+            let view = (self.read.slice(..8 * n.max(1) as u64))
+                .get_mapped_range()
+                .map_err(|e| anyhow!("{} readback: {e}", self.what))?;
+            to_u64s(&view[..8 * n as usize])
+        };
+        self.read.unmap();
+        Ok(out)
     }
 }
 
+fn to_u64s(bytes: &[u8]) -> Vec<u64> {
+    bytes
+        .chunks_exact(8)
+        .map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes")))
+        .collect()
+}
+
 /// Copies a 2D texture (layer 0) to the CPU, tightly packed.
+/// In a web page, only inside [`super::read_later::later`], which reads it
+/// a frame or more later.
 pub fn read_texture(gpu: &Gpu, tex: &wgpu::Texture, bytes_per_pixel: u32) -> Result<Vec<u8>> {
+    let source = Source::Texture(tex.clone(), bytes_per_pixel);
+    if let Some(read) = super::read_later::read(gpu, &source) {
+        return read;
+    }
     let pending = PendingRead::start(gpu, tex, bytes_per_pixel);
     let data = read_buffer(gpu, &pending.buf, pending.size(), "texture")?;
     Ok(pending.unpad(&data))
+}
+
+/// A buffer's contents, through a staging copy (its own submit). In a web
+/// page, only inside [`super::read_later::later`], as [`read_texture`].
+pub fn read_buffer_copy(gpu: &Gpu, buffer: &wgpu::Buffer, what: &str) -> Result<Vec<u8>> {
+    if let Some(read) = super::read_later::read(gpu, &Source::Buffer(buffer.clone())) {
+        return read.map_err(|e| e.context(what.to_string()));
+    }
+    let pending = PendingRead::start_buffer(gpu, buffer);
+    read_buffer(gpu, &pending.buf, pending.size(), what)
+}
+
+/// What a readback copies: a texture (layer 0, this many bytes a texel),
+/// or a whole buffer.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub enum Source {
+    Texture(wgpu::Texture, u32),
+    Buffer(wgpu::Buffer),
+}
+
+/// What a [`Source`] holds, whichever texture or buffer it is: a
+/// texture's size, format and bytes a texel, or a buffer's size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Shape {
+    Texture(wgpu::Extent3d, wgpu::TextureFormat, u32),
+    Buffer(u64),
+}
+
+impl Source {
+    pub fn shape(&self) -> Shape {
+        match self {
+            Source::Texture(t, bpp) => Shape::Texture(t.size(), t.format(), *bpp),
+            Source::Buffer(b) => Shape::Buffer(b.size()),
+        }
+    }
+
+    /// Submits the copy to a buffer the CPU maps.
+    pub fn start(&self, gpu: &Gpu) -> PendingRead {
+        match self {
+            Source::Texture(tex, bytes_per_pixel) => PendingRead::start(gpu, tex, *bytes_per_pixel),
+            Source::Buffer(buf) => PendingRead::start_buffer(gpu, buf),
+        }
+    }
 }
 
 /// A texture's copy on its way to the CPU, read without blocking: what a
@@ -127,6 +204,28 @@ impl PendingRead {
             row,
             padded,
             height: h,
+            state: Default::default(),
+        }
+    }
+
+    /// Submits the copy of the whole of `source` to a buffer the CPU maps
+    /// (one row, unpadded).
+    pub fn start_buffer(gpu: &Gpu, source: &wgpu::Buffer) -> PendingRead {
+        let size = source.size();
+        let buf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        enc.copy_buffer_to_buffer(source, 0, &buf, 0, size);
+        gpu.queue.submit([enc.finish()]);
+        PendingRead {
+            buf,
+            row: size as u32,
+            padded: size as u32,
+            height: 1,
             state: Default::default(),
         }
     }

@@ -2,6 +2,8 @@
 //!
 //! - [`timing`]: GPU timestamp queries per pass, with a labelled CPU fallback;
 //!   a frame's GPU, CPU and wall-clock milliseconds.
+//! - [`timing_later`]: the timestamps read back frames later, without
+//!   waiting (the web page's GPU times).
 //! - [`protocol`]: the timing protocol: warm up until frame times settle,
 //!   time the variants interleaved with the no-shadow baseline, and tell a
 //!   stable measurement from one whose GPU clock moved.
@@ -14,3 +16,4 @@ pub mod counters;
 pub mod protocol;
 pub mod report;
 pub mod timing;
+pub mod timing_later;

@@ -27,6 +27,7 @@ use anyhow::Result;
 
 use crate::gpu::readback::QueryReadback;
 use crate::gpu::Gpu;
+use crate::measure::timing_later::{LateTimes, Later};
 
 /// Where the milliseconds came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -38,39 +39,86 @@ pub enum TimingSource {
 
 const MAX_QUERIES: u32 = 512;
 
+/// How the timestamps come back: waited for, at the end of the frame (the
+/// headless runner and the desktop window), or frames later ([`Later`]:
+/// a web page).
+enum Stamps {
+    Wait(QueryReadback),
+    Later(Later),
+}
+
 /// Owns the query set and its readback buffers; reused frame after frame.
 pub struct Timer {
-    queries: Option<(wgpu::QuerySet, QueryReadback)>,
+    queries: Option<(wgpu::QuerySet, Stamps)>,
     period_ns: f64,
+    /// Without timestamps, time each pass by the CPU wall clock (it waits
+    /// for the GPU); a timer that may not wait times no pass.
+    wall: bool,
 }
 
 impl Timer {
-    /// GPU timestamps when the adapter has them. `WORKBOOK_TIMING=cpu` forces
-    /// the CPU wall-clock fallback (to compare the two, and to test it).
+    /// GPU timestamps when the adapter has them, waited for at the end of
+    /// each frame; in a web page, [`Timer::later`]. `WORKBOOK_TIMING=cpu`
+    /// forces the CPU wall-clock fallback (to compare the two, and to test
+    /// it).
     pub fn new(gpu: &Gpu) -> Timer {
-        // A web page cannot wait for the timestamps it would read back
-        // (`run::web`): there, only the CPU's side of a frame is timed.
-        let forced_cpu = std::env::var("WORKBOOK_TIMING").is_ok_and(|v| v == "cpu")
-            || cfg!(target_arch = "wasm32");
+        if cfg!(target_arch = "wasm32") {
+            return Timer::later(gpu);
+        }
+        let forced_cpu = std::env::var("WORKBOOK_TIMING").is_ok_and(|v| v == "cpu");
         let queries = (gpu.has(wgpu::Features::TIMESTAMP_QUERY) && !forced_cpu).then(|| {
-            let set = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("pass timestamps"),
-                ty: wgpu::QueryType::Timestamp,
-                count: MAX_QUERIES,
-            });
-            (set, QueryReadback::new(gpu, MAX_QUERIES, "timestamps"))
+            let set = query_set(gpu);
+            (set, Stamps::Wait(QueryReadback::new(gpu, MAX_QUERIES, "timestamps")))
         });
         Timer {
             queries,
             period_ns: gpu.queue.get_timestamp_period() as f64,
+            wall: true,
         }
     }
 
+    /// A timer that never waits for the GPU: timestamps read back frames
+    /// later ([`Timer::late`]) where the adapter has them, else no GPU
+    /// time at all. What a web page times with.
+    pub fn later(gpu: &Gpu) -> Timer {
+        let queries = (gpu.has(wgpu::Features::TIMESTAMP_QUERY))
+            .then(|| (query_set(gpu), Stamps::Later(Later::new(gpu, MAX_QUERIES))));
+        Timer {
+            queries,
+            period_ns: gpu.queue.get_timestamp_period() as f64,
+            wall: false,
+        }
+    }
+
+    /// Where the milliseconds come from (a [`Timer::later`] without
+    /// timestamps times no pass; no report is made with one).
     pub fn source(&self) -> TimingSource {
         if self.queries.is_some() {
             TimingSource::GpuTimestamps
         } else {
             TimingSource::CpuWall
+        }
+    }
+
+    /// Whether this timer gives GPU times (waited for or read later).
+    pub fn times_gpu(&self) -> bool {
+        self.queries.is_some() || self.wall
+    }
+
+    /// A [`Timer::later`]'s newest GPU times read back so far.
+    pub fn late(&self) -> Option<&LateTimes> {
+        match &self.queries {
+            Some((_, Stamps::Later(l))) => l.latest(),
+            _ => None,
+        }
+    }
+
+    /// How many frames a [`Timer::later`] has timed so far (0 for a
+    /// timer that waits: its times are always the frame's own).
+    pub fn frames(&self) -> u64 {
+        match &self.queries {
+            Some((_, Stamps::Later(l))) => l.frames(),
+            _ => 0,
         }
     }
 
@@ -89,6 +137,14 @@ impl Timer {
             record_ms: 0.0,
         }
     }
+}
+
+fn query_set(gpu: &Gpu) -> wgpu::QuerySet {
+    gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+        label: Some("pass timestamps"),
+        ty: wgpu::QueryType::Timestamp,
+        count: MAX_QUERIES,
+    })
 }
 
 fn new_encoder(gpu: &Gpu) -> wgpu::CommandEncoder {
@@ -182,6 +238,12 @@ impl<'a> Frame<'a> {
                 self.record_ms += t.elapsed().as_secs_f64() * 1e3;
                 r
             }
+            None if !self.timer.wall => {
+                let t = Instant::now();
+                let r = f(&mut self.encoder, &PassTimestamps { slot: None });
+                self.record_ms += t.elapsed().as_secs_f64() * 1e3;
+                r
+            }
             None => {
                 // CPU wall clock: submit what came before, then time this pass
                 // alone. These submits and waits are the measurement's, not
@@ -253,17 +315,27 @@ impl<'a> Frame<'a> {
         &mut self.encoder
     }
 
-    /// Submits, waits, and returns the frame's milliseconds.
+    /// Submits, waits, and returns the frame's milliseconds. A
+    /// [`Timer::later`] waits for nothing: its GPU times are the newest
+    /// earlier frame's that came back ([`Timer::late`]).
     pub fn finish(mut self) -> Result<FrameTimes> {
         let n = self.names.len() as u32 * 2;
         let t = Instant::now();
-        if let (Some((set, readback)), true) = (&self.timer.queries, n > 0) {
-            readback.resolve(&mut self.encoder, set, n);
+        let mut later_slot = None;
+        match (&mut self.timer.queries, n > 0) {
+            (Some((set, Stamps::Wait(readback))), true) => readback.resolve(&mut self.encoder, set, n),
+            (Some((set, Stamps::Later(later))), true) => {
+                later_slot = later.record(&mut self.encoder, set, &self.names);
+            }
+            _ => {}
         }
         let command_buffer = self.encoder.finish();
         self.record_ms += t.elapsed().as_secs_f64() * 1e3;
         let cpu_total = self.start.elapsed().as_secs_f64() * 1e3 - self.waited_ms;
         self.gpu.queue.submit([command_buffer]);
+        if let (Some((_, Stamps::Later(later))), Some(i)) = (&mut self.timer.queries, later_slot) {
+            later.submitted(i);
+        }
         self.gpu.wait()?;
         let wall = self.start.elapsed().as_secs_f64() * 1e3 - self.untimed_ms;
         let mut ms: BTreeMap<String, f64> = BTreeMap::new();
@@ -273,30 +345,47 @@ impl<'a> Frame<'a> {
         for (k, v) in self.cpu {
             *ms.entry(k).or_default() += v;
         }
-        match (&self.timer.queries, n > 0) {
-            (Some((_, readback)), true) => {
+        let period_ns = self.timer.period_ns;
+        match (&mut self.timer.queries, n > 0) {
+            (Some((_, Stamps::Wait(readback))), true) => {
                 let stamps = readback.read(self.gpu, n)?;
-                let to_ms = self.timer.period_ns / 1e6;
-                let (mut first, mut last) = (u64::MAX, 0u64);
-                for (i, name) in self.names.iter().enumerate() {
-                    let (a, b) = (stamps[2 * i], stamps[2 * i + 1]);
-                    first = first.min(a);
-                    last = last.max(b);
-                    *ms.entry(name.clone()).or_default() += b.saturating_sub(a) as f64 * to_ms;
-                }
-                ms.insert("total".into(), last.saturating_sub(first) as f64 * to_ms);
+                ms.extend(pass_times(&self.names, &stamps, period_ns));
             }
+            (Some((_, Stamps::Later(later))), _) => {
+                if let Some(late) = later.collect(self.gpu, period_ns)? {
+                    ms.extend(late.ms.clone());
+                }
+            }
+            // No pass timed (none recorded, or the wall clock's passes).
             _ => {
                 let mut total = 0.0;
                 for (k, v) in self.wall {
                     total += v;
                     *ms.entry(k).or_default() += v;
                 }
-                ms.insert("total".into(), total);
+                if self.timer.wall {
+                    ms.insert(TOTAL.into(), total);
+                }
             }
         }
         Ok(FrameTimes { ms })
     }
+}
+
+/// Each pass's milliseconds from its two stamps (`names[i]`'s at `2i` and
+/// `2i + 1`; a name used twice adds up), and `total`, first stamp to last.
+pub(crate) fn pass_times(names: &[String], stamps: &[u64], period_ns: f64) -> BTreeMap<String, f64> {
+    let to_ms = period_ns / 1e6;
+    let (mut first, mut last) = (u64::MAX, 0u64);
+    let mut ms: BTreeMap<String, f64> = BTreeMap::new();
+    for (i, name) in names.iter().enumerate() {
+        let (a, b) = (stamps[2 * i], stamps[2 * i + 1]);
+        first = first.min(a);
+        last = last.max(b);
+        *ms.entry(name.clone()).or_default() += b.saturating_sub(a) as f64 * to_ms;
+    }
+    ms.insert(TOTAL.into(), last.saturating_sub(first) as f64 * to_ms);
+    ms
 }
 
 /// The CPU time of a frame (or of a report's medians) that no `cpu_*`

@@ -21,6 +21,12 @@ use crate::run::window::page::{canvas, show_error};
 
 /// Runs lesson `L` in the page: what a lesson's `main` does on the web.
 pub fn start<L: Lesson>() {
+    // The page's reference worker runs the same module: there the lesson
+    // serves the window's reference jobs (`window::live_worker`).
+    if crate::run::window::live_worker::in_worker() {
+        crate::run::window::live_worker::serve::<L>();
+        return;
+    }
     if let Err(e) = try_start::<L>() {
         show_error::<L>(&e);
     }

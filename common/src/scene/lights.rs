@@ -1,7 +1,7 @@
 //! The `[[lights]]` tables of a scene file: a light's kind (directional,
 //! point, spot), its colour, and its size (lesson 10's area lights).
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum LightKind {
     /// `direction` is the way the light travels (unit length).
     Directional {
@@ -19,7 +19,7 @@ pub enum LightKind {
     },
 }
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Light {
     pub kind: LightKind,
     pub color: Vec3,
@@ -32,7 +32,7 @@ pub struct Light {
 
 /// How big a light's emitter is; [`LightSize::HARD`] for a point or a
 /// single direction.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum LightSize {
     /// Point and spot lights: the radius of the spherical emitter.
     Radius(f64),

@@ -42,13 +42,15 @@ use crate::scene::limits::{
 use crate::scene::mesh::Mesh;
 
 /// The camera's far plane: a distance, or `"infinite"`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Far {
     Finite(f64),
     Infinite,
 }
 
-#[derive(Clone, Debug, PartialEq)]
+/// The camera as the window moves it; serialised (serde) only to hand the
+/// view to the web page's reference worker (`run::window::live_worker`).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Camera {
     pub eye: DVec3,
     pub target: DVec3,

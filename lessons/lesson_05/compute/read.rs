@@ -3,7 +3,7 @@
 //! them with the CPU route's triangles).
 
 use anyhow::Result;
-use common::gpu::readback::read_buffer;
+use common::gpu::readback::read_buffer_copy;
 use common::gpu::Gpu;
 
 use super::super::adjacency::Adjacency;
@@ -13,17 +13,7 @@ use super::{chunk_bytes, ComputeVolumes};
 
 /// A buffer's contents as `u32`s, through a staging copy (its own submit).
 pub(super) fn read_words(gpu: &Gpu, buffer: &wgpu::Buffer, what: &str) -> Result<Vec<u32>> {
-    let size = buffer.size();
-    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(what),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut enc = gpu.device.create_command_encoder(&Default::default());
-    enc.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
-    gpu.queue.submit([enc.finish()]);
-    let bytes = read_buffer(gpu, &staging, size, what)?;
+    let bytes = read_buffer_copy(gpu, buffer, what)?;
     Ok(bytemuck::cast_slice(&bytes).to_vec())
 }
 

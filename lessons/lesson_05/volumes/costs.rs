@@ -6,6 +6,7 @@
 use std::collections::BTreeMap;
 
 use anyhow::Result;
+use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
@@ -232,10 +233,13 @@ impl SecondFrameCounts {
         count: impl FnOnce(&Gpu) -> Result<(Option<u64>, VolumeCosts)>,
     ) -> Result<()> {
         self.frames[v] += 1;
-        if self.frames[v] == 2 && frame.gpu.can_wait() {
-            let (invocations, costs) = frame.untimed(count)?;
-            self.invocations[v] = invocations;
-            self.costs[v] = Some(costs);
+        // From the second frame on, until counted: in a web page the
+        // counts come back a frame or more later.
+        if self.frames[v] >= 2 && self.costs[v].is_none() {
+            if let Some((invocations, costs)) = frame.untimed(|gpu| later(|| count(gpu)))? {
+                self.invocations[v] = invocations;
+                self.costs[v] = Some(costs);
+            }
         }
         Ok(())
     }
@@ -243,6 +247,8 @@ impl SecondFrameCounts {
     /// Count variant `v` again on its second frame from now.
     pub fn again(&mut self, v: usize) {
         self.frames[v] = 0;
+        self.costs[v] = None;
+        self.invocations[v] = None;
     }
 
     /// Variant `v`'s counts into `c` ([`VolumeCosts::insert_into`]), with

@@ -117,6 +117,8 @@ impl<L: Lesson> App<L> {
         if i != self.state.current && i < self.variants.len() {
             self.state.current = i;
             self.state.buffer_at = None;
+            let frames = self.running.as_ref().map_or(0, |r| r.timer.frames());
+            self.state.restart_gpu_times(frames);
             self.state.image_changed();
         }
     }

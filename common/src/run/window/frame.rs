@@ -87,7 +87,7 @@ impl<L: Lesson> App<L> {
         let s = &mut self.state;
         // The view this frame draws: a job of an older one stops after
         // its coarse pass.
-        if let Some(live) = &r.live {
+        if let Some(live) = r.live.as_mut() {
             live.note_view(s.stamp.scene_gen);
         }
 
@@ -95,6 +95,21 @@ impl<L: Lesson> App<L> {
         let mut frame = r.timer.frame(&r.gpu);
         r.lesson.render(&mut frame, &r.scene, &r.targets, variant)?;
         s.cost.ms = frame.finish()?.ms;
+        // The GPU's times: this frame's (waited for), or in a web page
+        // the newest earlier frame's that came back, each frame once.
+        match r.timer.late() {
+            Some(late) => {
+                // Frames from before the variant or a knob changed are the old one's.
+                let new = late.frame > s.gpu_frame.max(s.gpu_since);
+                s.gpu_frame = late.frame;
+                s.cost.late = Some((late.frames_late, late.quantum_ns));
+                if new {
+                    s.cost.push_gpu(&late.ms);
+                }
+            }
+            None if r.timer.times_gpu() => s.cost.push_gpu(&s.cost.ms.clone()),
+            None => {}
+        }
         s.variant_frames += 1;
         s.frame_times.push_back(now);
         while s
@@ -221,6 +236,7 @@ impl<L: Lesson> App<L> {
             },
         };
         let doc = variant_doc(variant);
+        let counters = r.lesson.counters(variant);
         let adapter = format!("{} ({})", r.gpu.adapter_name(), r.gpu.backend_name());
         if self.adapter_line.is_empty() {
             self.adapter_line = adapter.clone();
@@ -246,6 +262,7 @@ impl<L: Lesson> App<L> {
                     knobs: &knobs,
                     settings_line: s.settings_line.as_deref(),
                     lights: r.scene.scene.lights.len(),
+                    counters: &counters,
                 };
                 actions = overlay::show(&ctx, &panel);
             }
@@ -294,6 +311,7 @@ impl<L: Lesson> App<L> {
         for (name, value) in actions.knobs {
             let r = self.running.as_mut().expect("checked above");
             apply_knob(&mut r.lesson, &r.gpu, &r.scene, variant, name, value)?;
+            self.state.restart_gpu_times(r.timer.frames());
             self.state.buffer_at = None;
             self.state.image_changed();
         }
@@ -373,6 +391,14 @@ impl<L: Lesson> App<L> {
             "scene_gen": s.stamp.scene_gen,
             "image_gen": s.stamp.image_gen,
             "cost_ms": s.cost.ms,
+            // The GPU's total and passes over the last frames timed:
+            // [q25, median, q75] ms; in a page, how late they were read.
+            "gpu_ms": gpu_spreads(&s.cost),
+            // The lesson's counters for the variant shown, as the report's.
+            "counters": self.running.as_ref().map(|r| r.lesson.counters(self.variants[s.current])),
+            "gpu_frames": s.cost.gpu.len(),
+            "gpu_read_late": s.cost.late.map(|(late, _)| late),
+            "timestamp_quantum_ns": s.cost.late.map(|(_, q)| q),
             "fps": s.cost.fps,
             "error": answer,
             "error_current": shown.as_ref().is_some_and(|e| !e.stale),
@@ -388,6 +414,13 @@ impl<L: Lesson> App<L> {
         };
         writeln!(log, "{line}").context("--window-log: cannot write")
     }
+}
+
+/// Every GPU key's `[q25, median, q75]` over the frames the overlay keeps.
+fn gpu_spreads(cost: &super::overlay::Cost) -> serde_json::Value {
+    let keys = cost.gpu.back().into_iter().flat_map(|f| f.keys());
+    let spreads = keys.filter_map(|k| Some((k.clone(), cost.gpu_spread(k)?.to_vec())));
+    serde_json::json!(spreads.collect::<std::collections::BTreeMap<_, _>>())
 }
 
 /// What the diff image shows, in one line.

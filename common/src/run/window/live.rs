@@ -37,6 +37,8 @@ use crate::reference::dv_view::dv_image;
 use crate::reference::metrics::{compare, ErrorStats};
 use crate::reference::{try_render_reference, Reference};
 use crate::scene::Scene;
+#[cfg(not(target_arch = "wasm32"))]
+use super::live_server::Server;
 
 /// In a web page, one thread: the reference works between frames.
 #[cfg(target_arch = "wasm32")]
@@ -48,7 +50,7 @@ pub const COARSE: u32 = 4;
 /// What a figure was computed for: the view and light (`scene_gen` counts
 /// their changes), the variant and its knobs (`image_gen` counts changes
 /// of either, and of the view).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Stamp {
     pub scene_gen: u64,
     pub image_gen: u64,
@@ -121,7 +123,7 @@ impl PendingJob {
 }
 
 /// How many rays an answer rests on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Level {
     /// One ray per [`COARSE`]² pixels, against the frame's matching pixels.
     Coarse,
@@ -285,18 +287,16 @@ impl Shown {
 const NEXT_FRAME_WAIT: std::time::Duration = std::time::Duration::from_secs(1);
 
 #[cfg(not(target_arch = "wasm32"))]
-/// The worker's loop: one job at a time; the reference of the last view is
-/// kept, so that a new variant or knob on the same view costs a comparison.
+/// The worker's loop: one job at a time ([`Server`]: coarse for a new
+/// view, then full unless the window's view moved on meanwhile).
 fn serve(
     pool: &rayon::ThreadPool,
     jobs: &Receiver<PendingJob>,
     answers: &Sender<Result<Answer, String>>,
     latest: &Shown,
 ) {
-    let mut cached: Option<(u64, Reference)> = None;
+    let mut server = Server::default();
     while let Ok(job) = jobs.recv() {
-        let start = Instant::now();
-        let ms = || start.elapsed().as_secs_f64() * 1e3;
         let job = match job.into_job() {
             Ok(job) => job,
             Err(e) => {
@@ -304,24 +304,19 @@ fn serve(
                 return;
             }
         };
-        let (w, h) = (job.frame.width, job.frame.height);
-        let fresh = cached
-            .as_ref()
-            .is_none_or(|(g, _)| *g != job.stamp.scene_gen);
+        let gen = job.stamp.scene_gen;
         let result = pool.install(|| -> Result<Option<Answer>> {
-            if fresh {
-                let measured = measure_coarse(&job)?;
-                let overtaken = latest.moved_on(job.stamp.scene_gen);
-                let a = Answer::new(&job, Level::Coarse, measured, ms(), overtaken);
-                if answers.send(Ok(a)).is_err() || overtaken {
-                    return Ok(None);
-                }
-                let full = try_render_reference(&job.scene, job.view_proj, w, h)?;
-                cached = Some((job.stamp.scene_gen, full));
+            let mut a = server.take(job)?;
+            if a.level == Level::Full {
+                return Ok(Some(a));
             }
-            let (_, reference) = cached.as_ref().expect("a reference was made above");
-            let measured = measure(reference, &job.frame);
-            Ok(Some(Answer::new(&job, Level::Full, measured, ms(), true)))
+            let overtaken = latest.moved_on(gen);
+            a.last = overtaken;
+            if answers.send(Ok(a)).is_err() || overtaken {
+                server.drop_waiting();
+                return Ok(None);
+            }
+            server.full().map(Some)
         });
         match result {
             Ok(Some(a)) => {

@@ -21,8 +21,12 @@
 pub mod controls;
 pub mod frame;
 pub mod live;
+pub mod live_message;
 #[cfg(target_arch = "wasm32")]
 pub mod live_page;
+pub mod live_server;
+#[cfg(target_arch = "wasm32")]
+pub mod live_worker;
 pub mod overlay;
 #[cfg(target_arch = "wasm32")]
 pub mod page;
@@ -108,6 +112,10 @@ struct State {
     buffer_note: Option<String>,
     buffer_at: Option<Instant>,
     cost: Cost,
+    /// The frame (the timer's count) of the newest GPU times read late,
+    /// and the last frame before the variant or a knob last changed.
+    gpu_frame: u64,
+    gpu_since: u64,
     frame_times: std::collections::VecDeque<Instant>,
     settings_line: Option<String>,
 }
@@ -177,6 +185,8 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
             buffer_note: None,
             buffer_at: None,
             cost: Cost::default(),
+            gpu_frame: 0,
+            gpu_since: 0,
             frame_times: Default::default(),
             settings_line: None,
         },
@@ -371,13 +381,24 @@ impl State {
         self.stamp.scene_gen += 1;
         self.stamp.image_gen += 1;
         self.view_since = Instant::now();
+        // A count on its way back (a web page's) is of the old view.
+        crate::gpu::read_later::forget();
     }
 
     /// The variant draws differently on the same view (variant, knob).
     fn image_changed(&mut self) {
+        crate::gpu::read_later::forget();
         self.stamp.image_gen += 1;
         self.variant_frames = 0;
         self.view_since = Instant::now();
+    }
+
+    /// Forgets the GPU times kept (the variant or a knob changed); in a
+    /// web page, times of frames up to `frames` (the timer's count) are
+    /// the old setting's, still on their way back.
+    fn restart_gpu_times(&mut self, frames: u64) {
+        self.cost.gpu.clear();
+        self.gpu_since = frames;
     }
 }
 

@@ -30,8 +30,9 @@ pub const KEYS: &[(&str, &str)] = &[
     ("Escape", "quit"),
 ];
 
-/// What the web build's overlay says of its costs, in one line.
-pub const WEB_COST_NOTE: &str = "in a web page: the CPU's side of a frame only; a page cannot wait for the GPU, so no GPU time (the desktop lesson times both)";
+/// What the web build's overlay says where the adapter offers no
+/// timestamps.
+pub const WEB_NO_TIMESTAMPS: &str = "no GPU time: this browser's adapter offers no timestamp-query (the desktop lesson times the GPU)";
 
 /// The figure the overlay shows, and what it was computed for.
 pub struct ShownError {
@@ -50,6 +51,45 @@ pub struct Cost {
     pub ms: BTreeMap<String, f64>,
     /// Frames per second of the window, over the last second.
     pub fps: f64,
+    /// The GPU's times of the last frames timed ([`GPU_FRAMES`] at most),
+    /// oldest first: each frame's passes and `total`.
+    pub gpu: std::collections::VecDeque<BTreeMap<String, f64>>,
+    /// In a web page: how many frames late the newest GPU times were read,
+    /// and the step the browser rounds timestamps to (ns); `None` where
+    /// the adapter has no timestamps.
+    pub late: Option<(u64, u64)>,
+}
+
+/// How many frames' GPU times the overlay's median and spread are over.
+pub const GPU_FRAMES: usize = 30;
+
+impl Cost {
+    /// Adds a frame's GPU times (the passes and `total` of `ms`).
+    pub fn push_gpu(&mut self, ms: &BTreeMap<String, f64>) {
+        let gpu = ms
+            .iter()
+            .filter(|(k, _)| !k.starts_with("cpu_") && k.as_str() != crate::measure::timing::FRAME)
+            .map(|(k, v)| (k.clone(), *v))
+            .collect::<BTreeMap<_, _>>();
+        if !gpu.contains_key(crate::measure::timing::TOTAL) {
+            return;
+        }
+        self.gpu.push_back(gpu);
+        while self.gpu.len() > GPU_FRAMES {
+            self.gpu.pop_front();
+        }
+    }
+
+    /// `key`'s median and interquartile range over the frames kept:
+    /// `[q25, median, q75]`, or `None` before any.
+    pub fn gpu_spread(&self, key: &str) -> Option<[f64; 3]> {
+        let v: Vec<f64> = self.gpu.iter().map(|f| f.get(key).copied().unwrap_or(0.0)).collect();
+        if v.is_empty() {
+            return None;
+        }
+        let q = |p| crate::measure::timing::quantile(&v, p);
+        Some([q(0.25), q(0.5), q(0.75)])
+    }
 }
 
 /// Everything the overlay shows this frame.
@@ -69,6 +109,8 @@ pub struct Panel<'a> {
     pub knobs: &'a [Knob],
     pub settings_line: Option<&'a str>,
     pub lights: usize,
+    /// The lesson's counters for the variant shown (the report's).
+    pub counters: &'a BTreeMap<String, u64>,
 }
 
 /// What the user asked for through the overlay's widgets.
@@ -98,6 +140,7 @@ pub fn show(ctx: &egui::Context, p: &Panel) -> Actions {
             cost_rows(ui, p.cost);
             ui.separator();
             error_rows(ui, p);
+            counter_rows(ui, p.counters);
             ui.separator();
             view_row(ui, p, &mut act);
             knob_rows(ui, p.knobs, &mut act);
@@ -147,28 +190,55 @@ fn variant_row(ui: &mut egui::Ui, p: &Panel, act: &mut Actions) {
 fn cost_rows(ui: &mut egui::Ui, c: &Cost) {
     let ms = |k: &str| c.ms.get(k).copied();
     let fmt = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.2} ms"));
-    if cfg!(target_arch = "wasm32") {
-        // The pass times are the CPU's recording without the GPU's work:
-        // not a cost, so not shown.
-        ui.label(format!("CPU {}   {:.1} fps", fmt(ms("cpu_total")), c.fps));
-        ui.label(RichText::new(WEB_COST_NOTE).small());
-        return;
+    let web = cfg!(target_arch = "wasm32");
+    let gpu = match c.gpu_spread(crate::measure::timing::TOTAL) {
+        Some([lo, mid, hi]) => format!("{mid:.2} ms [{lo:.2}–{hi:.2}]"),
+        None => "–".to_string(),
+    };
+    if web {
+        // A page's frame is not waited for: no wall-clock frame time.
+        ui.label(format!("GPU {gpu}   CPU {}   {:.1} fps", fmt(ms("cpu_total")), c.fps));
+    } else {
+        ui.label(format!(
+            "frame {}   GPU {gpu}   CPU {}   {:.1} fps",
+            fmt(ms("frame")),
+            fmt(ms("cpu_total")),
+            c.fps
+        ));
     }
-    ui.label(format!(
-        "frame {}   GPU {}   CPU {}   {:.1} fps",
-        fmt(ms("frame")),
-        fmt(ms("total")),
-        fmt(ms("cpu_total")),
-        c.fps
-    ));
-    let passes: Vec<String> =
-        c.ms.iter()
-            .filter(|(k, _)| !matches!(k.as_str(), "frame" | "total" | "cpu_total"))
-            .map(|(k, v)| format!("{k} {v:.2}"))
-            .collect();
+    let passes: Vec<String> = (c.gpu.back().into_iter().flatten())
+        .filter(|(k, _)| k.as_str() != crate::measure::timing::TOTAL)
+        .filter_map(|(k, _)| Some(format!("{k} {:.2}", c.gpu_spread(k)?[1])))
+        .collect();
     if !passes.is_empty() {
         ui.label(RichText::new(format!("passes (ms): {}", passes.join(", "))).small());
     }
+    let n = c.gpu.len();
+    let note = match (web, c.late) {
+        (true, None) => WEB_NO_TIMESTAMPS.to_string(),
+        (true, Some((late, quantum_ns))) => {
+            let rounded = match quantum_ns >= 1000 {
+                true => format!("; the browser rounds timestamps to {:.0} µs", quantum_ns as f64 / 1e3),
+                false => String::new(),
+            };
+            format!("GPU: median [quartiles] of the last {n} frames timed, read {late} frames later{rounded}")
+        }
+        (false, _) => format!("GPU: median [quartiles] of the last {n} frames"),
+    };
+    ui.label(RichText::new(note).small());
+}
+
+fn counter_rows(ui: &mut egui::Ui, counters: &BTreeMap<String, u64>) {
+    ui.separator();
+    let text = match counters.is_empty() {
+        // A page's counts come back a frame or more after they are drawn.
+        true => "counters: none yet".to_string(),
+        false => {
+            let all: Vec<String> = counters.iter().map(|(k, v)| format!("{k} {v}")).collect();
+            format!("counters (on the variant's first frames): {}", all.join(", "))
+        }
+    };
+    ui.label(RichText::new(text).small());
 }
 
 fn error_rows(ui: &mut egui::Ui, p: &Panel) {

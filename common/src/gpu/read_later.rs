@@ -1,0 +1,139 @@
+//! Results read back a frame or more later, for code written to wait: how
+//! a web page gets the lessons' counters and the buffer view, though it
+//! may not wait for the GPU.
+//!
+//! A lesson counts with plain code that submits its counting work and
+//! reads a texture or a buffer back ([`super::readback::read_texture`],
+//! [`super::readback::read_buffer_copy`]). Run inside
+//! [`later`] where the thread may not wait (a page), each read of a
+//! texture starts its copy and asks for the mapping, and the run stops
+//! there ([`NotYet`]: `later` gives `None`). The caller runs the same code
+//! again on a later frame: a read whose copy came back then gives its
+//! bytes, and the run goes on to its next read or its end. Each read is
+//! known by the line that called `later` and by how many reads came
+//! before it in the run (and, to be safe, by its source's size and
+//! format): so a run that reads one texture twice gets each read's own
+//! copy, two runs that read the same texture get their own, and a run
+//! that makes its scratch textures anew each time finds its reads again. What a run read is forgotten when it ends.
+//!
+//! The bytes are those of the first run that asked: a caller that runs
+//! again on a changed view or variant must [`forget`] first.
+//!
+//! Where the thread may wait (the desktop), `later` runs the code once and
+//! every read waits, as without it.
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::panic::Location;
+
+use anyhow::Result;
+
+use super::readback::{PendingRead, Shape, Source};
+use super::Gpu;
+
+/// A read inside [`later`] whose copy is still on its way back.
+#[derive(Debug, thiserror::Error)]
+#[error("a readback is on its way: run again on a later frame")]
+pub struct NotYet;
+
+enum Read {
+    Pending(PendingRead),
+    Done(Vec<u8>),
+}
+
+#[derive(Default)]
+struct Reads {
+    /// Inside a [`later`] run on a thread that may not wait.
+    active: bool,
+    /// The thread may not wait ([`never_wait_here`], or a web page).
+    no_wait: bool,
+    /// The line that called the run under way.
+    caller: Option<&'static Location<'static>>,
+    /// How many reads this run made so far.
+    order: usize,
+    reads: HashMap<(&'static Location<'static>, usize, Shape), Read>,
+}
+
+thread_local! {
+    static READS: RefCell<Reads> = RefCell::new(Reads {
+        no_wait: cfg!(target_arch = "wasm32"),
+        ..Default::default()
+    });
+}
+
+/// Runs `f`, whose texture reads may not wait: `Some` of what it returned,
+/// or `None` while a read is on its way (run `f` again on a later frame).
+/// Where the thread may wait, `f` runs once, its reads waiting.
+#[track_caller]
+pub fn later<T>(f: impl FnOnce() -> Result<T>) -> Result<Option<T>> {
+    let caller = Location::caller();
+    let no_wait = READS.with(|r| r.borrow().no_wait);
+    if !no_wait {
+        return f().map(Some);
+    }
+    READS.with(|r| {
+        let mut r = r.borrow_mut();
+        r.active = true;
+        r.caller = Some(caller);
+        r.order = 0;
+    });
+    let result = f();
+    READS.with(|r| r.borrow_mut().active = false);
+    match result {
+        Err(e) if e.chain().any(|c| c.is::<NotYet>()) => Ok(None),
+        done => {
+            forget();
+            done.map(Some)
+        }
+    }
+}
+
+/// Forgets every read on its way or done (the view or the variant changed).
+pub fn forget() {
+    READS.with(|r| r.borrow_mut().reads.clear());
+}
+
+/// Makes this thread's reads behave as a web page's (never wait): for
+/// the tests, which check the page's path on the desktop.
+pub fn never_wait_here() {
+    READS.with(|r| r.borrow_mut().no_wait = true);
+}
+
+/// The source's bytes for [`super::readback::read_texture`] and
+/// [`super::readback::read_buffer_copy`] on a thread that may not wait: `None` where it may (read as usual), else the
+/// bytes of this read's copy, or [`NotYet`].
+pub(super) fn read(gpu: &Gpu, source: &Source) -> Option<Result<Vec<u8>>> {
+    READS.with(|r| {
+        let mut r = r.borrow_mut();
+        if !r.no_wait {
+            return None;
+        }
+        if !r.active {
+            return Some(Err(anyhow::anyhow!(
+                "readback: a web page cannot wait for the GPU (read it inside read_later::later)"
+            )));
+        }
+        let n = r.order;
+        r.order += 1;
+        let caller = r.caller.expect("set with active");
+        let key = (caller, n, source.shape());
+        #[cfg(not(target_arch = "wasm32"))]
+        let _ = gpu.device.poll(wgpu::PollType::Poll);
+        let read = r.reads.entry(key).or_insert_with(|| {
+            let pending = source.start(gpu);
+            pending.map();
+            Read::Pending(pending)
+        });
+        if let Read::Pending(pending) = read {
+            match pending.take() {
+                Some(Ok(bytes)) => *read = Read::Done(bytes),
+                Some(Err(e)) => return Some(Err(e)),
+                None => return Some(Err(NotYet.into())),
+            }
+        }
+        match read {
+            Read::Done(bytes) => Some(Ok(bytes.clone())),
+            Read::Pending(_) => Some(Err(NotYet.into())),
+        }
+    })
+}
