@@ -281,7 +281,11 @@ fn timestamps_read_later_are_a_frames_times() {
     };
     let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("timed"),
-        size: wgpu::Extent3d { width: 1024, height: 1024, depth_or_array_layers: 1 },
+        size: wgpu::Extent3d {
+            width: 1024,
+            height: 1024,
+            depth_or_array_layers: 1,
+        },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
@@ -318,7 +322,10 @@ fn timestamps_read_later_are_a_frames_times() {
     if !gpu.has(wgpu::Features::TIMESTAMP_QUERY) {
         let ms = frame_of(&mut later);
         assert!(later.late().is_none() && !later.times_gpu());
-        assert!(!ms.contains_key(TOTAL), "no timestamps, yet a GPU total: {ms:?}");
+        assert!(
+            !ms.contains_key(TOTAL),
+            "no timestamps, yet a GPU total: {ms:?}"
+        );
         return;
     }
     let mut wait = Timer::new(&gpu);
@@ -327,18 +334,33 @@ fn timestamps_read_later_are_a_frames_times() {
         waited.push(frame_of(&mut wait)[TOTAL]);
         let ms = frame_of(&mut later);
         let late = later.late().expect("late times within the first frames");
-        assert!(late.frames_late <= RING as u64, "read {} frames late", late.frames_late);
-        assert_eq!(ms[TOTAL], late.ms[TOTAL], "the frame's GPU total is the late one's");
+        assert!(
+            late.frames_late <= RING as u64,
+            "read {} frames late",
+            late.frames_late
+        );
+        assert_eq!(
+            ms[TOTAL], late.ms[TOTAL],
+            "the frame's GPU total is the late one's"
+        );
         let keys: Vec<&str> = late.ms.keys().map(String::as_str).collect();
         assert_eq!(keys, ["clear_a", "clear_b", TOTAL]);
-        assert!(late.ms.values().all(|&v| v > 0.0), "a pass untimed: {:?}", late.ms);
+        assert!(
+            late.ms.values().all(|&v| v > 0.0),
+            "a pass untimed: {:?}",
+            late.ms
+        );
         assert!(late.ms[TOTAL] >= late.ms["clear_b"], "{:?}", late.ms);
         if late.frame > seen {
             late_totals.push(late.ms[TOTAL]);
             seen = late.frame;
         }
     }
-    assert!(late_totals.len() >= 8, "only {} frames' times came back", late_totals.len());
+    assert!(
+        late_totals.len() >= 8,
+        "only {} frames' times came back",
+        late_totals.len()
+    );
     let (a, b) = (quantile(&waited, 0.5), quantile(&late_totals, 0.5));
     assert!(
         b > a / 4.0 && b < a * 4.0,

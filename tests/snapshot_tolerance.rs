@@ -669,3 +669,80 @@ fn cpu_counts_stay_exact_whatever_their_bound() {
         "zpass_cpu  volume_triangles 2199 ±8  volume_fragments 186000 ±462"
     ));
 }
+
+/// The book's browser check (`.ci/web/check.mjs`) compares the page's
+/// figures and counters with the native run's by the snapshots' rule: its
+/// copy of the constants, of the counters' classes and of the overrides
+/// by a variant's bare name must be this file's.
+#[test]
+fn the_web_check_compares_as_the_snapshots_do() {
+    let js =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(".ci/web/check.mjs"))
+            .expect(".ci/web/check.mjs");
+    let line_of = |name: &str| {
+        js.lines()
+            .find(|l| l.starts_with(&format!("const {name} = ")))
+            .unwrap_or_else(|| panic!("check.mjs has no const {name}"))
+            .to_string()
+    };
+    for (name, t) in [
+        ("FIGURE", tolerance::FIGURE),
+        ("FRAGMENTS", tolerance::FRAGMENTS),
+        ("DEPTH_TESTED", tolerance::DEPTH_TESTED),
+    ] {
+        let want = format!("const {name} = {{ abs: {}, rel: {} }};", t.abs, t.rel);
+        assert_eq!(
+            line_of(name),
+            want.replace("rel: 0.0002", "rel: 2e-4"),
+            "check.mjs's {name}"
+        );
+    }
+    // The counters' classes: every class but an error figure's, in order.
+    let block = |name: &str| -> Vec<String> {
+        let start = js
+            .find(&format!("const {name} = ["))
+            .unwrap_or_else(|| panic!("no {name}"));
+        let body = &js[start..];
+        let body = &body[..body.find("];").expect("its end")];
+        body.lines().skip(1).map(|l| l.trim().to_string()).collect()
+    };
+    let class_name = |c: tolerance::Class| match c {
+        tolerance::Class::Fragments => "fragments",
+        tolerance::Class::DepthTested => "depth_tested",
+        tolerance::Class::AdapterDefined => "adapter_defined",
+        tolerance::Class::Exact => "exact",
+        tolerance::Class::Figure => "figure",
+    };
+    let counters: Vec<String> = (tolerance::KEYS.iter())
+        .filter(|(_, c)| *c != tolerance::Class::Figure)
+        .map(|(k, c)| format!("[\"{k}\", \"{}\"],", class_name(*c)))
+        .collect();
+    assert_eq!(
+        block("COUNTER_CLASSES"),
+        counters,
+        "check.mjs's COUNTER_CLASSES"
+    );
+    let overrides: Vec<String> = (tolerance::OVERRIDES.iter())
+        .filter(|o| o.variants.iter().all(|v| !v.contains('/')))
+        .map(|o| {
+            let list = |xs: &[&str]| {
+                let q: Vec<String> = xs
+                    .iter()
+                    .map(|x| format!("\"{}\"", x.replace(' ', "_")))
+                    .collect();
+                q.join(", ")
+            };
+            assert_eq!(
+                o.tolerance.rel, 0.0,
+                "check.mjs's OVERRIDES hold an absolute bound only"
+            );
+            format!(
+                "{{ variants: [{}], keys: [{}], abs: {} }},",
+                list(o.variants),
+                list(o.keys),
+                o.tolerance.abs
+            )
+        })
+        .collect();
+    assert_eq!(block("OVERRIDES"), overrides, "check.mjs's OVERRIDES");
+}

@@ -13,13 +13,17 @@ use std::path::Path;
 use std::time::Duration;
 
 use common::run::display::Display;
-use support::window::run_window;
+use support::window::{run_window, run_window_with};
 
 const W: u32 = 640;
 const H: u32 = 360;
 
 /// The lesson's first variant in a window at `W × H` on the diff view,
 /// captured once the full figure came; and the same variant headless.
+/// The window reads back as a web page does (`WORKBOOK_AS_PAGE=1`): its
+/// counters a frame or more later, its GPU times frames later, never
+/// waiting; they must be the headless run's counters, and GPU times where
+/// the headless run had timestamps.
 fn check_lesson(bin: &str, lesson: &str) {
     check_view(bin, lesson, "diff");
 }
@@ -31,7 +35,9 @@ fn check_view(bin: &str, lesson: &str, view: &str) {
     let size = ["--width", w.as_str(), "--height", h.as_str()];
     let mut args = size.to_vec();
     args.extend(["--view", view, "--capture-after", "3"]);
-    let Some(win) = run_window(bin, &format!("{lesson}_window_{view}"), &args, true) else {
+    let name = format!("{lesson}_window_{view}");
+    let as_page = [("WORKBOOK_AS_PAGE", "1")];
+    let Some(win) = run_window_with(bin, &name, &args, true, &as_page) else {
         return;
     };
     let last = win.log.last().expect("the window drew frames");
@@ -65,6 +71,29 @@ fn check_view(bin: &str, lesson: &str, view: &str) {
         assert!(
             (window - headless).abs() < 0.01,
             "{lesson} {variant}: the window shows {key} {window:.4} %, the headless report {headless:.4} %"
+        );
+    }
+
+    // The counters, read back as a page reads them: the report's.
+    let counted = &run.report["variants"][0]["counters"];
+    assert_eq!(
+        &last["counters"], counted,
+        "{lesson} {variant}: the window (as a page) counted otherwise than the headless run"
+    );
+    // GPU times read back frames later, where the adapter has timestamps.
+    let timestamps = run.report["variants"][0]["timing_source"] == "gpu_timestamps";
+    let late = &last["gpu_read_late"];
+    if timestamps {
+        let total = &last["gpu_ms"]["total"];
+        assert!(
+            total[1].as_f64().is_some_and(|t| t > 0.0) && late.as_u64().is_some(),
+            "{lesson}: no GPU time read back later in the window: gpu_ms {}, read late {late}",
+            last["gpu_ms"]
+        );
+    } else {
+        assert!(
+            late.is_null(),
+            "{lesson}: GPU times without timestamps: {late}"
         );
     }
 

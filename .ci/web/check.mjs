@@ -72,6 +72,15 @@ const COUNTER_CLASSES = [
   ["depth_gap_ppb_at_half_far", "adapter_defined"],
   ["depth_gap_ppb_at_sqrt_near_far", "adapter_defined"],
 ];
+// tolerance.rs's OVERRIDES of a variant by its bare name (every scene's):
+// a measured difference between adapters that the jitter's bound does
+// not reach (the words of its snapshot lines, spaces as underscores).
+const OVERRIDES = [
+  { variants: ["godot_soft_low"], keys: ["misclassified", "false_shadow"], abs: 10 },
+  { variants: ["single_2048"], keys: ["misclassified", "false_lit"], abs: 0.35 },
+  { variants: ["learnopengl_pcf20"], keys: ["misclassified"], abs: 0.08 },
+  { variants: ["learnopengl_pcf20"], keys: ["false_shadow", "false_lit"], abs: 0.35 },
+];
 // How long the page's counters may take to come back (a frame or more
 // after the variant's first frames, each readback one frame at least).
 const COUNTERS_WAIT_MS = 20_000;
@@ -181,9 +190,11 @@ function compare(lesson, variant, web, nat) {
   for (const [k, a] of Object.entries(nat.figures)) {
     const b = web[k];
     const bound = nat.bounds[k];
-    const allowed = Number.isFinite(bound)
-      ? bound
-      : FIGURE.abs + FIGURE.rel * Math.max(Math.abs(a), Math.abs(b ?? 0));
+    const measured = OVERRIDES.find((o) => o.variants.includes(variant) && o.keys.includes(k))?.abs ?? 0;
+    const allowed = Math.max(
+      measured,
+      Number.isFinite(bound) ? bound : FIGURE.abs + FIGURE.rel * Math.max(Math.abs(a), Math.abs(b ?? 0)),
+    );
     if (b === undefined || !(Math.abs(a - b) <= allowed)) {
       fail(lesson, `${variant} ${k}: web ${b} against native ${a} (allowed ±${allowed.toFixed(4)})`);
     }

@@ -32,16 +32,6 @@ pub const SOURCES_FILE: &str = "SOURCES";
 pub const MODULE: &str = "workbook_web_bg.wasm.gz";
 pub const GLUE: &str = "workbook_web.js";
 
-/// The view each chapter's live lesson opens with: the window shot's,
-/// but the buffer view, which reads the GPU back and waits, as a page
-/// cannot (it shows the frame instead).
-pub fn web_view(view: &str) -> &str {
-    match view {
-        "buffer" => "frame",
-        v => v,
-    }
-}
-
 /// Builds the module, places it in `book/src/web/`, and writes each
 /// chapter's live bar.
 pub fn build(root: &Path) -> Result<()> {
@@ -112,7 +102,9 @@ pub fn build(root: &Path) -> Result<()> {
     for shot in &SHOTS {
         crate::write(
             &generated.join(format!("{}.md", shot.lesson)),
-            &live_bar(shot.lesson, shot.variant, web_view(shot.view), &size),
+            // The window shot's view, the buffer view too (a page reads it
+            // back a frame or more later, `common::gpu::read_later`).
+            &live_bar(shot.lesson, shot.variant, shot.view, &size),
         )?;
     }
     crate::write(
@@ -137,9 +129,9 @@ pub fn build(root: &Path) -> Result<()> {
 fn live_bar(lesson: &str, variant: &str, view: &str, size: &str) -> String {
     let (w, h) = WEB_SIZE;
     let keys = "Drag to orbit, scroll to zoom, arrows move the light, V changes the variant, \
-                1 2 3 5 the view (frame, visibility, diff, dv; the buffer view is the desktop's), \
-                H hides the overlay. Its figure is the error against the exact reference, ray cast \
-                in this page.";
+                1 to 5 the view (frame, visibility, diff, buffer, dv), H hides the overlay. Its \
+                figure is the error against the exact reference, ray cast in a worker thread of \
+                this page.";
     format!(
         "<p class=\"live-bar\" data-lesson=\"{lesson}\" data-args=\"--variant {variant} --view {view} --width {w} --height {h}\" data-size=\"{size}\" data-keys=\"{keys}\">\
 <button type=\"button\">Run {lesson} live in this page</button>\

@@ -180,12 +180,9 @@ impl Lesson for DepthMap {
         if self.texels_written[variant as usize].is_none() {
             // In a web page the count comes back a frame or more later.
             let n = later(|| {
-                shadow_map::count_shadow_texels(
-                    frame.gpu,
-                    scene,
-                    self.resolution(variant),
-                    |_| &self.tally_pipeline,
-                )
+                shadow_map::count_shadow_texels(frame.gpu, scene, self.resolution(variant), |_| {
+                    &self.tally_pipeline
+                })
             })?;
             self.texels_written[variant as usize] = n;
         }

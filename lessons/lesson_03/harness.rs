@@ -27,7 +27,9 @@ impl Pcf {
         if !counted {
             // In a web page the count comes back a frame or more later.
             let n = later(|| {
-                shadow_map::count_shadow_texels(gpu, scene, size, |k| &self.tally_pipelines[pass][k])
+                shadow_map::count_shadow_texels(gpu, scene, size, |k| {
+                    &self.tally_pipelines[pass][k]
+                })
             })?;
             if let Some(n) = n {
                 self.texels_written.push(((pass, size), n));

@@ -14,12 +14,24 @@ pub struct WindowRun {
 
 /// Runs `bin` in a window on a private display with `args`, logging each frame.
 pub fn run_window(bin: &str, name: &str, args: &[&str], capture: bool) -> Option<WindowRun> {
+    run_window_with(bin, name, args, capture, &[])
+}
+
+/// [`run_window`] with these environment variables set for the lesson.
+pub fn run_window_with(
+    bin: &str,
+    name: &str,
+    args: &[&str],
+    capture: bool,
+    env: &[(&str, &str)],
+) -> Option<WindowRun> {
     let display = Display::open().expect("a display for the window");
     let out = super::out_dir(name);
     let log = out.join("window.jsonl");
     let shot = out.join("capture.png");
     let mut cmd = super::lesson_command(bin);
     display.apply(&mut cmd);
+    cmd.envs(env.iter().copied());
     cmd.args(args).arg("--window-log").arg(&log);
     cmd.arg("--out").arg(&out);
     if capture {

@@ -68,7 +68,10 @@ impl Timer {
         let forced_cpu = std::env::var("WORKBOOK_TIMING").is_ok_and(|v| v == "cpu");
         let queries = (gpu.has(wgpu::Features::TIMESTAMP_QUERY) && !forced_cpu).then(|| {
             let set = query_set(gpu);
-            (set, Stamps::Wait(QueryReadback::new(gpu, MAX_QUERIES, "timestamps")))
+            (
+                set,
+                Stamps::Wait(QueryReadback::new(gpu, MAX_QUERIES, "timestamps")),
+            )
         });
         Timer {
             queries,
@@ -323,7 +326,9 @@ impl<'a> Frame<'a> {
         let t = Instant::now();
         let mut later_slot = None;
         match (&mut self.timer.queries, n > 0) {
-            (Some((set, Stamps::Wait(readback))), true) => readback.resolve(&mut self.encoder, set, n),
+            (Some((set, Stamps::Wait(readback))), true) => {
+                readback.resolve(&mut self.encoder, set, n)
+            }
             (Some((set, Stamps::Later(later))), true) => {
                 later_slot = later.record(&mut self.encoder, set, &self.names);
             }
@@ -374,7 +379,11 @@ impl<'a> Frame<'a> {
 
 /// Each pass's milliseconds from its two stamps (`names[i]`'s at `2i` and
 /// `2i + 1`; a name used twice adds up), and `total`, first stamp to last.
-pub(crate) fn pass_times(names: &[String], stamps: &[u64], period_ns: f64) -> BTreeMap<String, f64> {
+pub(crate) fn pass_times(
+    names: &[String],
+    stamps: &[u64],
+    period_ns: f64,
+) -> BTreeMap<String, f64> {
     let to_ms = period_ns / 1e6;
     let (mut first, mut last) = (u64::MAX, 0u64);
     let mut ms: BTreeMap<String, f64> = BTreeMap::new();

@@ -15,6 +15,7 @@ use super::overlay::{self, Panel, ShownError};
 use super::present::Overlay;
 use super::views;
 use super::{App, DEFAULT_CAPTURE_AFTER};
+use crate::gpu::read_later::later;
 use crate::run::lesson::apply_knob;
 use crate::run::lesson::{variant_doc, Lesson};
 use crate::run::view::View;
@@ -57,7 +58,9 @@ impl<L: Lesson> App<L> {
         // Still, and the coarse figure of this view shown: the full one is under way.
         let coarse_shown = s.answer.as_ref().is_some_and(|a| a.stamp == s.stamp);
         let still = !orbiting && !self.dragging && s.sent == Some(s.stamp) && coarse_shown;
-        if r.gpu.info.device_type != wgpu::DeviceType::Cpu || !live.busy() || !still {
+        // A count on its way back (a page's) comes with the next frames.
+        let counting = crate::gpu::read_later::waiting();
+        if r.gpu.info.device_type != wgpu::DeviceType::Cpu || !live.busy() || !still || counting {
             return None;
         }
         let last = self.last_frame?;
@@ -173,27 +176,25 @@ impl<L: Lesson> App<L> {
             }
         }
 
-        // 3. The buffer view, a few times a second while it is shown.
-        if s.view == View::Buffer && s.buffer_at.is_none_or(|t| now - t > BUFFER_EVERY) {
+        // 3. The buffer view, a few times a second while it is shown (in a
+        // web page it comes back a frame or more later: asked again each
+        // frame until it has).
+        let buffer_due = s.buffer_at.is_none_or(|t| now - t > BUFFER_EVERY);
+        if s.view == View::Buffer && (buffer_due || s.buffer_coming) {
             s.buffer_at = Some(now);
-            match r.lesson.buffer_view(&r.gpu, &r.scene, variant) {
-                Ok(Some(b)) => {
+            let read = later(|| r.lesson.buffer_view(&r.gpu, &r.scene, variant))?;
+            s.buffer_coming = read.is_none();
+            match read {
+                Some(Some(b)) => {
                     let stamp = (s.stamp.scene_gen, s.stamp.image_gen);
                     views::upload(&ctx, &mut s.buffer, "buffer", &b.image, b.title, stamp);
                     s.buffer_note = None;
                 }
-                Ok(None) => {
+                Some(None) => {
                     s.buffer = None;
                     s.buffer_note = Some(format!("{} has no buffer to show", L::NAME));
                 }
-                // A page cannot wait for the lesson's readback: the view says so.
-                #[cfg(target_arch = "wasm32")]
-                Err(e) => {
-                    s.buffer = None;
-                    s.buffer_note = Some(format!("not in the web build: {e:#}"));
-                }
-                #[cfg(not(target_arch = "wasm32"))]
-                Err(e) => return Err(e),
+                None => {}
             }
         }
 
@@ -333,10 +334,18 @@ impl<L: Lesson> App<L> {
         let live = self.running.as_ref().is_some_and(|r| r.live.is_some());
         let frames_done = (self.args.capture.is_some() || self.args.capture_after.is_some())
             && self.frames >= after;
-        if frames_done && live && !full && self.args.capture.is_some() {
+        // The counters read back later (a page's, `WORKBOOK_AS_PAGE`) too.
+        let counting = crate::gpu::read_later::waiting();
+        if frames_done && live && (!full || counting) && self.args.capture.is_some() {
             let waited = self.capture_wait.get_or_insert_with(Instant::now);
             if waited.elapsed() < CAPTURE_WAIT {
                 return Ok(());
+            }
+            if counting {
+                anyhow::bail!(
+                    "--capture: the lesson's counts did not come back within {} s of frame {after}",
+                    CAPTURE_WAIT.as_secs()
+                );
             }
             anyhow::bail!(
                 "--capture: the live reference gave no full figure for the view within {} s of frame {after}; capture with --no-live-reference, or keep the camera still (--orbit-seconds)",

@@ -30,6 +30,8 @@ use image::RgbaImage;
 #[cfg(not(target_arch = "wasm32"))]
 use web_time::Instant;
 
+#[cfg(not(target_arch = "wasm32"))]
+use super::live_server::Server;
 use crate::gpu::targets::{FrameImages, FrameTargets, PendingFrame};
 use crate::gpu::Gpu;
 use crate::measure::report::combine;
@@ -37,8 +39,6 @@ use crate::reference::dv_view::dv_image;
 use crate::reference::metrics::{compare, ErrorStats};
 use crate::reference::{try_render_reference, Reference};
 use crate::scene::Scene;
-#[cfg(not(target_arch = "wasm32"))]
-use super::live_server::Server;
 
 /// In a web page, one thread: the reference works between frames.
 #[cfg(target_arch = "wasm32")]

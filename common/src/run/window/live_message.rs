@@ -107,7 +107,11 @@ impl AnswerHeader {
         let image = |bytes: Vec<u8>, what: &str| {
             let n = bytes.len();
             RgbaImage::from_raw(self.width, self.height, bytes).ok_or_else(|| {
-                anyhow::anyhow!("the {what} image of a {}×{} answer came with {n} bytes", self.width, self.height)
+                anyhow::anyhow!(
+                    "the {what} image of a {}×{} answer came with {n} bytes",
+                    self.width,
+                    self.height
+                )
             })
         };
         Ok(Answer {
@@ -172,13 +176,24 @@ mod tests {
             id: id.clone(),
             visibility: vec![visibility.clone()],
         };
-        let stamp = Stamp { scene_gen: 7, image_gen: 9 };
-        let job = Job { stamp, scene: scene.clone(), view_proj, frame: frame() };
+        let stamp = Stamp {
+            scene_gen: 7,
+            image_gen: 9,
+        };
+        let job = Job {
+            stamp,
+            scene: scene.clone(),
+            view_proj,
+            frame: frame(),
+        };
 
         let header = JobHeader::of(&job);
-        let wire: JobHeader = serde_json::from_str(&serde_json::to_string(&header).unwrap()).unwrap();
+        let wire: JobHeader =
+            serde_json::from_str(&serde_json::to_string(&header).unwrap()).unwrap();
         assert_eq!(wire, header);
-        let crossed = wire.into_job(&base, frame().id, frame().visibility).unwrap();
+        let crossed = wire
+            .into_job(&base, frame().id, frame().visibility)
+            .unwrap();
         assert_eq!(crossed.scene.camera, scene.camera);
         assert_eq!(crossed.scene.lights, scene.lights);
         assert_eq!(crossed.view_proj, view_proj);
@@ -189,9 +204,15 @@ mod tests {
             (here.full().unwrap(), there.full().unwrap()),
         ] {
             let header = AnswerHeader::of(&b);
-            let wire: AnswerHeader = serde_json::from_str(&serde_json::to_string(&header).unwrap()).unwrap();
-            let back = wire.into_answer(b.diff.into_raw(), b.dv.into_raw()).unwrap();
-            assert_eq!((back.stamp, back.level, back.last), (a.stamp, a.level, a.last));
+            let wire: AnswerHeader =
+                serde_json::from_str(&serde_json::to_string(&header).unwrap()).unwrap();
+            let back = wire
+                .into_answer(b.diff.into_raw(), b.dv.into_raw())
+                .unwrap();
+            assert_eq!(
+                (back.stamp, back.level, back.last),
+                (a.stamp, a.level, a.last)
+            );
             assert_eq!(back.error, a.error);
             assert_eq!(back.diff, a.diff);
             assert_eq!(back.dv, a.dv);
@@ -204,7 +225,10 @@ mod tests {
     fn a_job_that_does_not_fit_the_workers_scene_is_refused() {
         let base = Scene::parse(SCENE, "test", std::path::Path::new(".")).unwrap();
         let header = |lights: Vec<Light>| JobHeader {
-            stamp: Stamp { scene_gen: 1, image_gen: 1 },
+            stamp: Stamp {
+                scene_gen: 1,
+                image_gen: 1,
+            },
             view_proj: glam::Mat4::IDENTITY.to_cols_array(),
             camera: base.camera.clone(),
             lights,
@@ -212,9 +236,14 @@ mod tests {
             height: 2,
         };
         let e = header(base.lights.clone()).into_job(&base, vec![0; 7], vec![vec![0.0; 8]]);
-        assert!(format!("{:#}", e.unwrap_err()).contains("4×2 frame came with 7 ids"));
+        let e = e.err().expect("refused");
+        assert!(
+            format!("{e:#}").contains("4×2 frame came with 7 ids"),
+            "{e:#}"
+        );
         let two = vec![base.lights[0]; 2];
         let e = header(two).into_job(&base, vec![0; 8], vec![vec![0.0; 8]; 2]);
-        assert!(format!("{:#}", e.unwrap_err()).contains("has 2 lights"));
+        let e = e.err().expect("refused");
+        assert!(format!("{e:#}").contains("has 2 lights"), "{e:#}");
     }
 }

@@ -76,14 +76,17 @@ impl LiveReference {
         let worker = boot_worker()?;
         let inbox: Rc<RefCell<Inbox>> = Default::default();
         let to = inbox.clone();
-        let on_message = Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |e: web_sys::MessageEvent| {
-            receive(&mut to.borrow_mut(), &e.data());
-        });
+        let on_message =
+            Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |e: web_sys::MessageEvent| {
+                receive(&mut to.borrow_mut(), &e.data());
+            });
         worker.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
         let to = inbox.clone();
-        let on_error = Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(move |e: web_sys::ErrorEvent| {
-            to.borrow_mut().failed = Some(format!("the reference worker failed: {}", e.message()));
-        });
+        let on_error =
+            Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(move |e: web_sys::ErrorEvent| {
+                to.borrow_mut().failed =
+                    Some(format!("the reference worker failed: {}", e.message()));
+            });
         worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
         let init = object(&[
             ("glue", glue.into()),
@@ -156,7 +159,11 @@ impl LiveReference {
     fn pump(&mut self) {
         let (ready, answers, failed) = {
             let mut inbox = self.inbox.borrow_mut();
-            (inbox.ready, std::mem::take(&mut inbox.answers), inbox.failed.take())
+            (
+                inbox.ready,
+                std::mem::take(&mut inbox.answers),
+                inbox.failed.take(),
+            )
         };
         if let Some(e) = failed {
             self.failed = Some(anyhow!(e));

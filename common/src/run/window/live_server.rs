@@ -46,8 +46,9 @@ impl Server {
     /// The full pass of the job [`Server::take`] answered coarse: every
     /// pixel ray cast, then compared. The job ends.
     pub fn full(&mut self) -> Result<Answer> {
-        let (job, start) = (self.waiting.take())
-            .ok_or_else(|| anyhow!("the live reference was asked for a full pass with no job waiting"))?;
+        let (job, start) = (self.waiting.take()).ok_or_else(|| {
+            anyhow!("the live reference was asked for a full pass with no job waiting")
+        })?;
         let (w, h) = (job.frame.width, job.frame.height);
         let reference = try_render_reference(&job.scene, job.view_proj, w, h)?;
         let measured = measure(&reference, &job.frame);

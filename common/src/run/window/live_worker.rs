@@ -50,12 +50,13 @@ fn try_serve<L: Lesson>() -> Result<()> {
     let args = Args::try_parse_from(argv).map_err(|e| anyhow!("data-args: {e}"))?;
     let scene = crate::run::app::load_scene::<L>(&args)?;
     let server = Rc::new(RefCell::new((Server::default(), scene)));
-    let on_message = Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |e: web_sys::MessageEvent| {
-        let (server, scene) = &mut *server.borrow_mut();
-        if let Err(e) = handle(server, scene, &e.data()) {
-            post_error(&format!("{e:#}"));
-        }
-    });
+    let on_message =
+        Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |e: web_sys::MessageEvent| {
+            let (server, scene) = &mut *server.borrow_mut();
+            if let Err(e) = handle(server, scene, &e.data()) {
+                post_error(&format!("{e:#}"));
+            }
+        });
     global.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
     // The worker lives as long as the page's lesson: so does its handler.
     on_message.forget();
@@ -69,7 +70,8 @@ fn handle(server: &mut Server, scene: &Scene, data: &JsValue) -> Result<()> {
     let field = |name: &str| Reflect::get(data, &name.into()).unwrap_or(JsValue::UNDEFINED);
     match field("kind").as_string().as_deref() {
         Some("job") => {
-            let header: JobHeader = serde_json::from_str(&field("header").as_string().unwrap_or_default())?;
+            let header: JobHeader =
+                serde_json::from_str(&field("header").as_string().unwrap_or_default())?;
             let id = (field("id").dyn_into::<Uint32Array>())
                 .map_err(|_| anyhow!("a job came without its ids"))?
                 .to_vec();
@@ -117,5 +119,8 @@ fn post(msg: &JsValue, moved: &Array) {
 }
 
 fn post_error(line: &str) {
-    post(&object(&[("kind", "error".into()), ("text", line.into())]), &Array::new());
+    post(
+        &object(&[("kind", "error".into()), ("text", line.into())]),
+        &Array::new(),
+    );
 }

@@ -60,6 +60,16 @@ use overlay::Cost;
 use present::Present;
 use views::Picture;
 
+/// Whether the window reads the GPU back as a web page must: its counters,
+/// its buffer view and its GPU times a frame or more later, never waiting
+/// (`common::gpu::read_later`, `common::measure::timing_later`). Always
+/// in a page; on the desktop with `WORKBOOK_AS_PAGE=1`, which the window's
+/// tests use to check the page's path (the pipeline statistics, which
+/// WebGPU lacks, are still waited for there).
+pub fn as_page() -> bool {
+    cfg!(target_arch = "wasm32") || std::env::var("WORKBOOK_AS_PAGE").is_ok_and(|v| v == "1")
+}
+
 /// Frames drawn before `--capture` when `--capture-after` is not given.
 pub const DEFAULT_CAPTURE_AFTER: u32 = 30;
 
@@ -111,6 +121,8 @@ struct State {
     buffer: Option<Picture>,
     buffer_note: Option<String>,
     buffer_at: Option<Instant>,
+    /// The buffer view's readback is on its way (a web page's).
+    buffer_coming: bool,
     cost: Cost,
     /// The frame (the timer's count) of the newest GPU times read late,
     /// and the last frame before the variant or a knob last changed.
@@ -184,6 +196,7 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
             buffer: None,
             buffer_note: None,
             buffer_at: None,
+            buffer_coming: false,
             cost: Cost::default(),
             gpu_frame: 0,
             gpu_since: 0,
@@ -307,7 +320,13 @@ impl<L: Lesson> App<L> {
         let targets = scene.frame_targets(&gpu);
         let mut lesson = L::new(&gpu, &scene)?;
         apply_cli_knobs(&mut lesson, &gpu, &scene, &self.variants, &self.args.knobs)?;
-        let timer = Timer::new(&gpu);
+        let timer = match as_page() {
+            true => {
+                crate::gpu::read_later::never_wait_here();
+                Timer::later(&gpu)
+            }
+            false => Timer::new(&gpu),
+        };
         let present = Present::new(&gpu, picture_format, &targets);
         let ctx = egui::Context::default();
         let egui = egui_winit::State::new(

@@ -83,7 +83,11 @@ impl Cost {
     /// `key`'s median and interquartile range over the frames kept:
     /// `[q25, median, q75]`, or `None` before any.
     pub fn gpu_spread(&self, key: &str) -> Option<[f64; 3]> {
-        let v: Vec<f64> = self.gpu.iter().map(|f| f.get(key).copied().unwrap_or(0.0)).collect();
+        let v: Vec<f64> = self
+            .gpu
+            .iter()
+            .map(|f| f.get(key).copied().unwrap_or(0.0))
+            .collect();
         if v.is_empty() {
             return None;
         }
@@ -190,18 +194,22 @@ fn variant_row(ui: &mut egui::Ui, p: &Panel, act: &mut Actions) {
 fn cost_rows(ui: &mut egui::Ui, c: &Cost) {
     let ms = |k: &str| c.ms.get(k).copied();
     let fmt = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.2} ms"));
-    let web = cfg!(target_arch = "wasm32");
     let gpu = match c.gpu_spread(crate::measure::timing::TOTAL) {
         Some([lo, mid, hi]) => format!("{mid:.2} ms [{lo:.2}–{hi:.2}]"),
         None => "–".to_string(),
     };
-    if web {
-        // A page's frame is not waited for: no wall-clock frame time.
-        ui.label(format!("GPU {gpu}   CPU {}   {:.1} fps", fmt(ms("cpu_total")), c.fps));
-    } else {
+    // A frame read back later is not waited for: no wall-clock frame time.
+    let waited = c.late.is_none() && !cfg!(target_arch = "wasm32");
+    if waited {
         ui.label(format!(
             "frame {}   GPU {gpu}   CPU {}   {:.1} fps",
             fmt(ms("frame")),
+            fmt(ms("cpu_total")),
+            c.fps
+        ));
+    } else {
+        ui.label(format!(
+            "GPU {gpu}   CPU {}   {:.1} fps",
             fmt(ms("cpu_total")),
             c.fps
         ));
@@ -214,16 +222,19 @@ fn cost_rows(ui: &mut egui::Ui, c: &Cost) {
         ui.label(RichText::new(format!("passes (ms): {}", passes.join(", "))).small());
     }
     let n = c.gpu.len();
-    let note = match (web, c.late) {
-        (true, None) => WEB_NO_TIMESTAMPS.to_string(),
-        (true, Some((late, quantum_ns))) => {
+    let note = match c.late {
+        Some((late, quantum_ns)) => {
             let rounded = match quantum_ns >= 1000 {
-                true => format!("; the browser rounds timestamps to {:.0} µs", quantum_ns as f64 / 1e3),
+                true => format!(
+                    "; the browser rounds timestamps to {:.0} µs",
+                    quantum_ns as f64 / 1e3
+                ),
                 false => String::new(),
             };
             format!("GPU: median [quartiles] of the last {n} frames timed, read {late} frames later{rounded}")
         }
-        (false, _) => format!("GPU: median [quartiles] of the last {n} frames"),
+        None if !waited => WEB_NO_TIMESTAMPS.to_string(),
+        None => format!("GPU: median [quartiles] of the last {n} frames"),
     };
     ui.label(RichText::new(note).small());
 }
@@ -235,7 +246,10 @@ fn counter_rows(ui: &mut egui::Ui, counters: &BTreeMap<String, u64>) {
         true => "counters: none yet".to_string(),
         false => {
             let all: Vec<String> = counters.iter().map(|(k, v)| format!("{k} {v}")).collect();
-            format!("counters (on the variant's first frames): {}", all.join(", "))
+            format!(
+                "counters (on the variant's first frames): {}",
+                all.join(", ")
+            )
         }
     };
     ui.label(RichText::new(text).small());
