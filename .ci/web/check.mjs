@@ -8,13 +8,15 @@
 //     of an error figure (tests/support/tolerance.rs, FIGURE);
 //  2. the canvas shows the scene: with the overlay hidden (H) and the frame
 //     view (1), the page's pixels are not blank and match the native run's
-//     frame (a few pixels along edges may differ between rasterisers);
+//     frame (up to MAX_DIFFERING of them may differ, plus the share the
+//     native run's jitter flipped: a third of the floor in lesson 01);
 //  3. V changes the variant, and the new figure equals the native run's of
 //     that variant;
-//  4. for both variants, the overlay's counters (read back a frame or more
-//     late, common/src/gpu/read_later.rs) equal the native run's on the
-//     same view, by the snapshots' rule between adapters, and for the
-//     first, the overlay shows GPU times (timestamps read back frames
+//  4. for the first variant (every variant with WEB_CHECK_ALL_VARIANTS),
+//     the overlay's counters (read back a frame or more late,
+//     common/src/gpu/read_later.rs) equal the native run's on the same
+//     view, by the snapshots' rule between adapters, and the overlay shows
+//     GPU times (timestamps read back frames
 //     later, common/src/measure/timing_later.rs);
 //  5. the camera is dragged for a second, then let go, and the full figure
 //     of the view it stopped at comes: meanwhile no task holds the page's
@@ -246,10 +248,12 @@ async function compareCounters(page, lesson, variant, nat) {
   );
 }
 
-/// The GPU times the overlay shows, once the page has timed enough frames
-/// with nothing else running (the native runs done): each pass's median
-/// and the total's quartiles, as the overlay computes them. Kept for the
-/// table at the end, beside a native run on the same adapter.
+/// The GPU times the overlay shows, each pass's median and quartiles as
+/// the overlay computes them: the check fails if there are none. For the
+/// table (WEB_CHECK_GPU_TABLE), first the native runs are waited for, and
+/// then 40 frames drawn, so that the overlay's 30 frames timed (read back
+/// a few frames late) are all from a page running alone; else 5 frames
+/// timed, whatever runs beside. Kept for the table at the end.
 async function gpuTimes(page, lesson, variant) {
   // For the table, every frame the overlay's 30 hold timed with nothing
   // else running; else a few frames timed, whatever runs beside.
@@ -352,18 +356,21 @@ async function framesDrawn(page, n) {
 }
 
 /// The longest a task may hold the page's thread while the camera moves
-/// and the live reference works (the issue's bound: a page that locks for
-/// longer reads as broken).
+/// and the live reference works: 100 ms, the RAIL model's budget for a
+/// response to input (web.dev/articles/rail), past which a page that
+/// locks reads as broken.
 const LONGEST_TASK_MS = 100;
-/// The drag: this many steps of the mouse, one every STEP_MS.
+/// The drag: this many steps of the mouse, one every DRAG_STEP_MS.
 const DRAG_STEPS = 20;
 const DRAG_STEP_MS = 50;
 
-/// Drags the camera for two seconds, lets go, and waits for the full
-/// figure of the view it stopped at, while the page records its
-/// thread's long tasks (the Long Tasks API: every task of 50 ms or more)
-/// and the longest gap between ticks of a timer the page runs (an upper
-/// bound on any one task, whatever its length). Returns both, in ms.
+/// Drags the camera for about a second (DRAG_STEPS × DRAG_STEP_MS), lets
+/// go, and waits for the full figure of the view it stopped at, while the
+/// page records its thread's long tasks (the Long Tasks API: every task
+/// of 50 ms or more), which the check holds to LONGEST_TASK_MS, and the
+/// longest gap between ticks of a timer the page runs (an upper bound on
+/// any one task, whatever its length, which includes the browser's own
+/// work between tasks: printed, not checked). Returns both, in ms.
 async function moveWithReference(page, lesson) {
   const before = await shown(page);
   await page.evaluate(() => {
@@ -551,7 +558,10 @@ for (const lesson of lessons) {
     const second = await fullFigure(page, lesson, (v) => v !== first.variant);
     const nat2 = await native(lesson, second.variant, w, h);
     compare(lesson, second.variant, figures(second.error), nat2);
-    await compareCounters(page, lesson, second.variant, nat2);
+    // Its counters by hand (WEB_CHECK_ALL_VARIANTS): a variant's counts
+    // take a page up to 12 s (lesson 08 on SwiftShader), CI's first
+    // variant's check covers every lesson's counting code.
+    if (process.env.WEB_CHECK_ALL_VARIANTS) await compareCounters(page, lesson, second.variant, nat2);
     // The key changed what the figure measures as natively: where the two
     // variants' native figures differ, the page's must differ too.
     const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
@@ -567,7 +577,9 @@ for (const lesson of lessons) {
       const next = await fullFigure(page, lesson, (v) => v !== previous);
       current = next.variant;
       if (current !== first.variant) {
-        compare(lesson, current, figures(next.error), await native(lesson, current, w, h));
+        const natN = await native(lesson, current, w, h);
+        compare(lesson, current, figures(next.error), natN);
+        await compareCounters(page, lesson, current, natN);
       }
     }
     // The camera moved with the reference on: the page's thread stays free.

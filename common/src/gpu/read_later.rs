@@ -4,20 +4,23 @@
 //!
 //! A lesson counts with plain code that submits its counting work and
 //! reads a texture or a buffer back ([`super::readback::read_texture`],
-//! [`super::readback::read_buffer_copy`]). Run inside
-//! [`later`] where the thread may not wait (a page), each read of a
-//! texture starts its copy and asks for the mapping, and the run stops
-//! there ([`NotYet`]: `later` gives `None`). The caller runs the same code
-//! again on a later frame: a read whose copy came back then gives its
-//! bytes, and the run goes on to its next read or its end. Each read is
-//! known by the line that called `later` and by how many reads came
-//! before it in the run (and, to be safe, by its source's size and
-//! format): so a run that reads one texture twice gets each read's own
-//! copy, two runs that read the same texture get their own, and a run
-//! that makes its scratch textures anew each time finds its reads again. What a run read is forgotten when it ends.
+//! [`super::readback::read_buffer_copy`]). Called through [`later`] where
+//! the thread may not wait (a page), each such read starts its copy and
+//! asks for the mapping, and the call stops there ([`NotYet`]: `later`
+//! gives `None`). The caller calls the same code again on a later frame
+//! (one *attempt* a frame): a read whose copy came back then gives its
+//! bytes, and the attempt goes on to its next read or its end. Each read
+//! is known by the place that called `later` (its file, line and column)
+//! and by how many reads came before it in the attempt (and, to be safe,
+//! by its source's size and format): so code that reads one texture twice
+//! gets each read's own copy, two callers that read the same texture get
+//! their own, and code that makes its scratch textures anew each attempt
+//! finds its reads again. A caller's reads are forgotten once its attempt
+//! ends without [`NotYet`].
 //!
-//! The bytes are those of the first run that asked: a caller that runs
-//! again on a changed view or variant must [`forget`] first.
+//! The bytes are those of the first attempt that asked: a caller that
+//! runs again on a changed view or variant must [`forget`] first (the
+//! window does, whenever either changes).
 //!
 //! Where the thread may wait (the desktop), `later` runs the code once and
 //! every read waits, as without it.
@@ -81,8 +84,10 @@ pub fn later<T>(f: impl FnOnce() -> Result<T>) -> Result<Option<T>> {
     READS.with(|r| r.borrow_mut().active = false);
     match result {
         Err(e) if e.chain().any(|c| c.is::<NotYet>()) => Ok(None),
+        // Done: this caller's reads are forgotten (another's, still on
+        // their way, are kept).
         done => {
-            forget();
+            READS.with(|r| r.borrow_mut().reads.retain(|(c, _, _), _| *c != caller));
             done.map(Some)
         }
     }

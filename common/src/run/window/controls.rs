@@ -139,14 +139,25 @@ impl<L: Lesson> App<L> {
         for k in r.lesson.knobs(v) {
             line += &format!(" --knob {}={}", k.name, k.value_text());
         }
-        let out = self
-            .args
-            .out
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("out").join(L::NAME));
-        let path = out.join("window_scene.toml");
-        write_scene::<L>(&self.args.scene, &r.scene.scene, &path)?;
-        line += &format!(" --scene {}", path.display());
+        let text = scene_text::<L>(&self.args.scene, &r.scene.scene)?;
+        // A page has no files: the scene goes to the browser's console.
+        #[cfg(target_arch = "wasm32")]
+        {
+            web_sys::console::log_1(&format!("window_scene.toml:\n{text}").into());
+            line += " --scene window_scene.toml (the scene file is in the browser's console: save it under that name)";
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let out = (self.args.out.clone()).unwrap_or_else(|| PathBuf::from("out").join(L::NAME));
+            let path = out.join("window_scene.toml");
+            if let Some(d) = path.parent() {
+                std::fs::create_dir_all(d)
+                    .with_context(|| format!("cannot create {}", d.display()))?;
+            }
+            std::fs::write(&path, text)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            line += &format!(" --scene {}", path.display());
+        }
         if (self.args.width, self.args.height) != (r.config.width, r.config.height) {
             line += &format!(" --width {} --height {}", r.config.width, r.config.height);
         }
@@ -156,14 +167,10 @@ impl<L: Lesson> App<L> {
     }
 }
 
-/// Writes the scene the window shows (its file, or the lesson's default,
-/// with the camera and the lights as they are now) to `path`. Mesh paths
-/// become absolute, so that the file works from its new folder.
-fn write_scene<L: Lesson>(
-    file: &Option<PathBuf>,
-    scene: &crate::scene::Scene,
-    path: &Path,
-) -> Result<()> {
+/// The scene the window shows (its file, or the lesson's default, with
+/// the camera and the lights as they are now), as TOML. Mesh paths become
+/// absolute, so that the file works from its new folder.
+fn scene_text<L: Lesson>(file: &Option<PathBuf>, scene: &crate::scene::Scene) -> Result<String> {
     let (text, dir) = match file {
         Some(f) => (
             std::fs::read_to_string(f).with_context(|| format!("cannot read {}", f.display()))?,
@@ -201,9 +208,5 @@ fn write_scene<L: Lesson>(
             }
         }
     }
-    if let Some(d) = path.parent() {
-        std::fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
-    }
-    let text = toml::to_string(&doc).context("cannot write the scene as TOML")?;
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+    toml::to_string(&doc).context("cannot write the scene as TOML")
 }

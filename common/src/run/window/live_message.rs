@@ -2,7 +2,9 @@
 //! ([`super::live_page`], [`super::live_worker`]). The worker loads the
 //! lesson's scene itself, from the page's own flags, so a job carries only
 //! what the window changes (the camera and the lights) beside the frame's
-//! ids and visibility; an answer carries its figure and its two images.
+//! images (each pixel's object id, and one visibility image per light);
+//! an answer carries its figure and its two images (the difference image
+//! and the signed ΔV image of light 0).
 //! Headers go as JSON, the arrays as typed arrays moved, not copied,
 //! between the two threads.
 

@@ -158,7 +158,9 @@ pub fn show(ctx: &egui::Context, p: &Panel) -> Actions {
                 .default_open(false)
                 .show(ui, |ui| {
                     egui::Grid::new("keys").show(ui, |ui| {
-                        for (k, what) in KEYS {
+                        // A page has no window to close.
+                        let web = cfg!(target_arch = "wasm32");
+                        for (k, what) in KEYS.iter().filter(|(k, _)| !(web && *k == "Escape")) {
                             ui.label(RichText::new(*k).monospace());
                             ui.label(*what);
                             ui.end_row();
