@@ -79,9 +79,22 @@ const COUNTER_CLASSES = [
 // not reach (the words of its snapshot lines, spaces as underscores).
 const OVERRIDES = [
   { variants: ["godot_soft_low"], keys: ["misclassified", "false_shadow"], abs: 10 },
-  { variants: ["single_2048"], keys: ["misclassified", "false_lit"], abs: 0.35 },
   { variants: ["learnopengl_pcf20"], keys: ["misclassified"], abs: 0.08 },
   { variants: ["learnopengl_pcf20"], keys: ["false_shadow", "false_lit"], abs: 0.35 },
+];
+// Between the page's adapter (SwiftShader) and lavapipe only, beside
+// OVERRIDES: lesson 09's one map over the whole scene, single_2048, at
+// 640x360 on the default scene: misclassified 3.174 % (lavapipe) against
+// 2.915 % (SwiftShader, natively and in the page alike), false lit 2.772
+// against 2.566 %, beyond the jitter's ±0.148. The slope-scaled depth bias
+// makes the whole gap: with the constant term only, the two give 2.347
+// and 2.329 %. Vulkan leaves the polygon's slope to the implementation,
+// and the two differ by more than a factor (lavapipe's slope scale times
+// 0.71 gives 3.259 %, SwiftShader's times 1.41 gives 3.011 %; 2026-12-03).
+// The snapshots, recorded on lavapipe and replayed against an H100's
+// runs, do not take it.
+const SWIFTSHADER_OVERRIDES = [
+  { variants: ["single_2048"], keys: ["misclassified", "false_lit"], abs: 0.35 },
 ];
 // How long the page's counters may take to come back (a frame or more
 // after the variant's first frames, each readback one frame at least).
@@ -192,7 +205,8 @@ function compare(lesson, variant, web, nat) {
   for (const [k, a] of Object.entries(nat.figures)) {
     const b = web[k];
     const bound = nat.bounds[k];
-    const measured = OVERRIDES.find((o) => o.variants.includes(variant) && o.keys.includes(k))?.abs ?? 0;
+    const named = (o) => o.variants.includes(variant) && o.keys.includes(k);
+    const measured = [...OVERRIDES, ...SWIFTSHADER_OVERRIDES].find(named)?.abs ?? 0;
     const allowed = Math.max(
       measured,
       Number.isFinite(bound) ? bound : FIGURE.abs + FIGURE.rel * Math.max(Math.abs(a), Math.abs(b ?? 0)),

@@ -242,23 +242,6 @@ pub const OVERRIDES: &[Override] = &[
                    on lavapipe",
     },
     Override {
-        variants: &["single_2048"],
-        keys: &["misclassified", "false lit"],
-        tolerance: Tolerance {
-            abs: 0.35,
-            rel: 0.0,
-        },
-        measured: "lesson 09's one map over the whole scene, whose texels near the camera \
-                   span many pixels: at 640x360 on the default scene, misclassified 3.174 % \
-                   (lavapipe) against 2.915 % (SwiftShader, natively and in Chromium's page \
-                   alike), false lit 2.772 against 2.566 %, beyond the jitter's ±0.148. \
-                   The slope-scaled depth bias makes the whole gap: without it (constant \
-                   bias only) the two give 2.347 and 2.329 %. Vulkan leaves the polygon's \
-                   slope to the implementation (exact or approximated), and the two differ \
-                   by more than a factor: lavapipe's slope scale times 0.71 gives 3.259 %, \
-                   SwiftShader's times 1.41 gives 3.011 % (2026-12-03)",
-    },
-    Override {
         variants: &["learnopengl_pcf20"],
         keys: &["misclassified"],
         tolerance: Tolerance {

@@ -12,6 +12,7 @@
 //! - [`targets`]: the frame's render targets and texture helpers.
 //! - [`fullscreen`]: the full-screen triangle (blits, readback, markers).
 //! - [`readback`]: buffers, textures and query results back to the CPU.
+//! - [`pending_read`]: one copy on its way back, read without blocking.
 //! - [`read_later`]: code that reads textures back, run where nothing may
 //!   wait (a web page): each read comes back a frame or more later.
 //! - [`depth_probe`]: what a depth format really stores (24-bit unorm or float).
@@ -27,6 +28,7 @@ pub mod choice;
 pub mod depth_probe;
 pub mod fullscreen;
 pub mod lit;
+pub mod pending_read;
 pub mod read_later;
 pub mod readback;
 pub mod render;

@@ -31,7 +31,7 @@ use std::panic::Location;
 
 use anyhow::Result;
 
-use super::readback::{PendingRead, Shape, Source};
+use super::pending_read::{PendingRead, Shape, Source};
 use super::Gpu;
 
 /// A read inside [`later`] whose copy is still on its way back.

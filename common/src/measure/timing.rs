@@ -27,7 +27,7 @@ use anyhow::Result;
 
 use crate::gpu::readback::QueryReadback;
 use crate::gpu::Gpu;
-use crate::measure::timing_later::{LateTimes, Later};
+use crate::measure::timing_later::{pass_times, LateTimes, Later};
 
 /// Where the milliseconds came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -39,9 +39,8 @@ pub enum TimingSource {
 
 const MAX_QUERIES: u32 = 512;
 
-/// How the timestamps come back: waited for, at the end of the frame (the
-/// headless runner and the desktop window), or frames later ([`Later`]:
-/// a web page).
+/// How the timestamps come back: waited for at the end of the frame, or
+/// frames later ([`Later`]: a web page).
 enum Stamps {
     Wait(QueryReadback),
     Later(Later),
@@ -80,9 +79,8 @@ impl Timer {
         }
     }
 
-    /// A timer that never waits for the GPU: timestamps read back frames
-    /// later ([`Timer::late`]) where the adapter has them, else no GPU
-    /// time at all. What a web page times with.
+    /// A timer that never waits (a web page's): timestamps read back frames
+    /// later ([`Timer::late`]) where the adapter has them, else no GPU time.
     pub fn later(gpu: &Gpu) -> Timer {
         let queries = (gpu.has(wgpu::Features::TIMESTAMP_QUERY))
             .then(|| (query_set(gpu), Stamps::Later(Later::new(gpu, MAX_QUERIES))));
@@ -93,8 +91,7 @@ impl Timer {
         }
     }
 
-    /// Where the milliseconds come from (a [`Timer::later`] without
-    /// timestamps times no pass; no report is made with one).
+    /// Where the milliseconds come from (no report uses a [`Timer::later`]).
     pub fn source(&self) -> TimingSource {
         if self.queries.is_some() {
             TimingSource::GpuTimestamps
@@ -103,7 +100,7 @@ impl Timer {
         }
     }
 
-    /// Whether this timer gives GPU times (waited for or read later).
+    /// Whether this timer gives GPU times.
     pub fn times_gpu(&self) -> bool {
         self.queries.is_some() || self.wall
     }
@@ -116,8 +113,7 @@ impl Timer {
         }
     }
 
-    /// How many frames a [`Timer::later`] has timed so far (0 for a
-    /// timer that waits: its times are always the frame's own).
+    /// How many frames a [`Timer::later`] has timed (0 for one that waits).
     pub fn frames(&self) -> u64 {
         match &self.queries {
             Some((_, Stamps::Later(l))) => l.frames(),
@@ -375,26 +371,6 @@ impl<'a> Frame<'a> {
         }
         Ok(FrameTimes { ms })
     }
-}
-
-/// Each pass's milliseconds from its two stamps (`names[i]`'s at `2i` and
-/// `2i + 1`; a name used twice adds up), and `total`, first stamp to last.
-pub(crate) fn pass_times(
-    names: &[String],
-    stamps: &[u64],
-    period_ns: f64,
-) -> BTreeMap<String, f64> {
-    let to_ms = period_ns / 1e6;
-    let (mut first, mut last) = (u64::MAX, 0u64);
-    let mut ms: BTreeMap<String, f64> = BTreeMap::new();
-    for (i, name) in names.iter().enumerate() {
-        let (a, b) = (stamps[2 * i], stamps[2 * i + 1]);
-        first = first.min(a);
-        last = last.max(b);
-        *ms.entry(name.clone()).or_default() += b.saturating_sub(a) as f64 * to_ms;
-    }
-    ms.insert(TOTAL.into(), last.saturating_sub(first) as f64 * to_ms);
-    ms
 }
 
 /// The CPU time of a frame (or of a report's medians) that no `cpu_*`

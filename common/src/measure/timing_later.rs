@@ -138,7 +138,7 @@ impl Later {
                 continue;
             }
             self.latest = Some(LateTimes {
-                ms: super::timing::pass_times(&slot.names, &stamps, period_ns),
+                ms: pass_times(&slot.names, &stamps, period_ns),
                 frame: slot.frame,
                 frames_late: self.frame - slot.frame,
                 quantum_ns: self.quantum_ns.max(1),
@@ -146,6 +146,23 @@ impl Later {
         }
         Ok(self.latest.as_ref())
     }
+}
+
+/// Each pass's milliseconds from its two stamps (`names[i]`'s at `2i` and
+/// `2i + 1`; a name used twice adds up), and `total`, first stamp to last.
+pub fn pass_times(names: &[String], stamps: &[u64], period_ns: f64) -> BTreeMap<String, f64> {
+    let to_ms = period_ns / 1e6;
+    let (mut first, mut last) = (u64::MAX, 0u64);
+    let mut ms: BTreeMap<String, f64> = BTreeMap::new();
+    for (i, name) in names.iter().enumerate() {
+        let (a, b) = (stamps[2 * i], stamps[2 * i + 1]);
+        first = first.min(a);
+        last = last.max(b);
+        *ms.entry(name.clone()).or_default() += b.saturating_sub(a) as f64 * to_ms;
+    }
+    // `timing::TOTAL` (this module may not import `timing`, which imports it).
+    ms.insert("total".into(), last.saturating_sub(first) as f64 * to_ms);
+    ms
 }
 
 fn gcd(a: u64, b: u64) -> u64 {

@@ -10,13 +10,16 @@
 //! - [`overlay`]: the egui overlay (and [`overlay::KEYS`], every key).
 //! - [`present`]: the window's picture (view + overlay) and its capture.
 //! - [`views`]: the diff and buffer views' pictures.
-//! - [`page`], [`live_page`]: the window in a web page, and its live
-//!   reference on the page's one thread (the web build).
+//! - [`live_server`]: a reference job's coarse and full passes, wherever
+//!   they run (the desktop's worker thread, the page's Web Worker).
+//! - [`page`], [`live_page`], [`live_worker`], [`live_message`]: the
+//!   window in a web page, its live reference in a Web Worker, the worker's
+//!   side, and what the two send each other (the web build).
 //!
 //! The same window runs in a web page (the web build, [`crate::run::web`]):
 //! winit draws into the page's canvas, the device comes from the
-//! browser's WebGPU, and the live reference works on the page's one thread
-//! ([`live`]).
+//! browser's WebGPU, and the live reference works in a Web Worker
+//! ([`live_page`]).
 
 pub mod controls;
 pub mod frame;
