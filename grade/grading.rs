@@ -275,6 +275,7 @@ fn run_scene(
     variants: &[String],
 ) -> Result<Value> {
     let names: Vec<&str> = variants.iter().map(String::as_str).collect();
+    let measured: Vec<&str> = names.iter().copied().filter(|n| *n == ex.variant).collect();
     let args = RunArgs {
         lesson,
         scene,
@@ -286,7 +287,9 @@ fn run_scene(
         adapter: Some(&opts.adapter),
         // The grade reads errors, never times.
         warm_up_ms: Some(0.0),
-        fragile: opts.fragile,
+        // The snapshot prints the exercise's bounds only (`snapshot_part`).
+        fragile: opts.fragile && !measured.is_empty(),
+        fragile_variants: &measured,
     };
     let report = runner.run(&args, out)?;
     Ok(serde_json::to_value(report)?)

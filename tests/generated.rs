@@ -474,6 +474,7 @@ fn rerun_args<'a>(
         adapter: Some(on.1),
         warm_up_ms: Some(0.0),
         fragile: on.2,
+        fragile_variants: &[],
     }
 }
 

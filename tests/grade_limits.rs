@@ -106,6 +106,7 @@ fn run_stand_in(lesson: &'static str, limit: f64) -> (RunError, Duration) {
             adapter: Some("software"),
             warm_up_ms: Some(0.0),
             fragile: false,
+            fragile_variants: &[],
         };
         let _ = tx.send(runner.run(&args, &out).map(|_| ()));
     });

@@ -446,6 +446,52 @@ fn bounds_and_the_adapter_line() {
     assert!(!matches(c, "zpass_quads  stencil_updates 30000 ±20000"));
 }
 
+/// A run on another adapter measures no bounds (`support::measure_bounds`:
+/// no `--fragile`): its lines, without `±B`, are read with the committed
+/// text's bounds, marks of figures that are not portable included; a
+/// figure beyond its committed bound, a changed word or a missing figure
+/// still fails.
+#[test]
+fn a_run_without_bounds_is_read_with_the_committed_ones() {
+    let at = |adapter: &str, body: &str| format!("adapter: {adapter}\n{body}\n");
+    let lava = "llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)";
+    let gl = "llvmpipe (LLVM 15.0.6, 256 bits) (Gl)";
+    let committed = at(
+        lava,
+        "pcss  misclassified  0.09% ±0.22  false lit   0.00% (not portable: ±91.13, below 0.01%)\n\
+         zpass_quads  stencil_updates 41047 ±6700",
+    );
+    let new = |a: &str, b: &str, c: &str| {
+        at(
+            gl,
+            &format!(
+                "pcss  misclassified  {a}%  false lit   {b}%\nzpass_quads  stencil_updates {c}"
+            ),
+        )
+    };
+    let within = new("0.30", "0.00", "38631");
+    assert!(
+        matches(&committed, &within),
+        "{:?}",
+        compare(&committed, &within)
+    );
+    for (beyond, what) in [
+        (new("0.40", "0.00", "38631"), "misclassified"),
+        (new("0.09", "0.50", "38631"), "not portable"),
+        (new("0.09", "0.00", "30000"), "stencil_updates"),
+    ] {
+        let d = compare(&committed, &beyond);
+        assert!(
+            d.iter().any(|d| !d.within && d.what.contains(what)),
+            "{what} beyond its committed bound passed: {d:?}"
+        );
+    }
+    let words = within.replace("false lit", "false shadow");
+    assert!(!matches(&committed, &words), "a changed word passed");
+    let fewer = within.replace("  false lit   0.00%", "");
+    assert!(!matches(&committed, &fewer), "a missing figure passed");
+}
+
 /// The parser: numbers inside names stay words, keys are found, and a
 /// changed word fails.
 #[test]

@@ -53,6 +53,7 @@ pub fn write(root: &Path, only: Option<&str>) -> Result<()> {
             adapter: Some(manifest::ADAPTER),
             warm_up_ms: Some(0.0),
             fragile: true,
+            fragile_variants: &[],
         };
         let t = std::time::Instant::now();
         let out = work.join(run.lesson).join(run.name);

@@ -40,6 +40,9 @@ pub struct RunArgs<'a> {
     /// `--fragile`: also measure how far each figure may move on another
     /// adapter (report.json's `fragile`).
     pub fragile: bool,
+    /// With `fragile`, only these variants' bounds (`--fragile-variant`;
+    /// all the run's when empty).
+    pub fragile_variants: &'a [&'a str],
 }
 
 /// Why a run gave no report. The `anyhow::Error` of [`Runner::run`]
@@ -186,8 +189,13 @@ impl Runner {
         if a.warm_up_ms == Some(0.0) {
             cmd.arg("--no-timing");
         }
-        if a.fragile {
+        if a.fragile && a.fragile_variants.is_empty() {
             cmd.arg("--fragile");
+        }
+        if a.fragile {
+            for v in a.fragile_variants {
+                cmd.args(["--fragile-variant", v]);
+            }
         }
         let ran = run_limited(&mut cmd, self.time_limit)
             .with_context(|| format!("cannot run {}", self.binary(a.lesson).display()))?;

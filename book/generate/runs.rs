@@ -43,6 +43,7 @@ impl Measure<'_> {
             // The bounds once (they are deterministic), after the timed
             // frames of the same process.
             fragile: i == 0,
+            fragile_variants: &[],
         };
         let bar = self.bar;
         bar.set_message(format!("{} ({}/{repeats})", run.id(), i + 1));

@@ -328,6 +328,55 @@ pub fn tolerance_of(class: Class, key: &str, variant: &str) -> Tolerance {
     }
 }
 
+/// `new`, a line the run wrote without bounds (it measured none: another
+/// adapter than the snapshot's, `support::measure_bounds`), with the
+/// committed line's bounds: `committed` with each figure replaced by
+/// `new`'s, each bound (`±B`) kept. `None` when `new` has bounds of its
+/// own, `committed` has none, or their words differ once the bounds are
+/// left out (the caller then compares `new` as it is, and reports it).
+fn with_committed_bounds(committed: &str, new: &str) -> Option<String> {
+    if new.contains('±') || !committed.contains('±') {
+        return None;
+    }
+    let figures: Vec<&str> = pieces(new)
+        .into_iter()
+        .filter_map(|p| match p {
+            Piece::Number { text, .. } => Some(text),
+            Piece::Words(_) => None,
+        })
+        .collect();
+    let (mut with, mut without, mut words, mut k) = (String::new(), String::new(), "", 0);
+    for p in pieces(committed) {
+        match p {
+            Piece::Words(w) => {
+                with.push_str(w);
+                without.push_str(w.trim_end().strip_suffix('±').unwrap_or(w));
+                words = w;
+            }
+            Piece::Number { text, .. } if introduces_bound(words) => with.push_str(text),
+            Piece::Number { .. } => {
+                let figure = figures.get(k)?;
+                with.push_str(figure);
+                without.push_str(figure);
+                k += 1;
+            }
+        }
+    }
+    let shape = |line: &str| -> Vec<String> {
+        let words: Vec<String> = (pieces(line).into_iter())
+            .map(|p| match p {
+                Piece::Words(w) => squeeze(w),
+                Piece::Number { .. } => "#".to_string(),
+            })
+            .collect();
+        squeeze(&words.join(" "))
+            .split(' ')
+            .map(str::to_string)
+            .collect()
+    };
+    (k == figures.len() && shape(&without) == shape(new)).then_some(with)
+}
+
 /// A piece of a line: words, or a number as printed.
 #[derive(Clone, Debug, PartialEq)]
 enum Piece<'a> {
@@ -439,6 +488,20 @@ pub fn adapter_line(report: &serde_json::Value) -> String {
 /// even on the snapshot's own: `.ci/snapshot-mutations` shows with it that
 /// a broken technique fails the bounds, not only the exact comparison.
 pub const AS_ELSEWHERE: &str = "WORKBOOK_SNAPSHOT_AS_ELSEWHERE";
+
+/// The adapter lines (without their newline) of the committed snapshots,
+/// `tests/snapshots/*.snap`: the adapters they were recorded on.
+pub fn recorded_adapters() -> std::collections::BTreeSet<String> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots");
+    let entries = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .flatten();
+    entries
+        .filter(|e| e.path().extension().is_some_and(|x| x == "snap"))
+        .filter_map(|e| std::fs::read_to_string(e.path()).ok())
+        .filter_map(|t| adapter_of(&t).map(str::to_string))
+        .collect()
+}
 
 /// The adapter line of a text, if it has one.
 fn adapter_of(text: &str) -> Option<&str> {
@@ -560,6 +623,9 @@ fn compare_line(a: &str, b: &str, line: usize, out: &mut Vec<Difference>) {
     // The committed text's marks say what is compared of a figure that is
     // not portable; the new run's are its own, like its bounds.
     let ((a, marks), (b, _)) = (unmark(a), unmark(b));
+    // A run without bounds (`support::measure_bounds`) is read with the
+    // committed run's, which are the ones compared.
+    let b = with_committed_bounds(&a, &b).unwrap_or(b);
     if a == b {
         return;
     }

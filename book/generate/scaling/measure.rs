@@ -39,6 +39,7 @@ pub(super) fn measure(
             adapter: Some(manifest::ADAPTER),
             warm_up_ms: None,
             fragile: false,
+            fragile_variants: &[],
         };
         let out = work.join("runs").join(plan.name).join(format!("p{i}"));
         let report = match runner.run(&args, &out) {

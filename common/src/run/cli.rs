@@ -93,6 +93,12 @@ pub struct Args {
     /// between two GPUs). WORKBOOK_FRAGILE=1 is honoured too.
     #[arg(long, env = "WORKBOOK_FRAGILE", value_parser = clap::builder::BoolishValueParser::new())]
     pub fragile: bool,
+    /// Measure the bounds (`--fragile`) of this variant only (repeatable;
+    /// it implies `--fragile` for it, and no other variant's are measured):
+    /// the grader's runs ask for the exercise's, the only ones its
+    /// snapshot prints. Each must be one of the run's variants.
+    #[arg(long = "fragile-variant", value_name = "NAME")]
+    pub fragile_variants: Vec<String>,
     /// Time nothing: render each variant only for its images, figures and
     /// counters (the tests and the grader read no times). report.json then
     /// has empty `timing_ms`. WORKBOOK_NO_TIMING=1 is honoured too.

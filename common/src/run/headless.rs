@@ -51,6 +51,11 @@ pub fn run_headless<L: Lesson>(
         );
     }
     check_path(&scene).map_err(|e| anyhow::anyhow!("scene {}: {e}", scene.name))?;
+    let names: Vec<String> = variants.iter().map(|&v| variant_name(v)).collect();
+    if let Some(f) = (args.fragile_variants.iter()).find(|f| !names.contains(f)) {
+        let names = names.join(", ");
+        anyhow::bail!("--fragile-variant: {f:?} is not a variant of this run ({names})");
+    }
     let gpu = Gpu::open(
         args.backend.as_deref(),
         args.adapter.as_deref(),
@@ -173,7 +178,12 @@ pub fn run_headless<L: Lesson>(
         // Counters first: the path's and the jitter's frames may change
         // what a frame counts.
         let counters = lesson.counters(variant);
-        let fragile = if args.fragile {
+        let fragile = if args.fragile_variants.is_empty() {
+            args.fragile
+        } else {
+            args.fragile_variants.contains(&v)
+        };
+        let fragile = if fragile {
             let run = jittered::Measured {
                 reference: &reference,
                 images: &images,

@@ -233,7 +233,8 @@ fn cost_rows(ui: &mut egui::Ui, c: &Cost) {
                 ),
                 false => String::new(),
             };
-            format!("GPU: median [quartiles] of the last {n} frames timed, read {late} frames later{rounded}")
+            let frames = if late == 1 { "frame" } else { "frames" };
+            format!("GPU: median [quartiles] of the last {n} frames timed, read {late} {frames} later{rounded}")
         }
         None if !waited => WEB_NO_TIMESTAMPS.to_string(),
         None => format!("GPU: median [quartiles] of the last {n} frames"),
