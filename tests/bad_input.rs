@@ -450,3 +450,31 @@ fn bad_exercise_set_is_one_line() {
         }
     }
 }
+
+/// `--times-only` measures times alone: asked for no timing (as
+/// `WORKBOOK_NO_TIMING=1`, which the tests' runs set) or for the bounds of
+/// figures it does not measure, it says which flag and stops; a
+/// `--fragile-variant` that is not one of the run's variants is named.
+#[test]
+fn times_only_and_fragile_variant_name_what_they_cannot_do() {
+    let e = fails(&["--times-only"]);
+    assert!(
+        e.contains("--times-only") && e.contains("WORKBOOK_NO_TIMING"),
+        "{e}"
+    );
+    let out = support::tiny_headless(BIN, &dir().join("out"), &["--times-only", "--fragile"])
+        .env("WORKBOOK_NO_TIMING", "0")
+        .output()
+        .expect("run lesson_01");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success(),
+        "--times-only --fragile ran: {stderr}"
+    );
+    assert!(stderr.contains("--fragile"), "{stderr}");
+    let e = fails(&["--variant", "res_256", "--fragile-variant", "res_2048"]);
+    assert!(
+        e.contains("--fragile-variant") && e.contains("res_2048") && e.contains("res_256"),
+        "{e}"
+    );
+}

@@ -149,9 +149,8 @@ fn check(bin: &str, lesson: &str, light: &str, variants: &[&str]) {
             let s = scene.display().to_string();
             args.extend(["--scene", s.as_str()]);
             let name = format!("cpu_share_{lesson}_{size}");
-            // The tests skip the timed blocks unless asked (WORKBOOK_NO_TIMING).
-            let timed = [("WORKBOOK_NO_TIMING", "0")];
-            let Some(run) = support::run_lesson_env(bin, &name, &args, &timed) else {
+            // Times and nothing else (`--times-only`).
+            let Some(run) = support::run_times_only(bin, &name, &args) else {
                 return;
             };
             runs.push(unnamed(&run.report));
@@ -401,9 +400,10 @@ fn every_lesson_names_its_cpu_time() {
         let mut least: Vec<(String, f64)> = Vec::new();
         for _ in 0..ATTEMPTS {
             let args = ["--width", "160", "--height", "90", "--frames", "3"];
-            let timed = [("WORKBOOK_NO_TIMING", "0"), ("WORKBOOK_WARM_UP_MS", "0")];
             let name = format!("cpu_named_{lesson}");
-            let Some(run) = support::run_lesson_env(bin, &name, &args, &timed) else {
+            // Times and nothing else (`--times-only`), warm-up 0
+            // (`support::lesson_command`).
+            let Some(run) = support::run_times_only(bin, &name, &args) else {
                 return;
             };
             for (i, (variant, ms)) in every_unnamed(&run.report).into_iter().enumerate() {
@@ -433,6 +433,48 @@ fn every_lesson_names_its_cpu_time() {
          {ATTEMPTS} runs: {}; name it (Frame::cpu) or do it once",
         over.join(", ")
     );
+}
+
+/// `--times-only` writes times.json and nothing else: the variants and
+/// the baseline with the timing fields of a report.json, every timed
+/// frame's `cpu_total` among them.
+#[test]
+fn times_only_writes_a_reports_times() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let bin = env!("CARGO_BIN_EXE_lesson_01");
+    let args = ["--width", "64", "--height", "36", "--frames", "3"];
+    let Some(run) = support::run_times_only(bin, "cpu_times_only", &args) else {
+        return;
+    };
+    let mut files: Vec<String> = std::fs::read_dir(&run.out)
+        .expect("the output folder")
+        .map(|e| {
+            e.expect("an entry")
+                .file_name()
+                .to_string_lossy()
+                .to_string()
+        })
+        .collect();
+    files.sort();
+    assert_eq!(
+        files,
+        ["times.json"],
+        "--times-only wrote more than its times"
+    );
+    let variants = run.report["variants"].as_array().expect("variants");
+    assert_eq!(variants.len(), 5, "lesson_01's five variants");
+    // The baseline is timed between every two variants: 3 frames a block.
+    let base = &run.report["baseline"]["timing_samples_ms"]["cpu_total"];
+    let base = base.as_array().map_or(0, Vec::len);
+    assert!(base >= 3 && base % 3 == 0, "the baseline's frames: {base}");
+    for v in variants {
+        let samples = v["timing_samples_ms"]["cpu_total"].as_array();
+        assert_eq!(samples.map(Vec::len), Some(3), "{v}");
+        assert!(
+            v.get("error").is_none() && v.get("counters").is_none(),
+            "{v}"
+        );
+    }
 }
 
 /// Per variant (and the baseline): the median of `cpu_total` less every

@@ -147,15 +147,27 @@ pub fn run_lesson_env(
     } else {
         "0"
     };
-    let o = lesson_command(bin)
-        .env("WORKBOOK_FRAGILE", fragile)
-        .envs(env.iter().copied())
-        .arg("--headless")
-        .arg("--out")
-        .arg(&out)
-        .args(args)
-        .output()
-        .expect("run the lesson binary");
+    let mut c = lesson_command(bin);
+    c.env("WORKBOOK_FRAGILE", fragile).envs(env.iter().copied());
+    c.arg("--headless").arg("--out").arg(&out).args(args);
+    finish(name, c, out, "report.json")
+}
+
+/// Runs `bin --times-only --out <dir> args...` (timed, whatever the
+/// environment says): its `times.json`, as [`LessonRun::report`]: the times
+/// of a report.json and nothing else. For a test that reads times alone.
+pub fn run_times_only(bin: &str, name: &str, args: &[&str]) -> Option<LessonRun> {
+    let out = out_dir(name);
+    let mut c = lesson_command(bin);
+    c.env("WORKBOOK_FRAGILE", "0")
+        .env("WORKBOOK_NO_TIMING", "0");
+    c.arg("--times-only").arg("--out").arg(&out).args(args);
+    finish(name, c, out, "times.json")
+}
+
+/// Runs the lesson command `c`, which writes `file` into `out`.
+fn finish(name: &str, mut c: Command, out: PathBuf, file: &str) -> Option<LessonRun> {
+    let o = c.output().expect("run the lesson binary");
     let stderr = String::from_utf8_lossy(&o.stderr).to_string();
     let stdout = String::from_utf8_lossy(&o.stdout).to_string();
     if !o.status.success() {
@@ -165,8 +177,10 @@ pub fn run_lesson_env(
         }
         panic!("{name}: lesson failed ({}):\n{stderr}\n{stdout}", o.status);
     }
-    let text = std::fs::read_to_string(out.join("report.json")).expect("report.json written");
-    let report: serde_json::Value = serde_json::from_str(&text).expect("report.json parses");
+    let text = std::fs::read_to_string(out.join(file))
+        .unwrap_or_else(|e| panic!("{name}: {file} not written: {e}"));
+    let report: serde_json::Value =
+        serde_json::from_str(&text).unwrap_or_else(|e| panic!("{name}: {file}: {e}"));
     Some(LessonRun {
         out,
         report,

@@ -10,6 +10,7 @@ use crate::gpu::wgsl::WgslError;
 use crate::run::cli::{clip_values, Args};
 use crate::run::headless::run_headless;
 use crate::run::lesson::{all_variants, exercise_variants, select_variants, variant_name, Lesson};
+use crate::run::times_only::run_times_only;
 use crate::scene::Scene;
 
 /// A lesson's `main`: parse the command line, run, and turn any error into
@@ -81,6 +82,16 @@ fn run<L: Lesson>(args: &Args) -> Result<()> {
             if args.headless { "--headless was given" } else { "there is no display (DISPLAY and WAYLAND_DISPLAY are unset)" },
             L::NAME
         );
+    }
+    if args.times_only {
+        if let Some(flag) = args.times_only_conflict() {
+            anyhow::bail!(
+                "--times-only: measures times alone, so {flag} does not apply; leave one out"
+            );
+        }
+        let (times, out) = run_times_only::<L>(args, scene, &variants)?;
+        let table = times.table();
+        return print_stdout(&format!("{table}outputs: {}\n", out.display()));
     }
     if args.headless || !display_available() {
         let result = run_headless::<L>(args, scene, &variants)?;

@@ -104,6 +104,12 @@ pub struct Args {
     /// has empty `timing_ms`. WORKBOOK_NO_TIMING=1 is honoured too.
     #[arg(long, env = "WORKBOOK_NO_TIMING", value_parser = clap::builder::BoolishValueParser::new())]
     pub no_timing: bool,
+    /// Headless: time the variants and the no-shadow baseline, write
+    /// times.json (report.json's times and nothing else) and stop: no
+    /// reference, images, error figures or counters. For what reads times
+    /// alone (the tests' CPU-time checks).
+    #[arg(long)]
+    pub times_only: bool,
 }
 
 /// The most warm-up `--warm-up-ms` accepts (a minute).
@@ -147,6 +153,17 @@ impl Args {
             ("--no-live-reference", self.no_live_reference),
         ];
         given.into_iter().filter(|g| g.1).map(|g| g.0).collect()
+    }
+
+    /// A flag given with `--times-only` that it leaves nothing to do for
+    /// (no timing, bounds of figures it does not measure, the window's).
+    pub fn times_only_conflict(&self) -> Option<&'static str> {
+        let given = [
+            ("--no-timing (or WORKBOOK_NO_TIMING=1)", self.no_timing),
+            ("--fragile (or WORKBOOK_FRAGILE=1)", self.fragile),
+            ("--fragile-variant", !self.fragile_variants.is_empty()),
+        ];
+        (given.into_iter().find(|g| g.1).map(|g| g.0)).or(self.window_flags().first().copied())
     }
 }
 

@@ -10,7 +10,7 @@ use crate::gpu::render::SceneGpu;
 use crate::gpu::targets::{FrameImages, FrameTargets};
 use crate::gpu::Gpu;
 use crate::measure::baseline::Baseline;
-use crate::measure::protocol::{block_order, time_blocks, verdicts, WarmUp};
+use crate::measure::protocol::{block_order, time_blocks, verdicts, Verdicts, WarmUp};
 use crate::measure::report::VariantReport;
 use crate::measure::report::{combine, AdapterReport, BaselineReport, CameraPathReport, Report};
 use crate::measure::timing::{median_times, samples, spread_times, Timer};
@@ -29,14 +29,27 @@ pub struct HeadlessRun {
     pub out_dir: PathBuf,
 }
 
-// ANCHOR: run_headless
-/// Renders every variant offscreen, compares it with the exact reference,
-/// times it, and writes the outputs of INTERFACES.md to the output folder.
-pub fn run_headless<L: Lesson>(
+/// A headless run's GPU, scene, lesson, and the variants it can render,
+/// set up as the command line says ([`setup`]).
+pub(crate) struct Setup<L: Lesson> {
+    pub out_dir: PathBuf,
+    pub gpu: Gpu,
+    pub sg: SceneGpu,
+    pub targets: FrameTargets,
+    pub lesson: L,
+    pub timer: Timer,
+    pub runnable: Vec<L::Variant>,
+    pub adapter: AdapterReport,
+    pub scene_name: String,
+}
+
+/// Checks the command line against the scene and the lesson, opens the
+/// GPU and the output folder, builds the lesson and sets its knobs.
+pub(crate) fn setup<L: Lesson>(
     args: &Args,
     scene: Scene,
     variants: &[L::Variant],
-) -> Result<HeadlessRun> {
+) -> Result<Setup<L>> {
     let out_dir = args
         .out
         .clone()
@@ -72,10 +85,16 @@ pub fn run_headless<L: Lesson>(
             gpu.adapter_name()
         );
     }
-    let mut sg = SceneGpu::new(&gpu, scene, args.width, args.height)?;
+    let adapter = AdapterReport {
+        name: gpu.adapter_name(),
+        backend: gpu.backend_name(),
+        depth_format: format!("{depth:?}"),
+        depth_storage: depth_probe.storage.name().to_string(),
+    };
+    let sg = SceneGpu::new(&gpu, scene, args.width, args.height)?;
     let targets = sg.frame_targets(&gpu);
     let mut lesson = L::new(&gpu, &sg)?;
-    let mut timer = Timer::new(&gpu);
+    let timer = Timer::new(&gpu);
     let mut runnable = Vec::new();
     for &variant in variants {
         match lesson.unavailable(variant) {
@@ -88,30 +107,67 @@ pub fn run_headless<L: Lesson>(
         anyhow::bail!("this adapter can render none of the variants (the notes above say why)");
     }
     apply_cli_knobs(&mut lesson, &gpu, &sg, &runnable, &args.knobs)?;
+    Ok(Setup {
+        out_dir,
+        gpu,
+        sg,
+        targets,
+        lesson,
+        timer,
+        runnable,
+        adapter,
+        scene_name,
+    })
+}
 
-    // 1. Time every variant first, back to back and interleaved with the
-    //    no-shadow baseline, before any CPU-only work lets the GPU idle
-    //    (measure::protocol).
-    //    `--no-timing` times nothing (the tests read no times).
-    let timed = if args.no_timing {
-        None
-    } else {
-        let baseline = Baseline::new(&gpu, &sg);
-        let order = block_order(runnable.len());
-        let blocks = time_blocks(
-            &mut timer,
-            &gpu,
-            WarmUp::with_min_ms(args.warm_up_ms),
-            args.frames,
-            &order,
-            |frame, id| match id {
-                Some(i) => lesson.render(frame, &sg, &targets, runnable[i]),
-                None => baseline.render(frame, &sg, &targets),
-            },
-        )?;
-        let names: Vec<String> = runnable.iter().map(|&v| variant_name(v)).collect();
-        Some(verdicts(&blocks, &names, args.warm_up_ms))
+/// Times every variant, back to back and interleaved with the no-shadow
+/// baseline, before any CPU-only work lets the GPU idle
+/// (measure::protocol).
+pub(crate) fn time_variants<L: Lesson>(s: &mut Setup<L>, args: &Args) -> Result<Verdicts> {
+    let baseline = Baseline::new(&s.gpu, &s.sg);
+    let order = block_order(s.runnable.len());
+    let (lesson, sg, targets, runnable) = (&mut s.lesson, &s.sg, &s.targets, &s.runnable);
+    let blocks = time_blocks(
+        &mut s.timer,
+        &s.gpu,
+        WarmUp::with_min_ms(args.warm_up_ms),
+        args.frames,
+        &order,
+        |frame, id| match id {
+            Some(i) => lesson.render(frame, sg, targets, runnable[i]),
+            None => baseline.render(frame, sg, targets),
+        },
+    )?;
+    let names: Vec<String> = runnable.iter().map(|&v| variant_name(v)).collect();
+    Ok(verdicts(&blocks, &names, args.warm_up_ms))
+}
+
+// ANCHOR: run_headless
+/// Renders every variant offscreen, compares it with the exact reference,
+/// times it, and writes the outputs of INTERFACES.md to the output folder.
+pub fn run_headless<L: Lesson>(
+    args: &Args,
+    scene: Scene,
+    variants: &[L::Variant],
+) -> Result<HeadlessRun> {
+    let mut setup = setup::<L>(args, scene, variants)?;
+    // 1. Time every variant first (`--no-timing` times nothing: the tests
+    //    read no times).
+    let timed = match args.no_timing {
+        true => None,
+        false => Some(time_variants(&mut setup, args)?),
     };
+    let Setup {
+        out_dir,
+        gpu,
+        mut sg,
+        targets,
+        mut lesson,
+        mut timer,
+        runnable,
+        adapter,
+        scene_name,
+    } = setup;
 
     // 2. The reference, then each variant's images and error (untimed).
     let reference = cache::reference(&sg.scene, sg.camera.view_proj, args.width, args.height)?;
@@ -246,12 +302,7 @@ pub fn run_headless<L: Lesson>(
     }
     let report = Report {
         lesson: L::NAME.to_string(),
-        adapter: AdapterReport {
-            name: gpu.adapter_name(),
-            backend: gpu.backend_name(),
-            depth_format: format!("{depth:?}"),
-            depth_storage: depth_probe.storage.name().to_string(),
-        },
+        adapter,
         width: w,
         height: h,
         scene: scene_name,

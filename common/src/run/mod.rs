@@ -6,6 +6,7 @@
 //! - [`knobs`]: a technique's parameters, set by the window's widgets and `--knob`.
 //! - [`headless`]: the headless runner that writes the outputs of INTERFACES.md.
 //! - [`jittered`]: its `--fragile` frames, the camera, maps and lights moved.
+//! - [`times_only`]: its `--times-only` runs, the times and nothing else.
 //! - [`view`]: what the window shows (frame, visibility, diff, buffer).
 //! - [`window`]: the interactive window (winit), a workbench.
 //! - [`display`]: a private Xvfb for the window's tests and screenshots.
@@ -18,6 +19,7 @@ pub mod headless;
 pub mod jittered;
 pub mod knobs;
 pub mod lesson;
+pub mod times_only;
 pub mod view;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
