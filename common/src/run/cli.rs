@@ -155,6 +155,15 @@ impl Args {
         given.into_iter().filter(|g| g.1).map(|g| g.0).collect()
     }
 
+    /// Whether variant `name`'s bounds are measured: the ones
+    /// `--fragile-variant` names, else every variant with `--fragile`.
+    pub fn measures_bounds(&self, name: &str) -> bool {
+        match self.fragile_variants.is_empty() {
+            true => self.fragile,
+            false => self.fragile_variants.iter().any(|f| f == name),
+        }
+    }
+
     /// A flag given with `--times-only` that it leaves nothing to do for
     /// (no timing, bounds of figures it does not measure, the window's).
     pub fn times_only_conflict(&self) -> Option<&'static str> {

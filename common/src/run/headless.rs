@@ -142,6 +142,16 @@ pub(crate) fn time_variants<L: Lesson>(s: &mut Setup<L>, args: &Args) -> Result<
     Ok(verdicts(&blocks, &names, args.warm_up_ms))
 }
 
+/// The no-shadow baseline's times, from the timed blocks.
+pub(crate) fn baseline_report(t: &Verdicts) -> BaselineReport {
+    BaselineReport {
+        timing_ms: median_times(&t.baseline.0),
+        timing_spread_ms: spread_times(&t.baseline.0),
+        timing_samples_ms: samples(&t.baseline.0),
+        blocks: t.baseline.1.clone(),
+    }
+}
+
 // ANCHOR: run_headless
 /// Renders every variant offscreen, compares it with the exact reference,
 /// times it, and writes the outputs of INTERFACES.md to the output folder.
@@ -234,12 +244,7 @@ pub fn run_headless<L: Lesson>(
         // Counters first: the path's and the jitter's frames may change
         // what a frame counts.
         let counters = lesson.counters(variant);
-        let fragile = if args.fragile_variants.is_empty() {
-            args.fragile
-        } else {
-            args.fragile_variants.contains(&v)
-        };
-        let fragile = if fragile {
+        let fragile = if args.measures_bounds(&v) {
             let run = jittered::Measured {
                 reference: &reference,
                 images: &images,
@@ -309,12 +314,7 @@ pub fn run_headless<L: Lesson>(
         reference_ms: reference.ms,
         frames: args.frames,
         variants: rows,
-        baseline: timed.as_ref().map(|t| BaselineReport {
-            timing_ms: median_times(&t.baseline.0),
-            timing_spread_ms: spread_times(&t.baseline.0),
-            timing_samples_ms: samples(&t.baseline.0),
-            blocks: t.baseline.1.clone(),
-        }),
+        baseline: timed.as_ref().map(baseline_report),
         timing_protocol: timed.map(|t| t.protocol),
     };
     let json = serde_json::to_string_pretty(&report)?;
