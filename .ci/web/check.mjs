@@ -444,9 +444,10 @@ async function moveWithReference(page, lesson) {
 }
 
 /// How many moves the check makes, at most, until one keeps every task
-/// under LONGEST_TASK_MS. A task's length is wall time, and CI runs the
-/// grading's two lanes beside the browser on two cores (.ci/run): they
-/// stretch tasks the page keeps short. At f76a55e, with the lanes at the
+/// under LONGEST_TASK_MS. A task's length is wall time, and other work on
+/// the machine's two cores stretches tasks the page keeps short (.ci/run
+/// ran the grading's two lanes beside the browser until 2026-12-04, and
+/// runs the check alone since). At f76a55e, with the lanes at the
 /// browser's priority, CI's lesson 01 had a task of 211 ms, and a local
 /// run had lessons 01, 02, 04 and 05 at 154 to 300 ms; alone, none had a
 /// task of 50 ms or more. With the lanes at `nice -n 19`, one of four
