@@ -21,8 +21,7 @@
 //! passed, 1 when one failed, 2 when grading itself could not run.
 //! Book: "Coursework: assigning and grading the exercises" (`book/src/coursework.md`).
 
-#[path = "../book/generate/runner.rs"]
-mod runner;
+use common::run::runner;
 
 mod grading;
 mod outcome;

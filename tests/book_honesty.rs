@@ -15,9 +15,7 @@
 //!
 //! Pure std, no GPU. The checkers are tested on in-memory text first.
 
-#[path = "../book/generate/manifest.rs"]
-#[allow(dead_code)]
-mod manifest;
+use generator::manifest;
 
 use std::fs;
 use std::path::{Path, PathBuf};

@@ -30,12 +30,8 @@
 //!   cargo test --release --features solutions,chapter_copies --test book_images -- --ignored prepare_committed_figures
 //! ```
 
-#[path = "../book/generate/figures.rs"]
-#[allow(dead_code)]
-mod figures;
-#[path = "../book/generate/manifest.rs"]
-#[allow(dead_code)]
-mod manifest;
+use generator::figures;
+use generator::manifest;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -16,18 +16,7 @@
 //! Pure std and the generator's own modules; no GPU. The scanner is tested
 //! on in-memory text first.
 
-#[path = "../book/generate/legend.rs"]
-#[allow(dead_code)]
-mod legend;
-#[path = "../book/generate/prose.rs"]
-#[allow(dead_code)]
-mod prose;
-#[path = "../book/generate/record.rs"]
-#[allow(dead_code)]
-mod record;
-#[path = "../book/generate/table.rs"]
-#[allow(dead_code)]
-mod table;
+use generator::prose;
 
 use std::collections::BTreeSet;
 use std::fs;

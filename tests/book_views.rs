@@ -8,21 +8,8 @@
 //!
 //! Pure std and the generator's own module; no GPU.
 
-#[path = "../book/generate/legend.rs"]
-#[allow(dead_code)]
-mod legend;
-#[path = "../book/generate/prose.rs"]
-#[allow(dead_code)]
-mod prose;
-#[path = "../book/generate/record.rs"]
-#[allow(dead_code)]
-mod record;
-#[path = "../book/generate/table.rs"]
-#[allow(dead_code)]
-mod table;
-#[path = "../book/generate/views.rs"]
-#[allow(dead_code)]
-mod views;
+use generator::prose;
+use generator::views;
 
 use std::fs;
 use std::path::PathBuf;

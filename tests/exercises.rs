@@ -13,8 +13,7 @@
 
 mod support;
 
-#[path = "../book/generate/runner.rs"]
-mod runner;
+use common::run::runner;
 
 #[path = "../grade/spec.rs"]
 mod spec;

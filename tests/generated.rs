@@ -19,64 +19,19 @@
 //! The message names the file, the variant and the cell, and says how to
 //! regenerate.
 
-#[path = "../book/generate/adapters.rs"]
-#[allow(dead_code)]
-mod adapters;
-#[path = "../book/generate/choosing.rs"]
-#[allow(dead_code)]
-mod choosing;
-#[path = "../book/generate/gpus.rs"]
-#[allow(dead_code)]
-mod gpus;
-#[path = "../book/generate/legend.rs"]
-#[allow(dead_code)]
-mod legend;
-#[path = "../book/generate/lesson09.rs"]
-#[allow(dead_code)]
-mod lesson09;
-#[path = "../book/generate/lesson10.rs"]
-#[allow(dead_code)]
-mod lesson10;
-#[path = "../book/generate/manifest.rs"]
-#[allow(dead_code)]
-mod manifest;
-#[path = "../book/generate/origins.rs"]
-#[allow(dead_code)]
-mod origins;
-#[path = "../book/generate/over_floor.rs"]
-#[allow(dead_code)]
-mod over_floor;
-#[path = "../book/generate/pass_model.rs"]
-#[allow(dead_code)]
-mod pass_model;
-#[path = "../book/generate/plots/mod.rs"]
-#[allow(dead_code)]
-mod plots;
-#[path = "../book/generate/record.rs"]
-#[allow(dead_code)]
-mod record;
-#[path = "../book/generate/runner.rs"]
-#[allow(dead_code)]
-mod runner;
-#[path = "../book/generate/scaling.rs"]
-#[allow(dead_code)]
-mod scaling;
-#[path = "../book/generate/summary.rs"]
-#[allow(dead_code)]
-mod summary;
+use common::run::runner;
+use generator::adapters;
+use generator::choosing;
+use generator::lesson09;
+use generator::lesson10;
+use generator::manifest;
+use generator::origins;
+use generator::record;
+use generator::scaling;
+use generator::summary;
 mod support;
-#[path = "../book/generate/table.rs"]
-#[allow(dead_code)]
-mod table;
-#[path = "../book/generate/tap_floor.rs"]
-#[allow(dead_code)]
-mod tap_floor;
-#[path = "../book/generate/taps.rs"]
-#[allow(dead_code)]
-mod taps;
-#[path = "../book/generate/why.rs"]
-#[allow(dead_code)]
-mod why;
+use generator::tap_floor;
+use generator::taps;
 
 use std::path::{Path, PathBuf};
 

@@ -11,9 +11,7 @@
 
 #![cfg(unix)]
 
-#[path = "../book/generate/runner.rs"]
-#[allow(dead_code)]
-mod runner;
+use common::run::runner;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};

@@ -565,20 +565,32 @@ fn untested_bin_checker_works() {
     );
 }
 
-/// The lesson binaries are built with `test = false` (Cargo.toml): `cargo
-/// test` would otherwise compile each again as an empty test harness. A
+/// The lesson binaries and the generator's are built with `test = false`
+/// (Cargo.toml, book/generate/Cargo.toml): `cargo test` would otherwise
+/// compile each again as an empty test harness. A
 /// unit test written in one of their files would then never run, so none
 /// may hold one: the lesson's tests go in the library (`lessons/`) or in
 /// `tests/`.
 #[test]
 fn no_untested_binary_holds_a_unit_test() {
     let root = repo_root();
-    let bins = untested_bins(&read(&root.join("Cargo.toml")));
-    assert!(bins.len() >= 10, "{bins:?}: the ten lessons at least");
+    // Each manifest's binaries, by their path from the repository's root.
+    let mut bins = Vec::new();
+    for dir in ["", "book/generate"] {
+        let manifest = read(&root.join(dir).join("Cargo.toml"));
+        bins.extend(
+            untested_bins(&manifest)
+                .into_iter()
+                .map(|b| root.join(dir).join(b)),
+        );
+    }
+    assert!(
+        bins.len() >= 11,
+        "{bins:?}: the ten lessons and the generator at least"
+    );
     let mut found = Vec::new();
-    for bin in &bins {
-        let main = root.join(bin);
-        for f in bin_files(&main, &read(&main)) {
+    for main in &bins {
+        for f in bin_files(main, &read(main)) {
             for line in test_attributes(&read(&f)) {
                 found.push(format!("{}:{line}", f.display()));
             }

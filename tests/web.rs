@@ -10,8 +10,7 @@
 
 use std::path::{Path, PathBuf};
 
-#[path = "../book/generate/web_sources.rs"]
-mod web_sources;
+use generator::web_sources;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

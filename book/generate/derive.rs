@@ -19,7 +19,7 @@ use crate::{
 /// closing chapter's, chapter 09's, the adapters' comparison, the plots
 /// and the README's results block; and chapter 10's convergence of the
 /// reference, rendered again on the CPU (seconds).
-pub(super) fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
+pub fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     let records = load_records(generated)?;
     for (run, record) in RUNS.iter().zip(&records) {
         write_run_tables(&generated.join(run.lesson), run, record)?;
@@ -81,7 +81,7 @@ fn fill_views(generated: &Path, page: &Path) -> Result<bool> {
 
 /// Fills one page's figures in prose and its tables' views (`workbook
 /// fill`); whether it changed.
-pub(super) fn fill_page(generated: &Path, page: &Path) -> Result<bool> {
+pub fn fill_page(generated: &Path, page: &Path) -> Result<bool> {
     let text = std::fs::read_to_string(page).with_context(|| format!("{}", page.display()))?;
     let new = prose::fill(&text, &mut |k| prose::lookup(generated, k))
         .with_context(|| format!("{}", page.display()))?;
@@ -93,7 +93,7 @@ pub(super) fn fill_page(generated: &Path, page: &Path) -> Result<bool> {
 }
 
 /// A run's results table and, for a timed run, its passes table.
-pub(super) fn write_run_tables(dir: &Path, run: &Run, record: &Record) -> Result<()> {
+pub fn write_run_tables(dir: &Path, run: &Run, record: &Record) -> Result<()> {
     let mean_abs = manifest::MEAN_ABS_LESSONS.contains(&run.lesson);
     write(
         &dir.join(format!("{}.md", run.name)),

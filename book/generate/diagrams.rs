@@ -65,7 +65,7 @@ mod tests {
     /// Every diagram of the book: this file's, chapter 05's and chapter 10's.
     #[test]
     fn texts_inside_the_canvas_and_apart() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = &crate::repo_root();
         let svgs = (render(root).unwrap().into_iter())
             .chain(crate::volume_diagrams::render(root).unwrap())
             .chain(crate::soft_diagrams::render(root).unwrap());
@@ -79,7 +79,7 @@ mod tests {
     /// right is not yet right.
     #[test]
     fn every_diagram_tests_its_geometry() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("book/generate");
+        let root = crate::repo_root().join("book/generate");
         let mut drawn = 0;
         let mut untested = Vec::new();
         for dir in ["diagrams", "volume_diagrams", "soft_diagrams"] {

@@ -12,7 +12,7 @@ use crate::{manifest, plots, summary};
 const ERROR_FLOOR_PCT: f64 = 1e-3;
 
 /// One error-vs-time plot a chapter, and the workbook-wide one.
-pub(super) fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
+pub fn write_plots(figures: &Path, defaults: &[&Record]) -> Result<()> {
     let mut all = Vec::new();
     for r in defaults {
         let series = summary::series(r);

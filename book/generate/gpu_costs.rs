@@ -79,7 +79,7 @@ mod tests {
     /// lessons' variants meet the half millisecond, as its README lists them.
     #[test]
     fn the_committed_runs_say_which_variants_meet_half_a_millisecond() {
-        let generated = Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated");
+        let generated = crate::repo_root().join("book/src/generated");
         let full = load(&generated).unwrap();
         assert_eq!(full.reports.len(), 10);
         let verdict = |lesson: &str, variant: &str| {

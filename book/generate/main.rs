@@ -15,61 +15,24 @@
 //! sentences comparing them carry claims it checks on the same records
 //! ([`claims`]): it fails, naming the chapter's line, when one is false.
 //!
-//! This file is the command line and each command's course; the `book`
-//! command's runs are in [`runs`], what it makes from the records in
-//! [`derive`].
+//! This file is the command line and each command's course; the modules
+//! are the `generator` library's (`lib.rs`): the `book` command's runs are
+//! in `runs`, what it makes from the records in `derive`.
 
-mod adapters;
-mod bounds;
-mod choosing;
-mod claims;
-mod derive;
-mod diagrams;
-mod error_plots;
-mod figures;
-mod gpu_costs;
-mod gpus;
-mod grade_times;
-mod legend;
-mod lesson09;
-mod lesson10;
-mod manifest;
-mod origins;
-mod over_floor;
-mod pass_model;
-mod plots;
-mod ports;
-mod prose;
-mod record;
-mod runner;
-mod runs;
-mod scaling;
-mod sets;
-mod soft_diagrams;
-mod stability;
-mod summary;
-mod table;
-mod tap_floor;
-mod taps;
-mod views;
-mod volume_diagrams;
-mod volumes_gpu;
-mod web;
-mod web_sources;
-mod why;
-mod window_shots;
-
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
 use common::measure::report::Report;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use derive::{derive, load_records, write_run_tables};
-use manifest::{Run, RUNS};
-use runner::Runner;
-use runs::{copy_outputs, to_record, Measure};
+use generator::derive::{self, derive, load_records, write_run_tables};
+use generator::manifest::{self, Run, RUNS};
+use generator::runs::{copy_outputs, to_record, Measure};
+use generator::{
+    bounds, claims, diagrams, grade_times, runner_or_build, scaling, sets, soft_diagrams,
+    stability, tap_floor, volume_diagrams, web, window_shots,
+};
 
 #[derive(Parser)]
 #[command(about = "The shadow workbook's book generator")]
@@ -159,7 +122,7 @@ enum Command {
 }
 
 fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    generator::repo_root()
 }
 
 fn main() {
@@ -313,7 +276,7 @@ fn run(cli: Cli) -> Result<()> {
             false => sets::set_dir(&generated, &record.adapter, &record.backend).join(run.lesson),
         };
         std::fs::create_dir_all(&dir)?;
-        write(
+        generator::write(
             &dir.join(format!("{}.json", run.name)),
             &serde_json::to_string_pretty(&record)?,
         )?;
@@ -340,27 +303,4 @@ fn run(cli: Cli) -> Result<()> {
     derive(&root, &generated, &figures)?;
     println!("regenerated in {:.0} s", start.elapsed().as_secs_f64());
     Ok(())
-}
-
-/// The runner, building the lesson binaries first when one is missing.
-pub fn runner_or_build() -> Result<Runner> {
-    let exe = std::env::current_exe().context("cannot find the generator's own path")?;
-    if Runner::beside(&exe).is_err() {
-        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-        eprintln!("building the lessons: {cargo} build --release --bins");
-        let ok = std::process::Command::new(&cargo)
-            .args(["build", "--release", "--bins"])
-            .current_dir(root())
-            .status()
-            .with_context(|| format!("cannot run {cargo}"))?
-            .success();
-        if !ok {
-            bail!("`cargo build --release --bins` failed");
-        }
-    }
-    Runner::beside(&exe)
-}
-
-pub fn write(path: &Path, text: &str) -> Result<()> {
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
 }

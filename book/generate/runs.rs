@@ -13,20 +13,20 @@ use indicatif::ProgressBar;
 use crate::manifest::{Run, FIGURES, TEXTS};
 use crate::record::{pool, Record, VariantRecord};
 use crate::runner::{RunArgs, Runner};
-use crate::{figures, manifest, record, root};
+use crate::{figures, manifest, record, repo_root as root};
 
 /// What one run of a lesson needs.
-pub(super) struct Measure<'a> {
-    pub(super) runner: &'a Runner,
-    pub(super) backend: &'a str,
-    pub(super) adapter: &'a str,
-    pub(super) work: &'a Path,
-    pub(super) bar: &'a ProgressBar,
+pub struct Measure<'a> {
+    pub runner: &'a Runner,
+    pub backend: &'a str,
+    pub adapter: &'a str,
+    pub work: &'a Path,
+    pub bar: &'a ProgressBar,
 }
 
 impl Measure<'_> {
     /// Runs repeat `i` of one manifest entry and returns its report.
-    pub(super) fn once(&self, run: &Run, i: u32) -> Result<Report> {
+    pub fn once(&self, run: &Run, i: u32) -> Result<Report> {
         let repeats = if run.timed { manifest::REPEATS } else { 1 };
         let scene = run.scene.map(|s| root().join(s));
         let args = RunArgs {
@@ -181,7 +181,7 @@ fn pool_stable(runs: &[RunTimes]) -> Option<record::Timing> {
 /// Copies the figures and lesson-written tables of the manifest; a PNG
 /// figure is made ready for the page on the way ([`figures::prepare`]),
 /// and its count goes to `generated/figures.json`.
-pub(super) fn copy_outputs(
+pub fn copy_outputs(
     work: &Path,
     figures: &Path,
     generated: &Path,

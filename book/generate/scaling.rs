@@ -18,21 +18,12 @@
 //! - [`table`] and [`legend`]: a sweep's markdown and its columns' meanings.
 //! - [`plot`]: a sweep's two log-log plots.
 
-// `tests/generated.rs` includes this file by `#[path]`, which makes its
-// `mod` declarations siblings of it; these paths hold in both builds.
-#[path = "scaling/legend.rs"]
 mod legend;
-#[path = "scaling/measure.rs"]
 mod measure;
-#[path = "scaling/plan.rs"]
 mod plan;
-#[path = "scaling/plot.rs"]
 mod plot;
-#[path = "scaling/scenes.rs"]
 mod scenes;
-#[path = "scaling/sweep.rs"]
 mod sweep;
-#[path = "scaling/table.rs"]
 mod table;
 
 use std::path::Path;
@@ -110,6 +101,6 @@ pub fn run(
     Ok(())
 }
 
-pub(super) fn write(path: &Path, text: &str) -> Result<()> {
+pub fn write(path: &Path, text: &str) -> Result<()> {
     std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
 }

@@ -331,7 +331,7 @@ pub(crate) mod tests {
 
     /// The committed records of the book's own set and the other sets.
     pub(crate) fn committed() -> (Vec<Record>, Vec<(String, Vec<Record>)>) {
-        let generated = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated");
+        let generated = crate::repo_root().join("book/src/generated");
         let main = crate::manifest::RUNS
             .iter()
             .map(|r| {
@@ -345,11 +345,8 @@ pub(crate) mod tests {
     }
 
     fn lesson_03() -> Record {
-        let text = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/book/src/generated/lesson_03/results.json"
-        ))
-        .expect("lesson 03's record");
+        let path = crate::repo_root().join("book/src/generated/lesson_03/results.json");
+        let text = std::fs::read_to_string(path).expect("lesson 03's record");
         serde_json::from_str(&text).expect("a record")
     }
 

@@ -1,6 +1,6 @@
 //! What the web module (`workbook web`) is built from, and their digest:
-//! `book/src/web/SOURCES` holds it, and `tests/web.rs` (which includes this
-//! file) fails when the sources' digest is no longer the one the committed
+//! `book/src/web/SOURCES` holds it, and `tests/web.rs` (through the
+//! generator's library) fails when the sources' digest is no longer the one the committed
 //! module was built from.
 
 use std::path::{Path, PathBuf};

@@ -284,7 +284,7 @@ mod tests {
     /// percentage.
     #[test]
     fn steps_and_stripes_match_an_emulated_map_of_the_floor() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = &crate::repo_root();
         let svg = acne_staircase(root).unwrap();
         let words: Vec<String> = texts(&svg).into_iter().map(|t| t.2).collect();
         let all = words.join(" ");
@@ -374,7 +374,7 @@ mod tests {
     /// The map size the diagram reads is the lesson's.
     #[test]
     fn map_size_is_lesson_02s() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = &crate::repo_root();
         assert_eq!(lesson_02_map_size(root).unwrap(), 1024);
     }
 }

@@ -92,7 +92,6 @@ pub(super) fn cube_faces() -> Result<String> {
 
 #[cfg(test)]
 mod tests {
-    use std::path::Path;
 
     use super::super::svg::tests::{elements, is, number, texts};
     use super::*;
@@ -197,7 +196,7 @@ mod tests {
     /// shader: `if cell.y == R && cell.x == C { layer = L; }`).
     #[test]
     fn cross_is_the_lessons() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = &crate::repo_root();
         let src = std::fs::read_to_string(root.join("lessons/lesson_04/cross.rs")).unwrap();
         let mut found = 0;
         for line in src.lines().map(str::trim) {

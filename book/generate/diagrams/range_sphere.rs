@@ -189,7 +189,7 @@ mod tests {
     /// depths the sphere covers.
     #[test]
     fn scissor_and_depth_bounds_hold_the_sampled_sphere() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = &crate::repo_root();
         let svg = range_sphere(root).unwrap();
         let scene = Scene::load(&root.join("scenes/lesson_08.toml")).unwrap();
         let LightKind::Point { position, range } = scene.lights[0].kind else {

@@ -36,9 +36,6 @@ pub use bar_chart::bars;
 pub use chapter::error_vs_time;
 pub use scaling::{line_fit, loglog_slope, scaling_plot, Curve, Line};
 pub use tradeoff::{pareto_front, Metric, Point, Series};
-// Only main.rs draws it: tests/generated.rs, which includes this module
-// without main.rs, would call the re-export unused.
-#[allow(unused_imports)]
 pub use workbook::workbook_plot;
 
 use plotters::style::RGBColor;

@@ -289,7 +289,6 @@ pub(super) fn blocker_search(scene: &Scene, u: &Setup) -> Result<String> {
 
 #[cfg(test)]
 mod tests {
-    use std::path::Path;
 
     use common::glam::{DVec3, Vec4};
     use common::scene::{LightKind, Scene};
@@ -306,7 +305,7 @@ mod tests {
     /// as in the similar triangles.
     #[test]
     fn the_search_disk_is_the_emitter_seen_from_p_on_the_nearest_casters_plane() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = &crate::repo_root();
         let scene = Scene::load(&root.join("scenes/lesson_10.toml")).unwrap();
         let u = Setup::from_scene(&scene).unwrap();
         let drawn = search(&scene, &u).unwrap();

@@ -219,7 +219,6 @@ pub(super) fn similar_triangles(u: &Setup) -> String {
 
 #[cfg(test)]
 mod tests {
-    use std::path::Path;
 
     use common::glam::DVec3;
     use common::scene::camera::light_view_proj;
@@ -248,7 +247,7 @@ mod tests {
     /// R (d_r − d_b) / d_r and the penumbra's half width R (d_r − d_b) / d_b.
     #[test]
     fn printed_distances_and_widths_follow_the_texts_definition() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = &crate::repo_root();
         let scene = Scene::load(&root.join("scenes/lesson_10.toml")).unwrap();
         let u = Setup::from_scene(&scene).unwrap();
         let m = light_view_proj(&scene, 0).unwrap();

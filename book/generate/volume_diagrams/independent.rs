@@ -4,14 +4,13 @@
 //! facing or silhouette code (which the drawings use).
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use common::glam::DVec3;
 use common::scene::{LightKind, Scene};
 
 /// The default scene, as the drawings load it.
 pub(super) fn scene() -> Scene {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = &crate::repo_root();
     Scene::load(&root.join("scenes/lesson_05.toml")).expect("scenes/lesson_05.toml")
 }
 

@@ -1837,7 +1837,7 @@ function __wbg_get_imports() {
         }, arguments); },
         __wbindgen_generic_0000000000000001: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Externref], shim_idx: 1662, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46);
             return ret;
         },
         __wbindgen_generic_0000000000000002: function(arg0, arg1) {
@@ -1846,83 +1846,83 @@ function __wbg_get_imports() {
             return ret;
         },
         __wbindgen_generic_0000000000000003: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("Array<any>"), NamedExternref("ResizeObserver")], shim_idx: 1670, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h012af36debc2fef7);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("Array<any>"), NamedExternref("ResizeObserver")], shim_idx: 1667, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h5b8f10791db07943);
             return ret;
         },
         __wbindgen_generic_0000000000000004: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("Array<any>")], shim_idx: 1662, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_4);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_4);
             return ret;
         },
         __wbindgen_generic_0000000000000005: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("ErrorEvent")], shim_idx: 508, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h01db87772181a97f);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__he8cea7c2c7869925);
             return ret;
         },
         __wbindgen_generic_0000000000000006: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("Event")], shim_idx: 1662, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_6);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_6);
             return ret;
         },
         __wbindgen_generic_0000000000000007: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("FocusEvent")], shim_idx: 1662, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_7);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_7);
             return ret;
         },
         __wbindgen_generic_0000000000000008: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUDevice")], shim_idx: 2300, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUDevice")], shim_idx: 2298, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27);
             return ret;
         },
         __wbindgen_generic_0000000000000009: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUUncapturedErrorEvent")], shim_idx: 2298, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h06339ffbcfd128d7);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUUncapturedErrorEvent")], shim_idx: 2300, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h85bb79b8014bd711);
             return ret;
         },
         __wbindgen_generic_000000000000000a: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("KeyboardEvent")], shim_idx: 1662, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_10);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_10);
             return ret;
         },
         __wbindgen_generic_000000000000000b: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("MessageEvent")], shim_idx: 508, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h01db87772181a97f_11);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__he8cea7c2c7869925_11);
             return ret;
         },
         __wbindgen_generic_000000000000000c: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("PageTransitionEvent")], shim_idx: 1662, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_12);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_12);
             return ret;
         },
         __wbindgen_generic_000000000000000d: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("PointerEvent")], shim_idx: 1662, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_13);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_13);
             return ret;
         },
         __wbindgen_generic_000000000000000e: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("WheelEvent")], shim_idx: 1662, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_14);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_14);
             return ret;
         },
         __wbindgen_generic_000000000000000f: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 2300, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad_15);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 2298, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27_15);
             return ret;
         },
         __wbindgen_generic_0000000000000010: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 2300, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad_16);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 2298, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27_16);
             return ret;
         },
         __wbindgen_generic_0000000000000011: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Option(NamedExternref("Blob"))], shim_idx: 1665, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__he1806fff5e164c72);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Option(NamedExternref("Blob"))], shim_idx: 1674, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__hfae8f479208e22cc);
             return ret;
         },
         __wbindgen_generic_0000000000000012: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [], shim_idx: 1675, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h3ec8786a58a65f83);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [], shim_idx: 1672, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h459e3a654d406f02);
             return ret;
         },
         __wbindgen_generic_0000000000000013: function(arg0) {
@@ -1955,52 +1955,52 @@ function __wbg_get_imports() {
     };
 }
 
-function wasm_bindgen__convert__closures_____invoke__h3ec8786a58a65f83(arg0, arg1) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h3ec8786a58a65f83(arg0, arg1);
+function wasm_bindgen__convert__closures_____invoke__h459e3a654d406f02(arg0, arg1) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h459e3a654d406f02(arg0, arg1);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_4(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_4(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_4(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_4(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h01db87772181a97f(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h01db87772181a97f(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__he8cea7c2c7869925(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__he8cea7c2c7869925(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_6(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_6(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_6(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_6(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_7(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_7(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_7(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_7(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h06339ffbcfd128d7(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h06339ffbcfd128d7(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h85bb79b8014bd711(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h85bb79b8014bd711(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_10(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_10(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_10(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_10(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h01db87772181a97f_11(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h01db87772181a97f_11(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__he8cea7c2c7869925_11(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__he8cea7c2c7869925_11(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_12(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_12(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_12(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_12(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_13(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_13(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_13(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_13(arg0, arg1, arg2);
 }
 
-function wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_14(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h1c674c56dfb4264e_14(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_14(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h1e4e02a5a287be46_14(arg0, arg1, arg2);
 }
 
 function wasm_bindgen__convert__closures_____invoke__h98a1432622e44601(arg0, arg1, arg2) {
@@ -2010,33 +2010,33 @@ function wasm_bindgen__convert__closures_____invoke__h98a1432622e44601(arg0, arg
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad_15(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad_15(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27_15(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27_15(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad_16(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h2e76797545f5cbad_16(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27_16(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h1233c194a46b8e27_16(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h012af36debc2fef7(arg0, arg1, arg2, arg3) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h012af36debc2fef7(arg0, arg1, arg2, arg3);
+function wasm_bindgen__convert__closures_____invoke__h5b8f10791db07943(arg0, arg1, arg2, arg3) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h5b8f10791db07943(arg0, arg1, arg2, arg3);
 }
 
-function wasm_bindgen__convert__closures_____invoke__he1806fff5e164c72(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__he1806fff5e164c72(arg0, arg1, isLikeNone(arg2) ? 0 : addToExternrefTable0(arg2));
+function wasm_bindgen__convert__closures_____invoke__hfae8f479208e22cc(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__hfae8f479208e22cc(arg0, arg1, isLikeNone(arg2) ? 0 : addToExternrefTable0(arg2));
 }
 
 

@@ -10,6 +10,8 @@
 //! - [`view`]: what the window shows (frame, visibility, diff, buffer).
 //! - [`window`]: the interactive window (winit), a workbench.
 //! - [`display`]: a private Xvfb for the window's tests and screenshots.
+//! - [`runner`]: a lesson binary run from outside, headless, and its
+//!   report read back (the book's generator, the grader and the tests).
 //! - [`web`]: a lesson in a web page (the web build): the window on its canvas.
 
 pub mod app;
@@ -19,6 +21,8 @@ pub mod headless;
 pub mod jittered;
 pub mod knobs;
 pub mod lesson;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod runner;
 pub mod times_only;
 pub mod view;
 #[cfg(target_arch = "wasm32")]

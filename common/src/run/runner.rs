@@ -16,9 +16,9 @@ use std::process::{Command, ExitStatus, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
+use crate::gpu::watchdog;
+use crate::measure::report::Report;
 use anyhow::{bail, Context, Result};
-use common::gpu::watchdog;
-use common::measure::report::Report;
 
 /// One headless run of a lesson.
 #[derive(Clone, Debug)]
