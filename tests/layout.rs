@@ -10,8 +10,8 @@
 //!   have, in their docs too;
 //! - no module of `common/` serves a single lesson (used by exactly one
 //!   lesson folder and by no other module of `common/`).
-//! - no lesson binary (built with `test = false`) holds a unit test, which
-//!   would never run.
+//! - no binary built with `test = false` (the lessons', the generator's)
+//!   holds a unit test, which would never run.
 //!
 //! Pure std: the checks read the files as text. Each checker is first run
 //! on in-memory text, so a broken checker cannot pass by finding nothing.

@@ -1,23 +1,11 @@
-//! `workbook`: regenerates every measured table, figure and plot of the book
-//! and the README's results table, from real runs of the lessons.
+//! `workbook`: the book generator's command line.
 //!
 //! ```text
 //! cargo run --release --bin workbook -- book
 //! ```
 //!
-//! It runs every lesson headless on its default scene (timed, repeated) and
-//! on every extreme-case scene a chapter cites ([`manifest::RUNS`]), then
-//! writes `book/src/generated/` (tables, and the records the drift test
-//! checks), `book/src/figures/` (figures, plots, diagrams) and the README's
-//! table between its marker comments.
-//!
-//! The chapters' measured figures are markers it fills ([`prose`]); the
-//! sentences comparing them carry claims it checks on the same records
-//! ([`claims`]): it fails, naming the chapter's line, when one is false.
-//!
-//! This file is the command line and each command's course; the modules
-//! are the `generator` library's (`lib.rs`): the `book` command's runs are
-//! in `runs`, what it makes from the records in `derive`.
+//! What it makes, and from what, is the `generator` library's (`lib.rs`):
+//! this file is each command's course.
 
 use std::path::PathBuf;
 

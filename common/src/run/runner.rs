@@ -1,8 +1,9 @@
 //! Runs a lesson binary headless and reads back its `report.json`.
 //!
-//! The generator drives the lessons through their public command line
-//! (INTERFACES.md), exactly as a reader would, so what the book shows is
-//! what `lesson_NN --headless` prints.
+//! The book's generator, the grader and the tests drive the lessons
+//! through their public command line (the book's appendix "Interfaces",
+//! `book/src/appendix/interfaces.md`), exactly as a reader would, so what
+//! the book shows is what `lesson_NN --headless` prints.
 //!
 //! A run may have a time limit ([`Runner::time_limit`]; the grader sets
 //! one): a lesson still running then is killed, and the run ends in
@@ -127,7 +128,7 @@ impl Runner {
     pub fn beside(exe: &Path) -> Result<Runner> {
         let bin_dir = exe
             .parent()
-            .context("the generator's own path has no folder")?
+            .context("the running binary's own path has no folder")?
             .to_path_buf();
         Runner::in_dir(bin_dir)
     }
