@@ -2,7 +2,6 @@
 //! panic, never a hang. Each case names what is wrong (file, field, flag).
 
 use std::path::PathBuf;
-mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_01");
 

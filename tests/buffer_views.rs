@@ -12,8 +12,6 @@
 //!
 //! Run it on GL too: `WGPU_BACKEND=gl cargo test --test buffer_views`.
 
-mod support;
-
 use std::path::Path;
 
 use image::RgbaImage;

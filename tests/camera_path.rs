@@ -8,8 +8,6 @@
 //! The scenes are a lesson's default scene with a path appended, written
 //! to a temporary folder.
 
-mod support;
-
 use std::path::{Path, PathBuf};
 
 const LESSON_01: &str = env!("CARGO_BIN_EXE_lesson_01");

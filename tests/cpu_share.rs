@@ -22,8 +22,6 @@
 //! passes, stays under [`MAX_UNNAMED_MS`] in every variant
 //! ([`every_lesson_names_its_cpu_time`]).
 
-mod support;
-
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 

@@ -11,8 +11,6 @@
 //! is the student's to-do list. With `--features solutions` every test
 //! passes. CI runs both (`.ci/run`).
 
-mod support;
-
 use common::run::runner;
 
 #[path = "../grade/spec.rs"]

@@ -29,7 +29,6 @@ use generator::origins;
 use generator::record;
 use generator::scaling;
 use generator::summary;
-mod support;
 use generator::tap_floor;
 use generator::taps;
 

@@ -2,8 +2,6 @@
 //! exits 0 with a meaningless result; a refusal is one line that names the
 //! field and the allowed range (the limits are in `common::scene::limits`).
 
-mod support;
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};

@@ -6,8 +6,6 @@
 //! Small runs (320×180, one frame) on the default scenes: the whole file
 //! takes seconds on lavapipe. Run with `-- --nocapture` to see the figures.
 
-mod support;
-
 use support::LessonRun;
 
 const L01: &str = env!("CARGO_BIN_EXE_lesson_01");

@@ -3,8 +3,6 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
-mod support;
-
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_01");
 const SIZE: [&str; 4] = ["--width", "320", "--height", "180"];
 

@@ -10,8 +10,6 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
-mod support;
-
 mod lesson_02_closer;
 
 use common::glam::DVec3;

@@ -4,8 +4,6 @@
 //! light's own matrix, and compared with the linearisation that the chapter
 //! used to quote ("hundreds of metres"), which is wrong this far from z = 0.
 
-mod support;
-
 use common::glam::DVec3;
 use common::scene::camera::light_view_proj;
 use common::scene::{LightKind, Scene};

@@ -5,8 +5,6 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
-mod support;
-
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_03");
 /// The variant with the fewest misclassified pixels on the default scene.
 const BEST: &str = "poisson_16";

@@ -4,8 +4,6 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
-mod support;
-
 use std::path::Path;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_04");

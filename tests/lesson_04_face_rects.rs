@@ -13,8 +13,6 @@
 //!
 //! Small runs (320×180, one frame) on lavapipe: seconds each.
 
-mod support;
-
 use std::path::{Path, PathBuf};
 
 use support::LessonRun;

@@ -4,7 +4,6 @@
 //! Run `cargo insta review` after a change to see what moved.
 
 mod depth_formats;
-mod support;
 
 use std::path::Path;
 
@@ -302,7 +301,7 @@ mod compute_triangles {
     /// and with a finite reach.
     #[test]
     fn compute_volume_equals_cpu_volume() {
-        let Some(gpu) = crate::support::test_gpu() else {
+        let Some(gpu) = support::test_gpu() else {
             return;
         };
         if let Some(why) = unavailable(&gpu) {

@@ -4,7 +4,6 @@
 //! Run `cargo insta review` after a change to see what moved.
 
 mod depth_formats;
-mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_06");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];

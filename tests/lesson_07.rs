@@ -4,7 +4,6 @@
 //! depth range, and the depth-clip-control feature check.
 
 mod depth_formats;
-mod support;
 
 use depth_formats::DEPTH_FORMATS;
 

@@ -4,7 +4,6 @@
 //! camera inside a range sphere).
 
 mod depth_formats;
-mod support;
 
 use std::path::Path;
 

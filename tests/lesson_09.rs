@@ -5,8 +5,6 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
-mod support;
-
 use common::glam::DVec3;
 use workbook::lesson_09::cascades::{self, Fit, FitOptions, SplitScheme, ViewFrustum};
 use workbook::lesson_09::setup;

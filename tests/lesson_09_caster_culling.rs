@@ -7,8 +7,6 @@
 //! than half of what drawing every caster into every cascade did, and a
 //! flat awning's shadow is still there.
 
-mod support;
-
 use std::path::Path;
 
 use common::glam::DVec3;

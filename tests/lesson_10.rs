@@ -7,8 +7,6 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
-mod support;
-
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_10");
 
 fn run(name: &str, scene: Option<&str>, extra: &[&str]) -> Option<support::LessonRun> {

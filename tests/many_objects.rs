@@ -5,8 +5,6 @@
 //! of CPU time in per-object passes over the whole scene. It must render,
 //! right, in bounded time.
 
-mod support;
-
 use std::time::Duration;
 
 /// Objects in the generated scene: a floor and a grid of boxes.

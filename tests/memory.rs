@@ -13,8 +13,6 @@
 
 #![cfg(target_os = "linux")]
 
-mod support;
-
 use std::process::Command;
 use std::time::Duration;
 

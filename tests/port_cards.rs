@@ -12,8 +12,6 @@
 //! `the_books_departure_tables_are_the_cards` checks them, and with
 //! `WORKBOOK_WRITE_PORT_TABLES=1` writes them.
 
-mod support;
-
 use std::f64::consts::SQRT_2;
 
 use common::ports::{departures_table, PortCard};

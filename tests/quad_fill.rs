@@ -8,8 +8,6 @@
 //! the stencil cancels only after rasterising both (`holed_sphere`: about
 //! 50 000 triangles, five holes). The quads must sum first, as the CPU does.
 
-mod support;
-
 use std::path::Path;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_05");

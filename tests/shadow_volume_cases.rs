@@ -10,7 +10,6 @@
 //! subject (its tests own it); lessons 05-06 use `far = "infinite"`.
 
 mod depth_formats;
-mod support;
 
 use std::path::{Path, PathBuf};
 

@@ -18,8 +18,6 @@
 //! Then each lesson's kind of breakage, applied to a committed text, must
 //! fail: a tolerance wide enough to pass a broken technique is a defect.
 
-mod support;
-
 use std::path::{Path, PathBuf};
 
 use support::tolerance::{self, compare, compare_elsewhere, matches, matches_elsewhere};

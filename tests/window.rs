@@ -7,8 +7,6 @@
 //! Each run writes `--window-log` (one JSON line per frame: its time, cost,
 //! and the error figure shown with the view it was computed for).
 
-mod support;
-
 use std::path::Path;
 use std::time::Duration;
 

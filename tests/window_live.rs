@@ -2,8 +2,6 @@
 //! live reference does not slow the window: timed alone in its own test
 //! binary, so that no other test's window shares the cores.
 
-mod support;
-
 use serde_json::Value;
 use support::window::run_window;
 

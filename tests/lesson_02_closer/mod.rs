@@ -27,7 +27,7 @@ pub struct Closer {
 
 impl Closer {
     pub fn new(scene: &str, size: (u32, u32), map_size: u64) -> Closer {
-        let scene = Scene::load(&crate::support::scene_path(scene)).expect("scene loads");
+        let scene = Scene::load(&support::scene_path(scene)).expect("scene loads");
         let cam = camera_matrices(&scene, size.0, size.1);
         let reference = render_reference(&scene, cam.view_proj, size.0, size.1);
         // A texel is 2/N of NDC; the light's x_ndc = row 0 · p (orthographic).
@@ -195,16 +195,16 @@ pub struct Gpu {
     vis: Vec<f32>,
 }
 
-pub fn gpu(run: &crate::support::LessonRun, variant: &str) -> Gpu {
+pub fn gpu(run: &support::LessonRun, variant: &str) -> Gpu {
     let (ids, vis, _, _) =
-        crate::support::read_visibility(&run.out.join(format!("{variant}_visibility_l0.png")));
+        support::read_visibility(&run.out.join(format!("{variant}_visibility_l0.png")));
     Gpu {
         covered: ids.iter().map(|&i| i != 0).collect(),
         vis,
     }
 }
 
-pub fn map_size(run: &crate::support::LessonRun) -> u64 {
+pub fn map_size(run: &support::LessonRun) -> u64 {
     run.report["variants"][0]["counters"]["shadow_map_size"]
         .as_u64()
         .expect("counters.shadow_map_size")

@@ -3,14 +3,49 @@
 //! The tests drive the real command line (`--headless --out DIR ...`), so
 //! what they check is what a learner runs.
 
-#![allow(dead_code)]
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 pub mod portable;
 pub mod tolerance;
 pub mod window;
+
+/// The repository's root: this library is its `tests/support/` (checked,
+/// so that moving the library is an error, not another folder read).
+pub fn root() -> PathBuf {
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = here.parent().and_then(Path::parent);
+    match root {
+        Some(r) if r.join("tests/support/Cargo.toml") == here.join("Cargo.toml") => r.to_path_buf(),
+        _ => panic!(
+            "{}: the test support library is not the root's tests/support/",
+            here.display()
+        ),
+    }
+}
+
+/// The folder cargo gives integration tests for their files
+/// (`CARGO_TARGET_TMPDIR`, `<target>/tmp`). Cargo sets it only when it
+/// compiles an integration test, not this library, so it is found from
+/// the running test binary, which cargo puts in `<profile>/deps/`
+/// (`target/release/deps/lesson_01-…`): the folder `tmp` beside the
+/// profile's folder (`target/tmp`; with `--target T`, `target/T/tmp`). A
+/// test binary anywhere else is an error that says so.
+pub fn target_tmp() -> PathBuf {
+    let exe = std::env::current_exe().expect("the test binary's path");
+    let above_profile = exe
+        .parent()
+        .filter(|deps| deps.file_name().is_some_and(|n| n == "deps"))
+        .and_then(Path::parent)
+        .and_then(Path::parent);
+    match above_profile {
+        Some(above) => above.join("tmp"),
+        None => panic!(
+            "{}: not a test binary in cargo's <target>/<profile>/deps/ folder",
+            exe.display()
+        ),
+    }
+}
 
 /// Called when a lesson found no adapter. A GPU test without a GPU proves
 /// nothing, so by default the test FAILS here, with the line that says
@@ -121,7 +156,7 @@ pub struct LessonRun {
 /// A fresh output folder under the target directory.
 pub fn out_dir(name: &str) -> PathBuf {
     let backend = std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "auto".into());
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-{backend}"));
+    let dir = target_tmp().join(format!("{name}-{backend}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("create test output folder");
     dir
@@ -357,9 +392,7 @@ pub fn counter(report: &serde_json::Value, variant_name: &str, key: &str) -> u64
 
 /// A committed scene file, by name (`"lesson_02_grazing_85.toml"`).
 pub fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes")
-        .join(name)
+    root().join("scenes").join(name)
 }
 
 /// One untimed frame of `bin` at 640×360, on `scene` (a file in

@@ -492,7 +492,7 @@ pub const AS_ELSEWHERE: &str = "WORKBOOK_SNAPSHOT_AS_ELSEWHERE";
 /// The adapter lines (without their newline) of the committed snapshots,
 /// `tests/snapshots/*.snap`: the adapters they were recorded on.
 pub fn recorded_adapters() -> std::collections::BTreeSet<String> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots");
+    let dir = super::root().join("tests/snapshots");
     let entries = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .flatten();
