@@ -13,7 +13,7 @@ use common::gpu::render::{
 };
 use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
-use common::run::headless::save;
+use common::run::files::save;
 use common::run::lesson::BufferView;
 use common::scene::camera::light_view_proj;
 use common::scene::{LightKind, Scene};

@@ -7,7 +7,7 @@ use anyhow::Result;
 use common::gpu::bindings::{self, sampler_entry, texture_entry, uniform_buffer, uniform_entry};
 use common::gpu::fullscreen::{read_floats, Fullscreen, FLOAT_BYTES_FORMAT};
 use common::gpu::Gpu;
-use common::run::headless::save;
+use common::run::files::save;
 use common::run::lesson::BufferView;
 
 use super::cube_map::{cube_group, CubeShadowMap};

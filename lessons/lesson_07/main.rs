@@ -31,7 +31,7 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::headless::save;
+use common::run::files::save;
 use common::run::lesson::{is_exercise, BufferView, Lesson};
 use common::scene::{Far, Scene};
 use common::{anyhow, Result};

@@ -9,7 +9,7 @@ use common::gpu::readback::read_texture;
 use common::gpu::render::{pipeline_layout_for, vertex_state, SceneGpu};
 use common::gpu::targets::render_texture;
 use common::gpu::Gpu;
-use common::run::headless::save;
+use common::run::files::save;
 use common::run::lesson::BufferView;
 
 use super::csm::CascadeMaps;

@@ -1,7 +1,7 @@
 //! The headless runner: renders every variant offscreen, compares it with
 //! the exact reference, times it, and writes the outputs of INTERFACES.md.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
@@ -17,6 +17,7 @@ use crate::measure::timing::{median_times, samples, spread_times, Timer};
 use crate::reference::metrics::{self, pixel_states, PixelState, ReferenceStates};
 use crate::reference::{cache, dv_view};
 use crate::run::cli::Args;
+use crate::run::files::{save, write_json};
 use crate::run::jittered;
 use crate::run::lesson::{apply_cli_knobs, knob_values};
 use crate::run::lesson::{variant_name, Lesson};
@@ -317,9 +318,7 @@ pub fn run_headless<L: Lesson>(
         baseline: timed.as_ref().map(baseline_report),
         timing_protocol: timed.map(|t| t.protocol),
     };
-    let json = serde_json::to_string_pretty(&report)?;
-    std::fs::write(out_dir.join("report.json"), json)
-        .with_context(|| format!("cannot write {}", out_dir.join("report.json").display()))?;
+    write_json(&report, &out_dir.join("report.json"))?;
     Ok(HeadlessRun { report, out_dir })
 }
 // ANCHOR_END: run_headless
@@ -470,24 +469,4 @@ fn in_view(r: &crate::reference::Reference, view_proj: glam::Mat4) -> Vec<bool> 
             })
         })
         .collect()
-}
-
-/// Saves an image as a PNG, naming the file on failure. Fast compression:
-/// a run writes a few PNGs per variant and light, and the default's
-/// adaptive filtering took about a tenth of a lesson 10 headless run (the
-/// Sub filter: 1.3 %, for files 14 % larger; the same pixels).
-pub fn save<P, C>(img: &image::ImageBuffer<P, C>, path: &Path) -> Result<()>
-where
-    P: image::PixelWithColorType,
-    [P::Subpixel]: image::EncodableLayout,
-    C: std::ops::Deref<Target = [P::Subpixel]>,
-{
-    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-    let write = || -> Result<()> {
-        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
-        let png = PngEncoder::new_with_quality(file, CompressionType::Fast, FilterType::Sub);
-        img.write_with_encoder(png)?;
-        Ok(())
-    };
-    write().with_context(|| format!("cannot write {}", path.display()))
 }

@@ -5,6 +5,7 @@
 //! - [`lesson`]: the [`lesson::Lesson`] trait and its typed variants.
 //! - [`knobs`]: a technique's parameters, set by the window's widgets and `--knob`.
 //! - [`headless`]: the headless runner that writes the outputs of INTERFACES.md.
+//! - [`files`]: its PNGs and `report.json`, written.
 //! - [`jittered`]: its `--fragile` frames, the camera, maps and lights moved.
 //! - [`times_only`]: its `--times-only` runs, the times and nothing else.
 //! - [`view`]: what the window shows (frame, visibility, diff, buffer).
@@ -17,6 +18,7 @@
 pub mod app;
 pub mod cli;
 pub mod display;
+pub mod files;
 pub mod headless;
 pub mod jittered;
 pub mod knobs;

@@ -7,7 +7,7 @@
 //! 54.8 s as a full timed run (lavapipe, 2026-12-04).
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
@@ -76,13 +76,18 @@ pub fn run_times_only<L: Lesson>(
         baseline,
         timing_protocol: timed.protocol,
     };
-    let path = s.out_dir.join("times.json");
-    std::fs::write(&path, serde_json::to_string_pretty(&report)?)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    report.write(&s.out_dir.join("times.json"))?;
     Ok((report, s.out_dir))
 }
 
 impl TimesReport {
+    /// Writes `times.json`, naming the file on failure (not generic: its
+    /// JSON writer is compiled once, here, not in each lesson binary).
+    fn write(&self, path: &Path) -> Result<()> {
+        let json = serde_json::to_string_pretty(self)?;
+        std::fs::write(path, json).with_context(|| format!("cannot write {}", path.display()))
+    }
+
     /// Each variant's median frame time and CPU time, with their spread.
     pub fn table(&self) -> String {
         let mut s = format!(

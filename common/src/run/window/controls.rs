@@ -139,7 +139,7 @@ impl<L: Lesson> App<L> {
         for k in r.lesson.knobs(v) {
             line += &format!(" --knob {}={}", k.name, k.value_text());
         }
-        let text = scene_text::<L>(&self.args.scene, &r.scene.scene)?;
+        let text = scene_text(&self.args.scene, L::DEFAULT_SCENE, &r.scene.scene)?;
         // A page has no files: the scene goes to the browser's console.
         #[cfg(target_arch = "wasm32")]
         {
@@ -170,13 +170,19 @@ impl<L: Lesson> App<L> {
 /// The scene the window shows (its file, or the lesson's default, with
 /// the camera and the lights as they are now), as TOML. Mesh paths become
 /// absolute, so that the file works from its new folder.
-fn scene_text<L: Lesson>(file: &Option<PathBuf>, scene: &crate::scene::Scene) -> Result<String> {
+/// Not generic (the lesson's default scene is an argument), so that the
+/// TOML writer is compiled once, here, not in each lesson binary.
+fn scene_text(
+    file: &Option<PathBuf>,
+    default_scene: &str,
+    scene: &crate::scene::Scene,
+) -> Result<String> {
     let (text, dir) = match file {
         Some(f) => (
             std::fs::read_to_string(f).with_context(|| format!("cannot read {}", f.display()))?,
             f.parent().map(Path::to_path_buf).unwrap_or_default(),
         ),
-        None => (L::DEFAULT_SCENE.to_string(), PathBuf::from(".")),
+        None => (default_scene.to_string(), PathBuf::from(".")),
     };
     let mut doc: toml::Table = toml::from_str(&text).context("the scene file no longer parses")?;
     let arr = |v: DVec3| toml::Value::Array(v.to_array().map(toml::Value::Float).to_vec());

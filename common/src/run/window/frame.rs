@@ -360,10 +360,7 @@ impl<L: Lesson> App<L> {
             return Ok(());
         }
         if let (Some(path), Some(r)) = (&self.args.capture, &self.running) {
-            let picture = r.present.read_picture(&r.gpu)?;
-            picture
-                .save(path)
-                .with_context(|| format!("--capture: cannot write {}", path.display()))?;
+            save_capture(&r.present.read_picture(&r.gpu)?, path)?;
         }
         el.exit();
         Ok(())
@@ -456,4 +453,12 @@ fn rss_kb() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find_map(|l| l.strip_prefix("VmRSS:"))?;
     line.trim().trim_end_matches("kB").trim().parse().ok()
+}
+
+/// `--capture`'s PNG; not generic, so that its encoder is compiled once,
+/// here, not in each lesson binary.
+fn save_capture(picture: &image::RgbaImage, path: &std::path::Path) -> Result<()> {
+    picture
+        .save(path)
+        .with_context(|| format!("--capture: cannot write {}", path.display()))
 }

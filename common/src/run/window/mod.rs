@@ -5,6 +5,7 @@
 //!
 //! - [`controls`]: the camera, the light, the keys, and the command line
 //!   that reproduces what the window shows.
+//! - [`event_loop`]: winit's event loop, opened and run (the desktop's).
 //! - [`frame`]: one frame: render, measure, overlay, present, capture.
 //! - [`live`]: the exact reference on low-priority worker threads.
 //! - [`overlay`]: the egui overlay (and [`overlay::KEYS`], every key).
@@ -22,6 +23,7 @@
 //! ([`live_page`]).
 
 pub mod controls;
+pub mod event_loop;
 pub mod frame;
 pub mod live;
 pub mod live_message;
@@ -36,8 +38,6 @@ pub mod page;
 pub mod present;
 pub mod views;
 
-#[cfg(not(target_arch = "wasm32"))]
-use std::io::Write;
 use std::sync::Arc;
 
 use web_time::Instant;
@@ -45,7 +45,7 @@ use web_time::Instant;
 use anyhow::{anyhow, Context, Result};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::window::{Window, WindowId};
 
 use crate::gpu::render::SceneGpu;
@@ -58,6 +58,9 @@ use crate::run::lesson::Lesson;
 use crate::scene::Scene;
 
 use crate::run::view::View;
+use event_loop::open_event_loop;
+#[cfg(not(target_arch = "wasm32"))]
+use event_loop::run_native;
 use live::{Answer, LiveReference, PendingJob, Stamp};
 use overlay::Cost;
 use present::Present;
@@ -158,8 +161,7 @@ struct App<L: Lesson> {
 }
 
 pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant>) -> Result<()> {
-    let event_loop =
-        EventLoop::new().map_err(|e| anyhow!("cannot open a window ({e}); use --headless"))?;
+    let event_loop = open_event_loop()?;
     let log = match &args.window_log {
         Some(p) => Some(std::io::BufWriter::new(
             std::fs::File::create(p)
@@ -229,20 +231,6 @@ pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant
     }
     #[cfg(not(target_arch = "wasm32"))]
     run_native(event_loop, app)
-}
-
-#[cfg(not(target_arch = "wasm32"))]
-fn run_native<L: Lesson>(event_loop: EventLoop<()>, mut app: App<L>) -> Result<()> {
-    event_loop
-        .run_app(&mut app)
-        .map_err(|e| anyhow!("window event loop: {e}"))?;
-    if let Some(log) = &mut app.log {
-        log.flush().context("--window-log: cannot write")?;
-    }
-    match app.error {
-        Some(e) => Err(e),
-        None => Ok(()),
-    }
 }
 
 /// `--capture`: a `.png` in a folder that exists (checked before the window opens).
