@@ -10,8 +10,11 @@ pub mod portable;
 pub mod tolerance;
 pub mod window;
 
-/// The repository's root: this library is its `tests/support/` (checked,
-/// so that moving the library is an error, not another folder read).
+/// The repository's root: this library is its `tests/support/` (its
+/// path checked, so that moving the library is an error, not another
+/// folder read). A test can use this or its own
+/// `env!("CARGO_MANIFEST_DIR")`, which is the root too (the tests are the
+/// root package's); this library's code can only use this.
 pub fn root() -> PathBuf {
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     let root = here.parent().and_then(Path::parent);
@@ -30,7 +33,8 @@ pub fn root() -> PathBuf {
 /// the running test binary, which cargo puts in `<profile>/deps/`
 /// (`target/release/deps/lesson_01-…`): the folder `tmp` beside the
 /// profile's folder (`target/tmp`; with `--target T`, `target/T/tmp`). A
-/// test binary anywhere else is an error that says so.
+/// test binary anywhere else is an error that says so. A test can read its
+/// own `env!("CARGO_TARGET_TMPDIR")`, the same folder.
 pub fn target_tmp() -> PathBuf {
     let exe = std::env::current_exe().expect("the test binary's path");
     let above_profile = exe

@@ -6,8 +6,12 @@
 //! window's event loop (`window/event_loop.rs`) and its scene's TOML
 //! (`window/controls.rs`) out of the generic code too, lesson_05's
 //! binary crate came to 119 k lines of LLVM IR against 282 k
-//! (`cargo llvm-lines`), and the ten lesson binaries compiled in 21.6 s
-//! against 43.1 s (2 cores, 2026-12-04), for byte-identical PNGs.
+//! (`cargo llvm-lines --release --bin lesson_05`), and the ten lesson
+//! binaries compiled in 21.6 s against 43.1 s (`cargo build --release
+//! --bins` after touching their `main.rs`, without LTO as in CI, 2 cores,
+//! 2026-12-04), for byte-identical PNGs. The window's `--capture` writes
+//! its own PNG (`window/frame.rs`, image's default encoder: a picture to
+//! keep, not one of a run's many).
 
 use std::path::Path;
 
@@ -17,8 +21,9 @@ use crate::measure::report::Report;
 
 /// Saves an image as a PNG, naming the file on failure. Fast compression:
 /// a run writes a few PNGs per variant and light, and the default's
-/// adaptive filtering took about a tenth of a lesson 10 headless run (the
-/// Sub filter: 1.3 %, for files 14 % larger; the same pixels).
+/// adaptive filtering took about a tenth of a lesson 10 headless run's
+/// time on lavapipe, the Sub filter 1.3 % of it, for files 14 % larger
+/// with the same pixels.
 pub fn save<P, C>(img: &image::ImageBuffer<P, C>, path: &Path) -> Result<()>
 where
     P: image::PixelWithColorType,
@@ -32,8 +37,8 @@ where
 
 /// [`save`]'s encoding, for any pixel type's bytes: not generic, so that
 /// the PNG encoder is compiled once, here, and not again in each lesson
-/// binary whose generic runner calls [`save`] (what `write_with_encoder`
-/// does, the same bytes).
+/// binary whose generic runner calls [`save`]. It writes the bytes image's
+/// own `write_with_encoder` would.
 fn save_png(
     bytes: &[u8],
     width: u32,

@@ -1,9 +1,12 @@
-//! The window's event loop, opened and run. Not generic over the lesson
-//! (the window, [`App`], is handed on as a `dyn ApplicationHandler`), so
-//! that winit's event loop and its X11 and Wayland code are compiled
-//! once, here, and not again in each lesson binary
-//! (`common/src/run/files.rs` has the measurement). The page's loop is
-//! the browser's (`page.rs`).
+//! The window's event loop, opened (on the desktop and in a page) and,
+//! on the desktop, run (a page hands its loop to the browser:
+//! `spawn_app` in `mod.rs`). The code that touches winit's loop is not
+//! generic over the lesson: [`open_event_loop`], and `run_event_loop`,
+//! to which [`run_native`], the one generic function here and a few lines
+//! long, hands the window ([`App`]) as a `dyn ApplicationHandler`. So
+//! winit's event loop and its X11 and Wayland code are compiled once,
+//! here, not again in each lesson binary (`common/src/run/files.rs` has
+//! the measurement).
 
 #[cfg(not(target_arch = "wasm32"))]
 use std::io::Write;

@@ -5,7 +5,7 @@
 //!
 //! - [`controls`]: the camera, the light, the keys, and the command line
 //!   that reproduces what the window shows.
-//! - [`event_loop`]: winit's event loop, opened and run (the desktop's).
+//! - [`event_loop`]: winit's event loop, opened and run.
 //! - [`frame`]: one frame: render, measure, overlay, present, capture.
 //! - [`live`]: the exact reference on low-priority worker threads.
 //! - [`overlay`]: the egui overlay (and [`overlay::KEYS`], every key).
