@@ -38,9 +38,9 @@ fn run_event_loop(event_loop: EventLoop<()>, mut app: &mut dyn ApplicationHandle
         .map_err(|e| anyhow!("window event loop: {e}"))
 }
 
-#[cfg(not(target_arch = "wasm32"))]
 /// Runs the window until it closes, then flushes `--window-log` and
 /// returns the error that closed it, if one did.
+#[cfg(not(target_arch = "wasm32"))]
 pub(super) fn run_native<L: Lesson>(event_loop: EventLoop<()>, mut app: App<L>) -> Result<()> {
     run_event_loop(event_loop, &mut app)?;
     if let Some(log) = &mut app.log {
