@@ -1,9 +1,9 @@
-//! A scene's `[camera_path]` (INTERFACES, chapter 09): the headless runner
-//! renders the path and counts shadow pixels that flip: world-locked
-//! (shimmer: frame i's view with frame i + 1's fit, where the reference
-//! cannot flip) and screen-space (consecutive frames, flips the reference
-//! does not make). It refuses the path for a lesson that does not re-read
-//! the camera each frame.
+//! A scene's `[camera_path]` (chapter 09; the book's appendix "Interfaces"):
+//! the headless runner renders the path and counts shadow pixels that flip:
+//! world-locked (shimmer: frame i's view with frame i + 1's fit, where the
+//! reference cannot flip) and screen-space (consecutive frames, flips the
+//! reference does not make). It refuses the path for a lesson that does not
+//! re-read the camera each frame.
 //!
 //! The scenes are a lesson's default scene with a path appended, written
 //! to a temporary folder.

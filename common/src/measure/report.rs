@@ -1,4 +1,5 @@
-//! `report.json` (INTERFACES.md) and the terminal table.
+//! `report.json` (its fields: the book's appendix "Interfaces",
+//! `book/src/appendix/interfaces.md`) and the terminal table.
 
 use std::collections::BTreeMap;
 

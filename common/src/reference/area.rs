@@ -3,9 +3,9 @@
 //!
 //! An emitter is the disk of `radius` through a point or spot light's
 //! position, facing the shaded point, or the cone of directions of
-//! `angular_radius_deg` around a directional light's (INTERFACES.md). A
-//! point's visibility is the share of rays to uniformly spread points of the
-//! emitter that reach it:
+//! `angular_radius_deg` around a directional light's direction (the book's
+//! appendix "Interfaces", "Scene files"). A point's visibility is the share
+//! of rays to uniformly spread points of the emitter that reach it:
 //!
 //! - the emitter is cut into `n × n` strata of equal area (the unit square's
 //!   cells, mapped to the disk by Shirley and Chiu's concentric map, which

@@ -1,6 +1,7 @@
 //! How wrong a GPU visibility image is, against the exact reference.
 //!
-//! Only *receiver* pixels count (INTERFACES.md): geometry covers the pixel,
+//! Only *receiver* pixels count (the book's appendix "Interfaces",
+//! `book/src/appendix/interfaces.md`): geometry covers the pixel,
 //! its geometric normal faces the light (N·L > [`RECEIVER_MIN_N_DOT_L`], which
 //! also leaves out pixels beyond a light's range or cone), and the GPU and the
 //! reference see the same object there. The pixels where they do not are
@@ -244,7 +245,8 @@ fn near_edge(reference: &Reference, ref_vis: &[f32]) -> Vec<bool> {
 }
 // ANCHOR_END: compare
 
-/// The `*_visibility_l<k>.png` image of INTERFACES.md: gray = round(255·v),
+/// The `*_visibility_l<k>.png` image ("Outputs of a headless run" in
+/// `book/src/appendix/interfaces.md`): gray = round(255·v),
 /// alpha 0 where no geometry covers the pixel, 255 elsewhere.
 pub fn visibility_image(object_id: &[u32], visibility: &[f32], w: u32, h: u32) -> GrayAlphaImage {
     let n = w as usize * h as usize;

@@ -1,4 +1,5 @@
-//! The command line every lesson shares (INTERFACES.md).
+//! The command line every lesson shares (the book's appendix "Interfaces",
+//! `book/src/appendix/interfaces.md`).
 
 use std::path::PathBuf;
 

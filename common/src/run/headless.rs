@@ -1,5 +1,6 @@
 //! The headless runner: renders every variant offscreen, compares it with
-//! the exact reference, times it, and writes the outputs of INTERFACES.md.
+//! the exact reference, times it, and writes the outputs the book's
+//! appendix "Interfaces" lists (`book/src/appendix/interfaces.md`).
 
 use std::path::PathBuf;
 
@@ -155,7 +156,8 @@ pub(crate) fn baseline_report(t: &Verdicts) -> BaselineReport {
 
 // ANCHOR: run_headless
 /// Renders every variant offscreen, compares it with the exact reference,
-/// times it, and writes the outputs of INTERFACES.md to the output folder.
+/// times it, and writes the outputs the book's appendix "Interfaces"
+/// lists to the output folder.
 pub fn run_headless<L: Lesson>(
     args: &Args,
     scene: Scene,

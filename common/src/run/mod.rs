@@ -1,10 +1,10 @@
 //! Running a lesson.
 //!
 //! - [`app`]: a lesson's `main`: the command line, then headless or the window.
-//! - [`cli`]: the command line every lesson shares (INTERFACES.md).
+//! - [`cli`]: the command line every lesson shares (appendix "Interfaces").
 //! - [`lesson`]: the [`lesson::Lesson`] trait and its typed variants.
 //! - [`knobs`]: a technique's parameters, set by the window's widgets and `--knob`.
-//! - [`headless`]: the headless runner that writes the outputs of INTERFACES.md.
+//! - [`headless`]: the headless runner and its outputs (appendix "Interfaces").
 //! - [`files`]: its PNGs and `report.json`, written.
 //! - [`jittered`]: its `--fragile` frames, the camera, maps and lights moved.
 //! - [`times_only`]: its `--times-only` runs, the times and nothing else.

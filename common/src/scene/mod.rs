@@ -1,4 +1,5 @@
-//! The scene format of INTERFACES.md: camera, ambient, lights and objects.
+//! The scene format (the book's appendix "Interfaces", "Scene files",
+//! `book/src/appendix/interfaces.md`): camera, ambient, lights and objects.
 //!
 //! Positions and transforms are kept in `f64` so that a scene 10 km from the
 //! origin loses nothing before [`Scene::origin`] is subtracted; everything the
