@@ -8,13 +8,13 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
-use serde::Serialize;
 use serde_json::Value;
 
-pub use crate::outcome::RunStatus;
+use crate::figures::{bound, fmt, metric, resolve, variant};
 use crate::outcome::{failed_run, why_not_run};
+pub use crate::results::{describe, CheckResult, ExerciseResult, Proof, RunStatus};
 use crate::runner::{RunArgs, Runner};
-use crate::spec::{Check, Exercise, Side, Spec, Target};
+use crate::spec::{Check, Exercise, Side, Spec};
 
 /// How to grade.
 pub struct Options {
@@ -40,91 +40,6 @@ pub struct Options {
     pub stop_at: Option<Proof>,
 }
 
-/// The failure one of CI's checks needs from every exercise.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Proof {
-    /// Any check failed (`--check-copies`).
-    Failed,
-    /// A check failed with a hint naming the likely cause
-    /// (`--check-starters`, `--check-half-right`).
-    FailedWithCause,
-}
-
-impl Proof {
-    /// The scene of the first check that failed as this proof needs: none
-    /// until `checks` hold that failure.
-    pub fn failed_on(self, checks: &[CheckResult]) -> Option<&str> {
-        checks
-            .iter()
-            .find(|c| !c.passed && (self == Proof::Failed || c.hinted))
-            .map(|c| c.scene.as_str())
-    }
-
-    /// What the proof needs, for the `skip` lines.
-    fn needs(self) -> &'static str {
-        match self {
-            Proof::Failed => "a failed check",
-            Proof::FailedWithCause => "a failed check with its likely cause",
-        }
-    }
-}
-
-/// One check's outcome (the JSON's `checks`).
-#[derive(Clone, Debug, Serialize)]
-pub struct CheckResult {
-    pub scene: String,
-    pub hidden: bool,
-    pub metric: String,
-    pub measured: Option<f64>,
-    pub target: Option<f64>,
-    /// `"<= 0.42 (slope_hw 0.32 + 0.1)"`.
-    pub target_text: String,
-    pub passed: bool,
-    /// The likely cause, when it failed.
-    pub feedback: Option<String>,
-    /// Whether `feedback` came from one of the exercise's hints.
-    pub hinted: bool,
-    pub diff_image: Option<String>,
-    /// How the run on this scene ended.
-    pub status: RunStatus,
-}
-
-/// One exercise's grade: the grader's JSON has one per exercise.
-#[derive(Clone, Debug, Serialize)]
-pub struct ExerciseResult {
-    pub lesson: String,
-    pub exercise: String,
-    pub title: String,
-    pub passed: bool,
-    /// `did_not_finish` or `crashed` when a run of it did, else `finished`.
-    pub status: RunStatus,
-    /// The deciding check: the first that failed, else the first.
-    pub metric: String,
-    pub scene: String,
-    pub measured: Option<f64>,
-    pub target: Option<f64>,
-    /// One line: pass, or the likely cause of the failure.
-    pub feedback: String,
-    pub diff_image: Option<String>,
-    /// The chapter section to reread.
-    pub section: String,
-    pub task: String,
-    pub checks: Vec<CheckResult>,
-    /// Scenes not graded, each with why: hidden scenes the lesson itself
-    /// refuses (its own line), and, under a `--check-*` flag, the scenes
-    /// after the one where the exercise failed as the check needs.
-    pub skipped_scenes: Vec<String>,
-    /// The adapter and backend the runs used (`"llvmpipe (LLVM 15.0.6,
-    /// 256 bits)"`, `"Vulkan"`); empty when nothing ran.
-    pub adapter: String,
-    pub backend: String,
-    /// The snapshot text (mask, error figures, counters) on the spec's
-    /// scenes; `tests/exercises.rs` compares it with the one recorded from
-    /// the reference solution on the same backend.
-    #[serde(skip)]
-    pub snapshot: String,
-}
-
 /// The scene files of `--scenes DIR` that apply to `lesson`.
 pub fn hidden_scenes(dir: &Path, lesson: &str) -> Result<Vec<PathBuf>> {
     let mut found = Vec::new();
@@ -143,77 +58,6 @@ pub fn hidden_scenes(dir: &Path, lesson: &str) -> Result<Vec<PathBuf>> {
     }
     found.sort();
     Ok(found)
-}
-
-/// A run's variant by name.
-fn variant<'a>(report: &'a Value, name: &str) -> Option<&'a Value> {
-    report["variants"]
-        .as_array()?
-        .iter()
-        .find(|v| v["name"] == name)
-}
-
-/// A metric of a variant: an error figure, `counters.<name>` or
-/// `camera_path.<name>` (on a scene with a `[camera_path]`).
-fn metric(report: &Value, variant_name: &str, metric: &str) -> Option<f64> {
-    let v = variant(report, variant_name)?;
-    match metric.split_once('.') {
-        Some(("counters", c)) => v["counters"][c].as_f64(),
-        Some(("camera_path", c)) => v["camera_path"][c].as_f64(),
-        _ => v["error"][metric].as_f64(),
-    }
-}
-
-/// ` ±B`: how far figure `field` of `variant_name` may move on another
-/// adapter, as the run measured it (report.json's `fragile.bounds`, times
-/// `scale`, rounded up to two decimals); empty when it measured none.
-fn bound(report: &Value, variant_name: &str, field: &str, scale: f64) -> String {
-    variant(report, variant_name)
-        .and_then(|v| v["fragile"]["bounds"][field].as_f64())
-        .map_or(String::new(), |b| {
-            format!(
-                " ±{:.2}",
-                (b * scale * 100.0 - 1e-9).ceil().max(0.0) / 100.0
-            )
-        })
-}
-
-/// Prints a figure with as many decimals as small figures need.
-pub fn fmt(x: f64) -> String {
-    if x == x.trunc() && x.abs() < 1e15 {
-        format!("{x:.0}")
-    } else if x.abs() >= 100.0 {
-        format!("{x:.1}")
-    } else if x.abs() >= 0.1 {
-        format!("{x:.2}")
-    } else {
-        format!("{x:.4}")
-    }
-}
-
-/// Resolves a target on one run: its number and how it reads.
-fn resolve(t: &Target, report: &Value, metric_name: &str) -> Option<(f64, String)> {
-    let op = match t.side {
-        Side::AtMost => "<=",
-        Side::AtLeast => ">=",
-    };
-    match (t.value, t.variant) {
-        (Some(v), _) => Some((v, format!("{op} {}", fmt(v)))),
-        (None, Some(name)) => {
-            let base = metric(report, name, metric_name)?;
-            let v = base * t.factor + t.slack;
-            let mut text = format!("{op} {} ({name} {}", fmt(v), fmt(base));
-            if t.factor != 1.0 {
-                text += &format!(" x {}", fmt(t.factor));
-            }
-            if t.slack != 0.0 {
-                text += &format!(" + {}", fmt(t.slack));
-            }
-            text.push(')');
-            Some((v, text))
-        }
-        (None, None) => None,
-    }
 }
 
 /// The likely cause: of the hints whose condition holds on this run (of
@@ -589,85 +433,4 @@ pub fn grade_lesson(
         results.push(grade_exercise(runner, opts, lesson, ex)?);
     }
     Ok(results)
-}
-
-/// The lines a student reads for one exercise.
-pub fn describe(r: &ExerciseResult) -> String {
-    let verdict = match (r.passed, r.status) {
-        (true, _) => "PASS",
-        (false, RunStatus::DidNotFinish) => "FAIL (did not finish)",
-        (false, RunStatus::Crashed) => "FAIL (crashed)",
-        (false, RunStatus::Finished) => "FAIL",
-    };
-    let mut s = format!("{verdict} {} {}: {}\n", r.lesson, r.exercise, r.title);
-    if !r.passed {
-        s += &format!("     task: {}\n", r.task);
-    }
-    for c in &r.checks {
-        let mark = if c.passed { "ok  " } else { "FAIL" };
-        let hidden = if c.hidden { " (hidden scene)" } else { "" };
-        s += &format!(
-            "  {mark} {}{hidden}: {} {} (target {})\n",
-            c.scene,
-            c.metric,
-            c.measured.map_or("not measured".into(), fmt),
-            c.target_text
-        );
-        if let Some(f) = &c.feedback {
-            s += &format!("       likely cause: {f}\n");
-        }
-        if let (false, Some(d)) = (c.passed, &c.diff_image) {
-            s += &format!("       diff image (red: false shadow, green: false lit): {d}\n");
-        }
-    }
-    for k in &r.skipped_scenes {
-        s += &format!("  skip {k}\n");
-    }
-    if !r.passed {
-        s += &format!("     reread: {}\n", r.section);
-    }
-    s
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn check(passed: bool, hinted: bool) -> CheckResult {
-        CheckResult {
-            scene: "default".into(),
-            hidden: false,
-            metric: "misclassified_pct".into(),
-            measured: Some(1.0),
-            target: Some(0.5),
-            target_text: "<= 0.5".into(),
-            passed,
-            feedback: hinted.then(|| "a cause".into()),
-            hinted,
-            diff_image: None,
-            status: RunStatus::Finished,
-        }
-    }
-
-    /// A copy check stops at any failure; a starter's or a half-right
-    /// answer's only at one whose hint names the cause; passes prove
-    /// nothing.
-    #[test]
-    fn each_check_stops_at_the_failure_it_needs() {
-        let passed = [check(true, false), check(true, false)];
-        let unhinted = [check(true, false), check(false, false)];
-        let hinted = [check(false, false), check(false, true)];
-        for (checks, failed, with_cause) in [
-            (&passed[..], false, false),
-            (&unhinted[..], true, false),
-            (&hinted[..], true, true),
-            (&[][..], false, false),
-        ] {
-            assert_eq!(Proof::Failed.failed_on(checks).is_some(), failed);
-            assert_eq!(
-                Proof::FailedWithCause.failed_on(checks).is_some(),
-                with_cause
-            );
-        }
-    }
 }

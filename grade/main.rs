@@ -23,8 +23,10 @@
 
 use common::run::runner;
 
+mod figures;
 mod grading;
 mod outcome;
+mod results;
 mod spec;
 
 use std::path::{Path, PathBuf};

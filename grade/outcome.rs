@@ -3,24 +3,10 @@
 //! the lesson; the student's line for each, naming the file to fix.
 //! Shared by the `grade` binary and `tests/exercises.rs`, with `grading`.
 
-use serde::Serialize;
-
-use crate::grading::{fmt, CheckResult};
+use crate::figures::fmt;
+use crate::results::{CheckResult, RunStatus};
 use crate::runner::RunError;
 use crate::spec::{Check, Exercise};
-
-/// How a run of the exercise ended (the JSON's `status`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum RunStatus {
-    /// It ran to its end: graded on its figures, or refused by the lesson.
-    Finished,
-    /// Stopped at the time limit (`grade --time-limit`), or by the
-    /// lesson's GPU watchdog: a loop that never ends?
-    DidNotFinish,
-    /// A panic, a signal, or out of memory.
-    Crashed,
-}
 
 /// The file a student fixes for `task` (`"write slope_bias() in
 /// shaders/lesson_02/exercises.wgsl"`): the path it names, else the

@@ -12,6 +12,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
+use common::measure::counters::Counter;
 use serde::Deserialize;
 
 /// One chapter's exercises.
@@ -222,15 +223,26 @@ const ERROR_METRICS: [&str; 8] = [
 /// Whether `metric` is an error figure, `counters.<name>` or
 /// `camera_path.<name>` (measured on a scene with a `[camera_path]`).
 fn check_metric(metric: &str, at: &str) -> Result<()> {
+    if let Some(name) = metric.strip_prefix("counters.") {
+        return check_counter(name, &format!("{at}: metric"));
+    }
     let ok = ERROR_METRICS.contains(&metric)
-        || ["counters.", "camera_path."]
-            .iter()
-            .any(|p| metric.strip_prefix(p).is_some_and(|c| !c.is_empty()));
+        || metric
+            .strip_prefix("camera_path.")
+            .is_some_and(|c| !c.is_empty());
     if !ok {
         bail!(
             "{at}: metric {metric:?} is not one of {}, counters.<name> or camera_path.<name>",
             ERROR_METRICS.join(", ")
         );
+    }
+    Ok(())
+}
+
+/// Whether `name` is a counter a lesson reports (`common::measure::counters`).
+fn check_counter(name: &str, at: &str) -> Result<()> {
+    if Counter::named(name).is_none() {
+        bail!("{at}: {name:?} is not a counter (common/src/measure/counters.rs lists them)");
     }
     Ok(())
 }
@@ -287,6 +299,9 @@ impl Spec {
             }
             if ex.checks.is_empty() {
                 bail!("{at}: no [[exercise.check]]");
+            }
+            for c in &ex.snapshot_counters {
+                check_counter(c, &format!("{at}: snapshot_counters"))?;
             }
             if !ex.checks.iter().any(|c| c.hidden) {
                 bail!("{at}: no check has hidden = true, so hidden scenes would grade nothing");

@@ -4,7 +4,7 @@
 //! and its `Lesson` impl) and the technique's own modules, declared in its
 //! `mod.rs`. A later lesson uses an earlier lesson's technique from here
 //! (lesson 06 uses `lesson_05::silhouette`), never a copy of it, and never
-//! the other way round (`tests/layout.rs` checks). What no chapter teaches
+//! the other way round (`tests/layout/` checks). What no chapter teaches
 //! (the GPU context, scenes, render targets, the runners, measurement) is
 //! in the `common` crate.
 
@@ -139,7 +139,7 @@ macro_rules! exercise {
 
 /// A lesson binary's `main`: checks [`EXERCISES_ENV`] (one line and exit
 /// code 2 if it names no set of this build), then runs the lesson.
-pub fn lesson_main<L: common::run::lesson::Lesson>() -> std::process::ExitCode {
+pub fn lesson_main<L: common::run::instruments::Instruments>() -> std::process::ExitCode {
     // In a web page (the web build): the window on the page's canvas.
     #[cfg(target_arch = "wasm32")]
     {

@@ -18,6 +18,7 @@
 //! Pure std and the generator's own modules; no GPU. The scanner is tested
 //! on in-memory text first.
 
+use common::measure::counters::TEXELS_READ;
 use generator::claims;
 use generator::prose;
 use generator::record;
@@ -521,7 +522,7 @@ fn claims_are_evaluated_on_numbers_and_spreads() {
 #[test]
 fn the_scanner_finds_unclaimed_comparisons() {
     let vocabulary = Vocabulary {
-        names: ["vsm", "texels_read"]
+        names: ["vsm", TEXELS_READ.name]
             .iter()
             .map(|s| s.to_string())
             .collect(),

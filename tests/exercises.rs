@@ -16,12 +16,18 @@ use common::run::runner;
 #[path = "../grade/spec.rs"]
 mod spec;
 
+#[path = "../grade/figures.rs"]
+mod figures;
 #[path = "../grade/grading.rs"]
 mod grading;
 #[path = "../grade/outcome.rs"]
 mod outcome;
+#[path = "../grade/results.rs"]
+mod results;
 
 use std::path::{Path, PathBuf};
+
+use common::measure::counters::DRAWS;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -348,4 +354,45 @@ fn every_copy_names_the_listing_it_copies() {
         }
     }
     assert!(errors.is_empty(), "{}", errors.join("\n"));
+}
+
+/// A spec's counters are the lessons' own (`common::measure::counters`): a
+/// misspelt one in `snapshot_counters` or a check's `metric` is refused in
+/// one line naming the file, the field and the name, before any run.
+#[test]
+fn a_spec_names_only_real_counters() {
+    let path = spec::Spec::path(&root(), "lesson_04");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let real = format!("\"{}\"", DRAWS.name);
+    assert!(text.contains(&real), "lesson 04's spec snapshots its draws");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("misspelt_counter");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scenes = root().join("scenes");
+    let cases = [
+        (text.replacen(&real, "\"drawz\"", 1), "snapshot_counters"),
+        (
+            text.replacen("metric = \"", "metric = \"counters.drawz\" #", 1),
+            "metric",
+        ),
+    ];
+    for (i, (bad, field)) in cases.iter().enumerate() {
+        let file = dir.join(format!("exercises_{i}.toml"));
+        std::fs::write(&file, bad).unwrap();
+        let e = match spec::Spec::load(&file, &scenes) {
+            Ok(_) => panic!("{}: a misspelt counter was accepted", file.display()),
+            Err(e) => format!("{e:#}"),
+        };
+        for part in [
+            &file.display().to_string(),
+            *field,
+            "\"drawz\" is not a counter",
+        ] {
+            assert!(e.contains(part), "{e}: should name {part}");
+        }
+        assert_eq!(e.lines().count(), 1, "{e}");
+    }
+    assert!(
+        spec::Spec::load(&path, &scenes).is_ok(),
+        "the real spec loads"
+    );
 }

@@ -34,6 +34,9 @@ use generator::taps;
 
 use std::path::{Path, PathBuf};
 
+use common::measure::counters::{
+    CASTERS_DRAWN, DRAWS, FILTER_TAPS, SHADOW_FRAGMENTS, SHADOW_TEXELS_WRITTEN,
+};
 use record::Record;
 
 const REGENERATE: &str = "regenerate with `cargo run --release --bin workbook -- book`";
@@ -538,7 +541,7 @@ fn reproduce(lesson: &str) {
                 lesson09::shimmer_table(&fresh),
             ),
             (
-                "cascades",
+                "cascades", // not a counter: lesson 09's cascades table
                 lesson09::cascades_table(&rec),
                 lesson09::cascades_table(&fresh),
             ),
@@ -621,10 +624,10 @@ fn h100_default_scenes_are_within_tolerance_of_the_records() {
         // and fragments are checked on lavapipe only.
         let culled: &[&str] = match lesson.as_str() {
             "lesson_09" => &[
-                "draws",
-                "casters_drawn",
-                "shadow_fragments",
-                "shadow_texels_written",
+                DRAWS.name,
+                CASTERS_DRAWN.name,
+                SHADOW_FRAGMENTS.name,
+                SHADOW_TEXELS_WRITTEN.name,
             ],
             _ => &[],
         };
@@ -861,7 +864,7 @@ fn h200_2026_11_27_drift_failures_are_within_todays_tolerances() {
         // constant; a figure of an override takes the larger of its bound
         // and the override (`support::tolerance::compare`).
         let now = match f.key.as_str() {
-            "pixels" | "filter_taps" => {
+            k if k == "pixels" || k == FILTER_TAPS.name => {
                 f.allowed + tolerance_of(Class::DepthTested, "", &variant).allowed(a, b, 0.0)
             }
             key => f.allowed.max(

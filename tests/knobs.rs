@@ -6,6 +6,11 @@
 //! Small runs (320×180, one frame) on the default scenes: the whole file
 //! takes seconds on lavapipe. Run with `-- --nocapture` to see the figures.
 
+use common::measure::counters::{
+    CASCADES, FILTER_TAPS_PER_PIXEL, SCISSOR_PIXELS, SHADOW_FRAGMENTS, SHADOW_MAP_SIZE,
+    SHADOW_TEXELS_WRITTEN, STENCIL_FRAGMENTS, TAPS, TEXELS_READ, TEXEL_UM_U, VOLUME_FRAGMENTS,
+    VOLUME_TRIANGLES,
+};
 use support::LessonRun;
 
 const L01: &str = env!("CARGO_BIN_EXE_lesson_01");
@@ -53,8 +58,8 @@ fn knobs_lesson_01_map_size_shrinks_the_texel_not_the_acne() {
     assert_eq!(knob(&small, "res_256", "map_size_log2"), 8.0);
     assert_eq!(knob(&big, "res_256", "map_size_log2"), 12.0);
     let c = |r: &LessonRun, k| support::counter(&r.report, "res_256", k) as f64;
-    let texel = c(&small, "texel_um_u") / c(&big, "texel_um_u");
-    let fragments = c(&big, "shadow_fragments") / c(&small, "shadow_fragments");
+    let texel = c(&small, TEXEL_UM_U.name) / c(&big, TEXEL_UM_U.name);
+    let fragments = c(&big, SHADOW_FRAGMENTS.name) / c(&small, SHADOW_FRAGMENTS.name);
     let (fs, fl) = (
         [&small, &big].map(|r| err(r, "res_256", "false_shadow_pct")),
         [&small, &big].map(|r| err(r, "res_256", "false_lit_pct")),
@@ -176,7 +181,7 @@ fn knobs_lesson_02_hardware_bias_at_zero_is_acne_again() {
         fs > 40.0,
         "slope_hw without its bias: false shadow {fs:.3}%"
     );
-    let texels = |v| support::counter(&off.report, v, "shadow_texels_written");
+    let texels = |v| support::counter(&off.report, v, SHADOW_TEXELS_WRITTEN.name);
     assert_eq!(
         texels("slope_hw"),
         texels("none"),
@@ -205,13 +210,13 @@ fn knobs_lesson_03_wider_kernel_widens_the_penumbra() {
         };
         assert_eq!(knob(&run, "pcf_3x3", "kernel_radius"), r as f64);
         let n = 2 * r as u64 + 1;
-        assert_eq!(support::counter(&run.report, "pcf_3x3", "taps"), n * n);
+        assert_eq!(support::counter(&run.report, "pcf_3x3", TAPS.name), n * n);
         assert_eq!(
-            support::counter(&run.report, "pcf_3x3", "filter_taps_per_pixel"),
+            support::counter(&run.report, "pcf_3x3", FILTER_TAPS_PER_PIXEL.name),
             n * n
         );
         assert_eq!(
-            support::counter(&run.report, "pcf_3x3", "texels_read"),
+            support::counter(&run.report, "pcf_3x3", TEXELS_READ.name),
             n * n
         );
         let mean = err(&run, "pcf_3x3", "mean_abs");
@@ -282,7 +287,7 @@ fn knobs_lesson_09_cascades_and_lambda() {
         return;
     };
     let base_mis = err(&base, "k4", "misclassified_pct");
-    assert_eq!(knob(&base, "k4", "cascades"), 4.0);
+    assert_eq!(knob(&base, "k4", "cascades"), 4.0); // not a counter: the knob
     assert_eq!(knob(&base, "k4", "split_lambda"), 0.9);
     let mut by_count = vec![];
     for k in [1u64, 2] {
@@ -296,10 +301,13 @@ fn knobs_lesson_09_cascades_and_lambda() {
             return;
         };
         let v = support::variant(&run.report, "k4");
-        assert_eq!(knob(&run, "k4", "cascades"), k as f64);
-        assert_eq!(support::counter(&run.report, "k4", "cascades"), k);
+        assert_eq!(knob(&run, "k4", "cascades"), k as f64); // not a counter: the knob
+        assert_eq!(support::counter(&run.report, "k4", CASCADES.name), k);
         let size = (2048.0 * 2048.0 / k as f64).sqrt().floor() as u64;
-        assert_eq!(support::counter(&run.report, "k4", "shadow_map_size"), size);
+        assert_eq!(
+            support::counter(&run.report, "k4", SHADOW_MAP_SIZE.name),
+            size
+        );
         let classes = v["classes"].as_array().expect("k4's classes");
         assert_eq!(classes.len() as u64, k, "one error class per cascade");
         by_count.push(err(&run, "k4", "misclassified_pct"));
@@ -371,10 +379,10 @@ fn knobs_lesson_08_toggles_cut_work_not_pixels() {
     assert_eq!(knob(&all_on, "unbounded", "scissor"), 1.0);
     assert_eq!(knob(&all_off, "cull_bounds_scissor", "depth_bounds"), 0.0);
     let keys = [
-        "volume_triangles",
-        "volume_fragments",
-        "stencil_fragments",
-        "scissor_pixels",
+        VOLUME_TRIANGLES.name,
+        VOLUME_FRAGMENTS.name,
+        STENCIL_FRAGMENTS.name,
+        SCISSOR_PIXELS.name,
     ];
     for (run, v, like) in [
         (&all_on, "unbounded", "cull_bounds_scissor"),
@@ -397,7 +405,7 @@ fn knobs_lesson_08_toggles_cut_work_not_pixels() {
             "{v}: the pixels must not change: {a} != {b}"
         );
     }
-    let frags = |v| support::counter(&named.report, v, "volume_fragments");
+    let frags = |v| support::counter(&named.report, v, VOLUME_FRAGMENTS.name);
     assert!(
         frags("cull_bounds_scissor") * 2 < frags("unbounded"),
         "the limits must cut the fragments"

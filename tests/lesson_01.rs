@@ -3,6 +3,9 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
+use common::measure::counters::{
+    DRAWS, FILTER_TAPS_PER_PIXEL, SHADOW_FRAGMENTS, TEXEL_UM_U, TEXEL_UM_V,
+};
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_01");
 const SIZE: [&str; 4] = ["--width", "320", "--height", "180"];
 
@@ -45,11 +48,11 @@ fn lesson_01_snapshot() {
     text += &support::counter_lines(
         &run.report,
         &[
-            "draws",
-            "filter_taps_per_pixel",
-            "shadow_fragments",
-            "texel_um_u",
-            "texel_um_v",
+            DRAWS.name,
+            FILTER_TAPS_PER_PIXEL.name,
+            SHADOW_FRAGMENTS.name,
+            TEXEL_UM_U.name,
+            TEXEL_UM_V.name,
         ],
     );
     support::tolerance::tolerant(|| {
@@ -100,7 +103,7 @@ fn lesson_01_acne_is_measured_and_edges_improve_with_resolution() {
     // the texels across, a 16th of the texel, and false shadow within a
     // point of where it was.
     let texel = |n: &str| {
-        support::variant(&run.report, n)["counters"]["texel_um_u"]
+        support::variant(&run.report, n)["counters"][TEXEL_UM_U.name]
             .as_u64()
             .expect("counters.texel_um_u") as f64
     };

@@ -13,6 +13,9 @@
 mod lesson_02_closer;
 
 use common::glam::DVec3;
+use common::measure::counters::{
+    CASTERS_DRAWN, DRAWS, FILTER_TAPS_PER_PIXEL, SHADOW_FRAGMENTS, SHADOW_MAP_SIZE,
+};
 use common::scene::camera::light_view_proj;
 use common::scene::Scene;
 use lesson_02_closer::{gpu, map_size, Closer};
@@ -66,7 +69,11 @@ fn lesson_02_snapshot() {
     }
     text += &support::counter_lines(
         &run.report,
-        &["draws", "filter_taps_per_pixel", "shadow_fragments"],
+        &[
+            DRAWS.name,
+            FILTER_TAPS_PER_PIXEL.name,
+            SHADOW_FRAGMENTS.name,
+        ],
     );
     support::tolerance::tolerant(|| {
         insta::assert_snapshot!(
@@ -513,6 +520,6 @@ fn lesson_02_writes_every_output() {
             "timing_ms.{k} missing"
         );
     }
-    assert_eq!(v["counters"]["shadow_map_size"], 1024);
-    assert!(v["counters"]["casters_drawn"].as_u64().unwrap() >= 4);
+    assert_eq!(v["counters"][SHADOW_MAP_SIZE.name], 1024);
+    assert!(v["counters"][CASTERS_DRAWN.name].as_u64().unwrap() >= 4);
 }

@@ -5,6 +5,11 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
+use common::measure::counters::{
+    DRAWS, FILTER_TAPS, FILTER_TAPS_PER_PIXEL, FULL_DISK_PIXELS, PROBED_PIXELS, SHADOW_FRAGMENTS,
+    TAPS, TEXELS_READ,
+};
+
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_03");
 /// The variant with the fewest misclassified pixels on the default scene.
 const BEST: &str = "poisson_16";
@@ -53,8 +58,8 @@ fn lesson_03_snapshot() {
         let name = v["name"].as_str().unwrap();
         text += &format!(
             "{name:<14} taps {:>2}  texels {:>2}  misclassified {:>5.2}%{}  mean |dV| {:>4.1}%{}\n",
-            support::counter(&run.report, name, "taps"),
-            support::counter(&run.report, name, "texels_read"),
+            support::counter(&run.report, name, TAPS.name),
+            support::counter(&run.report, name, TEXELS_READ.name),
             support::error(&run.report, name, "misclassified_pct"),
             support::bound(v, "misclassified_pct", 1.0, 2),
             100.0 * support::error(&run.report, name, "mean_abs"),
@@ -63,7 +68,11 @@ fn lesson_03_snapshot() {
     }
     text += &support::counter_lines(
         &run.report,
-        &["draws", "filter_taps_per_pixel", "shadow_fragments"],
+        &[
+            DRAWS.name,
+            FILTER_TAPS_PER_PIXEL.name,
+            SHADOW_FRAGMENTS.name,
+        ],
     );
     support::tolerance::tolerant(|| {
         insta::assert_snapshot!(
@@ -119,8 +128,8 @@ fn lesson_03_taps_error_and_time() {
     for (v, taps, texels) in expect {
         assert_eq!(
             (
-                support::counter(&run.report, v, "taps"),
-                support::counter(&run.report, v, "texels_read")
+                support::counter(&run.report, v, TAPS.name),
+                support::counter(&run.report, v, TEXELS_READ.name)
             ),
             (taps, texels),
             "{v}"
@@ -285,9 +294,9 @@ fn lesson_03_adaptive_filter_decides_most_pixels_with_four_taps() {
         return;
     };
     let v = "poisson_16_adaptive";
-    let probed = support::counter(&run.report, v, "probed_pixels");
-    let full = support::counter(&run.report, v, "full_disk_pixels");
-    let taps = support::counter(&run.report, v, "filter_taps");
+    let probed = support::counter(&run.report, v, PROBED_PIXELS.name);
+    let full = support::counter(&run.report, v, FULL_DISK_PIXELS.name);
+    let taps = support::counter(&run.report, v, FILTER_TAPS.name);
     assert!(probed > 10_000, "{v}: the lit pass probed {probed} pixels");
     assert_eq!(taps, 4 * probed + 16 * full, "{v}: filter_taps");
     let share = full as f64 / probed as f64;

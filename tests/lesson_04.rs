@@ -6,6 +6,11 @@
 
 use std::path::Path;
 
+use common::measure::counters::{
+    CASTER_DRAWS, DRAWS, FACES_RENDERED, FILTER_TAPS_PER_PIXEL, SHADOW_FRAGMENTS,
+    SHADOW_TEXELS_WRITTEN, SLOPE_BIAS_MILLITEXELS, UNCLIPPED_DEPTH,
+};
+
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_04");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
@@ -80,12 +85,12 @@ fn lesson_04_snapshot() {
             "{}  mean |dV| {:.2}%  faces {}  draws {}  slope {}\n",
             support::error_line(v, 2),
             100.0 * v["error"]["mean_abs"].as_f64().unwrap_or(f64::NAN),
-            c["faces_rendered"],
-            c["caster_draws"],
-            c["slope_bias_millitexels"].as_u64().unwrap_or(0) as f64 / 1000.0
+            c[FACES_RENDERED.name],
+            c[CASTER_DRAWS.name],
+            c[SLOPE_BIAS_MILLITEXELS.name].as_u64().unwrap_or(0) as f64 / 1000.0
         );
     }
-    text += &support::counter_lines(&run.report, &["draws", "filter_taps_per_pixel"]);
+    text += &support::counter_lines(&run.report, &[DRAWS.name, FILTER_TAPS_PER_PIXEL.name]);
     support::tolerance::tolerant(|| {
         insta::assert_snapshot!(
             "lesson_04",
@@ -93,9 +98,12 @@ fn lesson_04_snapshot() {
         )
     });
     // 3D PCF's raised slope bias is a reported parameter, not a silent one.
-    assert_eq!(counter(&run, "pcf3d_1024", "slope_bias_millitexels"), 2500);
     assert_eq!(
-        counter(&run, "pcf3d_slope1_1024", "slope_bias_millitexels"),
+        counter(&run, "pcf3d_1024", SLOPE_BIAS_MILLITEXELS.name),
+        2500
+    );
+    assert_eq!(
+        counter(&run, "pcf3d_slope1_1024", SLOPE_BIAS_MILLITEXELS.name),
         1000
     );
     // Done-when: the best variant is within 1% of the exact reference.
@@ -131,12 +139,12 @@ fn lesson_04_culling_changes_no_pixel_and_draws_less() {
         "culled and unculled visibility differ in {differ} pixels"
     );
     let (f, d) = (
-        counter(&run, "linear_1024", "faces_rendered"),
-        counter(&run, "linear_1024", "caster_draws"),
+        counter(&run, "linear_1024", FACES_RENDERED.name),
+        counter(&run, "linear_1024", CASTER_DRAWS.name),
     );
     let (nf, nd) = (
-        counter(&run, "nocull_1024", "faces_rendered"),
-        counter(&run, "nocull_1024", "caster_draws"),
+        counter(&run, "nocull_1024", FACES_RENDERED.name),
+        counter(&run, "nocull_1024", CASTER_DRAWS.name),
     );
     assert_eq!(nf, 6, "unculled renders all six faces");
     assert!(
@@ -148,20 +156,20 @@ fn lesson_04_culling_changes_no_pixel_and_draws_less() {
     // writes exactly the same texels: what culling leaves out writes nothing.
     let c = |v, k| counter(&run, v, k);
     assert!(
-        c("nocull_1024", "draws") > c("linear_1024", "draws"),
+        c("nocull_1024", DRAWS.name) > c("linear_1024", DRAWS.name),
         "draws: unculled {} vs culled {}",
-        c("nocull_1024", "draws"),
-        c("linear_1024", "draws")
+        c("nocull_1024", DRAWS.name),
+        c("linear_1024", DRAWS.name)
     );
     assert!(
-        c("nocull_1024", "shadow_fragments") > c("linear_1024", "shadow_fragments"),
+        c("nocull_1024", SHADOW_FRAGMENTS.name) > c("linear_1024", SHADOW_FRAGMENTS.name),
         "shadow fragments: unculled {} vs culled {}",
-        c("nocull_1024", "shadow_fragments"),
-        c("linear_1024", "shadow_fragments")
+        c("nocull_1024", SHADOW_FRAGMENTS.name),
+        c("linear_1024", SHADOW_FRAGMENTS.name)
     );
     assert_eq!(
-        c("nocull_1024", "shadow_texels_written"),
-        c("linear_1024", "shadow_texels_written"),
+        c("nocull_1024", SHADOW_TEXELS_WRITTEN.name),
+        c("linear_1024", SHADOW_TEXELS_WRITTEN.name),
         "culling left out casters that write texels"
     );
 }
@@ -240,7 +248,7 @@ fn lesson_04_caster_inside_the_near_plane() {
             lost >= 5.0,
             "{v} clips at its source's near plane and should lose the near caster's shadow, false lit {lost}%"
         );
-        assert_eq!(counter(&run, v, "unclipped_depth"), 0, "{v}");
+        assert_eq!(counter(&run, v, UNCLIPPED_DEPTH.name), 0, "{v}");
     }
     for v in ["linear_1024", "depth_1024"] {
         let e = pct(&run, v, "misclassified_pct");

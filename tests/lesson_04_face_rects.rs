@@ -15,6 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
+use common::measure::counters::{FACES_RENDERED, SHADOW_FRAGMENTS, SHADOW_TEXELS_SCISSORED};
 use support::LessonRun;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_04");
@@ -203,24 +204,27 @@ fn lesson_04_face_rects_draw_less_and_count_it() {
     for v in VARIANTS {
         let size: u64 = if v == "linear_256" { 256 } else { 1024 };
         let c = |r: &LessonRun, k| counter(r, v, k);
-        let faces = (c(&on, "faces_rendered"), c(&off, "faces_rendered"));
+        let faces = (c(&on, FACES_RENDERED.name), c(&off, FACES_RENDERED.name));
         assert_eq!(
             faces,
             (1, 1),
             "{v}: the bars reach only the face below the light"
         );
         assert_eq!(
-            c(&off, "shadow_texels_scissored"),
+            c(&off, SHADOW_TEXELS_SCISSORED.name),
             size * size,
             "{v}: a whole face without the scissor"
         );
-        let admitted = c(&on, "shadow_texels_scissored");
+        let admitted = c(&on, SHADOW_TEXELS_SCISSORED.name);
         assert!(
             admitted > 0 && 3 * admitted < size * size,
             "{v}: {admitted} texels admitted of a face's {}",
             size * size
         );
-        let (fragments, fragments_off) = (c(&on, "shadow_fragments"), c(&off, "shadow_fragments"));
+        let (fragments, fragments_off) = (
+            c(&on, SHADOW_FRAGMENTS.name),
+            c(&off, SHADOW_FRAGMENTS.name),
+        );
         assert!(
             fragments < fragments_off,
             "{v}: shadow_fragments {fragments} scissored, {fragments_off} whole: the counting passes are not scissored"
@@ -246,7 +250,7 @@ fn lesson_04_face_rects_draw_less_and_count_it() {
     ) else {
         return;
     };
-    let faces = |r: &LessonRun| counter(r, "depth_1024", "faces_rendered");
+    let faces = |r: &LessonRun| counter(r, "depth_1024", FACES_RENDERED.name);
     assert_eq!(
         (faces(&on), faces(&off)),
         (1, 2),

@@ -7,6 +7,10 @@ mod depth_formats;
 
 use std::path::Path;
 
+use common::measure::counters::{
+    DRAWS, EDGES_TESTED, SILHOUETTE_EDGES, STENCIL_UPDATES, VOLUME_FRAGMENTS, VOLUME_TRIANGLES,
+};
+
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_05");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
@@ -39,7 +43,7 @@ fn lesson_05_snapshot() {
     }
     text += &support::counter_lines(
         &run.report,
-        &["draws", "volume_triangles", "volume_fragments"],
+        &[DRAWS.name, VOLUME_TRIANGLES.name, VOLUME_FRAGMENTS.name],
     );
     support::tolerance::tolerant(|| {
         insta::assert_snapshot!(
@@ -180,12 +184,12 @@ pub fn same_as(run: &support::LessonRun, a: &str, b: &str) {
     }
     assert!(compared >= 3, "{a}: only {compared} images compared");
     for key in [
-        "volume_fragments",
-        "stencil_updates",
-        "volume_triangles",
-        "draws",
-        "silhouette_edges",
-        "edges_tested",
+        VOLUME_FRAGMENTS.name,
+        STENCIL_UPDATES.name,
+        VOLUME_TRIANGLES.name,
+        DRAWS.name,
+        SILHOUETTE_EDGES.name,
+        EDGES_TESTED.name,
     ] {
         let (x, y) = (
             support::counter(&run.report, a, key),
@@ -193,7 +197,7 @@ pub fn same_as(run: &support::LessonRun, a: &str, b: &str) {
         );
         assert_eq!(x, y, "{key}: {a} {x}, {b} {y}");
     }
-    assert!(support::counter(&run.report, a, "silhouette_edges") > 0);
+    assert!(support::counter(&run.report, a, SILHOUETTE_EDGES.name) > 0);
     let t = &support::variant(&run.report, a)["timing_ms"];
     assert!(
         t["extrude"].as_f64().is_some(),

@@ -5,6 +5,11 @@
 
 mod depth_formats;
 
+use common::measure::counters::{
+    CASTERS_SKIPPED, CASTERS_ZFAIL, CASTERS_ZPASS, DRAWS, OPEN_EDGES, SILHOUETTE_EDGES,
+    STENCIL_UPDATES, VOLUME_FRAGMENTS, VOLUME_TRIANGLES,
+};
+
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_06");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
@@ -33,7 +38,7 @@ fn lesson_06_snapshot() {
     }
     text += &support::counter_lines(
         &run.report,
-        &["draws", "volume_triangles", "volume_fragments"],
+        &[DRAWS.name, VOLUME_TRIANGLES.name, VOLUME_FRAGMENTS.name],
     );
     support::tolerance::tolerant(|| {
         insta::assert_snapshot!(
@@ -97,21 +102,21 @@ fn lesson_06_selective_is_pixel_identical() {
     }
     let c = |v: &str, k: &str| support::variant(&run.report, v)["counters"][k].as_u64();
     assert!(
-        c("zfail_selective", "casters_skipped") >= Some(1),
+        c("zfail_selective", CASTERS_SKIPPED.name) >= Some(1),
         "the knot behind the camera is skipped"
     );
     assert!(
-        c("zfail_selective", "casters_zpass") >= Some(1),
+        c("zfail_selective", CASTERS_ZPASS.name) >= Some(1),
         "some casters use z-pass"
     );
     assert!(
-        c("zfail_selective", "casters_zfail") >= Some(1),
+        c("zfail_selective", CASTERS_ZFAIL.name) >= Some(1),
         "the roof needs z-fail"
     );
     // Fragment counts need PIPELINE_STATISTICS_QUERY (Vulkan); GL omits them.
     if let (Some(all), Some(sel)) = (
-        c("zfail_quads", "volume_fragments"),
-        c("zfail_selective", "volume_fragments"),
+        c("zfail_quads", VOLUME_FRAGMENTS.name),
+        c("zfail_selective", VOLUME_FRAGMENTS.name),
     ) {
         assert!(
             sel < all,
@@ -201,7 +206,7 @@ fn lesson_06_finite_far_open_mesh_eye_in_shadow() {
         zpass > 10.0,
         "the eye must be in shadow: z-pass {zpass:.2}%"
     );
-    assert!(support::counter(&run.report, "zfail_quads", "open_edges") > 0);
+    assert!(support::counter(&run.report, "zfail_quads", OPEN_EDGES.name) > 0);
 }
 
 /// A flat cut-out figure (a generated one-sided star), a spot light, far = 200.
@@ -291,24 +296,30 @@ fn lesson_06_counters_show_work_saved() {
     };
     let c = |v, k| support::counter(&run.report, v, k);
     let (selective, all) = (
-        c("zfail_selective", "volume_fragments"),
-        c("zfail_quads", "volume_fragments"),
+        c("zfail_selective", VOLUME_FRAGMENTS.name),
+        c("zfail_quads", VOLUME_FRAGMENTS.name),
     );
     assert!(
         selective < all,
         "zfail_selective rasterises {selective}, zfail_quads {all}"
     );
     assert!(
-        c("zfail_cpu", "volume_triangles") < c("zfail_quads", "volume_triangles"),
+        c("zfail_cpu", VOLUME_TRIANGLES.name) < c("zfail_quads", VOLUME_TRIANGLES.name),
         "the CPU route submits only silhouettes"
     );
     assert_ne!(
-        c("zpass_quads", "stencil_updates"),
-        c("zfail_quads", "stencil_updates")
+        c("zpass_quads", STENCIL_UPDATES.name),
+        c("zfail_quads", STENCIL_UPDATES.name)
     );
     for v in ["zpass_quads", "zfail_quads", "zfail_selective"] {
-        assert!(c(v, "stencil_updates") <= c(v, "volume_fragments"), "{v}");
-        assert!(c(v, "draws") > 0 && c(v, "volume_triangles") > 0, "{v}");
+        assert!(
+            c(v, STENCIL_UPDATES.name) <= c(v, VOLUME_FRAGMENTS.name),
+            "{v}"
+        );
+        assert!(
+            c(v, DRAWS.name) > 0 && c(v, VOLUME_TRIANGLES.name) > 0,
+            "{v}"
+        );
     }
 }
 
@@ -345,11 +356,11 @@ fn lesson_06_compute_matches_cpu() {
             );
         }
         for key in [
-            "volume_fragments",
-            "stencil_updates",
-            "volume_triangles",
-            "draws",
-            "silhouette_edges",
+            VOLUME_FRAGMENTS.name,
+            STENCIL_UPDATES.name,
+            VOLUME_TRIANGLES.name,
+            DRAWS.name,
+            SILHOUETTE_EDGES.name,
         ] {
             let c = |v| support::counter(&run.report, v, key);
             assert_eq!(c("zfail_compute"), c("zfail_cpu"), "{scene}: {key}");

@@ -5,6 +5,9 @@
 
 mod depth_formats;
 
+use common::measure::counters::{
+    CASTERS_DRAWN, DRAWS, STENCIL_UPDATES, VOLUME_FRAGMENTS, VOLUME_TRIANGLES,
+};
 use depth_formats::DEPTH_FORMATS;
 
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_07");
@@ -60,11 +63,11 @@ fn lesson_07_snapshot() {
     text += &support::counter_lines(
         &run.report,
         &[
-            "draws",
-            "volume_triangles",
-            "casters_drawn",
-            "volume_fragments",
-            "stencil_updates",
+            DRAWS.name,
+            VOLUME_TRIANGLES.name,
+            CASTERS_DRAWN.name,
+            VOLUME_FRAGMENTS.name,
+            STENCIL_UPDATES.name,
         ],
     );
     support::tolerance::tolerant(|| {

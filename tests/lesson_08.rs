@@ -7,6 +7,11 @@ mod depth_formats;
 
 use std::path::Path;
 
+use common::measure::counters::{
+    DRAWS, FRAGMENT_SHADER_INVOCATIONS, LIGHTS_AROUND_CAMERA, LIGHTS_CROSSING_NEAR_PLANE,
+    SCISSOR_PIXELS, STENCIL_FRAGMENTS, STENCIL_UPDATES, VOLUME_FRAGMENTS, VOLUME_TRIANGLES,
+};
+
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_08");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 const VARIANTS: [&str; 6] = [
@@ -62,7 +67,7 @@ fn check_identical_and_cheaper(run: &support::LessonRun) {
             .unwrap();
         assert!(e <= 0.5, "{v}: {e}% misclassified");
     }
-    let f = |v| counter(&run.report, v, "stencil_fragments");
+    let f = |v| counter(&run.report, v, STENCIL_FRAGMENTS.name);
     assert!(
         f("scissor") < f("unbounded"),
         "scissor saves nothing: {} vs {}",
@@ -79,7 +84,7 @@ fn check_identical_and_cheaper(run: &support::LessonRun) {
         f("bounds_scissor") <= f("scissor").min(f("depth_bounds")),
         "both together must save the most"
     );
-    let u = |v| counter(&run.report, v, "stencil_updates");
+    let u = |v| counter(&run.report, v, STENCIL_UPDATES.name);
     assert!(
         u("bounds_scissor") < u("unbounded"),
         "bounds + scissor must write the stencil less: {} vs {}",
@@ -88,7 +93,7 @@ fn check_identical_and_cheaper(run: &support::LessonRun) {
     );
     // The cull leaves out whole casters: never more triangles, and the
     // pixel limits add none.
-    let t = |v| counter(&run.report, v, "volume_triangles");
+    let t = |v| counter(&run.report, v, VOLUME_TRIANGLES.name);
     assert!(t("cull") <= t("unbounded"), "the cull adds triangles");
     assert_eq!(t("cull_bounds_scissor"), t("cull"));
     assert!(f("cull_bounds_scissor") <= f("bounds_scissor"));
@@ -115,12 +120,12 @@ fn lesson_08_snapshot() {
     text += &support::counter_lines(
         &run.report,
         &[
-            "draws",
-            "volume_triangles",
-            "scissor_pixels",
-            "volume_fragments",
-            "stencil_fragments",
-            "stencil_updates",
+            DRAWS.name,
+            VOLUME_TRIANGLES.name,
+            SCISSOR_PIXELS.name,
+            VOLUME_FRAGMENTS.name,
+            STENCIL_FRAGMENTS.name,
+            STENCIL_UPDATES.name,
         ],
     );
     support::tolerance::tolerant(|| {
@@ -140,15 +145,15 @@ fn lesson_08_bounds_and_scissor_keep_pixels_identical() {
     };
     check_identical_and_cheaper(run);
     let (all, both) = (
-        counter(&run.report, "unbounded", "stencil_fragments"),
-        counter(&run.report, "bounds_scissor", "stencil_fragments"),
+        counter(&run.report, "unbounded", STENCIL_FRAGMENTS.name),
+        counter(&run.report, "bounds_scissor", STENCIL_FRAGMENTS.name),
     );
     assert!(
         both * 2 < all,
         "bounds + scissor: {both} of {all} stencil fragments"
     );
     // Each light reaches one or two of the six casters here.
-    let t = |v| counter(&run.report, v, "volume_triangles");
+    let t = |v| counter(&run.report, v, VOLUME_TRIANGLES.name);
     assert!(
         t("cull") * 2 < t("unbounded"),
         "cull: {} of {} volume triangles",
@@ -158,7 +163,7 @@ fn lesson_08_bounds_and_scissor_keep_pixels_identical() {
     // `volume_fragments` is the true rasterised count: with no depth bounds
     // every rasterised fragment reaches the stencil, and the bounds (after
     // rasterisation) do not lower it.
-    let raster = |v| counter(&run.report, v, "volume_fragments");
+    let raster = |v| counter(&run.report, v, VOLUME_FRAGMENTS.name);
     assert_eq!(
         raster("unbounded"),
         all,
@@ -167,12 +172,12 @@ fn lesson_08_bounds_and_scissor_keep_pixels_identical() {
     assert_eq!(raster("depth_bounds"), all, "bounds act after rasterising");
     assert_eq!(
         raster("scissor"),
-        counter(&run.report, "scissor", "stencil_fragments")
+        counter(&run.report, "scissor", STENCIL_FRAGMENTS.name)
     );
     // llvmpipe's pipeline statistics count 16 per 4×4 block shaded.
     let adapter = run.report["adapter"]["name"].as_str().unwrap_or("");
     let inv =
-        &support::variant(&run.report, "unbounded")["counters"]["fragment_shader_invocations"];
+        &support::variant(&run.report, "unbounded")["counters"][FRAGMENT_SHADER_INVOCATIONS.name];
     if let (true, Some(inv)) = (adapter.contains("llvmpipe"), inv.as_u64()) {
         assert!(
             inv % 16 == 0 && inv > all,
@@ -194,11 +199,15 @@ fn lesson_08_light_sphere_crosses_near_plane() {
         return;
     };
     assert_eq!(
-        counter(&run.report, "bounds_scissor", "lights_crossing_near_plane"),
+        counter(
+            &run.report,
+            "bounds_scissor",
+            LIGHTS_CROSSING_NEAR_PLANE.name
+        ),
         1
     );
     assert_eq!(
-        counter(&run.report, "bounds_scissor", "lights_around_camera"),
+        counter(&run.report, "bounds_scissor", LIGHTS_AROUND_CAMERA.name),
         0
     );
     let receivers = support::variant(&run.report, "bounds_scissor")["error_per_light"][0]
@@ -225,12 +234,12 @@ fn lesson_08_camera_inside_light_sphere() {
         return;
     };
     assert_eq!(
-        counter(&run.report, "bounds_scissor", "lights_around_camera"),
+        counter(&run.report, "bounds_scissor", LIGHTS_AROUND_CAMERA.name),
         1
     );
     let full = 320 * 180;
     assert!(
-        counter(&run.report, "scissor", "scissor_pixels") >= full,
+        counter(&run.report, "scissor", SCISSOR_PIXELS.name) >= full,
         "the light around the camera gets the full screen"
     );
     check_identical_and_cheaper(&run);

@@ -6,6 +6,10 @@
 //! Run `cargo insta review` after a change to see what moved.
 
 use common::glam::DVec3;
+use common::measure::counters::{
+    CASCADES, DRAWS, FILTER_TAPS_PER_PIXEL, SHADOW_MAP_SIZE, TEXELS_PER_100M_AT_10M,
+    TEXELS_PER_100M_AT_200M, TEXELS_PER_100M_AT_2M, TEXELS_PER_100M_AT_50M,
+};
 use workbook::lesson_09::cascades::{self, Fit, FitOptions, SplitScheme, ViewFrustum};
 use workbook::lesson_09::setup;
 
@@ -73,10 +77,10 @@ fn lesson_09_snapshot() {
     text += &support::counter_lines(
         &run.report,
         &[
-            "cascades",
-            "shadow_map_size",
-            "draws",
-            "filter_taps_per_pixel",
+            CASCADES.name,
+            SHADOW_MAP_SIZE.name,
+            DRAWS.name,
+            FILTER_TAPS_PER_PIXEL.name,
         ],
     );
     text += "\nshimmer along the scene's camera path (pan, then dolly; 0.01 percentage points):\n";
@@ -88,15 +92,15 @@ fn lesson_09_snapshot() {
     text += "\nperspective aliasing: shadow texels per 100 m at view depth 2, 10, 50, 200 m\n";
     for v in run.report["variants"].as_array().expect("variants") {
         let name = v["name"].as_str().unwrap_or("?");
-        let at: Vec<String> = [2, 10, 50, 200]
-            .iter()
-            .map(|d| {
-                format!(
-                    "{:>4}",
-                    support::counter(&run.report, name, &format!("texels_per_100m_at_{d}m"))
-                )
-            })
-            .collect();
+        let at: Vec<String> = [
+            TEXELS_PER_100M_AT_2M,
+            TEXELS_PER_100M_AT_10M,
+            TEXELS_PER_100M_AT_50M,
+            TEXELS_PER_100M_AT_200M,
+        ]
+        .iter()
+        .map(|c| format!("{:>4}", support::counter(&run.report, name, c.name)))
+        .collect();
         text += &format!("{name:<18} {}\n", at.join(" "));
     }
     support::tolerance::tolerant(|| {
@@ -129,7 +133,7 @@ fn lesson_09_cascades_beat_one_map() {
     // More cascades, same texels: better (k1 is one fitted map).
     assert!(m("k1") > m("k2") && m("k2") > m("k4"), "k1, k2, k4");
     // Near the camera, k4 spends many times the single map's texels per 100 m.
-    let near = |v: &str| support::counter(&run.report, v, "texels_per_100m_at_2m");
+    let near = |v: &str| support::counter(&run.report, v, TEXELS_PER_100M_AT_2M.name);
     assert!(
         near("k4") >= 10 * near("single_2048"),
         "texels per 100 m at 2 m"
@@ -401,7 +405,7 @@ fn lesson_09_far_10km() {
     };
     let k4 = support::misclassified(&run, "k4");
     assert!(k4 <= 0.5, "k4: misclassified {k4:.3} %");
-    assert!(support::counter(&run.report, "k4", "texels_per_100m_at_2m") >= 2000);
+    assert!(support::counter(&run.report, "k4", TEXELS_PER_100M_AT_2M.name) >= 2000);
 }
 
 /// A roof behind and above the camera shades the ground in view. Measured:

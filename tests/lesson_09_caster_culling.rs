@@ -10,6 +10,7 @@
 use std::path::Path;
 
 use common::glam::DVec3;
+use common::measure::counters::{CASTERS_DRAWN, DRAWS, SHADOW_FRAGMENTS};
 use common::scene::camera::{camera_matrices, light_view_proj};
 use common::scene::{LightKind, Scene};
 use workbook::lesson_09::cascades::{self, Cascade, Fit, FitOptions, SplitScheme};
@@ -319,8 +320,8 @@ fn lesson_09_culling_halves_the_fragments_and_keeps_the_shadows() {
         return;
     };
     let c = |k: &str| support::counter(&run.report, "k4", k);
-    let fragments = c("shadow_fragments");
-    let unculled = support::counter(&run.report, "k4_nocull", "shadow_fragments");
+    let fragments = c(SHADOW_FRAGMENTS.name);
+    let unculled = support::counter(&run.report, "k4_nocull", SHADOW_FRAGMENTS.name);
     assert!(
         fragments * 2 <= unculled,
         "k4 rasterises {fragments} shadow fragments, more than half of k4_nocull's {unculled}"
@@ -337,12 +338,9 @@ fn lesson_09_culling_halves_the_fragments_and_keeps_the_shadows() {
         );
     }
     // 12 objects, one light: the base and lit passes draw each once.
-    assert_eq!(c("draws"), 2 * 12 + c("casters_drawn"), "draws");
-    assert!(
-        c("casters_drawn") < 4 * 12,
-        "casters drawn {}",
-        c("casters_drawn")
-    );
+    let casters = c(CASTERS_DRAWN.name);
+    assert_eq!(c(DRAWS.name), 2 * 12 + casters, "{}", DRAWS.name);
+    assert!(casters < 4 * 12, "casters drawn {casters}");
     let false_lit = support::error(&run.report, "k4", "false_lit_pct");
     assert!(
         false_lit <= 0.3,

@@ -7,6 +7,10 @@
 //!
 //! Run `cargo insta review` after a change to see what moved.
 
+use common::measure::counters::{
+    BLOCKER_SEARCH_TAPS, DRAWS, FILTER_TAPS_PER_PIXEL, SHADOW_MAP_SIZE, TEXELS_READ,
+};
+
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_10");
 
 fn run(name: &str, scene: Option<&str>, extra: &[&str]) -> Option<support::LessonRun> {
@@ -50,17 +54,17 @@ fn lesson_10_snapshot() {
         if ADAPTER_DEPENDENT.contains(&name) {
             text += &format!(
                 "{name:<16} search {:>2}  filter {:>2}  texels {:>2}  figures: adapter-dependent (see ADAPTER_DEPENDENT)\n",
-                support::counter(&run.report, name, "blocker_search_taps"),
-                support::counter(&run.report, name, "filter_taps_per_pixel"),
-                support::counter(&run.report, name, "texels_read"),
+                support::counter(&run.report, name, BLOCKER_SEARCH_TAPS.name),
+                support::counter(&run.report, name, FILTER_TAPS_PER_PIXEL.name),
+                support::counter(&run.report, name, TEXELS_READ.name),
             );
             continue;
         }
         text += &format!(
             "{name:<16} search {:>2}  filter {:>2}  texels {:>2}  misclassified {:>5.2}%{}  mean |dV| {:>4.1}%{}  penumbra |dV| {:>4.1}%{}  bleeding {:>5.2}%{}\n",
-            support::counter(&run.report, name, "blocker_search_taps"),
-            support::counter(&run.report, name, "filter_taps_per_pixel"),
-            support::counter(&run.report, name, "texels_read"),
+            support::counter(&run.report, name, BLOCKER_SEARCH_TAPS.name),
+            support::counter(&run.report, name, FILTER_TAPS_PER_PIXEL.name),
+            support::counter(&run.report, name, TEXELS_READ.name),
             support::error(&run.report, name, "misclassified_pct"),
             support::bound(v, "misclassified_pct", 1.0, 2),
             100.0 * support::error(&run.report, name, "mean_abs"),
@@ -71,7 +75,7 @@ fn lesson_10_snapshot() {
             support::bound(v, "light_bleeding_pct", 1.0, 2),
         );
     }
-    text += &support::counter_lines(&run.report, &["draws", "shadow_map_size"]);
+    text += &support::counter_lines(&run.report, &[DRAWS.name, SHADOW_MAP_SIZE.name]);
     support::tolerance::tolerant(|| {
         insta::assert_snapshot!(
             "lesson_10",

@@ -5,6 +5,7 @@
 //! of CPU time in per-object passes over the whole scene. It must render,
 //! right, in bounded time.
 
+use common::measure::counters::CASTERS_DRAWN;
 use std::time::Duration;
 
 /// Objects in the generated scene: a floor and a grid of boxes.
@@ -67,7 +68,7 @@ fn lesson_05_renders_twenty_thousand_objects_right() {
     assert!(receivers > 10_000, "only {receivers} receiver pixels");
     // Stencil volumes are exact up to edge pixels: 0.175 % measured.
     assert!(pct <= 0.5, "lesson_05 zpass_cpu: {pct} % misclassified");
-    let casters = support::counter(&report, "zpass_cpu", "casters_drawn");
+    let casters = support::counter(&report, "zpass_cpu", CASTERS_DRAWN.name);
     assert!(casters > 1000, "only {casters} casters drawn");
 }
 

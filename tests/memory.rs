@@ -13,6 +13,7 @@
 
 #![cfg(target_os = "linux")]
 
+use common::measure::counters::DRAWS;
 use std::process::Command;
 use std::time::Duration;
 
@@ -260,7 +261,7 @@ fn compute_route_in_chunks_renders_the_same_frame() {
     assert_eq!(a["error_per_light"], b["error_per_light"]);
     let counters = |v: &serde_json::Value| {
         let mut c = v["counters"].as_object().unwrap().clone();
-        c.remove("draws")
+        c.remove(DRAWS.name)
             .map(|d| d.as_u64().unwrap())
             .map(|d| (c, d))
             .expect("a draws counter")

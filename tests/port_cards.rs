@@ -14,6 +14,9 @@
 
 use std::f64::consts::SQRT_2;
 
+use common::measure::counters::{
+    FILTER_TAPS_PER_PIXEL, NEAR_PLANE_MM, SHADOW_MAP_SIZE, TAPS, UNCLIPPED_DEPTH,
+};
 use common::ports::{departures_table, PortCard};
 use workbook::lesson_01::shadow_map::SHADOW_FORMAT;
 use workbook::lesson_02::bias::{
@@ -188,7 +191,7 @@ fn check_bevy_bias(card: &PortCard) {
 fn lesson_02_ports_hold_their_cards_values() {
     use lesson_02::port_cards::{BEVY_BIAS, LEARNOPENGL, WGPU_EXAMPLE};
     check_learnopengl_bias(&LEARNOPENGL);
-    assert_eq!(LEARNOPENGL.num("taps"), 1.0);
+    assert_eq!(LEARNOPENGL.num(TAPS.name), 1.0);
     check_wgpu_shadow_pass(&WGPU_EXAMPLE);
     check_bevy_bias(&BEVY_BIAS);
 }
@@ -232,7 +235,7 @@ fn lesson_03_ports_hold_their_cards_values() {
         }
     ));
     assert!(LEARNOPENGL_PCF.text("shadow").contains("centre's depth"));
-    assert_eq!(grid.taps().0 as f64, LEARNOPENGL_PCF.num("taps"));
+    assert_eq!(grid.taps().0 as f64, LEARNOPENGL_PCF.num(TAPS.name));
     assert_eq!(grid.sampler(), wgpu::FilterMode::Nearest);
     // pcf_grid's offsets are what grid_offsets says: one texel apart.
     let body = squash(wgsl_fn(PCF_WGSL, "pcf_grid"));
@@ -254,14 +257,14 @@ fn lesson_03_ports_hold_their_cards_values() {
     assert!(WGPU_EXAMPLE_HW2X2
         .text("shadow_sampler")
         .contains("Linear, compare LessEqual"));
-    assert_eq!(hw.taps().0 as f64, WGPU_EXAMPLE_HW2X2.num("taps"));
+    assert_eq!(hw.taps().0 as f64, WGPU_EXAMPLE_HW2X2.num(TAPS.name));
 
     // Bevy: its biases, and Castaño's filter as Bevy writes it.
     check_bevy_bias(&BEVY);
     let gauss = pcf::BEVY_GAUSSIAN;
     assert!(matches!(gauss, Filter::Castano13));
     assert_eq!(BEVY.text("ShadowFilteringMethod::default()"), "Gaussian");
-    assert_eq!(gauss.taps().0 as f64, BEVY.num("taps"));
+    assert_eq!(gauss.taps().0 as f64, BEVY.num(TAPS.name));
     assert_eq!(gauss.sampler(), wgpu::FilterMode::Linear);
     let body = squash(wgsl_fn(PCF_WGSL, "pcf_castano13"));
     for name in [
@@ -320,7 +323,7 @@ fn lesson_04_ports_hold_their_cards_values() {
     assert_eq!(one.bias_world, num32(&LEARNOPENGL_1TAP, "bias"));
     // The lesson's one-tap lookup (`visibility`), with only that bias.
     assert_eq!((one.lookup, one.lookup.taps()), (Peer::None, None));
-    assert_eq!(LEARNOPENGL_1TAP.num("taps"), 1.0);
+    assert_eq!(LEARNOPENGL_1TAP.num(TAPS.name), 1.0);
 
     let soft = peers::LEARNOPENGL_PCF20;
     assert_eq!(soft.bias_world, num32(&LEARNOPENGL_PCF20, "bias"));
@@ -371,7 +374,7 @@ fn lesson_04_ports_hold_their_cards_values() {
     let scale = normal * (2.0 / bevy.size as f64) * SQRT_2;
     assert!((bevy.lookup.params(bevy.size).1 as f64 - scale).abs() < 1e-9);
     assert_eq!(bevy.lookup, Peer::BevyPoint);
-    assert_eq!(bevy.lookup.taps(), Some(BEVY_POINT.num("taps") as u64));
+    assert_eq!(bevy.lookup.taps(), Some(BEVY_POINT.num(TAPS.name) as u64));
     assert!(bevy.lookup.linear() && BEVY_POINT.text("point_light_sampler").starts_with("Linear"));
     let positions = wgsl_numbers(
         PEERS_WGSL,
@@ -440,13 +443,13 @@ fn each_port_runs_with_its_cards_map_taps_and_planes() {
                 .find(|n| c.constants.iter().any(|k| k.name == *n))
                 .map(|n| c.num(n))
                 .expect("a map size on the card");
-            let counted = support::counter(&run.report, c.variant, "shadow_map_size");
+            let counted = support::counter(&run.report, c.variant, SHADOW_MAP_SIZE.name);
             assert_eq!(counted as f64, size, "{}", c.variant);
-            let taps = support::counter(&run.report, c.variant, "filter_taps_per_pixel");
-            let on_card = c.constants.iter().any(|k| k.name == "taps");
+            let taps = support::counter(&run.report, c.variant, FILTER_TAPS_PER_PIXEL.name);
+            let on_card = c.constants.iter().any(|k| k.name == TAPS.name);
             // Lesson 02's Bevy card has no taps: its filter is lesson 03's.
             if on_card {
-                assert_eq!(taps as f64, c.num("taps"), "{}", c.variant);
+                assert_eq!(taps as f64, c.num(TAPS.name), "{}", c.variant);
             }
         }
     }
@@ -464,24 +467,24 @@ fn each_port_runs_with_its_cards_map_taps_and_planes() {
     };
     let taps = |c: &PortCard| match c.constants.iter().any(|k| k.name == "samples") {
         true => c.num("samples"),
-        false => c.num("taps"),
+        false => c.num(TAPS.name),
     };
     for c in cards {
         let count = |k| support::counter(&run.report, c.variant, k);
         assert_eq!(
-            count("near_plane_mm") as f64,
+            count(NEAR_PLANE_MM.name) as f64,
             near(c) * 1000.0,
             "{}",
             c.variant
         );
         assert_eq!(
-            count("unclipped_depth"),
+            count(UNCLIPPED_DEPTH.name),
             0,
             "{}: its source clips",
             c.variant
         );
         assert_eq!(
-            count("filter_taps_per_pixel") as f64,
+            count(FILTER_TAPS_PER_PIXEL.name) as f64,
             taps(c),
             "{}",
             c.variant

@@ -259,7 +259,7 @@ fn bevy_pcss_or_pcf_runs_its_card() {
     );
     assert_wgsl(
         c.variant,
-        "shadow_map_size",
+        "shadow_map_size", // not a counter: Bevy's shader variable
         "let shadow_map_size = f32(textureDimensions(shadow_map).x);",
     );
     assert_wgsl(

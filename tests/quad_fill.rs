@@ -10,6 +10,8 @@
 
 use std::path::Path;
 
+use common::measure::counters::VOLUME_FRAGMENTS;
+
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_05");
 
 /// Decoded RGBA pixels of a PNG the run wrote.
@@ -33,7 +35,7 @@ fn quads_fill_like_cpu(name: &str, scene: Option<&str>, lights: usize) {
         return;
     };
     let r = &run.report;
-    let fragments = |v: &str| support::counter(r, v, "volume_fragments");
+    let fragments = |v: &str| support::counter(r, v, VOLUME_FRAGMENTS.name);
     let ms = |v: &str| support::variant(r, v)["timing_ms"]["total"].as_f64();
     let (cpu, quads) = (fragments("zpass_cpu"), fragments("zpass_quads"));
     println!(

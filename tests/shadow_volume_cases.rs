@@ -13,6 +13,8 @@ mod depth_formats;
 
 use std::path::{Path, PathBuf};
 
+use common::measure::counters::{CASTERS_ZFAIL, MAX_VOLUME_OVERLAP, NONMANIFOLD_EDGES, OPEN_EDGES};
+
 const BIN: &str = env!("CARGO_BIN_EXE_lesson_06");
 const SIZE: [&str; 6] = ["--width", "320", "--height", "180", "--frames", "1"];
 
@@ -144,7 +146,7 @@ fn near_plane_slices_a_volume() {
         assert_exact(&r, "zfail_quads");
         assert_exact(&r, "zfail_selective");
         assert!(
-            counter(&r, "zfail_selective", "casters_zfail") >= Some(1),
+            counter(&r, "zfail_selective", CASTERS_ZFAIL.name) >= Some(1),
             "the slab needs z-fail"
         );
     }
@@ -160,7 +162,7 @@ fn open_caster_single_quad() {
         return;
     };
     assert_eq!(
-        counter(&r, "zfail_quads", "open_edges"),
+        counter(&r, "zfail_quads", OPEN_EDGES.name),
         Some(8),
         "floor and quad: 4 open edges each"
     );
@@ -179,7 +181,7 @@ fn nonmanifold_edge_shared_by_four_faces() {
         return;
     };
     assert_eq!(
-        counter(&r, "zfail_quads", "nonmanifold_edges"),
+        counter(&r, "zfail_quads", NONMANIFOLD_EDGES.name),
         Some(1),
         "the spine"
     );
@@ -318,7 +320,7 @@ fn uv_seams_weld_closed() {
     ) else {
         return;
     };
-    assert_eq!(counter(&r, "zfail_quads", "open_edges"), Some(0));
+    assert_eq!(counter(&r, "zfail_quads", OPEN_EDGES.name), Some(0));
     assert_exact(&r, "zfail_quads");
     assert_exact(&r, "zfail_cpu");
 }
@@ -337,7 +339,7 @@ fn nested_256_volumes_wrap_the_stencil() {
             return;
         };
         assert_eq!(
-            counter(&r, "zfail_quads", "max_volume_overlap"),
+            counter(&r, "zfail_quads", MAX_VOLUME_OVERLAP.name),
             Some(256),
             "the CPU count finds 256 layers"
         );
@@ -351,7 +353,10 @@ fn nested_256_volumes_wrap_the_stencil() {
         let Some((r, _)) = run_in(format, "case_nested_255", &p255, &["zfail_quads"]) else {
             return;
         };
-        assert_eq!(counter(&r, "zfail_quads", "max_volume_overlap"), Some(255));
+        assert_eq!(
+            counter(&r, "zfail_quads", MAX_VOLUME_OVERLAP.name),
+            Some(255)
+        );
         assert_exact(&r, "zfail_quads");
     }
 }

@@ -20,6 +20,7 @@
 
 use std::path::{Path, PathBuf};
 
+use common::measure::counters::{SHADOW_FRAGMENTS, STENCIL_UPDATES};
 use support::tolerance::{self, compare, compare_elsewhere, matches, matches_elsewhere};
 
 fn replay_dir() -> PathBuf {
@@ -476,7 +477,7 @@ fn a_run_without_bounds_is_read_with_the_committed_ones() {
     for (beyond, what) in [
         (new("0.40", "0.00", "38631"), "misclassified"),
         (new("0.09", "0.50", "38631"), "not portable"),
-        (new("0.09", "0.00", "30000"), "stencil_updates"),
+        (new("0.09", "0.00", "30000"), STENCIL_UPDATES.name),
     ] {
         let d = compare(&committed, &beyond);
         assert!(
@@ -582,7 +583,7 @@ fn lesson_01_rasterised_counters_move_within_their_bounds() {
     let l01 = snapshot("lesson_01__lesson_01");
     let (plus3, found) = rasterised_counters(&l01, |n| n + 3);
     assert!(
-        found.iter().any(|(k, _)| k == "shadow_fragments"),
+        found.iter().any(|(k, _)| k == SHADOW_FRAGMENTS.name),
         "no rasterised counter in lesson 01's snapshot: {found:?}"
     );
     let diffs = compare_elsewhere(&l01, &plus3);

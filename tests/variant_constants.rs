@@ -138,7 +138,7 @@ const SCENE_DATA: &[(&str, &str, &str)] = &[
         "lesson 10: the light's projection, as `soft.perspective`",
     ),
     (
-        "cascades",
+        "cascades", // not a counter: a WGSL struct
         "split_far",
         "lesson 09: where the view's slices end, a float of the camera's",
     ),

@@ -11,6 +11,7 @@ use anyhow::Result;
 use crate::manifest::{Peer, FAMILIES, PEERS, VOLUME_BUILDS};
 use crate::record::{Record, VariantRecord};
 use crate::table::{count, header, pct, row, stat, time_cells};
+use common::measure::counters::{EDGES_TESTED, VOLUME_FRAGMENTS};
 
 /// Writes `generated/choosing/{families,peers,volumes_build}.md`.
 /// `reference_error`: the soft reference's own sampling error, in % of V
@@ -299,7 +300,7 @@ pub fn volumes_build(records: &[Record]) -> String {
             };
             let t = v.timing.as_ref();
             let pass_ms = t.and_then(|t| t.passes.get(*pass));
-            let edges = v.counters.get("edges_tested").copied();
+            let edges = v.counters.get(EDGES_TESTED.name).copied();
             let rate = match (edges, pass_ms) {
                 (Some(e), Some(p)) if p.median > 0.0 => {
                     format!("{:.1}", e as f64 / (p.median * 1e-3) / 1e6)
@@ -320,7 +321,7 @@ pub fn volumes_build(records: &[Record]) -> String {
                 edges.map_or("—".into(), count),
                 rate,
                 v.counters
-                    .get("volume_fragments")
+                    .get(VOLUME_FRAGMENTS.name)
                     .map_or("—".into(), |&n| count(n)),
             ]);
         }

@@ -8,11 +8,11 @@ use anyhow::{Context, Result};
 
 use crate::error_plots::write_plots;
 use crate::manifest::{Run, RUNS};
-use crate::record::Record;
+use crate::record::{load_records, Record};
 use crate::{
-    adapters, choosing, claims, diagrams, gpu_costs, lesson09, lesson10, manifest, ports, prose,
-    scaling, sets, soft_diagrams, summary, table, tap_floor, views, volume_diagrams, volumes_gpu,
-    write,
+    adapters, choosing, claims, diagrams, gpu_costs, lesson09, lesson10, manifest, origins, ports,
+    prose, scaling, sets, soft_diagrams, summary, table, tap_floor, views, volume_diagrams,
+    volumes_gpu, write,
 };
 
 /// Everything made from the committed records: the scenes' tables, the
@@ -39,7 +39,7 @@ pub fn derive(root: &Path, generated: &Path, figures: &Path) -> Result<()> {
     scaling::write_tables(root)?;
     lesson09::write_all(generated, figures, &records)?;
     adapters::write_all(root, generated, &records)?;
-    let sets = sets::load_sets(generated)?;
+    let sets = origins::load_sets(generated)?;
     sets::write_other_adapters(generated, &sets)?;
     tap_floor::write_all(generated, &records, &sets)?;
     let defaults: Vec<&Record> = records.iter().filter(|r| r.run == "results").collect();
@@ -109,18 +109,6 @@ pub fn write_run_tables(dir: &Path, run: &Run, record: &Record) -> Result<()> {
         write(&dir.join(format!("{}_classes.md", run.name)), &classes)?;
     }
     Ok(())
-}
-
-/// Every committed record, by lesson then manifest order.
-pub fn load_records(generated: &Path) -> Result<Vec<Record>> {
-    RUNS.iter()
-        .map(|r| {
-            let path = generated.join(r.lesson).join(format!("{}.json", r.name));
-            let text = std::fs::read_to_string(&path)
-                .with_context(|| format!("{} is missing: run `workbook book`", path.display()))?;
-            serde_json::from_str(&text).with_context(|| format!("{}: not a record", path.display()))
-        })
-        .collect()
 }
 
 /// Each lesson's extreme cases side by side (`scenes.md`).

@@ -6,7 +6,7 @@
 //! such a GPU. The runs are the lessons' own reports, copied unedited
 //! under `book/src/generated/gpu_1080p/<set>/lesson_NN/report.json`, of
 //! the code of commit [`ORIGIN`]: a variant changed since
-//! ([`crate::sets::CHANGES`]) is left out of the table and named under it.
+//! ([`crate::origins::CHANGES`]) is left out of the table and named under it.
 //! A row whose variant is not its lesson's most accurate (the families
 //! table's) says why in its own cell; the generator fails on a row with no
 //! reason (`table::NOT_THE_MOST_ACCURATE`).

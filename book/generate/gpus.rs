@@ -15,7 +15,7 @@
 //! figure for the H200; the note says so, and sets the H200's measured
 //! rate beside the H100's.
 
-use crate::origins::origin;
+use crate::origins::{gpu, origin, Gpu};
 use crate::record::Record;
 use crate::taps::Rate;
 
@@ -78,24 +78,6 @@ pub const RTX_2080_TI: Desktop = Desktop {
     tpcs: 34,
     source: &TURING,
 };
-
-/// Which GPU a set is, by its folder name ([`crate::sets::slug`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Gpu {
-    H100,
-    H200,
-}
-
-/// The GPU of the set in folder `set`, when the notes know it.
-pub fn gpu(set: &str) -> Option<Gpu> {
-    if set.starts_with("nvidia-h100") {
-        Some(Gpu::H100)
-    } else if set.starts_with("nvidia-h200") {
-        Some(Gpu::H200)
-    } else {
-        None
-    }
-}
 
 /// What the GPU is, in NVIDIA's figures.
 fn what(gpu: Gpu) -> String {

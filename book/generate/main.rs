@@ -14,11 +14,12 @@ use clap::{Parser, Subcommand};
 use common::measure::report::Report;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use generator::derive::{self, derive, load_records, write_run_tables};
+use generator::derive::{self, derive, write_run_tables};
 use generator::manifest::{self, Run, RUNS};
+use generator::record::load_records;
 use generator::runs::{copy_outputs, to_record, Measure};
 use generator::{
-    bounds, claims, diagrams, grade_times, runner_or_build, scaling, sets, soft_diagrams,
+    bounds, claims, diagrams, grade_times, origins, runner_or_build, scaling, sets, soft_diagrams,
     stability, tap_floor, volume_diagrams, web, window_shots,
 };
 
@@ -235,7 +236,7 @@ fn run(cli: Cli) -> Result<()> {
     );
     let work = match main_set {
         true => work,
-        false => work.join(sets::SETS_DIR),
+        false => work.join(origins::SETS_DIR),
     };
     // The repeats of a timed run go in rounds over the whole manifest, not
     // back to back: a machine whose speed drifts over minutes (this one
@@ -272,12 +273,12 @@ fn run(cli: Cli) -> Result<()> {
     }
     if !main_set {
         bar.finish_with_message("runs done");
-        let sets = sets::load_sets(&generated)?;
+        let sets = origins::load_sets(&generated)?;
         sets::write_other_adapters(&generated, &sets)?;
         tap_floor::write_all(&generated, &load_records(&generated)?, &sets)?;
         println!(
             "another adapter's set written under {} in {:.0} s",
-            generated.join(sets::SETS_DIR).display(),
+            generated.join(origins::SETS_DIR).display(),
             start.elapsed().as_secs_f64()
         );
         return Ok(());

@@ -1,9 +1,9 @@
-//! When each measurement on another adapter was made, and what changed
-//! in the lessons since: a set's variant changed after its commit is left
-//! out of every table that shows the set, and named under it
-//! ([`changes_note`]). Read by the sets' tables ([`crate::sets`]), the
-//! GPU cost tables ([`crate::gpu_costs`]) and the taps' floor
-//! ([`crate::taps`]).
+//! When each measurement on another adapter was made, on which GPU
+//! ([`gpu`]), and what changed in the lessons since: a set's variant
+//! changed after its commit is left out of every table that shows the set,
+//! and named under it ([`changes_note`]). Read by the sets' tables
+//! ([`crate::sets`]), the GPU cost tables ([`crate::gpu_costs`]), the
+//! GPUs' notes ([`crate::gpus`]) and the taps' floor ([`crate::taps`]).
 
 use std::path::Path;
 
@@ -235,6 +235,25 @@ pub const CHANGES: &[Change] = &[
 /// The origin of the set in folder `set`, when [`ORIGINS`] has it.
 pub fn origin(set: &str) -> Option<&'static Origin> {
     ORIGINS.iter().find(|o| o.set == set)
+}
+
+/// Which GPU a set is, by its folder name ([`crate::sets::slug`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Gpu {
+    H100,
+    H200,
+}
+
+/// The GPU of the set in folder `set`, when the notes know it
+/// ([`crate::gpus`]).
+pub fn gpu(set: &str) -> Option<Gpu> {
+    if set.starts_with("nvidia-h100") {
+        Some(Gpu::H100)
+    } else if set.starts_with("nvidia-h200") {
+        Some(Gpu::H200)
+    } else {
+        None
+    }
 }
 
 /// The changes since `commit` to `lesson`'s `variant` (by the name the

@@ -36,6 +36,7 @@ use glam::{DMat2, DMat3, DVec2, DVec3};
 
 use crate::origins::changed;
 use crate::record::{Record, Timing, VariantRecord};
+use common::measure::counters::{CASCADES, FACES_RENDERED, SHADOW_FRAGMENTS, SHADOW_MAP_SIZE};
 
 /// The passes that build a variant's map.
 pub const MAP_PASSES: &[&str] = &["shadow", "moments", "blur", "min_max"];
@@ -115,12 +116,12 @@ fn fine(x: f64) -> String {
 /// (`workbook::lesson_04::peers`). `None` where none says.
 pub fn map_texels(lesson: &str, v: &VariantRecord) -> Option<f64> {
     let c = &v.counters;
-    let size = match c.get("shadow_map_size") {
+    let size = match c.get(SHADOW_MAP_SIZE.name) {
         Some(&n) => n,
         None => named_size(lesson, &v.name)?,
     };
-    let layers =
-        c.get("cascades").copied().unwrap_or(1) * c.get("faces_rendered").copied().unwrap_or(1);
+    let layers = c.get(CASCADES.name).copied().unwrap_or(1)
+        * c.get(FACES_RENDERED.name).copied().unwrap_or(1);
     Some((size * size * layers) as f64)
 }
 
@@ -186,7 +187,7 @@ fn lesson_points<'a>(records: &'a [Record], commit: Option<&str>) -> Vec<(&'a st
             }
             let (Some(t), Some(&f), Some(ms)) = (
                 map_texels(&r.lesson, v),
-                v.counters.get("shadow_fragments"),
+                v.counters.get(SHADOW_FRAGMENTS.name),
                 map_ms(v.timing.as_ref()),
             ) else {
                 continue;
@@ -399,11 +400,11 @@ mod tests {
             soft: None,
             fragile: None,
         };
-        let k4 = v("k4", &[("shadow_map_size", 1024), ("cascades", 4)]);
+        let k4 = v("k4", &[(SHADOW_MAP_SIZE.name, 1024), (CASCADES.name, 4)]);
         assert_eq!(map_texels("lesson_09", &k4), Some(4.0 * 1024.0 * 1024.0));
-        let cube = v("linear_256", &[("faces_rendered", 5)]);
+        let cube = v("linear_256", &[(FACES_RENDERED.name, 5)]);
         assert_eq!(map_texels("lesson_04", &cube), Some(5.0 * 256.0 * 256.0));
-        let port = v("bevy_point", &[("faces_rendered", 6)]);
+        let port = v("bevy_point", &[(FACES_RENDERED.name, 6)]);
         assert_eq!(map_texels("lesson_04", &port), Some(6.0 * 1024.0 * 1024.0));
         assert_eq!(
             map_texels("lesson_01", &v("res_512", &[])),

@@ -1,11 +1,16 @@
 //! What the generator keeps of a run (`book/src/generated/<lesson>/<run>.json`):
-//! errors, counters and pooled times. The markdown tables made from it are
-//! in [`crate::table`]. `tests/generated.rs` re-runs the lessons and
+//! errors, counters and pooled times, and the committed ones read back
+//! ([`load_records`]). The markdown tables made from it are in
+//! [`crate::table`]. `tests/generated.rs` re-runs the lessons and
 //! compares the error columns and counters with these records.
 
 use std::collections::BTreeMap;
+use std::path::Path;
 
+use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
+
+use crate::manifest::RUNS;
 
 /// A median with its spread (an interquartile range, see [`Stat::of_runs`]), in milliseconds.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
@@ -258,6 +263,18 @@ impl VariantRecord {
             None => self.misclassified_pct,
         }
     }
+}
+
+/// Every committed record, by lesson then manifest order.
+pub fn load_records(generated: &Path) -> Result<Vec<Record>> {
+    RUNS.iter()
+        .map(|r| {
+            let path = generated.join(r.lesson).join(format!("{}.json", r.name));
+            let text = std::fs::read_to_string(&path)
+                .with_context(|| format!("{} is missing: run `workbook book`", path.display()))?;
+            serde_json::from_str(&text).with_context(|| format!("{}: not a record", path.display()))
+        })
+        .collect()
 }
 
 #[cfg(test)]

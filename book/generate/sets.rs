@@ -7,7 +7,7 @@
 //! chapter their tables of lesson 05's volume routes
 //! (`choosing/volumes_build_sets.md`, [`volumes_build_sets`]).
 //!
-//! A set is measured at one commit ([`ORIGINS`]), and the code moves on.
+//! A set is measured at one commit ([`crate::origins::ORIGINS`]), and the code moves on.
 //! A variant changed since that commit ([`CHANGES`]) is left out of the
 //! set's tables and named under them with the commit that changed it, so
 //! that no figure of code the lesson no longer runs sits beside today's.
@@ -15,6 +15,10 @@
 //! other settings than the book's own record of the same run says, and
 //! [`CHANGES`] does not say why ([`check_set`]).
 
+use common::measure::counters::{
+    FILTER_TAPS, FRAGMENT_SHADER_INVOCATIONS, FULL_DISK_PIXELS, PROBED_PIXELS, SHADOW_FRAGMENTS,
+    SHADOW_TEXELS_WRITTEN, STENCIL_UPDATES, VOLUME_FRAGMENTS,
+};
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
@@ -22,21 +26,21 @@ use anyhow::{bail, Context, Result};
 use crate::manifest::{self, HD, RUNS, VOLUME_BUILDS};
 use crate::record::Record;
 
-pub use crate::origins::{changed, changes_note, load_sets, origin, CHANGES, SETS_DIR};
+use crate::origins::{changed, changes_note, load_sets, origin, CHANGES, SETS_DIR};
 
 /// Counters that count rasterised fragments: adapters differ by a few at
 /// triangle edges, so these alone do not say that a variant changed.
 const RASTERISED: &[&str] = &[
-    "shadow_fragments",
-    "shadow_texels_written",
-    "fragment_shader_invocations",
-    "stencil_updates",
-    "volume_fragments",
+    SHADOW_FRAGMENTS.name,
+    SHADOW_TEXELS_WRITTEN.name,
+    FRAGMENT_SHADER_INVOCATIONS.name,
+    STENCIL_UPDATES.name,
+    VOLUME_FRAGMENTS.name,
     // Lesson 03's adaptive filter: which pixels' probes straddle an edge
     // of the map, and so how many taps the frame made, is the rasteriser's.
-    "probed_pixels",
-    "full_disk_pixels",
-    "filter_taps",
+    PROBED_PIXELS.name,
+    FULL_DISK_PIXELS.name,
+    FILTER_TAPS.name,
 ];
 
 /// Fails when the set `name` (measured at `commit`) holds a variant that
@@ -103,7 +107,7 @@ pub fn check_set(
     }
     if !errors.is_empty() {
         bail!(
-            "the set {name}{} differs from the book's records; name each change, with the commit that made it, in sets::CHANGES (or measure the set again):\n  {}",
+            "the set {name}{} differs from the book's records; name each change, with the commit that made it, in origins::CHANGES (or measure the set again):\n  {}",
             commit.map_or(String::new(), |c| format!(" (measured at {c})")),
             errors.join("\n  ")
         );
@@ -227,7 +231,7 @@ fn set_part(
 /// Fails when a set differs from the book's records in a way
 /// [`CHANGES`] does not explain ([`check_set`]).
 pub fn write_other_adapters(generated: &Path, sets: &[(String, Vec<Record>)]) -> Result<()> {
-    let main = crate::derive::load_records(generated)?;
+    let main = crate::record::load_records(generated)?;
     for (name, records) in sets {
         check_set(name, origin(name).map(|o| o.commit), records, &main)?;
     }
@@ -329,6 +333,7 @@ pub fn volumes_build_sets(generated: &Path) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use common::measure::counters::SHADOW_MAP_SIZE;
 
     #[test]
     fn set_names_come_from_the_adapter_and_backend() {
@@ -368,8 +373,8 @@ mod tests {
             mean_abs: 0.0,
             coverage_mismatch_pct: 0.0,
             counters: [
-                ("shadow_map_size".to_string(), size),
-                ("shadow_fragments".to_string(), size * 3),
+                (SHADOW_MAP_SIZE.name.to_string(), size),
+                (SHADOW_FRAGMENTS.name.to_string(), size * 3),
             ]
             .into(),
             timing: None,
@@ -403,7 +408,7 @@ mod tests {
         let mut same = record("lesson_03", &[("poisson_16", 1024), ("bevy", 2048)]);
         same.variants[0]
             .counters
-            .insert("shadow_fragments".into(), 7);
+            .insert(SHADOW_FRAGMENTS.name.into(), 7);
         assert!(check_set("x", None, &[same], &today).is_ok());
         // Another map size, unexplained: fails, naming the variant.
         let today = [record(
@@ -423,7 +428,10 @@ mod tests {
             ],
         )];
         let e = check_set("x", None, &old, &today).unwrap_err().to_string();
-        assert!(e.contains("`bevy`") && e.contains("shadow_map_size"), "{e}");
+        assert!(
+            e.contains("`bevy`") && e.contains(SHADOW_MAP_SIZE.name),
+            "{e}"
+        );
         // Explained by CHANGES (bevy's map since d7678c5): passes, and the
         // table leaves it out.
         assert!(check_set("x", Some("d7678c5"), &old, &today).is_ok());

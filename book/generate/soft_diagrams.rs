@@ -35,11 +35,25 @@ pub fn write_all(root: &Path, dir: &Path) -> Result<Vec<String>> {
     crate::diagrams::write_svgs(dir, render(root)?)
 }
 
-pub(crate) fn render(root: &Path) -> Result<[(&'static str, String); 2]> {
+/// Chapter 10's diagrams, as (file name, SVG text).
+fn render(root: &Path) -> Result<[(&'static str, String); 2]> {
     let scene = Scene::load(&root.join("scenes/lesson_10.toml"))?;
     let setup = Setup::from_scene(&scene)?;
     Ok([
         ("soft_similar_triangles.svg", similar_triangles(&setup)),
         ("soft_blocker_search.svg", blocker_search(&scene, &setup)?),
     ])
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::diagrams::svg::tests::assert_texts_fit;
+
+    /// Chapter 10's diagrams: their texts inside the canvas and apart.
+    #[test]
+    fn texts_inside_the_canvas_and_apart() {
+        for (name, svg) in super::render(&crate::repo_root()).unwrap() {
+            assert_texts_fit(name, &svg);
+        }
+    }
 }

@@ -83,8 +83,8 @@ pub const REPEATABILITY: &str = "protocol/repeatability.md";
 /// table of it that the book's using.md includes.
 pub fn compare(a: &Path, b: &Path, write: Option<&Path>) -> Result<()> {
     let (ra, rb) = (
-        crate::derive::load_records(a)?,
-        crate::derive::load_records(b)?,
+        crate::record::load_records(a)?,
+        crate::record::load_records(b)?,
     );
     let cells = cells(&ra, &rb);
     if cells.is_empty() {

@@ -25,12 +25,14 @@
 //! explains a listed variant. This file measures; [`crate::tap_floor`]
 //! writes the page.
 
-use crate::gpus;
-use crate::origins::{changed, origin};
+use crate::origins::{changed, gpu, origin};
 use crate::pass_model::{self, PassModel};
 use crate::plots::{line_fit, Line};
 use crate::record::{Record, Stat, Timing, VariantRecord};
 use crate::why::{On, Pass};
+use common::measure::counters::{
+    BLOCKER_SEARCH_TAPS, FILTER_TAPS, FILTER_TAPS_PER_PIXEL, PROBED_PIXELS, SHADOW_FRAGMENTS,
+};
 
 /// The lessons that look up a shadow map.
 pub const LESSONS: &[&str] = &[
@@ -61,7 +63,7 @@ pub fn rate(lesson_03: &Record) -> Option<Line> {
     let mut points = Vec::new();
     for name in LADDER {
         let v = lesson_03.variants.iter().find(|v| v.name == *name)?;
-        let taps = *v.counters.get("filter_taps_per_pixel")? as f64;
+        let taps = *v.counters.get(FILTER_TAPS_PER_PIXEL.name)? as f64;
         points.push((taps, lighting(v.timing.as_ref())?.median));
     }
     line_fit(&points)
@@ -116,11 +118,11 @@ impl Rate {
 /// pixels took (an adaptive path the lesson does not count).
 pub fn taps(v: &VariantRecord) -> Option<(f64, bool)> {
     let c = &v.counters;
-    if let (Some(&all), Some(&pixels)) = (c.get("filter_taps"), c.get("probed_pixels")) {
+    if let (Some(&all), Some(&pixels)) = (c.get(FILTER_TAPS.name), c.get(PROBED_PIXELS.name)) {
         return (pixels > 0).then(|| (all as f64 / pixels as f64, false));
     }
-    let filter = *c.get("filter_taps_per_pixel")?;
-    let search = c.get("blocker_search_taps").copied().unwrap_or(0);
+    let filter = *c.get(FILTER_TAPS_PER_PIXEL.name)?;
+    let search = c.get(BLOCKER_SEARCH_TAPS.name).copied().unwrap_or(0);
     let at_most = v.name.ends_with("_adaptive");
     Some(((filter + search) as f64, at_most))
 }
@@ -194,7 +196,7 @@ impl Adapter<'_> {
 
     /// Its short name in the list of reasons: `lavapipe`, `the H100`.
     pub fn short(&self) -> String {
-        match self.set.and_then(gpus::gpu) {
+        match self.set.and_then(gpu) {
             None if self.set.is_none() => "lavapipe".into(),
             Some(g) => format!("the {g:?}"),
             None => self
@@ -238,7 +240,7 @@ pub fn rows(
         }
         let comparisons = taps(v);
         let texels = pass_model::map_texels(lesson, v);
-        let fragments = v.counters.get("shadow_fragments").map(|&f| f as f64);
+        let fragments = v.counters.get(SHADOW_FRAGMENTS.name).map(|&f| f as f64);
         rows.push(Row {
             variant: v.name.clone(),
             comparisons,
@@ -355,7 +357,8 @@ pub(crate) mod tests {
         let mut r = lesson_03();
         // Lighting = 2 ms + 0.5 ms a comparison, exactly.
         for v in &mut r.variants {
-            if let (Some(t), Some(&n)) = (&mut v.timing, v.counters.get("filter_taps_per_pixel")) {
+            if let (Some(t), Some(&n)) = (&mut v.timing, v.counters.get(FILTER_TAPS_PER_PIXEL.name))
+            {
                 t.passes.get_mut("lighting").expect("lighting").median = 2.0 + 0.5 * n as f64;
             }
         }

@@ -363,6 +363,7 @@ pub fn read_generated(generated: &Path, source: &str) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use common::measure::counters::DRAWS;
 
     const SOURCE: &str = "*llvmpipe, Vulkan · 640×360*\n\n\
 | variant | misclassified % | `draws` | mean \\|ΔV\\| % | frame ms |\n\
@@ -395,7 +396,7 @@ mod tests {
         let h = "*lavapipe · 640×360 · times: median [spread] of 3 runs × 5 frames*";
         let cols = |c: &[&str]| c.iter().map(|x| x.to_string()).collect::<Vec<_>>();
         assert_eq!(
-            header_for(h, &cols(&["variant", "draws"])),
+            header_for(h, &cols(&["variant", DRAWS.name])),
             "*lavapipe · 640×360*"
         );
         assert_eq!(header_for(h, &cols(&["variant", "GPU ms"])), h);

@@ -39,7 +39,8 @@ pub fn write_all(root: &Path, dir: &Path) -> Result<Vec<String>> {
     crate::diagrams::write_svgs(dir, render(root)?)
 }
 
-pub(crate) fn render(root: &Path) -> Result<[(&'static str, String); 6]> {
+/// Chapter 05's diagrams, as (file name, SVG text).
+fn render(root: &Path) -> Result<[(&'static str, String); 6]> {
     let scene = Scene::load(&root.join("scenes/lesson_05.toml"))?;
     let caster = Caster::from_scene(&scene)?;
     Ok([
@@ -50,4 +51,17 @@ pub(crate) fn render(root: &Path) -> Result<[(&'static str, String); 6]> {
         ("volume_w_zero.svg", w_zero(&scene, &caster)?),
         ("volume_passes.svg", passes()),
     ])
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::diagrams::svg::tests::assert_texts_fit;
+
+    /// Chapter 05's diagrams: their texts inside the canvas and apart.
+    #[test]
+    fn texts_inside_the_canvas_and_apart() {
+        for (name, svg) in super::render(&crate::repo_root()).unwrap() {
+            assert_texts_fit(name, &svg);
+        }
+    }
 }

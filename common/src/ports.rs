@@ -37,6 +37,9 @@ pub enum Value {
     Text(&'static str),
 }
 
+/// The unit of a card's tap counts (`unit: TAPS_UNIT`).
+pub const TAPS_UNIT: &str = "taps"; // not a counter: a unit
+
 /// One constant or formula a port takes from its source.
 #[derive(Clone, Copy, Debug)]
 pub struct Constant {
@@ -250,7 +253,7 @@ mod tests {
         constants: &[Constant {
             name: "TAPS",
             value: Value::Num(16.0),
-            unit: "taps",
+            unit: TAPS_UNIT,
             source: 0,
             lines: "12",
         }],
@@ -275,7 +278,7 @@ mod tests {
             source: 1,
             name: "TAPS",
             value: Value::Num(16.0),
-            unit: "taps",
+            unit: TAPS_UNIT,
             lines: "12",
         }];
         let orphan = PortCard {

@@ -12,9 +12,6 @@
 //! Run: `cargo run --release --bin lesson_01 -- --headless`
 //! Book: chapter "01 depth map" (`book/src/lesson_01.md`).
 
-use std::collections::BTreeMap;
-use std::path::Path;
-
 use clap::ValueEnum;
 use common::gpu::lit::LitPass;
 use common::gpu::read_later::later;
@@ -22,13 +19,15 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::knobs::{Knob, KnobRange};
-use common::run::lesson::{BufferView, Lesson};
+use common::run::lesson::{Capabilities, Lesson};
+use common::run::per_variant::PerVariant;
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::exercise_pass;
 use workbook::lesson_01::shadow_map::{self, ShadowMap, ShadowPassState};
 use workbook::lesson_01::tally::TallyShader;
+
+mod harness;
 
 // ANCHOR: variants
 /// The variants sweep the shadow map's resolution: error against time.
@@ -72,12 +71,10 @@ struct DepthMap {
     shadow_pipeline: wgpu::RenderPipeline,
     /// The shadow pipeline that counts its depth writes (`shadow_texels_written`).
     tally_pipeline: [wgpu::RenderPipeline; 2],
-    /// Per variant: the shadow pass's depth writes and fragments, counted once.
-    texels_written: Vec<Option<(u64, u64)>>,
     draws: u64,
     lit_pipeline: wgpu::RenderPipeline,
-    /// One shadow map (and its bind group) per variant, in variant order.
-    maps: Vec<(ShadowMap, wgpu::BindGroup)>,
+    /// Each variant's shadow map, and what its shadow pass wrote.
+    maps: PerVariant<Variant, VariantMap>,
     /// Light 0's texel at the scene's centre for a 1-texel map, in world
     /// units along the map's u and v: a map of N texels divides it by N.
     texel_at_1: Option<(f64, f64)>,
@@ -95,6 +92,27 @@ struct DepthMap {
     tight_texel_at_1: Option<(f64, f64)>,
 }
 
+/// A variant's shadow map, its bind group, and the shadow pass's depth
+/// writes and fragments into it, counted once.
+struct VariantMap {
+    map: ShadowMap,
+    group: wgpu::BindGroup,
+    texels_written: Option<(u64, u64)>,
+}
+
+impl VariantMap {
+    /// A map of `size`² texels, sampled nearest, not counted yet.
+    fn new(gpu: &Gpu, layout: &wgpu::BindGroupLayout, size: u32) -> VariantMap {
+        let map = ShadowMap::new(gpu, size);
+        let group = shadow_map::shadow_map_group(gpu, layout, &map, wgpu::FilterMode::Nearest);
+        VariantMap {
+            map,
+            group,
+            texels_written: None,
+        }
+    }
+}
+
 impl Lesson for DepthMap {
     const NAME: &'static str = "lesson_01";
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_01.toml");
@@ -102,15 +120,13 @@ impl Lesson for DepthMap {
     // The light's box fits the scene bounds, not the camera: a camera
     // path (chapter 09's shimmer) needs nothing re-fitted (but
     // exercise_tight_frustum, fitted to the camera, is each frame).
-    const CAMERA_PATH: bool = true;
+    const CAPABILITIES: Capabilities = Capabilities {
+        camera_path: true,
+        ..Capabilities::BASIC
+    };
 
     fn check_scene(scene: &Scene) -> Result<()> {
         shadow_map::refuse_point_lights(scene, Self::NAME)
-    }
-
-    /// The variant's shadow map, as its last shadow pass left it.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        self.maps[v as usize].0.last_light_view(gpu, scene)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -132,15 +148,7 @@ impl Lesson for DepthMap {
         );
         let lit_pipeline =
             scene.lit_pipeline(gpu, &module, "fs_lit", &[&layout], Default::default());
-        let maps = Variant::value_variants()
-            .iter()
-            .map(|v| {
-                let map = ShadowMap::new(gpu, v.resolution());
-                let group =
-                    shadow_map::shadow_map_group(gpu, &layout, &map, wgpu::FilterMode::Nearest);
-                (map, group)
-            })
-            .collect();
+        let maps = PerVariant::new(|v: Variant| VariantMap::new(gpu, &layout, v.resolution()));
         let tight: Vec<_> = (0..scene.scene.lights.len())
             .map(|k| {
                 exercise_pass::tight_light_view_proj(&scene.scene, k, scene.width, scene.height)
@@ -149,7 +157,6 @@ impl Lesson for DepthMap {
         Ok(DepthMap {
             shadow_pipeline,
             tally_pipeline,
-            texels_written: vec![None; Variant::value_variants().len()],
             draws: shadow_map::shadow_map_draws(scene),
             lit_pipeline,
             maps,
@@ -177,97 +184,22 @@ impl Lesson for DepthMap {
         variant: Variant,
     ) -> Result<()> {
         self.exercise_setup(frame.gpu, scene, variant)?;
-        if self.texels_written[variant as usize].is_none() {
+        if self.maps[variant].texels_written.is_none() {
             // In a web page the count comes back a frame or more later.
             let n = later(|| {
                 shadow_map::count_shadow_texels(frame.gpu, scene, self.resolution(variant), |_| {
                     &self.tally_pipeline
                 })
             })?;
-            self.texels_written[variant as usize] = n;
+            self.maps[variant].texels_written = n;
         }
-        let (map, group) = &self.maps[variant as usize];
+        let VariantMap { map, group, .. } = &self.maps[variant];
         let (lit, groups) = match (variant, &self.exercise_lit, &self.exercise_depths) {
             (Variant::ExerciseDepthCompare, Some(lit), Some(depths)) => (lit, vec![group, depths]),
             _ => (&self.lit_pipeline, vec![group]),
         };
         self.draw(frame, scene, targets, map, lit, &groups);
         Ok(())
-    }
-
-    /// The runner moved the camera or the light (`--fragile`): the shadow
-    /// pass's depth writes are counted again on the next frame.
-    fn count_again(&mut self, variant: Variant) {
-        self.texels_written[variant as usize] = None;
-    }
-
-    /// The texel's two sides, in micrometres: the acne's depth error, up to
-    /// half a texel × tan θ (chapter 01), scales with them.
-    /// Also the standard costs: the shadow pass's depth writes, one tap
-    /// per pixel, the frame's draw calls.
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let mut c = BTreeMap::from([
-            ("filter_taps_per_pixel".into(), 1),
-            ("draws".into(), self.draws),
-        ]);
-        if let Some((written, fragments)) = self.texels_written[variant as usize] {
-            c.insert("shadow_texels_written".into(), written);
-            c.insert("shadow_fragments".into(), fragments);
-        }
-        let texel = match variant {
-            Variant::ExerciseTightFrustum => self.tight_texel_at_1,
-            _ => self.texel_at_1,
-        };
-        if let Some((u, v)) = texel {
-            let um = |x: f64| (x * 1e6 / self.resolution(variant) as f64).round() as u64;
-            c.insert("texel_um_u".into(), um(u));
-            c.insert("texel_um_v".into(), um(v));
-        }
-        c
-    }
-
-    /// The `res_*` variants: the map's size, 2^`map_size_log2` texels on a
-    /// side, 256 to 4096 (the sweep's range); the exercises keep 1024².
-    fn knobs(&self, variant: Variant) -> Vec<Knob> {
-        if matches!(
-            variant,
-            Variant::ExerciseTightFrustum | Variant::ExerciseDepthCompare
-        ) {
-            return Vec::new();
-        }
-        vec![Knob {
-            name: "map_size_log2",
-            doc: "the shadow map is 2^map_size_log2 texels on a side (8: 256², 12: 4096²)",
-            range: KnobRange::Int { min: 8, max: 12 },
-            value: self.resolution(variant).ilog2() as f64,
-        }]
-    }
-
-    /// A new map of the new size replaces the variant's (the old one is
-    /// dropped); its texels are counted again on its next frame.
-    fn set_knob(
-        &mut self,
-        gpu: &Gpu,
-        _scene: &SceneGpu,
-        variant: Variant,
-        name: &str,
-        value: f64,
-    ) -> Result<()> {
-        if name != "map_size_log2" {
-            anyhow::bail!("--knob {name}: lesson_01 has only map_size_log2");
-        }
-        let map = ShadowMap::new(gpu, 1 << value as u32);
-        let (layout, nearest) = (&self.map_layout, wgpu::FilterMode::Nearest);
-        let group = shadow_map::shadow_map_group(gpu, layout, &map, nearest);
-        self.maps[variant as usize] = (map, group);
-        self.texels_written[variant as usize] = None;
-        Ok(())
-    }
-
-    fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
-        let name = common::run::lesson::variant_name(variant);
-        let (map, _) = &self.maps[variant as usize];
-        map.write_png(gpu, &out.join(format!("{name}_depth_map.png")))
     }
 }
 
@@ -300,7 +232,7 @@ impl DepthMap {
     /// The side of `variant`'s map now: [`Variant::resolution`], or the
     /// `map_size_log2` knob's.
     fn resolution(&self, variant: Variant) -> u32 {
-        self.maps[variant as usize].0.size
+        self.maps[variant].map.size
     }
 
     /// Before an exercise runs: its light matrix into the light buffer
@@ -333,7 +265,7 @@ impl DepthMap {
             let depths = exercise_pass::depths_layout(gpu);
             let p = exercise_pass::depth_compare_pipeline(gpu, scene, &self.map_layout, &depths)?;
             self.exercise_lit = Some(p);
-            let (map, _) = &self.maps[variant as usize];
+            let map = &self.maps[variant].map;
             self.exercise_depths = Some(exercise_pass::depths_group(gpu, &depths, map));
         }
         Ok(())

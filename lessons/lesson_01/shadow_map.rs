@@ -14,7 +14,7 @@ use common::gpu::render::{
 use common::gpu::targets::depth_texture;
 use common::gpu::Gpu;
 use common::run::files::save;
-use common::run::lesson::BufferView;
+use common::run::instruments::BufferView;
 use common::scene::camera::light_view_proj;
 use common::scene::{LightKind, Scene};
 

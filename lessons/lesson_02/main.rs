@@ -14,8 +14,6 @@
 //! Run: `cargo run --release --bin lesson_02 -- --headless`
 //! Book: chapter "02 Bias" (`book/src/lesson_02.md`).
 
-use std::collections::BTreeMap;
-
 use clap::ValueEnum;
 use common::gpu::bindings::{params_group, params_layout};
 use common::gpu::lit::LitPass;
@@ -23,8 +21,8 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::knobs::Knob;
-use common::run::lesson::{variant_name, BufferView, Lesson};
+use common::run::lesson::{variant_name, Lesson};
+use common::run::per_variant::PerVariant;
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, PerSize, ShadowMap, ShadowPassState};
@@ -33,7 +31,6 @@ use workbook::lesson_02::bias::{
     ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
 };
 use workbook::lesson_02::exercise_pass::Exercise;
-use workbook::lesson_02::knobs;
 
 mod harness;
 
@@ -191,9 +188,8 @@ impl Variant {
 }
 
 struct Bias {
-    /// Each variant's receiver bias, bound at group 3 (zeros for the
-    /// shadow-pass fixes), in variant order.
-    bias_groups: Vec<wgpu::BindGroup>,
+    /// Each variant's bias, as its knobs set it, bound for its passes.
+    variants: PerVariant<Variant, VariantBias>,
     /// One map per size the variants use, and its bind group.
     maps: PerSize<(ShadowMap, wgpu::BindGroup)>,
     lit_pipeline: wgpu::RenderPipeline,
@@ -203,25 +199,62 @@ struct Bias {
     exercise_lit: Vec<(Exercise, wgpu::RenderPipeline)>,
     plain_shadow: wgpu::RenderPipeline,
     cull_shadow: wgpu::RenderPipeline,
-    /// Per variant with a hardware bias, its shadow pipeline for each light
-    /// (the clamp depends on it), and their counting copies.
-    slope_shadow: Vec<Option<Vec<wgpu::RenderPipeline>>>,
-    tally_slope: Vec<Option<Vec<[wgpu::RenderPipeline; 2]>>>,
     casters_drawn: u64,
     /// Counting copies of the shadow pipelines ([`shadow_map::shadow_tally_pipelines`]):
     /// plain and front-face culled.
     tally_plain: [wgpu::RenderPipeline; 2],
     tally_cull: [wgpu::RenderPipeline; 2],
-    /// Per variant: the shadow pass's depth writes and fragments, counted once.
-    texels_written: Vec<Option<(u64, u64)>>,
     draws: u64,
-    /// Per variant, its fix with the knobs' values: what `bias_groups` and
-    /// `slope_shadow` hold (`Variant::fix` when no knob was set).
-    fixes: Vec<Fix>,
     /// The shadow pipelines' shader and the counting one, to rebuild a
     /// hardware bias's pipelines when a knob changes it.
     module: wgpu::ShaderModule,
     tally: TallyShader,
+}
+
+/// A variant's fix as its knobs set it, what draws it (its receiver bias's
+/// uniform, its hardware bias's shadow pipelines), and the shadow pass's
+/// depth writes and fragments with it, counted once.
+struct VariantBias {
+    /// The fix with the knobs' values (`Variant::fix` when no knob was set).
+    fix: Fix,
+    /// Its receiver bias, bound at group 3 (zeros for the shadow-pass fixes).
+    bias_group: wgpu::BindGroup,
+    /// With a hardware bias: its shadow pipeline for each light (the clamp
+    /// depends on it), and their counting copies.
+    slope_shadow: Option<Vec<wgpu::RenderPipeline>>,
+    tally_slope: Option<Vec<[wgpu::RenderPipeline; 2]>>,
+    texels_written: Option<(u64, u64)>,
+}
+
+impl VariantBias {
+    /// Variant `v`'s own fix ([`Variant::fix`]), not counted yet.
+    fn new(
+        gpu: &Gpu,
+        scene: &SceneGpu,
+        shaders: (&wgpu::ShaderModule, &TallyShader),
+        bias_layout: &wgpu::BindGroupLayout,
+        v: Variant,
+    ) -> VariantBias {
+        let fix = v.fix();
+        let receiver = match fix {
+            Fix::Receiver(b) => b,
+            _ => ShadowBias::NONE,
+        };
+        let (slope_shadow, tally_slope) = match fix {
+            Fix::Hardware(slope, cull) => {
+                let (p, t) = hardware_pipelines(gpu, scene, shaders, (slope, cull), v.map_size());
+                (Some(p), Some(t))
+            }
+            _ => (None, None),
+        };
+        VariantBias {
+            fix,
+            bias_group: bias_group(gpu, bias_layout, v, &receiver),
+            slope_shadow,
+            tally_slope,
+            texels_written: None,
+        }
+    }
 }
 
 impl Lesson for Bias {
@@ -231,11 +264,6 @@ impl Lesson for Bias {
 
     fn check_scene(scene: &Scene) -> Result<()> {
         shadow_map::refuse_point_lights(scene, Self::NAME)
-    }
-
-    /// The shadow map, as the variant's last shadow pass left it.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        self.map(v).0.last_light_view(gpu, scene)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -271,52 +299,21 @@ impl Lesson for Bias {
         };
         let plain_shadow = pass(ShadowPassState::default());
         let cull_shadow = pass(cull);
-        // One per light: the clamp is in texels, converted for each light.
-        // (GL cannot clamp: there the slope-scaled bias is unclamped.)
-        let slope_states: Vec<Option<Vec<ShadowPassState>>> = Variant::value_variants()
-            .iter()
-            .map(|v| match v.fix() {
-                Fix::Hardware(slope, cull) => Some(
-                    (0..scene.scene.lights.len())
-                        .map(|k| ShadowPassState {
-                            cull,
-                            ..slope.pass_state(gpu, &scene.scene, k, v.map_size())
-                        })
-                        .collect(),
-                ),
-                _ => None,
-            })
-            .collect();
-        let slope_shadow = per_light(&slope_states, pass);
-        let tally_slope = per_light(&slope_states, count);
-
-        let bias_groups = Variant::value_variants()
-            .iter()
-            .map(|&v| {
-                let b = match v.fix() {
-                    Fix::Receiver(b) => b,
-                    _ => ShadowBias::NONE,
-                };
-                let name = variant_name(v);
-                params_group(gpu, &bias_layout, &name, bytemuck::bytes_of(&b))
-            })
-            .collect();
+        let variants = PerVariant::new(|v: Variant| {
+            VariantBias::new(gpu, scene, (&module, &tally), &bias_layout, v)
+        });
         Ok(Bias {
-            bias_groups,
+            variants,
             maps,
             lit_pipeline,
             layouts: [map_layout, bias_layout],
             exercise_lit: Vec::new(),
             plain_shadow,
             cull_shadow,
-            slope_shadow,
             casters_drawn: 0,
             tally_plain: count(ShadowPassState::default()),
             tally_cull: count(cull),
-            tally_slope,
-            texels_written: vec![None; Variant::value_variants().len()],
             draws: shadow_map::shadow_map_draws(scene),
-            fixes: Variant::value_variants().iter().map(|v| v.fix()).collect(),
             module: module.clone(),
             tally,
         })
@@ -341,78 +338,6 @@ impl Lesson for Bias {
         self.casters_drawn = drawn as u64;
         Ok(())
     }
-
-    /// The runner moved the camera or the light (`--fragile`): the shadow
-    /// pass's depth writes are counted again on the next frame.
-    fn count_again(&mut self, variant: Variant) {
-        self.texels_written[variant as usize] = None;
-    }
-
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let mut c = BTreeMap::from([
-            ("shadow_map_size".into(), variant.map_size() as u64),
-            ("casters_drawn".into(), self.casters_drawn),
-            ("filter_taps_per_pixel".into(), 1),
-            ("draws".into(), self.draws),
-        ]);
-        if let Some((written, fragments)) = self.texels_written[variant as usize] {
-            c.insert("shadow_texels_written".into(), written);
-            c.insert("shadow_fragments".into(), fragments);
-        }
-        c
-    }
-
-    fn knobs(&self, variant: Variant) -> Vec<Knob> {
-        if variant.exercise().is_some() {
-            return Vec::new();
-        }
-        match (variant.fix(), self.fixes[variant as usize]) {
-            (Fix::Receiver(named), Fix::Receiver(now)) => knobs::receiver_knobs(named, now),
-            (_, Fix::Hardware(now, _)) => knobs::hardware_knobs(now),
-            _ => Vec::new(),
-        }
-    }
-
-    /// A receiver bias: a new uniform for the variant. A hardware bias: its
-    /// shadow pipelines (one per light) and their counting copies, rebuilt;
-    /// its texels are counted again on its next frame.
-    fn set_knob(
-        &mut self,
-        gpu: &Gpu,
-        scene: &SceneGpu,
-        variant: Variant,
-        name: &str,
-        value: f64,
-    ) -> Result<()> {
-        let i = variant as usize;
-        if variant.exercise().is_some() {
-            anyhow::bail!("--knob {name}: {} has no knobs", variant_name(variant));
-        }
-        match &mut self.fixes[i] {
-            Fix::Receiver(b) => {
-                knobs::set_receiver(b, name, value)?;
-                let (layout, bytes) = (&self.layouts[1], bytemuck::bytes_of(b));
-                self.bias_groups[i] = params_group(gpu, layout, &variant_name(variant), bytes);
-            }
-            Fix::Hardware(slope, cull) => {
-                knobs::set_hardware(slope, name, value)?;
-                let states: Vec<ShadowPassState> = (0..scene.scene.lights.len())
-                    .map(|k| ShadowPassState {
-                        cull: *cull,
-                        ..slope.pass_state(gpu, &scene.scene, k, variant.map_size())
-                    })
-                    .collect();
-                let (module, tally) = (&self.module, &self.tally);
-                let pass = |&s| shadow_map::shadow_pipeline(gpu, scene, module, s);
-                let count = |&s| shadow_map::shadow_tally_pipelines(gpu, scene, module, s, tally);
-                self.slope_shadow[i] = Some(states.iter().map(pass).collect());
-                self.tally_slope[i] = Some(states.iter().map(count).collect());
-                self.texels_written[i] = None;
-            }
-            _ => anyhow::bail!("--knob {name}: {} has no knobs", variant_name(variant)),
-        }
-        Ok(())
-    }
 }
 
 impl Bias {
@@ -429,13 +354,16 @@ impl Bias {
         variant: Variant,
         lit: &wgpu::RenderPipeline,
     ) -> u32 {
-        let slope = &self.slope_shadow[variant as usize];
-        let bias_group = &self.bias_groups[variant as usize];
+        let VariantBias {
+            slope_shadow,
+            bias_group,
+            ..
+        } = &self.variants[variant];
         let (map, map_group) = self.map(variant);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = 0;
         for light in 0..scene.scene.lights.len() {
-            let shadow = match (variant.fix(), slope) {
+            let shadow = match (variant.fix(), slope_shadow) {
                 (Fix::CullFrontFaces, _) => &self.cull_shadow,
                 (_, Some(hw)) => &hw[light],
                 _ => &self.plain_shadow,
@@ -458,13 +386,38 @@ impl Bias {
     }
 }
 
-/// `f` of each state of each variant that has some (one per light).
-fn per_light<T>(
-    states: &[Option<Vec<ShadowPassState>>],
-    f: impl Fn(ShadowPassState) -> T,
-) -> Vec<Option<Vec<T>>> {
-    let each = |s: &Vec<ShadowPassState>| s.iter().map(|&s| f(s)).collect();
-    states.iter().map(|s| s.as_ref().map(each)).collect()
+/// A hardware bias's shadow pipeline for each light, and their counting
+/// copies, for a map of `size`: the clamp is in texels, converted for each
+/// light (GL cannot clamp: there the slope-scaled bias is unclamped).
+fn hardware_pipelines(
+    gpu: &Gpu,
+    scene: &SceneGpu,
+    (module, tally): (&wgpu::ShaderModule, &TallyShader),
+    (slope, cull): (SlopeScaledBias, Option<wgpu::Face>),
+    size: u32,
+) -> (Vec<wgpu::RenderPipeline>, Vec<[wgpu::RenderPipeline; 2]>) {
+    let states: Vec<ShadowPassState> = (0..scene.scene.lights.len())
+        .map(|k| ShadowPassState {
+            cull,
+            ..slope.pass_state(gpu, &scene.scene, k, size)
+        })
+        .collect();
+    let pass = |&s| shadow_map::shadow_pipeline(gpu, scene, module, s);
+    let count = |&s| shadow_map::shadow_tally_pipelines(gpu, scene, module, s, tally);
+    (
+        states.iter().map(pass).collect(),
+        states.iter().map(count).collect(),
+    )
+}
+
+/// Variant `v`'s receiver bias `b` as its group 3 uniform.
+fn bias_group(
+    gpu: &Gpu,
+    layout: &wgpu::BindGroupLayout,
+    v: Variant,
+    b: &ShadowBias,
+) -> wgpu::BindGroup {
+    params_group(gpu, layout, &variant_name(v), bytemuck::bytes_of(b))
 }
 
 pub(crate) fn main() -> std::process::ExitCode {

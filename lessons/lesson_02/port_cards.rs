@@ -6,7 +6,8 @@
 //! and the book's table of departures is generated from these. Lesson 03's
 //! cards reuse these rows (its ports add their filters).
 
-use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
+use common::measure::counters::TAPS;
+use common::ports::{Constant, Departure, PortCard, Role, Source, Value, TAPS_UNIT};
 
 const LEARNOPENGL_AT_85530AB: &str = "85530ab9976154133a21cfd228f642c47b0c88da";
 /// The snapshot of gfx-rs/wgpu that was read (its trunk, 2024-10-23).
@@ -135,9 +136,9 @@ pub const LEARNOPENGL: PortCard = PortCard {
             lines: "24-26, 32",
         },
         Constant {
-            name: "taps",
+            name: TAPS.name,
             value: Value::Num(1.0),
-            unit: "taps",
+            unit: TAPS_UNIT,
             source: 0,
             lines: "32",
         },

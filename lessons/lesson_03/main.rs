@@ -16,8 +16,6 @@
 //! Run: `cargo run --release --bin lesson_03 -- --headless`
 //! Book: chapter "03 PCF" (`book/src/lesson_03.md`).
 
-use std::collections::BTreeMap;
-
 use clap::ValueEnum;
 use common::gpu::bindings::{params_group, params_layout};
 use common::gpu::lit::LitPass;
@@ -25,8 +23,8 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::knobs::Knob;
-use common::run::lesson::{variant_name, BufferView, Lesson};
+use common::run::lesson::{variant_name, Lesson};
+use common::run::per_variant::PerVariant;
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::ShadowPassState;
@@ -36,7 +34,6 @@ use workbook::lesson_02::bias::{
     ShadowBias, SlopeScaledBias, BEVY_MAP_SIZE, WGPU_EXAMPLE_CULL, WGPU_EXAMPLE_MAP_SIZE,
 };
 use workbook::lesson_03::adaptive_count::AdaptivePaths;
-use workbook::lesson_03::knobs;
 use workbook::lesson_03::lit_pipelines::{LitKey, LitPipelines};
 use workbook::lesson_03::pcf::{self, Filter, FilterUniform};
 
@@ -194,8 +191,8 @@ const PASSES: [(Option<SlopeScaledBias>, Option<wgpu::Face>); 3] = [
 ];
 
 struct Pcf {
-    /// Each variant's filter parameters (group 3), in variant order.
-    filter_groups: Vec<wgpu::BindGroup>,
+    /// Each variant's filter, as its knobs set it, and its uniform.
+    variants: PerVariant<Variant, VariantFilter>,
     /// One map per size the variants use, with its nearest and linear groups.
     maps: PerSize<SizedMap>,
     /// The lit pipelines, one per filter's constants.
@@ -207,15 +204,36 @@ struct Pcf {
     /// Per shadow pass and map size, its depth writes and fragments, counted once.
     texels_written: Vec<((usize, u32), (u64, u64))>,
     draws: u64,
-    /// Per variant, its filter with the knobs' values: what `filter_groups`
-    /// holds (`Variant::filter` when no knob was set).
-    filters: Vec<Filter>,
-    /// The layout of `filter_groups`, to make a variant's again.
+    /// The layout of a variant's filter uniform, to make it again.
     filter_layout: wgpu::BindGroupLayout,
-    /// The adaptive filter's counting copy (`fs_adaptive_count`) and, per
-    /// variant index, its paths counted once ([`adaptive_count`]).
+    /// The adaptive filter's counting copy (`fs_adaptive_count`).
     adaptive_count: wgpu::RenderPipeline,
-    adaptive_paths: Vec<Option<AdaptivePaths>>,
+}
+
+/// A variant's filter as its knobs set it, its uniform, and the adaptive
+/// filter's paths with it, counted once.
+struct VariantFilter {
+    /// The filter with the knobs' values (`Variant::filter` when no knob
+    /// was set).
+    filter: Filter,
+    /// Its parameters and the variant's receiver bias, bound at group 3.
+    filter_group: wgpu::BindGroup,
+    /// The adaptive filter's paths ([`adaptive_count`]); `None` for the
+    /// other filters, and until counted.
+    adaptive_paths: Option<AdaptivePaths>,
+}
+
+impl VariantFilter {
+    /// Variant `v` with `filter`, not counted yet.
+    fn new(gpu: &Gpu, layout: &wgpu::BindGroupLayout, v: Variant, filter: Filter) -> Self {
+        let params = FilterUniform::new(filter, v.receiver_bias());
+        let bytes = bytemuck::bytes_of(&params);
+        VariantFilter {
+            filter,
+            filter_group: params_group(gpu, layout, &variant_name(v), bytes),
+            adaptive_paths: None,
+        }
+    }
 }
 
 /// A shadow map and its bind groups, sampled nearest and linear.
@@ -247,11 +265,6 @@ impl Lesson for Pcf {
 
     fn check_scene(scene: &Scene) -> Result<()> {
         shadow_map::refuse_point_lights(scene, Self::NAME)
-    }
-
-    /// The shadow map, as the variant's last shadow pass left it.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        self.map(v).map.last_light_view(gpu, scene)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -317,33 +330,18 @@ impl Lesson for Pcf {
                 )
             })
             .unzip();
-        let filter_groups = Variant::value_variants()
-            .iter()
-            .map(|&v| {
-                let params = FilterUniform::new(v.filter(), v.receiver_bias());
-                params_group(
-                    gpu,
-                    &filter_layout,
-                    &variant_name(v),
-                    bytemuck::bytes_of(&params),
-                )
-            })
-            .collect();
+        let variants =
+            PerVariant::new(|v: Variant| VariantFilter::new(gpu, &filter_layout, v, v.filter()));
         Ok(Pcf {
-            filter_groups,
+            variants,
             maps,
             lit_pipelines: LitPipelines::new(module, [layout, filter_layout.clone()]),
             shadow_pipelines,
             tally_pipelines,
             texels_written: Vec::new(),
             draws: shadow_map::shadow_map_draws(scene),
-            filters: Variant::value_variants()
-                .iter()
-                .map(|v| v.filter())
-                .collect(),
             filter_layout,
             adaptive_count,
-            adaptive_paths: vec![None; Variant::value_variants().len()],
         })
     }
 
@@ -359,8 +357,12 @@ impl Lesson for Pcf {
         self.count_texels_once(frame.gpu, scene, variant)?;
         self.count_adaptive_once(frame.gpu, scene, targets, variant)?;
         let pass = variant.pass();
-        let filter_group = &self.filter_groups[variant as usize];
-        let key = LitKey::new(self.filters[variant as usize], variant.renderer_bias());
+        let VariantFilter {
+            filter,
+            filter_group,
+            ..
+        } = &self.variants[variant];
+        let key = LitKey::new(*filter, variant.renderer_bias());
         self.lit_pipelines.build(frame.gpu, scene, key);
         let lit_pipeline = self.lit_pipelines.get(key);
         let (map, map_group) = (self.map(variant), self.map_group(variant));
@@ -382,73 +384,6 @@ impl Lesson for Pcf {
         Ok(())
     }
     // ANCHOR_END: render
-
-    /// The runner moved the camera or the light (`--fragile`, whose
-    /// sub-texel move of the map `render` applies): the shadow pass and
-    /// the adaptive filter are counted again on the next frame.
-    fn count_again(&mut self, variant: Variant) {
-        let key = (variant.pass(), variant.map_size());
-        self.texels_written.retain(|(k, _)| *k != key);
-        self.adaptive_paths[variant as usize] = None;
-    }
-
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let (taps, texels) = self.filters[variant as usize].taps();
-        let mut c = BTreeMap::from([
-            ("taps".into(), taps),
-            ("filter_taps_per_pixel".into(), taps),
-            ("texels_read".into(), texels),
-            ("shadow_map_size".into(), variant.map_size() as u64),
-            ("draws".into(), self.draws),
-        ]);
-        let key = (variant.pass(), variant.map_size());
-        if let Some(&(_, (written, fragments))) =
-            self.texels_written.iter().find(|(k, _)| *k == key)
-        {
-            c.insert("shadow_texels_written".into(), written);
-            c.insert("shadow_fragments".into(), fragments);
-        }
-        if let Some(paths) = self.adaptive_paths[variant as usize] {
-            c.insert("probed_pixels".into(), paths.probed);
-            c.insert("full_disk_pixels".into(), paths.full_disk);
-            c.insert("filter_taps".into(), paths.taps());
-        }
-        c
-    }
-
-    /// The lesson's own filters have their kernel's size: the grids and the
-    /// depth average `kernel_radius`, the disk `disk_radius_texels`. The
-    /// renderers' defaults and the exercises keep theirs.
-    fn knobs(&self, variant: Variant) -> Vec<Knob> {
-        match variant {
-            Variant::LearnOpenGlPcf
-            | Variant::WgpuExampleHw2x2
-            | Variant::Bevy
-            | Variant::ExercisePcfKernel
-            | Variant::ExerciseWorldDisk => Vec::new(),
-            _ => knobs::filter_knobs(self.filters[variant as usize]),
-        }
-    }
-
-    /// A new filter uniform for the variant; a grid's new side gets its
-    /// pipeline the next time the variant draws.
-    fn set_knob(
-        &mut self,
-        gpu: &Gpu,
-        _scene: &SceneGpu,
-        variant: Variant,
-        name: &str,
-        value: f64,
-    ) -> Result<()> {
-        let filter = &mut self.filters[variant as usize];
-        knobs::set_filter_knob(filter, name, value)?;
-        let params = FilterUniform::new(*filter, variant.receiver_bias());
-        let bytes = bytemuck::bytes_of(&params);
-        let group = params_group(gpu, &self.filter_layout, &variant_name(variant), bytes);
-        self.filter_groups[variant as usize] = group;
-        self.adaptive_paths[variant as usize] = None;
-        Ok(())
-    }
 }
 
 pub(crate) fn main() -> std::process::ExitCode {

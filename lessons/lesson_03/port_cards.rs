@@ -5,7 +5,8 @@
 //! ([`super::pcf`], `shaders/lesson_03/pcf.wgsl`); the book's table of
 //! departures is generated from these.
 
-use common::ports::{Constant, PortCard, Role, Source, Value};
+use common::measure::counters::TAPS;
+use common::ports::{Constant, PortCard, Role, Source, Value, TAPS_UNIT};
 
 use crate::lesson_02::port_cards as l02;
 
@@ -59,9 +60,9 @@ pub const LEARNOPENGL_PCF: PortCard = PortCard {
             lines: "40-41",
         },
         Constant {
-            name: "taps",
+            name: TAPS.name,
             value: Value::Num(9.0),
-            unit: "taps",
+            unit: TAPS_UNIT,
             source: 0,
             lines: "44",
         },
@@ -91,7 +92,7 @@ pub const WGPU_EXAMPLE_HW2X2: PortCard = PortCard {
         l02::WGPU_LIGHTS,
         l02::WGPU_FETCH_SHADOW,
         Constant {
-            name: "taps",
+            name: TAPS.name,
             value: Value::Num(1.0),
             unit: "taps (of 2×2 texels)",
             source: 1,
@@ -198,7 +199,7 @@ pub const BEVY: PortCard = PortCard {
         ),
         castano("return", "return sum * (1.0 / 144.0);", "106"),
         Constant {
-            name: "taps",
+            name: TAPS.name,
             value: Value::Num(9.0),
             unit: "taps (of 2×2 texels)",
             source: 6,

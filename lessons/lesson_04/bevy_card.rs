@@ -3,7 +3,8 @@
 //! lines, and what it cannot do here (LearnOpenGL's cards sit beside it,
 //! in `port_cards.rs`, which lists all three).
 
-use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
+use common::measure::counters::TAPS;
+use common::ports::{Constant, Departure, PortCard, Role, Source, Value, TAPS_UNIT};
 
 use crate::lesson_02::port_cards::{self as l02, BEVY_AT_E85A706};
 use crate::lesson_03::port_cards as l03;
@@ -199,9 +200,9 @@ pub const BEVY_POINT: PortCard = PortCard {
             lines: "206-247",
         },
         Constant {
-            name: "taps",
+            name: TAPS.name,
             value: Value::Num(8.0),
-            unit: "taps",
+            unit: TAPS_UNIT,
             source: 4,
             lines: "222-245",
         },

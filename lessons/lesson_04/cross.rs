@@ -8,7 +8,7 @@ use common::gpu::bindings::{self, sampler_entry, texture_entry, uniform_buffer, 
 use common::gpu::fullscreen::{read_floats, Fullscreen, FLOAT_BYTES_FORMAT};
 use common::gpu::Gpu;
 use common::run::files::save;
-use common::run::lesson::BufferView;
+use common::run::instruments::BufferView;
 
 use super::cube_map::{cube_group, CubeShadowMap};
 

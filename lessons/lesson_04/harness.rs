@@ -1,19 +1,28 @@
-//! Lesson 04's harness: what the report counts around the frame that
-//! `main.rs` draws (the face passes' depth writes, counted once per
-//! variant in their own submits, and the faces, draws and scissored
-//! texels of each frame), and the faces' rectangles with the knob that
-//! turns them off.
+//! Lesson 04's harness: what the runner measures and shows besides the
+//! image. What the report counts around the frame that `main.rs` draws
+//! (the face passes' depth writes, counted once per variant in their own
+//! submits, and the faces, draws and scissored texels of each frame), the
+//! faces' rectangles with the knob that turns them off, and the cube map
+//! as the window's buffer view and as an extra image (a cross).
 
-use std::collections::BTreeMap;
+use std::path::Path;
 
 use common::glam::DVec3;
 use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
+use common::measure::counters::{
+    Counts, CASTER_DRAWS, DRAWS, FACES_RENDERED, FILTER_TAPS_PER_PIXEL, NEAR_PLANE_MM,
+    SHADOW_FRAGMENTS, SHADOW_TEXELS_SCISSORED, SHADOW_TEXELS_WRITTEN, SLOPE_BIAS_MILLITEXELS,
+    UNCLIPPED_DEPTH,
+};
 use common::measure::timing::Frame;
+use common::run::instruments::{BufferView, Instruments};
 use common::run::knobs::{Knob, KnobRange};
+use common::run::lesson::variant_name;
 use common::Result;
 use workbook::lesson_04::costs::{self, PCF3D_TAPS};
+use workbook::lesson_04::cross::{cross_view, write_cross_png};
 use workbook::lesson_04::culling::face_casters;
 use workbook::lesson_04::faces::{point_light, FaceRects};
 use workbook::lesson_04::footprint::lookup_footprint;
@@ -29,6 +38,49 @@ pub struct CubeStats {
     pub texels_scissored: u64,
 }
 
+impl Instruments for CubeShadows {
+    /// The variant's cube map, as a cross ([`cross_view`]).
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
+        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
+            return Ok(None); // no light: no face passes
+        };
+        let map = &self.maps[self.prepared[v].map];
+        cross_view(gpu, map, last).map(Some)
+    }
+
+    /// The runner moved the camera or the light (`--fragile`): the face
+    /// passes' depth writes are counted again on the next frame.
+    fn count_again(&mut self, variant: Variant) {
+        self.prepared[variant].texels_written = None;
+    }
+
+    /// The standard costs and the lesson's own ([`CubeShadows::cube_counters`]).
+    fn counters(&self, variant: Variant) -> Counts {
+        self.cube_counters(variant)
+    }
+
+    fn knobs(&self, variant: Variant) -> Vec<Knob> {
+        self.scissor_knob(variant)
+    }
+
+    /// `face_scissor` on or off; the face passes are counted again.
+    fn set_knob(&mut self, _: &Gpu, _: &SceneGpu, v: Variant, _: &str, value: f64) -> Result<()> {
+        self.prepared[v].scissor = value == 1.0;
+        self.count_again(v);
+        Ok(())
+    }
+
+    /// The variant's cube map, unfolded as a cross (`NAME_cube_map.png`).
+    fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
+        let map = &self.maps[self.prepared[variant].map];
+        if map.faces {
+            return Ok(()); // no cube view to unfold
+        }
+        let path = out.join(format!("{}_cube_map.png", variant_name(variant)));
+        write_cross_png(gpu, map, 128, &path)
+    }
+}
+
 impl CubeShadows {
     /// The face passes' depth writes and fragments, counted on the
     /// variant's first frame (its own submits, left out of the frame's
@@ -39,10 +91,10 @@ impl CubeShadows {
         scene: &SceneGpu,
         variant: Variant,
     ) -> Result<()> {
-        if self.texels_written[variant as usize].is_none() {
+        if self.prepared[variant].texels_written.is_none() {
             // In a web page the count comes back a frame or more later.
             let n = frame.untimed(|gpu| later(|| self.count_texels(gpu, scene, variant)))?;
-            self.texels_written[variant as usize] = n;
+            self.prepared[variant].texels_written = n;
         }
         Ok(())
     }
@@ -51,34 +103,31 @@ impl CubeShadows {
     /// writes and fragments, the lit pass's taps per pixel, the frame's
     /// draw calls) and the lesson's own (faces, caster draws, scissored
     /// texels, the faces' planes and bias).
-    pub(super) fn cube_counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let p = &self.prepared[variant as usize];
+    pub(super) fn cube_counters(&self, variant: Variant) -> Counts {
+        let p = &self.prepared[variant];
         let v = variant.settings();
         let taps = v
             .peer
             .taps()
             .unwrap_or(if v.pcf > 0.0 { PCF3D_TAPS } else { 1 });
-        let mut c = BTreeMap::from([
-            ("filter_taps_per_pixel".into(), taps),
-            ("draws".into(), self.draws),
-            ("faces_rendered".into(), self.stats.faces_rendered),
-            ("caster_draws".into(), self.stats.caster_draws),
-            ("unclipped_depth".into(), u64::from(p.unclipped)),
-            ("near_plane_mm".into(), (p.near * 1000.0).round() as u64),
+        let mut c = Counts::from([
+            (FILTER_TAPS_PER_PIXEL, taps),
+            (DRAWS, self.draws),
+            (FACES_RENDERED, self.stats.faces_rendered),
+            (CASTER_DRAWS, self.stats.caster_draws),
+            (UNCLIPPED_DEPTH, u64::from(p.unclipped)),
+            (NEAR_PLANE_MM, (p.near * 1000.0).round() as u64),
             // The slope bias, in thousandths of a texel per unit of tan θ.
             (
-                "slope_bias_millitexels".into(),
+                SLOPE_BIAS_MILLITEXELS,
                 (variant.settings().slope * 1000.0).round() as u64,
             ),
         ]);
-        if let Some((written, fragments)) = self.texels_written[variant as usize] {
-            c.insert("shadow_texels_written".into(), written);
-            c.insert("shadow_fragments".into(), fragments);
+        if let Some((written, fragments)) = p.texels_written {
+            c.set(SHADOW_TEXELS_WRITTEN, written);
+            c.set(SHADOW_FRAGMENTS, fragments);
         }
-        c.insert(
-            "shadow_texels_scissored".into(),
-            self.stats.texels_scissored,
-        );
+        c.set(SHADOW_TEXELS_SCISSORED, self.stats.texels_scissored);
         c
     }
 
@@ -111,7 +160,7 @@ impl CubeShadows {
         let peer = (v.peer, v.bias_world);
         let far = v.far.unwrap_or(range);
         let footprint = lookup_footprint(v.storage, v.pcf, peer, v.size, far)
-            .filter(|_| self.scissor[variant as usize] && v.cull.is_some());
+            .filter(|_| self.prepared[variant].scissor && v.cull.is_some());
         let receivers: Vec<_> = self.spheres.iter().map(|s| s.bounds()).collect();
         let camera = (scene.camera.view_proj, scene.camera.eye);
         self.rects
@@ -129,7 +178,7 @@ impl CubeShadows {
             name: "face_scissor",
             doc: "each cube face drawn only over the texels a visible receiver's lookup can read (off: whole faces)",
             range: KnobRange::Toggle,
-            value: f64::from(u8::from(self.scissor[variant as usize])),
+            value: f64::from(u8::from(self.prepared[variant].scissor)),
         }]
     }
 
@@ -142,7 +191,7 @@ impl CubeShadows {
     ) -> Result<(u64, u64)> {
         let v = variant.settings();
         let (near, far, pipeline) = {
-            let p = &self.prepared[variant as usize];
+            let p = &self.prepared[variant];
             (p.near, p.far, p.pipeline)
         };
         let mut total = (0, 0);

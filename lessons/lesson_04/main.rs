@@ -13,9 +13,6 @@
 //! Run: `cargo run --release --bin lesson_04 -- --headless`
 //! Book: chapter "04 Cube-map point shadows" (`book/src/lesson_04.md`).
 
-use std::collections::BTreeMap;
-use std::path::Path;
-
 use clap::ValueEnum;
 use common::glam::DVec3;
 use common::gpu::lit::LitPass;
@@ -23,13 +20,12 @@ use common::gpu::render::{shader_module_from_files, SceneGpu};
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::knobs::Knob;
-use common::run::lesson::{variant_name, BufferView, Lesson};
+use common::run::lesson::Lesson;
+use common::run::per_variant::PerVariant;
 use common::scene::{LightKind, Scene};
 use common::Result;
 use workbook::lesson_01::tally::TallyShader;
 use workbook::lesson_04::costs;
-use workbook::lesson_04::cross::{cross_view, write_cross_png};
 use workbook::lesson_04::cube_map::{self, CubeParams, CubeShadowMap, LitKey, Storage};
 use workbook::lesson_04::culling::{self, face_casters, FaceTest, Sphere};
 use workbook::lesson_04::face_rects::FaceRectCache;
@@ -183,7 +179,9 @@ fn exercise_face_test(centre: DVec3, _radius: f64, half: DVec3, face: usize) -> 
     workbook::exercise!(lesson_04::faces_touched(centre, half))[face]
 }
 
-/// One variant on this device: its pipeline, lit-pass bind group, map and planes.
+/// One variant on this device: its pipeline, lit-pass bind group, map and
+/// planes, its knob `face_scissor`, and the face passes' depth writes and
+/// fragments, counted once.
 struct Prepared {
     pipeline: usize,
     /// Index into `lit_pipelines`.
@@ -193,6 +191,9 @@ struct Prepared {
     near: f64,
     far: Option<f64>,
     unclipped: bool,
+    /// Each face drawn only over its rectangle (`harness.rs`); on by default.
+    scissor: bool,
+    texels_written: Option<(u64, u64)>,
 }
 
 struct CubeShadows {
@@ -201,20 +202,16 @@ struct CubeShadows {
     shadow_pipelines: Vec<wgpu::RenderPipeline>,
     /// Their counting copies ([`costs::cube_tally_pipelines`]).
     tally_pipelines: Vec<[wgpu::RenderPipeline; 2]>,
-    /// Per variant: the face passes' depth writes and fragments, counted once.
-    texels_written: Vec<Option<(u64, u64)>>,
     maps: Vec<CubeShadowMap>,
-    /// In variant order.
-    prepared: Vec<Prepared>,
+    /// Each variant's pipelines, map and planes.
+    prepared: PerVariant<Variant, Prepared>,
     faces: FaceUniforms,
     spheres: Vec<Sphere>,
     stats: CubeStats,
     /// The last frame's draw calls ([`costs::frame_draws`]).
     draws: u64,
-    /// Each face's rectangle per light, and per variant the knob
-    /// `face_scissor` (`harness.rs`).
+    /// Each face's rectangle per light (`harness.rs`).
     rects: FaceRectCache,
-    scissor: Vec<bool>,
 }
 
 impl Lesson for CubeShadows {
@@ -231,15 +228,6 @@ impl Lesson for CubeShadows {
             anyhow::bail!("lights[{k}]: lesson_04 shadows point (and spot) lights; directional lights are lessons lesson_01-lesson_03");
         }
         Ok(())
-    }
-
-    /// The variant's cube map, as a cross ([`cross_view`]).
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
-            return Ok(None); // no light: no face passes
-        };
-        let map = &self.maps[self.prepared[v as usize].map];
-        cross_view(gpu, map, last).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -266,14 +254,14 @@ impl Lesson for CubeShadows {
         let (mut lit_keys, mut lit_pipelines) = (Vec::<LitKey>::new(), Vec::new());
         let has_unclipped = gpu.has(wgpu::Features::DEPTH_CLIP_CONTROL);
         let tally = TallyShader::new(gpu);
-        let (mut maps, mut shadow_pipelines, mut tally_pipelines, mut keys, mut prepared) = (
+        let (mut maps, mut shadow_pipelines, mut tally_pipelines, mut keys) = (
             Vec::<CubeShadowMap>::new(),
             Vec::new(),
             Vec::new(),
             Vec::new(),
-            Vec::new(),
         );
-        for v in Variant::value_variants().iter().map(|v| v.settings()) {
+        let prepared = PerVariant::new(|variant: Variant| {
+            let v = variant.settings();
             // The exercise's lookup reads its own map, as a 2D array.
             let faces = v.storage == Storage::DepthExercise;
             let map = maps
@@ -342,7 +330,7 @@ impl Lesson for CubeShadows {
                 filter,
                 bytemuck::bytes_of(&params),
             );
-            prepared.push(Prepared {
+            Prepared {
                 pipeline,
                 lit,
                 group,
@@ -350,15 +338,16 @@ impl Lesson for CubeShadows {
                 near,
                 far: v.far,
                 unclipped,
-            });
-        }
+                scissor: true,
+                texels_written: None,
+            }
+        });
         let faces = FaceUniforms::new(gpu, scene);
         let spheres = culling::bounding_spheres(&scene.scene);
         Ok(CubeShadows {
             lit_pipelines,
             shadow_pipelines,
             tally_pipelines,
-            texels_written: vec![None; Variant::value_variants().len()],
             maps,
             prepared,
             faces,
@@ -366,7 +355,6 @@ impl Lesson for CubeShadows {
             stats: CubeStats::default(),
             draws: 0,
             rects: FaceRectCache::default(),
-            scissor: vec![true; Variant::value_variants().len()],
         })
     }
 
@@ -388,36 +376,6 @@ impl Lesson for CubeShadows {
         self.record_draws(scene, &drawn);
         Ok(())
     }
-
-    /// The runner moved the camera or the light (`--fragile`): the face
-    /// passes' depth writes are counted again on the next frame.
-    fn count_again(&mut self, variant: Variant) {
-        self.texels_written[variant as usize] = None;
-    }
-
-    /// The standard costs and the lesson's own (`harness.rs`).
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        self.cube_counters(variant)
-    }
-
-    fn knobs(&self, variant: Variant) -> Vec<Knob> {
-        self.scissor_knob(variant)
-    }
-
-    fn set_knob(&mut self, _: &Gpu, _: &SceneGpu, v: Variant, _: &str, value: f64) -> Result<()> {
-        self.scissor[v as usize] = value == 1.0;
-        self.count_again(v);
-        Ok(())
-    }
-
-    fn write_extras(&self, gpu: &Gpu, _: &SceneGpu, variant: Variant, out: &Path) -> Result<()> {
-        let map = &self.maps[self.prepared[variant as usize].map];
-        if map.faces {
-            return Ok(()); // no cube view to unfold
-        }
-        let path = out.join(format!("{}_cube_map.png", variant_name(variant)));
-        write_cross_png(gpu, map, 128, &path)
-    }
 }
 
 impl CubeShadows {
@@ -434,7 +392,7 @@ impl CubeShadows {
         variant: Variant,
     ) -> Vec<([u32; 6], FaceRects)> {
         let v = variant.settings();
-        let (near, far) = (self.prepared[variant as usize].near, v.far);
+        let (near, far) = (self.prepared[variant].near, v.far);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         let mut drawn = Vec::new();
         for light in 0..scene.scene.lights.len() {
@@ -442,7 +400,7 @@ impl CubeShadows {
             let at = point_light(&scene.scene, self.faces.origin, light)
                 .expect("check_scene allows point and spot lights");
             let rects = self.face_rects(scene, variant, light, at);
-            let p = &self.prepared[variant as usize];
+            let p = &self.prepared[variant];
             let casters = |face| face_casters(scene, &self.spheres, at, v.cull, face);
             let map = &mut self.maps[p.map];
             let pipeline = &self.shadow_pipelines[p.pipeline];

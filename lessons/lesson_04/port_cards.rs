@@ -4,7 +4,8 @@
 //! the port's own constants; `tests/port_cards.rs` checks one against the
 //! other, and the book's table of departures is generated from these.
 
-use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
+use common::measure::counters::TAPS;
+use common::ports::{Constant, Departure, PortCard, Role, Source, Value, TAPS_UNIT};
 
 pub use super::bevy_card::BEVY_POINT;
 
@@ -123,9 +124,9 @@ pub const LEARNOPENGL_1TAP: PortCard = PortCard {
             lines: "22-31",
         },
         Constant {
-            name: "taps",
+            name: TAPS.name,
             value: Value::Num(1.0),
-            unit: "taps",
+            unit: TAPS_UNIT,
             source: 2,
             lines: "24",
         },
@@ -235,7 +236,7 @@ pub const LEARNOPENGL_PCF20: PortCard = PortCard {
         Constant {
             name: "samples",
             value: Value::Num(20.0),
-            unit: "taps",
+            unit: TAPS_UNIT,
             source: 2,
             lines: "64",
         },

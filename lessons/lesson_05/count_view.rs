@@ -7,7 +7,7 @@
 use anyhow::Result;
 use common::gpu::fullscreen::read_stencil;
 use common::gpu::Gpu;
-use common::run::lesson::BufferView;
+use common::run::instruments::BufferView;
 
 /// The colours of counts 0, 1, 2, ...; a count past the last one is
 /// [`MANY`].

@@ -1,104 +1,43 @@
-//! Lessons 05 and 06's harness around [`ShadowVolumes::shadow_frame`]: the
-//! exercises' parts of the CPU route, the counts taken on a variant's
-//! second frame, and the stencil the "buffer" view reads. No chapter
-//! prints it; lesson 06 imports it rather than copy it.
+//! Lesson 05's harness: what the runner measures and shows besides the
+//! image. The casters drawn and the volumes' costs as counters (counted on
+//! a variant's second frame, in
+//! [`StencilLesson`](workbook::lesson_05::stencil_lesson::StencilLesson)),
+//! the routes an adapter cannot hold left out, and the z-pass count in the
+//! stencil as the window's buffer view.
 
-use std::collections::BTreeMap;
-
-use anyhow::Result;
 use common::gpu::render::SceneGpu;
-use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::measure::timing::Frame;
-use common::run::lesson::BufferView;
+use common::measure::counters::{Counts, CASTERS_DRAWN};
+use common::run::instruments::{BufferView, Instruments};
+use common::run::lesson::variant_name;
+use common::Result;
 
-use super::count_view::count_view;
-use super::extrusion::{CpuParts, Extrusion};
-use super::volumes::{CasterDraw, SecondFrameCounts, ShadowVolumes};
+use super::{Variant, ZPass};
 
-/// A variant's frame as the harness draws it: its index (the counts are
-/// per variant), its extrusion, and the CPU parts an exercise builds.
-#[derive(Clone, Copy, Debug)]
-pub struct VariantFrame {
-    pub variant: usize,
-    pub extrusion: Extrusion,
-    pub parts: CpuParts,
-}
-
-/// The volumes and the lit pipeline, with what the harness keeps of them.
-pub struct StencilLesson {
-    pub volumes: ShadowVolumes,
-    pub lit_pipeline: wgpu::RenderPipeline,
-    counts: SecondFrameCounts,
-    /// The last frame's depth-stencil texture, for the "buffer" view.
-    depth_stencil: Option<wgpu::Texture>,
-}
-
-impl StencilLesson {
-    /// `variants` variants, nothing counted yet.
-    pub fn new(
-        volumes: ShadowVolumes,
-        lit_pipeline: wgpu::RenderPipeline,
-        variants: usize,
-    ) -> StencilLesson {
-        StencilLesson {
-            volumes,
-            lit_pipeline,
-            counts: SecondFrameCounts::new(variants),
-            depth_stencil: None,
-        }
+impl Instruments for ZPass {
+    /// A route whose buffers would pass the adapter's limits
+    /// ([`fit`](workbook::lesson_05::fit)) is left out; the others run.
+    fn unavailable(&self, variant: Variant) -> Option<String> {
+        (self.shadow).unavailable(&variant_name(variant), variant.extrusion())
     }
 
-    /// One frame of `draws` ([`ShadowVolumes::shadow_frame`]), counted on
-    /// the variant's second frame. Returns the casters drawn.
-    pub fn frame(
-        &mut self,
-        frame: &mut Frame,
-        scene: &SceneGpu,
-        targets: &FrameTargets,
-        v: VariantFrame,
-        draws: &[Vec<CasterDraw>],
-    ) -> Result<u32> {
-        let (ext, lit) = (v.extrusion, &self.lit_pipeline);
-        self.volumes.set_cpu_parts(v.parts);
-        let drawn = (self.volumes).shadow_frame(frame, scene, targets, ext, draws, lit)?;
-        self.depth_stencil = Some(targets.depth.clone());
-        let volumes = &self.volumes;
-        (self.counts).after_frame(frame, v.variant, |gpu| {
-            volumes.count_all(gpu, scene, targets, ext, draws)
-        })?;
-        Ok(drawn)
+    /// The volumes' costs are counted again on the variant's second frame
+    /// from now.
+    fn count_again(&mut self, variant: Variant) {
+        self.shadow.count_again(variant);
     }
 
-    /// Why variant `name`'s route cannot run here (its buffers would pass
-    /// the adapter's limits), or `None`.
-    pub fn unavailable(&self, name: &str, ext: Extrusion) -> Option<String> {
-        let why = self.volumes.unfit(ext)?;
-        Some(format!("{name}: {why}"))
+    /// The scene's checks (mesh validation, the largest overlap), the
+    /// casters drawn, and the volumes' costs once counted.
+    fn counters(&self, variant: Variant) -> Counts {
+        let mut c = self.scene_counters.clone();
+        c.set(CASTERS_DRAWN, self.casters_drawn);
+        (self.shadow).insert_counts(variant, &mut c, self.base_draws);
+        c
     }
 
-    /// Count variant `v` again on its second frame from now.
-    pub fn count_again(&mut self, v: usize) {
-        self.counts.again(v);
-    }
-
-    /// Variant `v`'s counts into `c`; `other_draws`: the base and lit
-    /// passes' draw calls.
-    pub fn insert_counts(&self, v: usize, c: &mut BTreeMap<String, u64>, other_draws: u64) {
-        self.counts.insert_into(v, c, other_draws);
-    }
-
-    /// The stencil after the last light's volume pass, `what` its count.
-    pub fn buffer_view(
-        &self,
-        gpu: &Gpu,
-        scene: &SceneGpu,
-        what: &str,
-    ) -> Result<Option<BufferView>> {
-        let (Some(ds), Some(last)) = (&self.depth_stencil, scene.scene.lights.len().checked_sub(1))
-        else {
-            return Ok(None);
-        };
-        count_view(gpu, ds, last, 0xff, what).map(Some)
+    /// The stencil: light N's z-pass count, N the last light.
+    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
+        self.shadow.buffer_view(gpu, scene, "z-pass count")
     }
 }

@@ -16,20 +16,21 @@
 //! Run: `cargo run --release --bin lesson_05 -- --headless`
 //! Book: chapter "05 z-pass stencil shadow volumes" (`book/src/lesson_05.md`).
 
-use std::collections::BTreeMap;
-
 use clap::ValueEnum;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
+use common::measure::counters::Counts;
 use common::measure::timing::Frame;
-use common::run::lesson::{variant_name, BufferView, Lesson};
+use common::run::lesson::{Capabilities, Lesson};
 use common::Result;
 use workbook::lesson_05::cull::kept_draws;
 use workbook::lesson_05::extrusion::{CpuParts, Extrusion};
-use workbook::lesson_05::harness::{StencilLesson, VariantFrame};
 use workbook::lesson_05::stencil::{self, Counting};
+use workbook::lesson_05::stencil_lesson::{StencilLesson, VariantFrame};
 use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, ShadowVolumes};
+
+mod harness;
 
 // ANCHOR: variants
 /// The variants differ in how the volume geometry is built, not in what
@@ -78,35 +79,35 @@ impl Variant {
 
 struct ZPass {
     /// The volumes, the lit pipeline, the counts and the buffer view.
-    shadow: StencilLesson,
+    shadow: StencilLesson<Variant>,
     /// `draws[light]`: every caster, z-pass, sides only.
     draws: Vec<Vec<CasterDraw>>,
     /// The same, of the casters `exercise_skip_casters` keeps (per frame).
     kept: Vec<Vec<CasterDraw>>,
     /// Computed once: mesh validation and the largest stencil count.
-    scene_counters: BTreeMap<String, u64>,
+    scene_counters: Counts,
+    /// The casters the last frame drew volumes for, over every light.
     casters_drawn: u64,
+    /// Draw calls of the base and lit passes.
     base_draws: u64,
 }
 
 impl Lesson for ZPass {
     const NAME: &'static str = "lesson_05";
-    /// Costs are counted on a variant's second frame ([`Lesson::count_again`]).
-    const COUNTED_ON_FRAME: u32 = 2;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_05.toml");
     type Variant = Variant;
-
-    /// The stencil: light N's z-pass count, N the last light.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
-        self.shadow.buffer_view(gpu, scene, "z-pass count")
-    }
+    /// Costs are counted on a variant's second frame (`harness.rs`).
+    const CAPABILITIES: Capabilities = Capabilities {
+        counted_on_frame: 2,
+        ..Capabilities::BASIC
+    };
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let volumes = ShadowVolumes::new(gpu, scene, &Counting::zpass())?;
         let draws = vec![volumes.all(CasterDraw::zpass); scene.scene.lights.len()];
         let lit = stencil::stencil_lit_pipeline(gpu, scene);
         Ok(ZPass {
-            shadow: StencilLesson::new(volumes, lit, Variant::value_variants().len()),
+            shadow: StencilLesson::new(volumes, lit),
             scene_counters: stencil::scene_counters(scene),
             draws,
             kept: Vec::new(),
@@ -134,30 +135,13 @@ impl Lesson for ZPass {
             _ => &self.draws,
         };
         let v = VariantFrame {
-            variant: variant as usize,
+            variant,
             extrusion: variant.extrusion(),
             parts: variant.cpu_parts(),
         };
         let drawn = self.shadow.frame(frame, scene, targets, v, draws)?;
         self.casters_drawn = drawn as u64;
         Ok(())
-    }
-
-    /// A route whose buffers would pass the adapter's limits
-    /// ([`fit`](workbook::lesson_05::fit)) is left out; the others run.
-    fn unavailable(&self, variant: Variant) -> Option<String> {
-        (self.shadow).unavailable(&variant_name(variant), variant.extrusion())
-    }
-
-    fn count_again(&mut self, variant: Variant) {
-        self.shadow.count_again(variant as usize);
-    }
-
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let mut c = self.scene_counters.clone();
-        c.insert("casters_drawn".into(), self.casters_drawn);
-        (self.shadow).insert_counts(variant as usize, &mut c, self.base_draws);
-        c
     }
 }
 

@@ -1,6 +1,7 @@
 //! Lesson 05, z-pass stencil shadow volumes: silhouettes, their extrusion
 //! to infinity, and counting the volumes in the stencil; [`count_view`]
-//! shows that count as a picture.
+//! shows that count as a picture, and [`stencil_lesson`] is the frame
+//! lessons 05 and 06 draw, with the counts their harnesses report.
 
 pub mod adjacency;
 pub mod compute;
@@ -9,10 +10,10 @@ pub mod cull;
 pub mod extrusion;
 pub mod fit;
 pub mod frustum;
-pub mod harness;
 pub mod quads;
 pub mod silhouette;
 pub mod stencil;
+pub mod stencil_lesson;
 pub mod volumes;
 
 #[cfg(feature = "chapter_copies")]

@@ -9,14 +9,15 @@
 //! inside a volume or the near plane cuts one (the missing "enter" count);
 //! lesson 06 counts behind the surface instead (z-fail, with caps).
 
-use std::collections::BTreeMap;
-
 use anyhow::{bail, Result};
 
 use super::adjacency::validate;
 use common::glam::Vec3;
 use common::gpu::render::{pipeline_layout_for, SceneGpu};
 use common::gpu::Gpu;
+use common::measure::counters::{
+    Counts, DEGENERATE_TRIANGLES, MAX_VOLUME_OVERLAP, NONMANIFOLD_EDGES, OPEN_EDGES,
+};
 use common::reference::bvh::Bvh;
 use common::reference::primary_ray;
 use common::scene::mesh::face_normal;
@@ -204,30 +205,31 @@ pub fn segment_crosses(o: Vec3, d: Vec3, t_max: f32, t: &[Vec3; 3]) -> bool {
 }
 
 /// Report counters about the casters, computed once: mesh validation
-/// (`open_edges`, `nonmanifold_edges`, `degenerate_triangles`, summed over
-/// casters) and `max_volume_overlap` (the largest stencil count found on a
-/// 64 × 36 pixel grid, over all lights). No warning: see [`scene_counters`].
-pub fn caster_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
-    let mut c = BTreeMap::new();
+/// ([`OPEN_EDGES`], [`NONMANIFOLD_EDGES`], [`DEGENERATE_TRIANGLES`], summed
+/// over casters) and [`MAX_VOLUME_OVERLAP`] (the largest stencil count
+/// found on a 64 × 36 pixel grid, over all lights). No warning: see
+/// [`scene_counters`].
+pub fn caster_counters(scene: &SceneGpu) -> Counts {
+    let mut c = Counts::new();
     for o in scene.scene.objects.iter().filter(|o| o.casts_shadow) {
         let v = validate(&o.mesh);
-        *c.entry("open_edges".to_string()).or_default() += v.boundary_edges as u64;
-        *c.entry("nonmanifold_edges".to_string()).or_default() += v.nonmanifold_edges as u64;
-        *c.entry("degenerate_triangles".to_string()).or_default() += v.degenerate_triangles as u64;
+        c.add(OPEN_EDGES, v.boundary_edges as u64);
+        c.add(NONMANIFOLD_EDGES, v.nonmanifold_edges as u64);
+        c.add(DEGENERATE_TRIANGLES, v.degenerate_triangles as u64);
     }
     let overlap = (0..scene.scene.lights.len())
         .map(|k| max_volume_overlap(scene, k, 64, 36))
         .max()
         .unwrap_or(0);
-    c.insert("max_volume_overlap".to_string(), overlap as u64);
+    c.set(MAX_VOLUME_OVERLAP, overlap as u64);
     c
 }
 
 /// [`caster_counters`], with a warning on stderr when the 8-bit stencil
 /// count wraps (256 or more overlapping volumes).
-pub fn scene_counters(scene: &SceneGpu) -> BTreeMap<String, u64> {
+pub fn scene_counters(scene: &SceneGpu) -> Counts {
     let c = caster_counters(scene);
-    let overlap = c["max_volume_overlap"];
+    let overlap = c.get(MAX_VOLUME_OVERLAP).unwrap_or(0);
     if overlap >= 256 {
         eprintln!("warning: up to {overlap} shadow volumes overlap: the 8-bit stencil count wraps (256 reads as 0, lit)");
     }

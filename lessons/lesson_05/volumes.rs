@@ -37,7 +37,7 @@ use anyhow::Result;
 use common::glam::{DVec3, Mat4};
 use common::gpu::render::SceneGpu;
 use common::gpu::Gpu;
-use common::measure::counters::FragmentCounter;
+use common::measure::fragment_counter::FragmentCounter;
 use common::measure::timing::Frame;
 
 use super::adjacency::Adjacency;

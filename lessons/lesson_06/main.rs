@@ -22,24 +22,26 @@
 //! Run: `cargo run --release --bin lesson_06 -- --headless`
 //! Book: chapter "06 z-fail with caps" (`book/src/lesson_06.md`).
 
-use std::collections::BTreeMap;
-
 use clap::ValueEnum;
 use common::glam::DVec3;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
+use common::measure::counters::Counts;
 use common::measure::timing::Frame;
-use common::run::lesson::{variant_name, BufferView, Lesson};
+use common::run::lesson::{Capabilities, Lesson};
+use common::run::per_variant::PerVariant;
 use common::scene::{Far, LightKind};
 use common::Result;
 use workbook::lesson_05::extrusion::{world_light, CpuParts, Extrusion};
-use workbook::lesson_05::harness::{StencilLesson, VariantFrame};
 use workbook::lesson_05::stencil::{self, Counting, Method};
+use workbook::lesson_05::stencil_lesson::{StencilLesson, VariantFrame};
 use workbook::lesson_05::volumes::{base_and_lit_draws, CasterDraw, ShadowVolumes, VolumeCaster};
 use workbook::lesson_06::caps::{self, zfail_counting};
 use workbook::lesson_06::plan::{near_rectangle, plan, plan_with};
 use workbook::lesson_06::reach::volume_reach;
+
+mod harness;
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -135,61 +137,36 @@ impl Variant {
     }
 }
 
-/// What a variant's draws chose, over every light: casters counted with
-/// z-pass, with z-fail, and left out.
-#[derive(Clone, Copy, Debug, Default)]
-struct Chosen {
-    zpass: u64,
-    zfail: u64,
-    skipped: u64,
-}
-
-impl Chosen {
-    /// Counted from the draws, `casters` casters per light.
-    fn of(per_light: &[Vec<CasterDraw>], casters: usize) -> Chosen {
-        let mut c = Chosen::default();
-        for draws in per_light {
-            let method = |m| draws.iter().filter(|d| d.method == m).count() as u64;
-            c.zpass += method(Method::ZPass);
-            c.zfail += method(Method::ZFail);
-            c.skipped += (casters - draws.len()) as u64;
-        }
-        c
-    }
-}
-
 struct ZFail {
     /// The volumes, the lit pipeline, the counts and the buffer view
-    /// (lesson 05's harness).
-    shadow: StencilLesson,
-    scene_counters: BTreeMap<String, u64>,
-    /// Per variant, in variant order: `draws[light]`, and what was chosen.
-    plans: Vec<(Vec<Vec<CasterDraw>>, Chosen)>,
+    /// (lesson 05's [`StencilLesson`]).
+    shadow: StencilLesson<Variant>,
+    /// Computed once: mesh validation and the largest stencil count.
+    scene_counters: Counts,
+    /// Each variant's plan: `draws[light]`, which casters, counted how.
+    plans: PerVariant<Variant, Vec<Vec<CasterDraw>>>,
     /// Draw calls of the base and lit passes.
     base_draws: u64,
     /// The camera and lights the reach and plans were made for.
     view: Vec<f64>,
 }
 
-/// Every variant's draws for every light, in variant order.
-fn plans(volumes: &ShadowVolumes, scene: &SceneGpu) -> Vec<(Vec<Vec<CasterDraw>>, Chosen)> {
+/// Every variant's draws for every light.
+fn plans(volumes: &ShadowVolumes, scene: &SceneGpu) -> PerVariant<Variant, Vec<Vec<CasterDraw>>> {
     // A finite reach puts the back cap where a view ray can cross it in
     // front of the surface: z-pass must then count it too.
     let finite = matches!(scene.scene.camera.far, Far::Finite(_));
-    let mut plans = Vec::new();
-    for v in Variant::value_variants() {
-        let mut per_light = Vec::new();
-        for light in 0..scene.scene.lights.len() {
-            let mut d = v.draws_or_exercise(volumes, scene, light);
-            for d in d.iter_mut().filter(|d| d.method == Method::ZPass) {
-                d.back_cap |= finite;
-            }
-            per_light.push(d);
-        }
-        let chosen = Chosen::of(&per_light, volumes.casters.len());
-        plans.push((per_light, chosen));
-    }
-    plans
+    PerVariant::new(|v: Variant| {
+        (0..scene.scene.lights.len())
+            .map(|light| {
+                let mut d = v.draws_or_exercise(volumes, scene, light);
+                for d in d.iter_mut().filter(|d| d.method == Method::ZPass) {
+                    d.back_cap |= finite;
+                }
+                d
+            })
+            .collect()
+    })
 }
 
 /// What the reach and the plans depend on: the camera (far plane, frustum)
@@ -214,16 +191,13 @@ fn view_key(scene: &SceneGpu) -> Vec<f64> {
 
 impl Lesson for ZFail {
     const NAME: &'static str = "lesson_06";
-    /// Costs are counted on a variant's second frame ([`Lesson::count_again`]).
-    const COUNTED_ON_FRAME: u32 = 2;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_06.toml");
     type Variant = Variant;
-
-    /// The stencil: light N's count, N the last light.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
-        let what = "volume count (z-pass and z-fail leave the same)";
-        self.shadow.buffer_view(gpu, scene, what)
-    }
+    /// Costs are counted on a variant's second frame (`harness.rs`).
+    const CAPABILITIES: Capabilities = Capabilities {
+        counted_on_frame: 2,
+        ..Capabilities::BASIC
+    };
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         // ANCHOR: reach
@@ -241,7 +215,7 @@ impl Lesson for ZFail {
         Ok(ZFail {
             scene_counters: stencil::scene_counters(scene),
             plans: plans(&volumes, scene),
-            shadow: StencilLesson::new(volumes, lit, Variant::value_variants().len()),
+            shadow: StencilLesson::new(volumes, lit),
             base_draws: base_and_lit_draws(scene),
             view: view_key(scene),
         })
@@ -266,34 +240,14 @@ impl Lesson for ZFail {
             self.plans = plans(volumes, scene);
             self.view = key;
         }
-        let (draws, _) = &self.plans[variant as usize];
+        let draws = &self.plans[variant];
         let v = VariantFrame {
-            variant: variant as usize,
+            variant,
             extrusion: variant.extrusion(),
             parts: variant.cpu_parts(),
         };
         self.shadow.frame(frame, scene, targets, v, draws)?;
         Ok(())
-    }
-
-    /// A route whose buffers would pass the adapter's limits is left out.
-    fn unavailable(&self, variant: Variant) -> Option<String> {
-        (self.shadow).unavailable(&variant_name(variant), variant.extrusion())
-    }
-
-    fn count_again(&mut self, variant: Variant) {
-        self.shadow.count_again(variant as usize);
-    }
-
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let mut c = self.scene_counters.clone();
-        let (_, s) = &self.plans[variant as usize];
-        c.insert("casters_zpass".into(), s.zpass);
-        c.insert("casters_zfail".into(), s.zfail);
-        c.insert("casters_skipped".into(), s.skipped);
-        c.insert("casters_drawn".into(), s.zpass + s.zfail);
-        (self.shadow).insert_counts(variant as usize, &mut c, self.base_draws);
-        c
     }
 }
 

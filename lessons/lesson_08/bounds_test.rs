@@ -11,7 +11,7 @@ use common::gpu::fullscreen::Fullscreen;
 use common::gpu::render::{pipeline_layout_for, SceneGpu};
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
-use common::measure::counters::FragmentCounter;
+use common::measure::fragment_counter::FragmentCounter;
 
 use super::range_sphere::{caster_reaches, LightBounds, RangeSphere};
 use crate::lesson_05::extrusion::volume_shader_module;

@@ -11,6 +11,9 @@ use anyhow::Result;
 use common::gpu::render::{pipeline_layout_for, SceneGpu};
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
+use common::measure::counters::{
+    Counts, DRAWS, STENCIL_FRAGMENTS, STENCIL_UPDATES, VOLUME_FRAGMENTS, VOLUME_TRIANGLES,
+};
 
 use super::bounds_test::{bounded_volume_stencil, BoundedLight, BoundedVolumes, Limits};
 use crate::lesson_01::tally::{Tally, TallyShader};
@@ -37,14 +40,14 @@ pub struct BoundedCosts {
 }
 
 impl BoundedCosts {
-    /// The report keys into `c`; `draws` is `other_draws` (base and lit
-    /// passes) plus the volume passes'.
-    pub fn insert_into(&self, c: &mut std::collections::BTreeMap<String, u64>, other_draws: u64) {
-        c.insert("volume_fragments".into(), self.volume_fragments);
-        c.insert("stencil_fragments".into(), self.stencil_fragments);
-        c.insert("stencil_updates".into(), self.stencil_updates);
-        c.insert("volume_triangles".into(), self.volume_triangles);
-        c.insert("draws".into(), other_draws + self.draws);
+    /// The counters of the same names into `c`; [`DRAWS`] is
+    /// `other_draws` (base and lit passes) plus the volume passes'.
+    pub fn insert_into(&self, c: &mut Counts, other_draws: u64) {
+        c.set(VOLUME_FRAGMENTS, self.volume_fragments);
+        c.set(STENCIL_FRAGMENTS, self.stencil_fragments);
+        c.set(STENCIL_UPDATES, self.stencil_updates);
+        c.set(VOLUME_TRIANGLES, self.volume_triangles);
+        c.set(DRAWS, other_draws + self.draws);
     }
 }
 

@@ -30,31 +30,29 @@
 //! Run: `cargo run --release --bin lesson_08 -- --headless`
 //! Book: chapter "08 depth bounds" (`book/src/lesson_08.md`).
 
-use std::collections::BTreeMap;
-
 use clap::ValueEnum;
 use common::glam::DVec3;
 use common::gpu::lit::LitPass;
-use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
+use common::measure::counters::Counts;
 use common::measure::timing::Frame;
-use common::run::knobs::{Knob, KnobRange};
-use common::run::lesson::{BufferView, Lesson};
+use common::run::lesson::{Capabilities, Lesson};
+use common::run::per_variant::PerVariant;
 use common::scene::Far;
 use common::Result;
-use workbook::lesson_05::count_view::count_view;
 use workbook::lesson_05::extrusion::{volume_shader_module, Extrusion};
-use workbook::lesson_05::volumes::{base_and_lit_draws, ShadowVolumes};
+use workbook::lesson_05::volumes::ShadowVolumes;
 use workbook::lesson_06::caps::zfail_counting;
-use workbook::lesson_08::bounds_test::{
-    bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits, COUNT_BITS,
-};
+use workbook::lesson_08::bounds_test::{bounded_lit_stencil, BoundedLight, BoundedVolumes, Limits};
 use workbook::lesson_08::costs::VolumeTally;
 use workbook::lesson_08::count_bits;
 use workbook::lesson_08::exercise_bounds::{exercise_bounds, Student};
 use workbook::lesson_08::range_sphere::{all_bounds, range_spheres, LightBounds, RangeSphere};
+
+mod harness;
+use harness::VariantCounts;
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -150,35 +148,29 @@ struct DepthBounds {
     origin: DVec3,
     spheres: Vec<RangeSphere>,
     bounds: Vec<Option<Option<LightBounds>>>,
-    scene_counters: BTreeMap<String, u64>,
-    /// Per variant, in variant order: the counters, and frames rendered.
-    counters: Vec<BTreeMap<String, u64>>,
-    frames: Vec<u32>,
-    /// The last frame's depth-stencil texture, for [`Lesson::buffer_view`].
+    /// Computed once: mesh validation and the largest stencil count.
+    scene_counters: Counts,
+    /// What each variant counted, on its second frame ([`VariantCounts`]).
+    counted: PerVariant<Variant, VariantCounts>,
+    /// The last frame's depth-stencil texture, for the window's buffer view.
     depth_stencil: Option<wgpu::Texture>,
-    /// Per variant, its limits with the knobs' values ([`Variant::limits`]
+    /// Each variant's limits, with the knobs' values ([`Variant::limits`]
     /// when no knob was set).
-    limits: Vec<Limits>,
+    limits: PerVariant<Variant, Limits>,
 }
 
 impl Lesson for DepthBounds {
     const NAME: &'static str = "lesson_08";
-    /// Costs are counted on a variant's second frame ([`Lesson::count_again`]).
-    const COUNTED_ON_FRAME: u32 = 2;
-    // The scissor rectangles read only the projection's diagonal.
-    const SUPPORTS_CAMERA_SHIFT: bool = false;
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_08.toml");
     type Variant = Variant;
-
-    /// The stencil's bits 0–6: light N's z-fail count, N the last light.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, _: Variant) -> Result<Option<BufferView>> {
-        let (Some(ds), Some(last)) = (&self.depth_stencil, scene.scene.lights.len().checked_sub(1))
-        else {
-            return Ok(None);
-        };
-        let what = "z-fail count in bits 0-6 (bit 7, the bounds mark, left out)";
-        count_view(gpu, ds, last, COUNT_BITS as u8, what).map(Some)
-    }
+    /// Costs are counted on a variant's second frame (`harness.rs`). The
+    /// scissor rectangles read only the projection's diagonal: no shifted
+    /// camera.
+    const CAPABILITIES: Capabilities = Capabilities {
+        counted_on_frame: 2,
+        camera_shift: false,
+        ..Capabilities::BASIC
+    };
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
         let volumes = ShadowVolumes::new(gpu, scene, &zfail_counting())?;
@@ -211,13 +203,9 @@ impl Lesson for DepthBounds {
             spheres,
             scene_counters: count_bits::scene_counters(scene),
             volumes,
-            counters: vec![BTreeMap::new(); Variant::value_variants().len()],
-            frames: vec![0; Variant::value_variants().len()],
+            counted: PerVariant::new(|_| VariantCounts::default()),
             depth_stencil: None,
-            limits: Variant::value_variants()
-                .iter()
-                .map(|v| v.limits_or_exercise())
-                .collect(),
+            limits: PerVariant::new(Variant::limits_or_exercise),
         })
     }
 
@@ -239,7 +227,7 @@ impl Lesson for DepthBounds {
             (spheres, bounds)
         });
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
-        for b in bounded_lights(&spheres, &bounds, self.limits[variant as usize]) {
+        for b in bounded_lights(&spheres, &bounds, self.limits[variant]) {
             frame.pass("volume", |enc, ts| {
                 self.bounded
                     .volume_pass(enc, scene, targets, b, ts.render())
@@ -264,143 +252,10 @@ impl Lesson for DepthBounds {
         (self.spheres, self.bounds) = (spheres, bounds);
         // What the "buffer" view reads: this frame's stencil.
         self.depth_stencil = Some(targets.depth.clone());
-        // The second call finds the first frame's depth in place: count
-        // then (in a web page the counts come back a frame or more later).
-        let n = &mut self.frames[variant as usize];
-        *n += 1;
-        if *n >= 2 && self.counters[variant as usize].is_empty() {
-            frame.untimed(|gpu| later(|| self.count(gpu, scene, targets, variant)))?;
-        }
-        Ok(())
+        // Counted on the variant's second frame (`harness.rs`).
+        self.after_frame(frame, scene, targets, variant)
     }
     // ANCHOR_END: render
-
-    fn count_again(&mut self, variant: Variant) {
-        self.frames[variant as usize] = 0;
-        self.counters[variant as usize].clear();
-    }
-
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let mut c = self.scene_counters.clone();
-        c.extend(self.counters[variant as usize].clone());
-        c
-    }
-
-    /// The three limits as toggles, on each of the six variants; the
-    /// exercises keep theirs (the student's bounds are what they measure).
-    fn knobs(&self, variant: Variant) -> Vec<Knob> {
-        if matches!(
-            variant,
-            Variant::ExerciseScissorRect | Variant::ExerciseDepthBounds
-        ) {
-            return Vec::new();
-        }
-        let l = self.limits[variant as usize];
-        let toggle = |name, doc, on: bool| Knob {
-            name,
-            doc,
-            range: KnobRange::Toggle,
-            value: on as u8 as f64,
-        };
-        vec![
-            toggle(
-                "scissor",
-                "volumes (and the light) drawn only inside the range sphere's screen rectangle",
-                l.scissor,
-            ),
-            toggle(
-                "depth_bounds",
-                "volume fragments count only over stored depths inside the sphere's depth interval",
-                l.depth_bounds,
-            ),
-            toggle(
-                "cull",
-                "only casters whose bounding sphere reaches into the range cast volumes",
-                l.cull,
-            ),
-        ]
-    }
-
-    /// The next frames use the new limits; the counters are taken again on
-    /// the variant's second frame from now.
-    fn set_knob(
-        &mut self,
-        _gpu: &Gpu,
-        _scene: &SceneGpu,
-        variant: Variant,
-        name: &str,
-        value: f64,
-    ) -> Result<()> {
-        let l = &mut self.limits[variant as usize];
-        let on = value != 0.0;
-        match name {
-            "scissor" => l.scissor = on,
-            "depth_bounds" => l.depth_bounds = on,
-            "cull" => l.cull = on,
-            _ => anyhow::bail!("--knob {name}: lesson_08 has scissor, depth_bounds and cull"),
-        }
-        self.frames[variant as usize] = 0;
-        self.counters[variant as usize].clear();
-        Ok(())
-    }
-}
-
-impl DepthBounds {
-    /// The counters: the volume passes' exact costs (fragments rasterised,
-    /// reaching the stencil, writing it; triangles; draw calls: a tally, on
-    /// every backend), fragment-shader invocations (pipeline statistics,
-    /// where the adapter has them), the scissor area.
-    fn count(
-        &mut self,
-        gpu: &Gpu,
-        scene: &SceneGpu,
-        targets: &FrameTargets,
-        variant: Variant,
-    ) -> Result<()> {
-        let lim = self.limits[variant as usize];
-        let lights = bounded_lights(&self.spheres, &self.bounds, lim);
-        let mut c = BTreeMap::new();
-        let costs = self
-            .tally
-            .count(gpu, scene, targets, &self.bounded, &lights)?;
-        costs.insert_into(&mut c, base_and_lit_draws(scene));
-        // Pipeline statistics: llvmpipe counts 16 per 4×4 block shaded.
-        let invocations =
-            self.bounded
-                .count_rasterised(gpu, scene, self.volumes.counter(), &lights);
-        if let Some(r) = invocations {
-            c.insert("fragment_shader_invocations".to_string(), r);
-        }
-        let full = scene.width as u64 * scene.height as u64;
-        let area = |b: &Option<Option<LightBounds>>| match b {
-            Some(Some(b)) if lim.scissor => b.scissor.area(),
-            Some(None) if lim.scissor => 0,
-            _ => full,
-        };
-        c.insert(
-            "scissor_pixels".to_string(),
-            self.bounds.iter().map(area).sum(),
-        );
-        // Which extreme cases this camera meets (range sphere in view space).
-        let (view, near) = (scene.camera.view.as_dmat4(), scene.scene.camera.near);
-        let (mut inside, mut crossing) = (0, 0);
-        for &(centre, range) in self.spheres.iter().flatten() {
-            let v = view.transform_point3(centre);
-            inside += (v.length() <= range) as u64;
-            crossing += (v.length() > range && v.z + range > -near) as u64;
-        }
-        c.insert("lights_around_camera".to_string(), inside);
-        c.insert("lights_crossing_near_plane".to_string(), crossing);
-        c.insert(
-            "lights_culled".to_string(),
-            self.bounds
-                .iter()
-                .filter(|b| lim != Limits::default() && **b == Some(None))
-                .count() as u64,
-        );
-        self.counters[variant as usize] = c;
-        Ok(())
-    }
 }
 
 pub(crate) fn main() -> std::process::ExitCode {

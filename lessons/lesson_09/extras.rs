@@ -10,7 +10,7 @@ use common::gpu::render::{pipeline_layout_for, vertex_state, SceneGpu};
 use common::gpu::targets::render_texture;
 use common::gpu::Gpu;
 use common::run::files::save;
-use common::run::lesson::BufferView;
+use common::run::instruments::BufferView;
 
 use super::csm::CascadeMaps;
 

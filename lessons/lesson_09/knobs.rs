@@ -16,6 +16,9 @@ use super::cascades::SplitScheme;
 use super::csm::MAX_CASCADES;
 use super::setup::{self, Setup};
 
+/// The knob that sets how many cascades split the view.
+pub const CASCADES_KNOB: &str = "cascades"; // not a counter: the knob
+
 /// The knobs of a variant whose setup is `named` when named, with the
 /// values of `now`.
 pub fn setup_knobs(named: Setup, now: Setup) -> Vec<Knob> {
@@ -23,7 +26,7 @@ pub fn setup_knobs(named: Setup, now: Setup) -> Vec<Knob> {
         return Vec::new();
     }
     let mut knobs = vec![Knob {
-        name: "cascades",
+        name: CASCADES_KNOB,
         doc: "K: the view frustum cut into K slices, each with its own map of 2048 / √K texels",
         range: KnobRange::Int {
             min: 1,
@@ -51,7 +54,7 @@ pub fn setup_knobs(named: Setup, now: Setup) -> Vec<Knob> {
 /// Sets knob `name` of `setup` to `value` (checked by `apply_knob`).
 pub fn set_setup_knob(setup: &mut Setup, name: &str, value: f64) -> Result<()> {
     match (name, &mut setup.scheme) {
-        ("cascades", _) => {
+        (CASCADES_KNOB, _) => {
             setup.count = value as usize;
             setup.resolution = setup::per_cascade_resolution(setup.count);
         }
@@ -75,14 +78,14 @@ mod tests {
         };
         let k4 = Setup::cascaded(4, SplitScheme::Practical { lambda: 0.9 }, options);
         let mut s = k4;
-        set_setup_knob(&mut s, "cascades", 2.0).unwrap();
+        set_setup_knob(&mut s, CASCADES_KNOB, 2.0).unwrap();
         assert_eq!((s.count, s.resolution), (2, 1448));
         set_setup_knob(&mut s, "split_lambda", 0.0).unwrap();
         let names: Vec<_> = setup_knobs(k4, s)
             .iter()
             .map(|k| (k.name, k.value))
             .collect();
-        assert_eq!(names, [("cascades", 2.0), ("split_lambda", 0.0)]);
+        assert_eq!(names, [(CASCADES_KNOB, 2.0), ("split_lambda", 0.0)]);
         let uniform = Setup::cascaded(4, SplitScheme::Uniform, options);
         assert_eq!(setup_knobs(uniform, uniform).len(), 1);
         assert!(set_setup_knob(&mut uniform.clone(), "split_lambda", 0.5).is_err());

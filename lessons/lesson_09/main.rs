@@ -13,14 +13,13 @@
 //! The math is in [`cascades`], the GPU side in [`csm`] and
 //! `shaders/lesson_09/csm.wgsl`; each cascade draws only the casters that
 //! can shadow its receivers ([`caster_culling`]); the cascade count and
-//! the split's λ are knobs ([`knobs`]). What the report counts around the
-//! frame (draw calls, the shadow passes' texels) is in `harness.rs`.
+//! the split's λ are knobs ([`knobs`](workbook::lesson_09::knobs)). What
+//! the runner measures and shows besides the image (draw calls, the shadow
+//! passes' texels, texels per 100 m, the cascade each pixel samples) is in
+//! `harness.rs`.
 //!
 //! Run: `cargo run --release --bin lesson_09 -- --headless`
 //! Book: chapter "09 cascaded shadow maps" (`book/src/lesson_09.md`).
-
-use std::collections::BTreeMap;
-use std::path::Path;
 
 use clap::ValueEnum;
 use common::gpu::lit::LitPass;
@@ -28,9 +27,8 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::knobs::Knob;
-use common::run::lesson::{variant_name, BufferView, Lesson};
-use common::scene::camera::light_view_proj;
+use common::run::lesson::{Capabilities, Lesson};
+use common::run::per_variant::PerVariant;
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map::{self, ShadowPassState};
@@ -39,8 +37,7 @@ use workbook::lesson_09::cascades::{self, Cascade, Fit, FitOptions, SplitScheme}
 use workbook::lesson_09::caster_culling::{CasterCulling, Kept};
 use workbook::lesson_09::csm::{self, CascadeLights, CascadeMaps};
 use workbook::lesson_09::pipelines::{CsmPipelines, Shape};
-use workbook::lesson_09::setup::{Exercise, Setup};
-use workbook::lesson_09::{extras, knobs, setup};
+use workbook::lesson_09::setup::{self, Exercise, Setup};
 
 mod harness;
 
@@ -142,9 +139,6 @@ impl Variant {
     }
 }
 
-/// The view depths the perspective-aliasing counters are taken at, metres.
-const ALIASING_AT: [u32; 4] = [2, 10, 50, 200];
-
 struct Csm {
     shadow_pipeline: wgpu::RenderPipeline,
     tally_pipeline: [wgpu::RenderPipeline; 2],
@@ -162,44 +156,53 @@ struct Csm {
     params: Vec<wgpu::Buffer>,
     /// The arrays, one per (size, count), with one group per light.
     maps: Vec<(CascadeMaps, Vec<wgpu::BindGroup>)>,
-    /// Per variant: light 0's cascades of its last frame, and the shadow
-    /// pass's depth writes and fragments (counted once, first frame).
-    fitted: Vec<Option<Vec<Cascade>>>,
-    texels_written: Vec<Option<(u64, u64)>>,
-    /// Per variant: the shadow passes' draws in the frame whose texels were
-    /// counted (for `draws` and `casters_drawn`).
-    caster_draws: Vec<Option<u64>>,
+    /// Each variant's cascades: its setup now, what its last frame fitted
+    /// and what its shadow passes drew.
+    variants: PerVariant<Variant, VariantCascades>,
     /// The scene's objects (for `draws`).
     objects: u64,
-    /// Per variant, its setup with the knobs' values ([`Csm::setup`]).
-    setups: Vec<Setup>,
+}
+
+/// One variant's cascades: how it runs now, light 0's cascades of its
+/// last frame, and what its shadow passes drew, counted once (first frame).
+struct VariantCascades {
+    /// [`Variant::setup`] with the knobs' values ([`Csm::setup`]).
+    setup: Setup,
+    /// Light 0's cascades of the variant's last frame, for the report.
+    fitted: Option<Vec<Cascade>>,
+    /// The shadow passes' depth writes and fragments.
+    texels_written: Option<(u64, u64)>,
+    /// The shadow passes' draws in the frame whose texels were counted
+    /// (for `draws` and `casters_drawn`).
+    caster_draws: Option<u64>,
+}
+
+impl VariantCascades {
+    /// `variant` as named, not drawn nor counted yet.
+    fn new(variant: Variant) -> VariantCascades {
+        VariantCascades {
+            setup: variant.setup(),
+            fitted: None,
+            texels_written: None,
+            caster_draws: None,
+        }
+    }
 }
 
 impl Lesson for Csm {
     const NAME: &'static str = "lesson_09";
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_09.toml");
-    const CAMERA_PATH: bool = true;
-    // The cascades fit the view frustum made from fov_y_deg and the aspect.
-    const SUPPORTS_CAMERA_SHIFT: bool = false;
     type Variant = Variant;
+    // The cascades are fitted again every frame, to the view frustum made
+    // from fov_y_deg and the aspect (no shift).
+    const CAPABILITIES: Capabilities = Capabilities {
+        camera_path: true,
+        camera_shift: false,
+        ..Capabilities::BASIC
+    };
 
     fn check_scene(scene: &Scene) -> Result<()> {
         setup::refuse_non_directional(scene, Self::NAME)
-    }
-
-    /// The cascade each pixel samples ([`extras::cascade_view`]), light 0.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        let setup = self.setup(v);
-        let (Some(m), Some(p)) = (
-            self.find_maps(setup.resolution, setup.count),
-            self.pipelines.get(Shape::of(&setup)),
-        ) else {
-            return Ok(None); // not drawn yet
-        };
-        let Some(group) = self.maps[m].1.first() else {
-            return Ok(None); // no light: no cascades
-        };
-        extras::cascade_view(gpu, scene, &p.tint, group, setup.count).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -213,7 +216,6 @@ impl Lesson for Csm {
         let tally = TallyShader::new(gpu);
         let n = scene.scene.lights.len();
         let scene_box = setup::SceneBox::new(&scene.scene);
-        let variants = Variant::value_variants().len();
         Ok(Csm {
             shadow_pipeline: shadow_map::shadow_pipeline(gpu, scene, &module, state),
             tally_pipeline: shadow_map::shadow_tally_pipelines(gpu, scene, &module, state, &tally),
@@ -225,14 +227,8 @@ impl Lesson for Csm {
             params: (0..n).map(|_| setup::params_buffer(gpu)).collect(),
             layout,
             maps: Vec::new(),
-            fitted: vec![None; variants],
-            texels_written: vec![None; variants],
-            caster_draws: vec![None; variants],
+            variants: PerVariant::new(VariantCascades::new),
             objects: scene.scene.objects.len() as u64,
-            setups: Variant::value_variants()
-                .iter()
-                .map(|v| v.setup())
-                .collect(),
         })
     }
 
@@ -250,120 +246,10 @@ impl Lesson for Csm {
         self.choose_casters(frame, scene, setup, &fits);
         self.jitter_cascades(frame.gpu, scene, setup, &fits);
         // Light 0's cascades, for the report.
-        self.fitted[variant as usize] = fits.into_iter().next();
+        self.variants[variant].fitted = fits.into_iter().next();
         self.count_once(frame, scene, setup, variant)?;
         self.cascade_passes(frame, scene, targets, setup, m);
         Ok(())
-    }
-
-    fn pixel_classes(
-        &self,
-        scene: &SceneGpu,
-        variant: Variant,
-        view_depth: &[f32],
-    ) -> Option<(Vec<String>, Vec<u8>)> {
-        let setup = self.setup(variant);
-        let single = light_view_proj(&scene.scene, 0)?;
-        let size = (scene.width, scene.height);
-        let fit = (setup.fit(&scene.scene, &self.scene_box, single, size, 0)).ok()?;
-        let names = (0..fit.len()).map(|i| format!("cascade {i}")).collect();
-        let classes = view_depth
-            .iter()
-            .map(|&d| setup::cascade_of(&fit, d as f64) as u8)
-            .collect();
-        Some((names, classes))
-    }
-
-    /// The runner moved the camera or the light (`--fragile`): the shadow
-    /// passes' depth writes are counted again on the next frame.
-    fn count_again(&mut self, variant: Variant) {
-        self.texels_written[variant as usize] = None;
-        self.caster_draws[variant as usize] = None;
-    }
-
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        let setup = self.setup(variant);
-        let mut c = BTreeMap::from([
-            ("cascades".into(), setup.count as u64),
-            ("shadow_map_size".into(), setup.resolution as u64),
-            // A pixel in a blend band takes two lookups.
-            (
-                "filter_taps_per_pixel".into(),
-                if setup.blend > 0.0 { 2 } else { 1 },
-            ),
-        ]);
-        if let Some(casters) = self.caster_draws[variant as usize] {
-            c.insert("draws".into(), self.draws(casters));
-            c.insert("casters_drawn".into(), casters);
-        }
-        if let Some((written, fragments)) = self.texels_written[variant as usize] {
-            c.insert("shadow_texels_written".into(), written);
-            c.insert("shadow_fragments".into(), fragments);
-        }
-        if let Some(fit) = &self.fitted[variant as usize] {
-            // How far the boxes' origins lie off their texel grids: 0 when
-            // snapped (exercise 2's check).
-            let off = fit
-                .iter()
-                .filter_map(|c| Some(cascades::off_grid(c.origin?, c.width, setup.resolution)))
-                .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
-            if let Some(off) = off {
-                let milli = (off * 1000.0).round() as u64;
-                c.insert("origin_off_grid_millitexels".into(), milli);
-            }
-            for d in ALIASING_AT {
-                let cascade = &fit[setup::cascade_of(fit, d as f64)];
-                // Per 100 m: whole numbers that still resolve the far cascades.
-                let per_100m = 100.0 * setup.resolution as f64 / cascade.width;
-                c.insert(format!("texels_per_100m_at_{d}m"), per_100m.round() as u64);
-            }
-        }
-        c
-    }
-
-    fn knobs(&self, variant: Variant) -> Vec<Knob> {
-        knobs::setup_knobs(variant.setup(), self.setup(variant))
-    }
-
-    /// The next frame fits the new cascades (every frame does), into an
-    /// array of the new shape (made once per shape); the shadow pass's
-    /// texels are counted again.
-    fn set_knob(
-        &mut self,
-        _gpu: &Gpu,
-        _scene: &SceneGpu,
-        variant: Variant,
-        name: &str,
-        value: f64,
-    ) -> Result<()> {
-        knobs::set_setup_knob(&mut self.setups[variant as usize], name, value)?;
-        self.fitted[variant as usize] = None;
-        self.count_again(variant);
-        Ok(())
-    }
-
-    fn write_extras(
-        &self,
-        gpu: &Gpu,
-        scene: &SceneGpu,
-        variant: Variant,
-        out: &Path,
-    ) -> Result<()> {
-        let setup = self.setup(variant);
-        let (Some(m), Some(p)) = (
-            self.find_maps(setup.resolution, setup.count),
-            self.pipelines.get(Shape::of(&setup)),
-        ) else {
-            return Ok(());
-        };
-        let (maps, groups) = &self.maps[m];
-        let Some(group) = groups.first() else {
-            return Ok(()); // no light: nothing to picture
-        };
-        let name = variant_name(variant);
-        let path = out.join(format!("{name}_cascades.png"));
-        extras::write_cascade_png(gpu, scene, &p.tint, group, &path)?;
-        extras::write_layers(gpu, maps, out, &name)
     }
 }
 
@@ -454,9 +340,10 @@ impl Csm {
     /// `variant`'s cascades as it runs now: [`Variant::setup`] with the
     /// knobs' values.
     fn setup(&self, variant: Variant) -> Setup {
-        self.setups[variant as usize]
+        self.variants[variant].setup
     }
 
+    /// The index of the array for `count` cascades of `size`², if made.
     fn find_maps(&self, size: u32, count: usize) -> Option<usize> {
         self.maps
             .iter()

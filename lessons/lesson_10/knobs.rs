@@ -9,6 +9,9 @@ use common::run::knobs::{Knob, KnobRange};
 use super::soft::{Search, Technique};
 use crate::lesson_02::knobs::float;
 
+/// PCSS's knob for the filter's taps.
+pub const FILTER_TAPS_KNOB: &str = "filter_taps"; // not a counter: the knob
+
 /// The most taps a search or a filter may take: the disk table's points.
 pub const MAX_TAPS: u32 = super::soft::DISK_POINTS as u32;
 
@@ -32,7 +35,7 @@ pub fn technique_knobs(t: Technique) -> Vec<Knob> {
         }],
         Technique::Pcss(p) => vec![
             taps("search_taps", "blocker-search taps: fewer miss thin blockers", p.search_taps),
-            taps("filter_taps", "filter taps: fewer give a noisier penumbra", p.filter_taps),
+            taps(FILTER_TAPS_KNOB, "filter taps: fewer give a noisier penumbra", p.filter_taps),
             Knob {
                 name: "min_filter_texels",
                 doc: "the least filter radius, in texels: above 0 the contact shadow blurs open",
@@ -89,7 +92,7 @@ pub fn set_technique_knob(t: &mut Technique, name: &str, value: f64) -> Result<(
             *radius_texels = value as f32
         }
         (Technique::Pcss(p), "search_taps") => p.search_taps = value as u32,
-        (Technique::Pcss(p), "filter_taps") => p.filter_taps = value as u32,
+        (Technique::Pcss(p), FILTER_TAPS_KNOB) => p.filter_taps = value as u32,
         (Technique::Pcss(p), "receiver_plane") => p.receiver_plane = value != 0.0,
         (Technique::Pcss(p), "min_max") => p.min_max = value != 0.0,
         (Technique::Pcss(p), "chain_only") => p.chain_only = value != 0.0,

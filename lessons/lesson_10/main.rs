@@ -13,12 +13,14 @@
 //! The techniques are in [`soft`] and `shaders/lesson_10/soft.wgsl`, the
 //! renderers' ports in [`peers`] and `peers.wgsl`, the variance map's
 //! passes in [`moments`], the maps of each size in [`map_sets`], the knobs
-//! in [`knobs`].
+//! in [`knobs`](workbook::lesson_10::knobs). What the runner measures and
+//! shows besides the image (taps, texels read, draw calls, the knobs, the
+//! shadow map) is in `harness.rs`.
 //!
 //! Run: `cargo run --release --bin lesson_10 -- --headless`
 //! Book: chapter "10 Soft shadows" (`book/src/lesson_10.md`).
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 
 use clap::ValueEnum;
 use common::gpu::bindings::{self, storage_entry};
@@ -27,18 +29,19 @@ use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
 use common::measure::timing::Frame;
-use common::run::knobs::Knob;
-use common::run::lesson::{BufferView, Lesson};
+use common::run::lesson::{Capabilities, Lesson};
+use common::run::per_variant::PerVariant;
 use common::scene::Scene;
 use common::Result;
 use workbook::lesson_01::shadow_map;
 use workbook::lesson_10::exercise_shaders::Module;
-use workbook::lesson_10::knobs;
 use workbook::lesson_10::map_sets::{self, MapSet, MapSets};
 use workbook::lesson_10::moments::MomentsPasses;
 use workbook::lesson_10::peers::{self, Peer};
 use workbook::lesson_10::soft::{LightGeometry, Pcss, SoftUniform, Technique, Variance};
 use workbook::lesson_10::split::{lit_keys, LitKey};
+
+mod harness;
 
 // ANCHOR: variants
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -258,13 +261,14 @@ struct Soft {
     /// fs_soft of a module, compiled with a variant's constants and a
     /// stencil role: built the first time a variant runs.
     lit_pipelines: HashMap<LitKey, wgpu::RenderPipeline>,
-    /// `per_light[variant][light]`.
-    per_light: Vec<Vec<PerLight>>,
+    /// Each variant's state, per light: `per_light[variant][light]`.
+    per_light: PerVariant<Variant, Vec<PerLight>>,
     /// The scene's objects: the base pass draws each, and each lit draw.
     objects: u64,
 }
 
 impl Soft {
+    /// Variant `v`'s state for light `k`, running technique `t`.
     fn per_light(&self, gpu: &Gpu, v: Variant, k: usize, t: Technique) -> PerLight {
         let g = &self.geometry[k];
         let u = SoftUniform::new(t, g);
@@ -290,7 +294,7 @@ impl Soft {
     /// The variant's lit pipelines for every light, built if not yet.
     fn build_lit_pipelines(&mut self, gpu: &Gpu, scene: &SceneGpu, variant: Variant) {
         let module = variant.module();
-        for state in &self.per_light[variant as usize] {
+        for state in &self.per_light[variant] {
             let (first, then) = lit_keys(module, state.technique);
             for key in std::iter::once(first).chain(then) {
                 self.lit_pipelines.entry(key).or_insert_with(|| {
@@ -309,9 +313,7 @@ impl Soft {
 
     /// The map the variant's first light reads.
     fn first_map(&self, variant: Variant) -> &MapSet {
-        let k = self.per_light[variant as usize]
-            .first()
-            .map_or(0, |p| p.map);
+        let k = self.per_light[variant].first().map_or(0, |p| p.map);
         self.maps.at(k)
     }
 }
@@ -319,19 +321,14 @@ impl Soft {
 impl Lesson for Soft {
     const NAME: &'static str = "lesson_10";
     const DEFAULT_SCENE: &'static str = include_str!("../../scenes/lesson_10.toml");
-    const AREA_LIGHTS: bool = true;
     type Variant = Variant;
+    const CAPABILITIES: Capabilities = Capabilities {
+        area_lights: true,
+        ..Capabilities::BASIC
+    };
 
     fn check_scene(scene: &Scene) -> Result<()> {
         shadow_map::refuse_point_lights(scene, Self::NAME)
-    }
-
-    /// The shadow map, as the last light's shadow pass left it.
-    fn buffer_view(&self, gpu: &Gpu, scene: &SceneGpu, v: Variant) -> Result<Option<BufferView>> {
-        let Some(last) = scene.scene.lights.len().checked_sub(1) else {
-            return Ok(None);
-        };
-        self.first_map(v).map.buffer_view(gpu, last).map(Some)
     }
 
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self> {
@@ -372,17 +369,14 @@ impl Lesson for Soft {
             params_layout,
             modules,
             lit_pipelines: HashMap::new(),
-            per_light: Vec::new(),
+            per_light: PerVariant::new(|_| Vec::new()),
             objects: scene.scene.objects.len() as u64,
         };
-        soft.per_light = Variant::value_variants()
-            .iter()
-            .map(|&v| {
-                (0..soft.geometry.len())
-                    .map(|k| soft.per_light(gpu, v, k, v.technique(&soft.geometry[k])))
-                    .collect()
-            })
-            .collect();
+        soft.per_light = PerVariant::new(|v: Variant| {
+            (0..soft.geometry.len())
+                .map(|k| soft.per_light(gpu, v, k, v.technique(&soft.geometry[k])))
+                .collect()
+        });
         Ok(soft)
     }
 
@@ -399,7 +393,7 @@ impl Lesson for Soft {
         shadow_map::jitter_light_maps(frame.gpu, scene, self.first_map(variant).size);
         frame.pass("base", |enc, ts| scene.base_pass(enc, targets, ts.render()));
         for light in 0..scene.scene.lights.len() {
-            let state = &self.per_light[variant as usize][light];
+            let state = &self.per_light[variant][light];
             let set = self.maps.at(state.map);
             frame.pass("shadow", |enc, ts| {
                 set.shadow_pass(enc, scene, light, ts.render())
@@ -433,56 +427,6 @@ impl Lesson for Soft {
         Ok(())
     }
     // ANCHOR_END: render
-
-    fn counters(&self, variant: Variant) -> BTreeMap<String, u64> {
-        // The most over the lights (the same technique on each).
-        let (mut search, mut filter, mut texels) = (0, 0, 0);
-        // The base pass, then per light its shadow pass and lit draws.
-        let mut draws = self.objects;
-        for (k, s) in self.per_light[variant as usize].iter().enumerate() {
-            let (a, b, c) = s.technique.taps();
-            (search, filter, texels) = (search.max(a), filter.max(b), texels.max(c));
-            let casters = self.maps.at(s.map).drawn[k].iter().filter(|&&d| d).count() as u64;
-            let then = lit_keys(variant.module(), s.technique).1;
-            draws += casters + self.objects * (1 + then.is_some() as u64);
-        }
-        BTreeMap::from([
-            ("blocker_search_taps".into(), search),
-            ("filter_taps_per_pixel".into(), filter),
-            ("texels_read".into(), texels),
-            (
-                "shadow_map_size".into(),
-                self.first_map(variant).size as u64,
-            ),
-            ("draws".into(), draws),
-        ])
-    }
-
-    fn knobs(&self, variant: Variant) -> Vec<Knob> {
-        match self.per_light[variant as usize].first() {
-            Some(s) if variant.has_knobs() => knobs::technique_knobs(s.technique),
-            _ => Vec::new(),
-        }
-    }
-
-    /// New parameters (and variance-map passes) for the variant on every
-    /// light; a knob that changes a constant (taps, the receiver plane, the
-    /// search) gets its pipeline the next time the variant renders.
-    fn set_knob(
-        &mut self,
-        gpu: &Gpu,
-        _scene: &SceneGpu,
-        variant: Variant,
-        name: &str,
-        value: f64,
-    ) -> Result<()> {
-        for k in 0..self.geometry.len() {
-            let mut t = self.per_light[variant as usize][k].technique;
-            knobs::set_technique_knob(&mut t, name, value)?;
-            self.per_light[variant as usize][k] = self.per_light(gpu, variant, k, t);
-        }
-        Ok(())
-    }
 }
 
 pub(crate) fn main() -> std::process::ExitCode {

@@ -286,7 +286,7 @@ fn chapters_05_and_06_list_their_own_technique() {
     };
     let ch05 = share_of("lesson_05");
     assert!(
-        lists_own_anchor(&ch05, "silhouette_edges"),
+        lists_own_anchor(&ch05, "silhouette_edges"), // not a counter: an anchor
         "book/src/lesson_05.md must list the silhouette: an include of anchor `silhouette_edges` \
          from lessons/lesson_05/ (it is in lessons/lesson_05/silhouette.rs); it lists {:?}",
         ch05.listings
@@ -424,14 +424,14 @@ fn share_counts_each_listing_for_its_own_lesson() {
     );
     assert!(lists_from(&share, Path::new("lessons/lesson_06")));
     assert!(
-        !lists_own_anchor(&share, "silhouette_edges"),
+        !lists_own_anchor(&share, "silhouette_edges"), // not a counter: an anchor
         "lesson 05's, not 06's"
     );
     assert!(lists_own_anchor(&share, "zfail_stencil"));
 
     // The same chapter as lesson 05's: the silhouette is its own.
     let as_05 = listing_share(&files, chapter, md, "lesson_05").unwrap();
-    assert!(lists_own_anchor(&as_05, "silhouette_edges"));
+    assert!(lists_own_anchor(&as_05, "silhouette_edges")); // not a counter: an anchor
     assert_eq!(as_05.own(), 2);
 
     // Folders that only look like lesson 06's are not its own.

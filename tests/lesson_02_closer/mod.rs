@@ -4,6 +4,7 @@
 //! per-axis model of the floor's acne. Used by `tests/lesson_02.rs`.
 
 use common::glam::{DVec3, Vec3};
+use common::measure::counters::SHADOW_MAP_SIZE;
 use common::reference::{render_reference, Reference};
 use common::scene::camera::{camera_matrices, light_view_proj};
 use common::scene::{LightKind, Scene};
@@ -205,7 +206,7 @@ pub fn gpu(run: &support::LessonRun, variant: &str) -> Gpu {
 }
 
 pub fn map_size(run: &support::LessonRun) -> u64 {
-    run.report["variants"][0]["counters"]["shadow_map_size"]
+    run.report["variants"][0]["counters"][SHADOW_MAP_SIZE.name]
         .as_u64()
         .expect("counters.shadow_map_size")
 }

@@ -1,8 +1,9 @@
 //! Which of a snapshot's figures are portable: compared within their
 //! bound on another adapter (`tolerance`), or, where the bound covers
 //! most of what the figure could be, marked and compared by the side of a
-//! power of ten they lie on ([`Side`]). `mod.rs` marks them when it
-//! prints a bound ([`super::bound`]); `tolerance::compare` reads the marks.
+//! power of ten they lie on ([`Side`]). `report.rs` marks them when it
+//! prints a bound ([`crate::report::bound`]); `tolerance::compare` reads the
+//! marks.
 
 /// A figure whose bound is more than this share of itself is not portable
 /// (and more than [`PORTABLE_FLOOR`]): the bound then reaches 0, so the

@@ -66,28 +66,29 @@
 //! the H100's differences of `../shared/measurements/h100-2026-11-26/` that
 //! the constants did not. `tests/snapshot_tolerance.rs` replays all of them
 //! and shows that a broken technique still fails.
+//!
+//! Here: the constants of each class of number (the book shows them), the
+//! comparison ([`compare`], [`compare_elsewhere`], [`matches()`]) and insta's
+//! comparator ([`Tolerant`], [`tolerant`]). Its parts, re-exported here:
+//! `table.rs` (the classes, their keys and the overrides), `lines.rs`
+//! (reading a line's words, numbers, bounds and marks: [`bounded`]) and
+//! `adapter.rs` (the adapter line, [`adapter_line`]).
 
 use insta::internals::SnapshotContents;
 
-use super::portable::{Side, NOT_PORTABLE};
+mod adapter;
+mod lines;
+mod table;
 
-/// A tolerance `abs + rel · max(|a|, |b|)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Tolerance {
-    pub abs: f64,
-    pub rel: f64,
-}
+pub use adapter::{adapter_line, recorded_adapters, ADAPTER_PREFIX, AS_ELSEWHERE};
+pub use lines::{bounded, Bounded};
+pub use table::{class_of, override_of, Class, Override, Tolerance, KEYS, OVERRIDES};
 
-impl Tolerance {
-    pub const EXACT: Tolerance = Tolerance { abs: 0.0, rel: 0.0 };
-
-    /// The largest difference allowed between `a` and `b`, printed to
-    /// `unit` (one unit of the last printed digit; 1 for integers).
-    pub fn allowed(&self, a: f64, b: f64, unit: f64) -> f64 {
-        let rounding = if *self == Tolerance::EXACT { 0.0 } else { unit };
-        self.abs + self.rel * a.abs().max(b.abs()) + rounding
-    }
-}
+use adapter::adapter_of;
+use lines::{
+    introduces_bound, is_mask_row, pieces, rounding, squeeze, unit, unmark, with_committed_bounds,
+    Piece,
+};
 
 // ANCHOR: tolerances
 /// Error figures (misclassified, false shadow, false lit, mean |ΔV|,
@@ -131,186 +132,6 @@ pub const MASK_BASE_CELLS: usize = 2;
 pub const MASK_COVERED_PER_CELL: usize = 40;
 // ANCHOR_END: tolerances
 
-/// `line` with each [`not_portable`](super::portable::not_portable) mark written as a plain ` ±B`, and
-/// the side each marked figure keeps, by the figure's place among the
-/// line's numbers. A mark that does not parse stays (its words then differ).
-fn unmark(line: &str) -> (String, Vec<(usize, Side)>) {
-    let (mut out, mut marks, mut rest) = (String::new(), Vec::new(), line);
-    while let Some(i) = rest.find(NOT_PORTABLE) {
-        let after = &rest[i + NOT_PORTABLE.len()..];
-        let parsed = after.split_once(')').and_then(|(inner, tail)| {
-            let (bound, side) = inner.split_once(", ")?;
-            let (word, t) = side.strip_suffix('%')?.split_once(' ')?;
-            let t: f64 = t.parse().ok()?;
-            let side = match word {
-                "above" => Side::Above(t),
-                "below" => Side::Below(t),
-                _ => return None,
-            };
-            Some((bound, side, tail))
-        });
-        let Some((bound, side, tail)) = parsed else {
-            break;
-        };
-        out.push_str(&rest[..i]);
-        let figure = pieces(&out)
-            .iter()
-            .filter(|p| matches!(p, Piece::Number { .. }))
-            .count();
-        marks.push((figure.saturating_sub(1), side));
-        out.push_str(" ±");
-        out.push_str(bound);
-        rest = tail;
-    }
-    out.push_str(rest);
-    (out, marks)
-}
-
-/// How a number is compared, by its key.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Class {
-    Exact,
-    Figure,
-    Fragments,
-    DepthTested,
-    /// What the adapter decides and the technique does not: pipeline
-    /// statistics of fragment shader invocations (helper invocations and
-    /// early depth tests are the driver's: 742 143 on the H100 against
-    /// 2 627 984 on lavapipe for the same pass) and lesson 07's measured
-    /// depth precision of the adapter's own pipeline. Not compared.
-    AdapterDefined,
-}
-
-/// The keys compared with a tolerance; every other number is exact.
-pub const KEYS: &[(&str, Class)] = &[
-    ("misclassified", Class::Figure),
-    ("false shadow", Class::Figure),
-    ("false lit", Class::Figure),
-    ("mean |dV|", Class::Figure),
-    ("penumbra |dV|", Class::Figure),
-    ("bleeding", Class::Figure),
-    ("shimmer", Class::Figure),
-    ("volume_fragments", Class::Fragments),
-    ("stencil_fragments", Class::Fragments),
-    ("shadow_fragments", Class::Fragments),
-    // Pixels of a class (lesson 09's cascades): receivers a rasteriser covers.
-    ("pixels", Class::Fragments),
-    ("stencil_updates", Class::DepthTested),
-    ("shadow_texels_written", Class::DepthTested),
-    // Lesson 03's adaptive filter: the pixels it probed (the lit pass's
-    // coverage inside the map), and those whose 4 probes disagreed and the
-    // taps that made. Where a probe lands by a map's edge, the map's
-    // rasteriser decides: 14 883 full-disk pixels on lavapipe against
-    // 14 817 on an H200 (0.44 %), 989 824 taps against 988 768.
-    ("probed_pixels", Class::Fragments),
-    ("full_disk_pixels", Class::DepthTested),
-    ("filter_taps", Class::DepthTested),
-    ("fragment_shader_invocations", Class::AdapterDefined),
-    ("depth_gap_ppb_at_half_far", Class::AdapterDefined),
-    ("depth_gap_ppb_at_sqrt_near_far", Class::AdapterDefined),
-];
-
-/// Variants measured to differ more than their class allows, with why.
-pub struct Override {
-    /// The first word of the line: the variant.
-    pub variants: &'static [&'static str],
-    /// The keys it applies to.
-    pub keys: &'static [&'static str],
-    pub tolerance: Tolerance,
-    pub measured: &'static str,
-}
-
-/// The exceptions, each with its measurement. A variant is the first word
-/// of a line: the snapshots write its name, the drift test of the book's
-/// tables (`tests/generated.rs`) `run/name` (`deep_range/clamp`).
-pub const OVERRIDES: &[Override] = &[
-    Override {
-        variants: &["godot_soft_low"],
-        keys: &["misclassified", "false shadow"],
-        tolerance: Tolerance {
-            abs: 10.0,
-            rel: 0.0,
-        },
-        measured: "lesson 10's port of Godot's Soft Low as it ran until 60a5198, without \
-                   Godot's own depth and normal bias (ported since): its untilted disk acnes \
-                   the floor, and which tap self-shadows is decided by the last bit of \
-                   a depth, over whole regions at once. At 640x360 on an NVIDIA H200 \
-                   (2026-11-27) against lavapipe: misclassified 1.872 against 0.988 % \
-                   on the contact scene, 8.338 against 2.274 % on the large light, \
-                   false shadow 1.844 against 0.749 and 8.335 against 2.246 %, beyond \
-                   both runs' bounds (0.458, 2.369). Its figures are checked exactly \
-                   on lavapipe",
-    },
-    Override {
-        variants: &["learnopengl_pcf20"],
-        keys: &["misclassified"],
-        tolerance: Tolerance {
-            abs: 0.08,
-            rel: 0.0,
-        },
-        measured: "lesson 04's LearnOpenGL 20-tap kernel: misclassified 0.28 % \
-                   (lavapipe, llvmpipe) against 0.34 % (H100) at 320x180, 0.299 against \
-                   0.342 at 640x360",
-    },
-    Override {
-        variants: &["learnopengl_pcf20"],
-        keys: &["false shadow", "false lit"],
-        tolerance: Tolerance {
-            abs: 0.35,
-            rel: 0.0,
-        },
-        measured: "the same kernel trades false lit for false shadow: 320x180, false \
-                   shadow 0.02 % and false lit 0.26 % (lavapipe, llvmpipe) against 0.30 % \
-                   and 0.04 % (H100); 640x360: 0.028 and 0.271 against 0.311 and 0.031",
-    },
-    Override {
-        variants: &["spot_wide/none", "spot_wide/bias_0.25tx"],
-        keys: &["misclassified", "false shadow", "mean |dV|"],
-        tolerance: Tolerance { abs: 1.5, rel: 0.0 },
-        measured: "lesson 02's unbiased and nearly unbiased maps under the wide spot \
-                   light (lesson_02_spot_wide.toml, 640x360), whose false shadow is acne: \
-                   which texel self-shadows is decided by the last bit of a depth. none \
-                   48.17 % (lavapipe) against 47.39 % (llvmpipe), bias_0.25tx 3.23 \
-                   against 2.54 %",
-    },
-    Override {
-        variants: &[
-            "deep_range/neither",
-            "deep_range/clamp",
-            "deep_range/infinite",
-        ],
-        keys: &["misclassified", "false shadow", "false lit", "mean |dV|"],
-        tolerance: Tolerance { abs: 2.0, rel: 0.0 },
-        measured: "lesson 07's standard depth on the deep range (lesson_07_deep_range.toml, \
-                   640x360), the negative control: the casters z-fight with the floor, and \
-                   which pixel wins is the rasteriser's. neither and clamp misclassify \
-                   1.889 % (lavapipe) against 1.073 % (llvmpipe), false shadow 1.233 \
-                   against 0.168 %; infinite 1.422 against 1.170 %",
-    },
-];
-
-/// The class of the number after `words` (the text since the previous
-/// number on its line): the longest key that `words` ends with.
-pub fn class_of(words: &str) -> (Class, &'static str) {
-    let words = words.trim();
-    KEYS.iter()
-        .filter(|(k, _)| words.ends_with(k))
-        .max_by_key(|(k, _)| k.len())
-        .map(|&(k, c)| (c, k))
-        .unwrap_or((Class::Exact, ""))
-}
-
-/// The [`OVERRIDES`] entry for `key` on a line of `variant`, if any.
-pub fn override_of(key: &str, variant: &str) -> Option<Tolerance> {
-    // `run/variant` names one scene's variant; a bare name, every scene's.
-    let named =
-        |v: &&str| variant == *v || (!v.contains('/') && variant.ends_with(&format!("/{v}")));
-    OVERRIDES
-        .iter()
-        .find(|o| o.variants.iter().any(named) && o.keys.contains(&key))
-        .map(|o| o.tolerance)
-}
-
 /// The tolerance of a number of `class` after `key` on a line of `variant`.
 pub fn tolerance_of(class: Class, key: &str, variant: &str) -> Tolerance {
     if let Some(t) = override_of(key, variant) {
@@ -328,139 +149,6 @@ pub fn tolerance_of(class: Class, key: &str, variant: &str) -> Tolerance {
     }
 }
 
-/// `new`, a line the run wrote without bounds (it measured none: another
-/// adapter than the snapshot's, `support::measure_bounds`), with the
-/// committed line's bounds: `committed` with each figure replaced by
-/// `new`'s, each bound (`±B`) kept. `None` when `new` has bounds of its
-/// own, `committed` has none, or their words differ once the bounds are
-/// left out (the caller then compares `new` as it is, and reports it).
-fn with_committed_bounds(committed: &str, new: &str) -> Option<String> {
-    if new.contains('±') || !committed.contains('±') {
-        return None;
-    }
-    let figures: Vec<&str> = pieces(new)
-        .into_iter()
-        .filter_map(|p| match p {
-            Piece::Number { text, .. } => Some(text),
-            Piece::Words(_) => None,
-        })
-        .collect();
-    let (mut with, mut without, mut words, mut k) = (String::new(), String::new(), "", 0);
-    for p in pieces(committed) {
-        match p {
-            Piece::Words(w) => {
-                with.push_str(w);
-                without.push_str(w.trim_end().strip_suffix('±').unwrap_or(w));
-                words = w;
-            }
-            Piece::Number { text, .. } if introduces_bound(words) => with.push_str(text),
-            Piece::Number { .. } => {
-                let figure = figures.get(k)?;
-                with.push_str(figure);
-                without.push_str(figure);
-                k += 1;
-            }
-        }
-    }
-    let shape = |line: &str| -> Vec<String> {
-        let words: Vec<String> = (pieces(line).into_iter())
-            .map(|p| match p {
-                Piece::Words(w) => squeeze(w),
-                Piece::Number { .. } => "#".to_string(),
-            })
-            .collect();
-        squeeze(&words.join(" "))
-            .split(' ')
-            .map(str::to_string)
-            .collect()
-    };
-    (k == figures.len() && shape(&without) == shape(new)).then_some(with)
-}
-
-/// A piece of a line: words, or a number as printed.
-#[derive(Clone, Debug, PartialEq)]
-enum Piece<'a> {
-    Words(&'a str),
-    Number { text: &'a str, value: f64 },
-}
-
-/// Splits a line into words and numbers. A number is digits with an
-/// optional fraction that does not touch a letter, digit, `_` or `.`
-/// (so `res_256`, `k4`, `7x7` and `1e5` stay words).
-fn pieces(line: &str) -> Vec<Piece<'_>> {
-    let b = line.as_bytes();
-    let word = |c: u8| c.is_ascii_alphanumeric() || c == b'_' || c == b'.';
-    let mut out = Vec::new();
-    let (mut i, mut start) = (0, 0);
-    while i < b.len() {
-        let starts_number = b[i].is_ascii_digit() && (i == 0 || !word(b[i - 1]));
-        if starts_number {
-            let mut j = i;
-            while j < b.len() && b[j].is_ascii_digit() {
-                j += 1;
-            }
-            if j + 1 < b.len() && b[j] == b'.' && b[j + 1].is_ascii_digit() {
-                j += 1;
-                while j < b.len() && b[j].is_ascii_digit() {
-                    j += 1;
-                }
-            }
-            let touches = j < b.len() && (b[j].is_ascii_alphanumeric() || b[j] == b'_');
-            if !touches {
-                if start < i {
-                    out.push(Piece::Words(&line[start..i]));
-                }
-                let text = &line[i..j];
-                out.push(Piece::Number {
-                    text,
-                    value: text.parse().unwrap_or(f64::NAN),
-                });
-                start = j;
-                i = j;
-                continue;
-            }
-            // Part of a word: skip to its end.
-            while i < b.len() && word(b[i]) {
-                i += 1;
-            }
-            continue;
-        }
-        i += line[i..].chars().next().map_or(1, char::len_utf8);
-    }
-    if start < line.len() {
-        out.push(Piece::Words(&line[start..]));
-    }
-    out
-}
-
-/// Words with runs of spaces collapsed (padding follows numbers' widths).
-fn squeeze(words: &str) -> String {
-    words.split_whitespace().collect::<Vec<_>>().join(" ")
-}
-
-/// One unit of the last printed digit of `text`.
-fn unit(text: &str) -> f64 {
-    match text.split_once('.') {
-        Some((_, frac)) => 10f64.powi(-(frac.len() as i32)),
-        None => 1.0,
-    }
-}
-
-/// The rounding of a printed number: one unit of its last digit, none for
-/// a whole number (a count).
-fn rounding(text: &str) -> f64 {
-    if text.contains('.') {
-        unit(text)
-    } else {
-        0.0
-    }
-}
-
-/// A mask row: only mask characters (and at least one of them or a space).
-fn is_mask_row(line: &str) -> bool {
-    line.len() >= 8 && line.chars().all(|c| matches!(c, '#' | '.' | ':' | ' '))
-}
-
 /// One difference between the committed text and a new run's.
 #[derive(Clone, Debug)]
 pub struct Difference {
@@ -468,44 +156,6 @@ pub struct Difference {
     pub line: usize,
     pub what: String,
     pub within: bool,
-}
-
-/// The line that names the adapter a text was recorded on
-/// (`adapter: llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)`): [`adapter_line`].
-pub const ADAPTER_PREFIX: &str = "adapter: ";
-
-/// The first line of a snapshot: the adapter and backend of the run.
-pub fn adapter_line(report: &serde_json::Value) -> String {
-    let a = &report["adapter"];
-    format!(
-        "{ADAPTER_PREFIX}{} ({})\n",
-        a["name"].as_str().unwrap_or("?"),
-        a["backend"].as_str().unwrap_or("?")
-    )
-}
-
-/// Set (to anything), the comparison is the one another adapter gets,
-/// even on the snapshot's own: `.ci/snapshot-mutations` shows with it that
-/// a broken technique fails the bounds, not only the exact comparison.
-pub const AS_ELSEWHERE: &str = "WORKBOOK_SNAPSHOT_AS_ELSEWHERE";
-
-/// The adapter lines (without their newline) of the committed snapshots,
-/// `tests/snapshots/*.snap`: the adapters they were recorded on.
-pub fn recorded_adapters() -> std::collections::BTreeSet<String> {
-    let dir = super::root().join("tests/snapshots");
-    let entries = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .flatten();
-    entries
-        .filter(|e| e.path().extension().is_some_and(|x| x == "snap"))
-        .filter_map(|e| std::fs::read_to_string(e.path()).ok())
-        .filter_map(|t| adapter_of(&t).map(str::to_string))
-        .collect()
-}
-
-/// The adapter line of a text, if it has one.
-fn adapter_of(text: &str) -> Option<&str> {
-    text.lines().find(|l| l.starts_with(ADAPTER_PREFIX))
 }
 
 /// Compares two snapshot texts; every difference found, within its
@@ -585,12 +235,6 @@ fn exact(a: &[&str], b: &[&str]) -> Vec<Difference> {
         }
     }
     out
-}
-
-/// Whether `words` (the text between two numbers) introduces a bound:
-/// it ends with `±`.
-fn introduces_bound(words: &str) -> bool {
-    words.trim_end().ends_with('±')
 }
 
 /// The rows of one mask: cells that differ, against the allowance.
@@ -741,60 +385,12 @@ fn compare_line(a: &str, b: &str, line: usize, out: &mut Vec<Difference>) {
     }
 }
 
-/// A number printed with its bound on a snapshot's line.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Bounded {
-    /// Its key ([`class_of`]) and class.
-    pub key: &'static str,
-    pub class: Class,
-    pub value: f64,
-    pub bound: f64,
-    /// The side it is tested by, when the line marks it not portable.
-    pub marked: Option<Side>,
-}
-
-/// Every number of `line` that has a bound (`±B`, or a mark that it is
-/// not portable), in order.
-pub fn bounded(line: &str) -> Vec<Bounded> {
-    let (plain, marks) = unmark(line);
-    let ps = pieces(&plain);
-    let mut out = Vec::new();
-    let (mut words, mut number) = ("", 0);
-    for (i, p) in ps.iter().enumerate() {
-        match p {
-            Piece::Words(w) => words = w,
-            Piece::Number { value, .. } => {
-                number += 1;
-                if introduces_bound(words) {
-                    continue;
-                }
-                if let (Some(Piece::Words(w)), Some(Piece::Number { value: b, .. })) =
-                    (ps.get(i + 1), ps.get(i + 2))
-                {
-                    if introduces_bound(w) {
-                        let (class, key) = class_of(words);
-                        let marked = marks.iter().find(|(n, _)| *n + 1 == number);
-                        out.push(Bounded {
-                            key,
-                            class,
-                            value: *value,
-                            bound: *b,
-                            marked: marked.map(|m| m.1),
-                        });
-                    }
-                }
-            }
-        }
-    }
-    out
-}
-
 /// `true` when every difference is within its tolerance.
 pub fn matches(committed: &str, new: &str) -> bool {
     compare(committed, new).iter().all(|d| d.within)
 }
 
-/// [`matches`] as on another adapter ([`compare_elsewhere`]).
+/// [`matches()`] as on another adapter ([`compare_elsewhere`]).
 pub fn matches_elsewhere(committed: &str, new: &str) -> bool {
     compare_elsewhere(committed, new).iter().all(|d| d.within)
 }

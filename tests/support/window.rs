@@ -6,6 +6,9 @@ use std::time::Duration;
 use common::run::display::Display;
 use serde_json::Value;
 
+use crate::paths::out_dir;
+use crate::run::{lesson_command, run_watched};
+
 /// A window run's log, and its capture if it made one.
 pub struct WindowRun {
     pub log: Vec<Value>,
@@ -26,10 +29,10 @@ pub fn run_window_with(
     env: &[(&str, &str)],
 ) -> Option<WindowRun> {
     let display = Display::open().expect("a display for the window");
-    let out = super::out_dir(name);
+    let out = out_dir(name);
     let log = out.join("window.jsonl");
     let shot = out.join("capture.png");
-    let mut cmd = super::lesson_command(bin);
+    let mut cmd = lesson_command(bin);
     display.apply(&mut cmd);
     cmd.envs(env.iter().copied());
     cmd.args(args).arg("--window-log").arg(&log);
@@ -37,7 +40,7 @@ pub fn run_window_with(
     if capture {
         cmd.arg("--capture").arg(&shot);
     }
-    super::run_watched(&mut cmd, name, Duration::from_secs(300), |_| {})?;
+    run_watched(&mut cmd, name, Duration::from_secs(300), |_| {})?;
     let text = std::fs::read_to_string(&log).expect("the window log");
     let log = text
         .lines()

@@ -9,8 +9,8 @@ use anyhow::{bail, Context, Result};
 use common::measure::report::{Report, VariantReport};
 
 use super::{BUDGET_MS, DIR, ORIGIN};
+use crate::origins::changed;
 use crate::record::Stat;
-use crate::sets;
 
 /// The runs at 1920×1080: one report a lesson, in lesson order.
 pub struct FullHd {
@@ -135,7 +135,7 @@ pub fn rows(r: &Report) -> (Vec<Row<'_>>, Vec<&str>) {
     let mut out = Vec::new();
     let mut left_out = Vec::new();
     for v in &r.variants {
-        if sets::changed(ORIGIN.commit, &r.lesson, &v.name).is_some() {
+        if changed(ORIGIN.commit, &r.lesson, &v.name).is_some() {
             left_out.push(v.name.as_str());
             continue;
         }

@@ -6,8 +6,8 @@ use anyhow::{bail, Result};
 
 use super::costs::{rows, Cost, FullHd, Verdict};
 use super::{BUDGET_MS, ORIGIN};
+use crate::origins::changes_note;
 use crate::record::Record;
-use crate::sets;
 use crate::table::{header, pct, row, stat};
 
 /// Why a row measures another variant than its lesson's most accurate:
@@ -138,7 +138,7 @@ pub fn table(full: &FullHd, records: &[Record], note: Option<&str>) -> Result<St
         }
         let whose = format!("lesson {}'s", &r.lesson[7..]);
         // Times only: what the errors are measured against does not matter.
-        notes += &sets::changes_note(ORIGIN.commit, &r.lesson, &left_out, false, Some(&whose));
+        notes += &changes_note(ORIGIN.commit, &r.lesson, &left_out, false, Some(&whose));
     }
     let within = format!(
         "`yes` where the shadows' GPU cost is at most {BUDGET_MS} ms even at the high end of its spread (the variant's third quartile less the no-shadow frame's first), what a shadow technique may cost on such a GPU at 1920×1080; `no` where it is over {BUDGET_MS} ms even at the low end; `on the line` where {BUDGET_MS} ms lies within its spread"

@@ -12,7 +12,7 @@ use super::axis::{fmt_num, Axis};
 use super::chart::{build_chart, plot_rect, titled};
 use super::draw::{
     around, darker, draw_dashed, draw_marker, draw_path, draw_text, ipx, segment_box, text_w,
-    Marker, Rect,
+    Marker, Rect, Root,
 };
 use super::labels::place_labels;
 use super::legend::{draw_legend_column, legend_column_width, LegendRow, LEGEND_GAP};
@@ -118,6 +118,10 @@ pub(super) struct PlottedSeries<'s> {
     pub(super) label_all: bool,
 }
 
+/// Draws the error-vs-time plot of `plotted` into the SVG file `path`:
+/// the axes fitted to the points, the baseline, the floor line, each
+/// series' error bars and front, the markers, the legend column and the
+/// labels, in that order (each drawn over the ones before).
 pub(super) fn tradeoff_plot(
     path: &Path,
     title: &str,
@@ -126,10 +130,62 @@ pub(super) fn tradeoff_plot(
     floor: f64,
     legend: Vec<LegendRow>,
 ) -> Result<()> {
+    let points = drawable_points(plotted, floor)?;
+    let baseline_ms = baseline_ms.filter(|b| b.is_finite() && *b > 0.0);
+    let axes = fit_axes(&points, baseline_ms, floor);
+
+    // The legend goes in a column right of the plot, where it hides nothing.
+    let root = SVGBackend::new(path, (WIDE, HEIGHT)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let area = titled(&root, title, legend_column_width(&legend) + LEGEND_GAP)?;
+    let chart = build_chart(&area, &axes.x, &axes.y, &axes.x_desc, y_desc(plotted))?;
+    let to_px = |ms: f64, err: f64| -> (f64, f64) {
+        let (px, py) = chart.backend_coord(&(axes.x.t(ms), axes.y.t(err)));
+        (px as f64, py as f64)
+    };
+    let canvas = Canvas {
+        root: &root,
+        plot: plot_rect(&chart),
+        to_px: &to_px,
+        floor,
+    };
+    let mut obstacles: Vec<Rect> = Vec::new();
+    if let Some(b) = baseline_ms {
+        draw_baseline(&canvas, b, &mut obstacles)?;
+    }
+    if axes.clamped {
+        draw_floor_line(&canvas, &points, axes.xmin, baseline_ms, &mut obstacles)?;
+    }
+    let mut drawn: Vec<Drawn> = Vec::new();
+    for s in plotted {
+        draw_error_bars(&canvas, s, &mut obstacles)?;
+        draw_front(&canvas, s, &mut obstacles)?;
+        drawn.extend(drawn_points(&canvas, s));
+    }
+    for d in &drawn {
+        obstacles.push(around(d.px, 6.0));
+    }
+    draw_markers(&canvas, plotted)?;
+    let plot = canvas.plot;
+    draw_legend_column(&root, (plot.x1 + LEGEND_GAP, plot.y0), &legend)?;
+    draw_labels(&canvas, &drawn, plotted.len() == 1, &obstacles)?;
+    root.present()?;
+    Ok(())
+}
+
+/// A label's text height, px.
+const LABEL_PX: f64 = LABEL_FONT / 1.24;
+
+/// Whether a point can be placed: a finite positive time, a finite error.
+fn drawable(p: &Point) -> bool {
+    p.ms.is_finite() && p.ms > 0.0 && p.error_pct.is_finite()
+}
+
+/// Every series' drawable points; an error for a non-positive floor or no point at all.
+fn drawable_points<'s>(plotted: &[PlottedSeries<'s>], floor: f64) -> Result<Vec<&'s Point>> {
     if !(floor.is_finite() && floor > 0.0) {
         return Err(anyhow!("the error floor must be positive, got {floor}"));
     }
-    let drawable = |p: &Point| p.ms.is_finite() && p.ms > 0.0 && p.error_pct.is_finite();
     let points: Vec<&Point> = plotted
         .iter()
         .flat_map(|s| s.series.points.iter())
@@ -140,10 +196,24 @@ pub(super) fn tradeoff_plot(
             "no point with a finite positive time and finite error"
         ));
     }
+    Ok(points)
+}
 
-    // x: every median, bar end and the baseline; log when they span > 20x.
+/// A trade-off plot's axes.
+struct Axes {
+    x: Axis,
+    y: Axis,
+    x_desc: String,
+    /// The least time on the x axis, ms.
+    xmin: f64,
+    /// Whether a point's error lies below the floor (drawn on it).
+    clamped: bool,
+}
+
+/// The axes: x over the times, bars and baseline (log past 20×); y log from the floor up.
+fn fit_axes(points: &[&Point], baseline_ms: Option<f64>, floor: f64) -> Axes {
     let mut xs: Vec<f64> = Vec::new();
-    for p in &points {
+    for p in points {
         xs.push(p.ms);
         for v in [p.ms_low, p.ms_high] {
             if v.is_finite() && v > 0.0 {
@@ -151,12 +221,12 @@ pub(super) fn tradeoff_plot(
             }
         }
     }
-    if let Some(b) = baseline_ms.filter(|b| b.is_finite() && *b > 0.0) {
+    if let Some(b) = baseline_ms {
         xs.push(b);
     }
     let (xmin, xmax) = (min_of(xs.iter().copied()), max_of(xs.iter().copied()));
     let x_log = xmax / xmin > 20.0;
-    let xa = if x_log {
+    let x = if x_log {
         Axis::log(xmin, xmax)
     } else {
         Axis::linear(xmin, xmax)
@@ -170,185 +240,224 @@ pub(super) fn tradeoff_plot(
     if clamped {
         ymax = ymax.max(floor * 10.0);
     }
-    let ya = Axis::log(ymin, ymax);
     let x_desc = if x_log {
         format!("{X_DESC}, log scale")
     } else {
         X_DESC.to_string()
     };
+    Axes {
+        x,
+        y: Axis::log(ymin, ymax),
+        x_desc,
+        xmin,
+        clamped,
+    }
+}
 
-    // The legend goes in a column right of the plot, where it hides nothing.
-    let root = SVGBackend::new(path, (WIDE, HEIGHT)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let area = titled(&root, title, legend_column_width(&legend) + LEGEND_GAP)?;
-    let chart = build_chart(&area, &xa, &ya, &x_desc, y_desc(plotted))?;
-    let plot = plot_rect(&chart);
-    let to_px = |ms: f64, err: f64| -> (f64, f64) {
-        let (px, py) = chart.backend_coord(&(xa.t(ms), ya.t(err)));
-        (px as f64, py as f64)
+/// Where a trade-off plot is drawn: the canvas, the plot's rectangle in
+/// it, and a time and an error's pixel.
+struct Canvas<'a, 'b> {
+    root: &'a Root<'b>,
+    plot: Rect,
+    to_px: &'a dyn Fn(f64, f64) -> (f64, f64),
+    /// Errors below it are drawn on it.
+    floor: f64,
+}
+
+impl Canvas<'_, '_> {
+    /// The pixel of a time (ms) and an error (%).
+    fn px(&self, ms: f64, err: f64) -> (f64, f64) {
+        (self.to_px)(ms, err)
+    }
+
+    /// A point's pixel: its error raised to the floor.
+    fn at(&self, p: &Point) -> (f64, f64) {
+        self.px(p.ms, p.error_pct.max(self.floor))
+    }
+}
+
+/// The no-shadow frame's time: a dashed vertical line and its label.
+fn draw_baseline(canvas: &Canvas, baseline_ms: f64, obstacles: &mut Vec<Rect>) -> Result<()> {
+    let (root, plot) = (canvas.root, canvas.plot);
+    let x = canvas.px(baseline_ms, canvas.floor).0;
+    draw_dashed(root, (x, plot.y0), (x, plot.y1), GREY.stroke_width(2))?;
+    let text = "no shadows";
+    let w = text_w(text, LABEL_PX);
+    let x0 = if x + 4.0 + w <= plot.x1 {
+        x + 4.0
+    } else {
+        x - 4.0 - w
     };
-    let mut obstacles: Vec<Rect> = Vec::new();
-    let label_px = LABEL_FONT / 1.24;
+    let r = Rect::new(x0, plot.y0 + 4.0, w, LABEL_PX);
+    draw_text(root, text, (r.x0, r.y0), GREY)?;
+    obstacles.push(r);
+    obstacles.push(Rect {
+        x0: x - 2.0,
+        y0: plot.y0,
+        x1: x + 2.0,
+        y1: plot.y1,
+    });
+    Ok(())
+}
 
-    // The baseline.
-    if let Some(b) = baseline_ms.filter(|b| b.is_finite() && *b > 0.0) {
-        let x = to_px(b, floor).0;
-        draw_dashed(&root, (x, plot.y0), (x, plot.y1), GREY.stroke_width(2))?;
-        let text = "no shadows";
-        let w = text_w(text, label_px);
-        let x0 = if x + 4.0 + w <= plot.x1 {
-            x + 4.0
+/// The floor's dashed line and its note, where it hides the fewest points on the line.
+fn draw_floor_line(
+    canvas: &Canvas,
+    points: &[&Point],
+    xmin: f64,
+    baseline_ms: Option<f64>,
+    obstacles: &mut Vec<Rect>,
+) -> Result<()> {
+    let (root, plot, floor) = (canvas.root, canvas.plot, canvas.floor);
+    let y = canvas.px(xmin, floor).1;
+    draw_dashed(
+        root,
+        (plot.x0, y),
+        (plot.x1, y),
+        GREY.mix(0.6).stroke_width(1),
+    )?;
+    let note = format!("on this line: 0 or below {} %", fmt_num(floor));
+    let (w, h) = (text_w(&note, LABEL_PX), LABEL_PX);
+    let on_floor: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.error_pct < floor)
+        .map(|p| canvas.px(p.ms, floor))
+        .collect();
+    // Above the line, else below; right first, then sliding left: the
+    // first spot clear of the points on the line and of the baseline.
+    let base_x = baseline_ms.map(|b| canvas.px(b, floor).0);
+    let mut candidates = Vec::new();
+    for top in [y - h - 3.0, y + 3.0] {
+        let mut x = plot.x1 - w - 6.0;
+        while x >= plot.x0 + 6.0 {
+            candidates.push(Rect::new(x, top, w, h));
+            x -= 10.0;
+        }
+        candidates.push(Rect::new(plot.x0 + 6.0, top, w, h));
+    }
+    let r = candidates
+        .iter()
+        .copied()
+        .filter(|r| r.y1 <= plot.y1)
+        .min_by_key(|r| {
+            let hidden = on_floor
+                .iter()
+                .filter(|q| r.grow(8.0).contains(**q))
+                .count();
+            let crossed = base_x.is_some_and(|x| x > r.x0 - 4.0 && x < r.x1 + 4.0);
+            2 * hidden + crossed as usize
+        })
+        .unwrap_or(Rect::new(plot.x1 - w - 6.0, y - h - 3.0, w, h));
+    // On white, where it must cross the baseline.
+    root.draw(&Rectangle::new(
+        [ipx((r.x0 - 2.0, r.y0 - 1.0)), ipx((r.x1 + 2.0, r.y1 + 1.0))],
+        WHITE.mix(0.85).filled(),
+    ))?;
+    draw_text(root, &note, (r.x0, r.y0), GREY)?;
+    obstacles.push(r);
+    Ok(())
+}
+
+/// One series' error bars: the spread of each point's time.
+fn draw_error_bars(canvas: &Canvas, s: &PlottedSeries, obstacles: &mut Vec<Rect>) -> Result<()> {
+    let bar_style = s.colour.mix(0.55).stroke_width(2);
+    for p in s.series.points.iter().filter(|p| drawable(p)) {
+        let (x, y) = canvas.at(p);
+        let lo = if p.ms_low.is_finite() && p.ms_low > 0.0 {
+            canvas.px(p.ms_low, canvas.floor).0
         } else {
-            x - 4.0 - w
+            x
         };
-        let r = Rect::new(x0, plot.y0 + 4.0, w, label_px);
-        draw_text(&root, text, (r.x0, r.y0), GREY)?;
-        obstacles.push(r);
-        obstacles.push(Rect {
-            x0: x - 2.0,
-            y0: plot.y0,
-            x1: x + 2.0,
-            y1: plot.y1,
-        });
-    }
-
-    // The floor line and its note.
-    if clamped {
-        let y = to_px(xmin, floor).1;
-        draw_dashed(
-            &root,
-            (plot.x0, y),
-            (plot.x1, y),
-            GREY.mix(0.6).stroke_width(1),
-        )?;
-        let note = format!("on this line: 0 or below {} %", fmt_num(floor));
-        let (w, h) = (text_w(&note, label_px), label_px);
-        let on_floor: Vec<(f64, f64)> = points
-            .iter()
-            .filter(|p| p.error_pct < floor)
-            .map(|p| to_px(p.ms, floor))
-            .collect();
-        // Above the line, else below; right first, then sliding left: the
-        // first spot clear of the points on the line and of the baseline.
-        let base_x = baseline_ms
-            .filter(|b| b.is_finite() && *b > 0.0)
-            .map(|b| to_px(b, floor).0);
-        let mut candidates = Vec::new();
-        for top in [y - h - 3.0, y + 3.0] {
-            let mut x = plot.x1 - w - 6.0;
-            while x >= plot.x0 + 6.0 {
-                candidates.push(Rect::new(x, top, w, h));
-                x -= 10.0;
+        let hi = if p.ms_high.is_finite() && p.ms_high > 0.0 {
+            canvas.px(p.ms_high, canvas.floor).0
+        } else {
+            x
+        };
+        if hi - lo >= 1.0 {
+            draw_path(canvas.root, &[(lo, y), (hi, y)], bar_style)?;
+            for e in [lo, hi] {
+                draw_path(canvas.root, &[(e, y - 4.0), (e, y + 4.0)], bar_style)?;
             }
-            candidates.push(Rect::new(plot.x0 + 6.0, top, w, h));
-        }
-        let r = candidates
-            .iter()
-            .copied()
-            .filter(|r| r.y1 <= plot.y1)
-            .min_by_key(|r| {
-                let hidden = on_floor
-                    .iter()
-                    .filter(|q| r.grow(8.0).contains(**q))
-                    .count();
-                let crossed = base_x.is_some_and(|x| x > r.x0 - 4.0 && x < r.x1 + 4.0);
-                2 * hidden + crossed as usize
-            })
-            .unwrap_or(Rect::new(plot.x1 - w - 6.0, y - h - 3.0, w, h));
-        // On white, where it must cross the baseline.
-        root.draw(&Rectangle::new(
-            [ipx((r.x0 - 2.0, r.y0 - 1.0)), ipx((r.x1 + 2.0, r.y1 + 1.0))],
-            WHITE.mix(0.85).filled(),
-        ))?;
-        draw_text(&root, &note, (r.x0, r.y0), GREY)?;
-        obstacles.push(r);
-    }
-
-    // Error bars, fronts, markers; then the legend; then the labels.
-    struct Drawn {
-        px: (f64, f64),
-        label: String,
-        colour: RGBColor,
-        on_front: bool,
-        wanted: bool,
-    }
-    let mut drawn: Vec<Drawn> = Vec::new();
-    for s in plotted {
-        let bar_style = s.colour.mix(0.55).stroke_width(2);
-        for p in s.series.points.iter().filter(|p| drawable(p)) {
-            let (x, y) = to_px(p.ms, y_of(p));
-            let lo = if p.ms_low.is_finite() && p.ms_low > 0.0 {
-                to_px(p.ms_low, floor).0
-            } else {
-                x
-            };
-            let hi = if p.ms_high.is_finite() && p.ms_high > 0.0 {
-                to_px(p.ms_high, floor).0
-            } else {
-                x
-            };
-            if hi - lo >= 1.0 {
-                draw_path(&root, &[(lo, y), (hi, y)], bar_style)?;
-                for e in [lo, hi] {
-                    draw_path(&root, &[(e, y - 4.0), (e, y + 4.0)], bar_style)?;
-                }
-                obstacles.push(Rect {
-                    x0: lo,
-                    y0: y - 4.0,
-                    x1: hi,
-                    y1: y + 4.0,
-                });
-            }
-        }
-        let step: Vec<(f64, f64)> = s
-            .front
-            .iter()
-            .map(|&i| &s.series.points[i])
-            .filter(|p| drawable(p))
-            .map(|p| to_px(p.ms, y_of(p)))
-            .collect();
-        let mut path = Vec::new();
-        for (k, &q) in step.iter().enumerate() {
-            if k > 0 {
-                path.push((q.0, step[k - 1].1));
-            }
-            path.push(q);
-        }
-        draw_path(&root, &path, s.colour.mix(0.8).stroke_width(2))?;
-        for w in path.windows(2) {
-            obstacles.push(segment_box(w[0], w[1]));
-        }
-        for (i, p) in s.series.points.iter().enumerate() {
-            if !drawable(p) {
-                continue;
-            }
-            let on_front = s.front.contains(&i);
-            let q = to_px(p.ms, y_of(p));
-            drawn.push(Drawn {
-                px: q,
-                label: p.label.clone(),
-                colour: s.colour,
-                on_front,
-                wanted: s.label_all || on_front,
+            obstacles.push(Rect {
+                x0: lo,
+                y0: y - 4.0,
+                x1: hi,
+                y1: y + 4.0,
             });
         }
     }
-    for d in &drawn {
-        obstacles.push(around(d.px, 6.0));
+    Ok(())
+}
+
+/// One series' Pareto front, a staircase through its points by time.
+fn draw_front(canvas: &Canvas, s: &PlottedSeries, obstacles: &mut Vec<Rect>) -> Result<()> {
+    let step: Vec<(f64, f64)> = s
+        .front
+        .iter()
+        .map(|&i| &s.series.points[i])
+        .filter(|p| drawable(p))
+        .map(|p| canvas.at(p))
+        .collect();
+    let mut path = Vec::new();
+    for (k, &q) in step.iter().enumerate() {
+        if k > 0 {
+            path.push((q.0, step[k - 1].1));
+        }
+        path.push(q);
     }
-    // Markers: dominated first, so that the front is drawn on top.
+    draw_path(canvas.root, &path, s.colour.mix(0.8).stroke_width(2))?;
+    for w in path.windows(2) {
+        obstacles.push(segment_box(w[0], w[1]));
+    }
+    Ok(())
+}
+
+/// A point as drawn, for its label.
+struct Drawn {
+    px: (f64, f64),
+    label: String,
+    colour: RGBColor,
+    on_front: bool,
+    /// Whether it gets a label.
+    wanted: bool,
+}
+
+/// One series' drawable points, where they are drawn.
+fn drawn_points(canvas: &Canvas, s: &PlottedSeries) -> Vec<Drawn> {
+    let mut drawn = Vec::new();
+    for (i, p) in s.series.points.iter().enumerate() {
+        if !drawable(p) {
+            continue;
+        }
+        let on_front = s.front.contains(&i);
+        drawn.push(Drawn {
+            px: canvas.at(p),
+            label: p.label.clone(),
+            colour: s.colour,
+            on_front,
+            wanted: s.label_all || on_front,
+        });
+    }
+    drawn
+}
+
+/// Every series' markers, dominated first so that the front is drawn on top.
+fn draw_markers(canvas: &Canvas, plotted: &[PlottedSeries]) -> Result<()> {
     for pass in [false, true] {
         for s in plotted {
             for (i, p) in s.series.points.iter().enumerate() {
                 if drawable(p) && s.front.contains(&i) == pass {
-                    draw_marker(&root, s.marker, to_px(p.ms, y_of(p)), 5.0, s.colour, pass)?;
+                    draw_marker(canvas.root, s.marker, canvas.at(p), 5.0, s.colour, pass)?;
                 }
             }
         }
     }
-    draw_legend_column(&root, (plot.x1 + LEGEND_GAP, plot.y0), &legend)?;
+    Ok(())
+}
 
-    // Labels: the front's first, then by time, so that placement is stable.
+/// The wanted labels, clear of `obstacles`; in the series' colour unless `single`.
+fn draw_labels(canvas: &Canvas, drawn: &[Drawn], single: bool, obstacles: &[Rect]) -> Result<()> {
+    // The front's first, then by time, so that placement is stable.
     let mut order: Vec<usize> = (0..drawn.len()).filter(|&k| drawn[k].wanted).collect();
     order.sort_by(|&a, &b| {
         (!drawn[a].on_front)
@@ -358,24 +467,22 @@ pub(super) fn tradeoff_plot(
             .then(a.cmp(&b))
     });
     let all_px: Vec<(f64, f64)> = drawn.iter().map(|d| d.px).collect();
-    let widths: Vec<f64> = drawn.iter().map(|d| text_w(&d.label, label_px)).collect();
-    let placed = place_labels(&all_px, &order, &widths, label_px, plot, &obstacles);
-    let single = plotted.len() == 1;
+    let widths: Vec<f64> = drawn.iter().map(|d| text_w(&d.label, LABEL_PX)).collect();
+    let placed = place_labels(&all_px, &order, &widths, LABEL_PX, canvas.plot, obstacles);
     for (k, r, leader) in placed {
         let d = &drawn[k];
         if let Some(end) = leader {
             let (dx, dy) = (end.0 - d.px.0, end.1 - d.px.1);
             let len = dx.hypot(dy).max(1e-9);
             let start = (d.px.0 + dx / len * 6.5, d.px.1 + dy / len * 6.5);
-            draw_path(&root, &[start, end], GREY.mix(0.7).stroke_width(1))?;
+            draw_path(canvas.root, &[start, end], GREY.mix(0.7).stroke_width(1))?;
         }
         let colour = if single {
             RGBColor(30, 30, 30)
         } else {
             darker(d.colour)
         };
-        draw_text(&root, &d.label, (r.x0, r.y0), colour)?;
+        draw_text(canvas.root, &d.label, (r.x0, r.y0), colour)?;
     }
-    root.present()?;
     Ok(())
 }

@@ -75,10 +75,7 @@ pub(super) fn points_legend(
         ));
     }
     for c in counters {
-        let Some((_, d)) = crate::legend::COUNTERS
-            .iter()
-            .find(|(n, _)| *n == c.as_str())
-        else {
+        let Some(d) = common::measure::counters::Counter::named(c).map(|c| c.legend) else {
             continue;
         };
         own.push((

@@ -408,6 +408,7 @@ fn moved(
 #[cfg(test)]
 mod tests {
     use super::Fragile;
+    use crate::measure::counters::{DRAWS, STENCIL_UPDATES};
 
     #[test]
     fn two_runs_bounds_add() {
@@ -417,7 +418,7 @@ mod tests {
             light_jitter_texels: 0.0625,
             flipped_pixels: 10,
             bounds: [("misclassified_pct".to_string(), 0.1)].into(),
-            counters: [("stencil_updates".to_string(), 100)].into(),
+            counters: [(STENCIL_UPDATES.name.to_string(), 100)].into(),
         };
         let b = Fragile {
             flipped_pixels: 4,
@@ -426,14 +427,14 @@ mod tests {
                 ("mean_abs".to_string(), 0.01),
             ]
             .into(),
-            counters: [("draws".to_string(), 1)].into(),
+            counters: [(DRAWS.name.to_string(), 1)].into(),
             ..a.clone()
         };
         let s = a.plus(&b);
         assert!((s.bounds["misclassified_pct"] - 0.15).abs() < 1e-12);
         assert_eq!(s.bounds["mean_abs"], 0.01);
-        assert_eq!(s.counters["stencil_updates"], 100);
-        assert_eq!(s.counters["draws"], 1);
+        assert_eq!(s.counters[STENCIL_UPDATES.name], 100);
+        assert_eq!(s.counters[DRAWS.name], 1);
         assert_eq!((s.flipped_pixels, s.offsets), (14, 6));
     }
 

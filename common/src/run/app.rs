@@ -9,13 +9,14 @@ use clap::Parser;
 use crate::gpu::wgsl::WgslError;
 use crate::run::cli::{clip_values, Args};
 use crate::run::headless::run_headless;
-use crate::run::lesson::{all_variants, exercise_variants, select_variants, variant_name, Lesson};
+use crate::run::instruments::Instruments;
+use crate::run::lesson::{all_variants, exercise_variants, select_variants, variant_name};
 use crate::run::times_only::run_times_only;
 use crate::scene::Scene;
 
 /// A lesson's `main`: parse the command line, run, and turn any error into
 /// one line on stderr and a non-zero exit code.
-pub fn main<L: Lesson>() -> ExitCode {
+pub fn main<L: Instruments>() -> ExitCode {
     let args = match Args::try_parse() {
         Ok(a) => a,
         Err(e) => {
@@ -63,7 +64,7 @@ fn display_available() -> bool {
 }
 
 /// Runs as the command line says: list variants, headless, or the window.
-fn run<L: Lesson>(args: &Args) -> Result<()> {
+fn run<L: Instruments>(args: &Args) -> Result<()> {
     if args.list_variants {
         // The lesson's variants, then its exercises (run only when named).
         let names: Vec<String> = all_variants::<L>()
@@ -117,8 +118,8 @@ fn print_stdout(text: &str) -> Result<()> {
 
 /// A light with a size in a lesson that casts hard shadows: one line that
 /// names lesson 10, which renders it.
-pub fn refuse_area_lights<L: Lesson>(scene: &Scene) -> Result<()> {
-    if L::AREA_LIGHTS {
+pub fn refuse_area_lights<L: Instruments>(scene: &Scene) -> Result<()> {
+    if L::CAPABILITIES.area_lights {
         return Ok(());
     }
     let Some((k, light)) = (scene.lights.iter().enumerate()).find(|(_, l)| l.size.is_area()) else {
@@ -136,14 +137,14 @@ pub fn refuse_area_lights<L: Lesson>(scene: &Scene) -> Result<()> {
 }
 
 /// The `--scene` file, or the lesson's default scene.
-pub(crate) fn load_scene<L: Lesson>(args: &Args) -> Result<Scene> {
+pub(crate) fn load_scene<L: Instruments>(args: &Args) -> Result<Scene> {
     let scene = match &args.scene {
         Some(p) => Scene::load(p)?,
         None => Scene::builtin(&format!("{} default scene", L::NAME), L::DEFAULT_SCENE)?,
     };
     L::check_scene(&scene)?;
     refuse_area_lights::<L>(&scene)?;
-    if scene.camera.shift != glam::DVec2::ZERO && !L::SUPPORTS_CAMERA_SHIFT {
+    if scene.camera.shift != glam::DVec2::ZERO && !L::CAPABILITIES.camera_shift {
         anyhow::bail!(
             "scene {}: camera.shift: {} fits to a centred frustum (fov_y_deg and the aspect alone) and would be wrong off-centre; lesson_07 draws a shifted camera (or set shift = [0, 0])",
             scene.name,

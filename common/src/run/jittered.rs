@@ -13,7 +13,7 @@ use crate::gpu::Gpu;
 use crate::measure::timing::Timer;
 use crate::reference::fragile::{self, JITTERS};
 use crate::reference::Reference;
-use crate::run::lesson::Lesson;
+use crate::run::instruments::Instruments;
 
 /// What a variant's measured frame gave, for [`fragile_of`].
 pub struct Measured<'a> {
@@ -30,7 +30,7 @@ pub struct Measured<'a> {
 /// ([`fragile::turned_lights`]). Against the frame `measured`: which
 /// receivers a rasteriser could flip, and how far each counter moved. The
 /// camera, the maps and the lights are put back afterwards.
-pub fn fragile_of<L: Lesson>(
+pub fn fragile_of<L: Instruments>(
     gpu: &Gpu,
     sg: &mut SceneGpu,
     targets: &FrameTargets,
@@ -77,7 +77,7 @@ struct Moved {
 impl Moved {
     /// One moved frame of `variant`, counted again (some lessons count on
     /// their second frame).
-    fn draw<L: Lesson>(
+    fn draw<L: Instruments>(
         &mut self,
         gpu: &Gpu,
         sg: &SceneGpu,
@@ -87,13 +87,13 @@ impl Moved {
         variant: L::Variant,
     ) -> Result<()> {
         lesson.count_again(variant);
-        for _ in 0..L::COUNTED_ON_FRAME {
+        for _ in 0..L::CAPABILITIES.counted_on_frame {
             let mut frame = timer.frame(gpu);
             lesson.render(&mut frame, sg, targets, variant)?;
             frame.finish()?;
         }
         self.images.push(targets.read(gpu)?);
-        self.counters.push(lesson.counters(variant));
+        self.counters.push(lesson.counters(variant).to_report());
         Ok(())
     }
 

@@ -16,7 +16,8 @@ use crate::measure::report::{AdapterReport, BaselineReport, TimingCheck, TimingP
 use crate::measure::timing::{median_times, samples, spread_times, TimingSource, CPU_TOTAL, TOTAL};
 use crate::run::cli::Args;
 use crate::run::headless::{baseline_report, setup, time_variants};
-use crate::run::lesson::{variant_name, Lesson};
+use crate::run::instruments::Instruments;
+use crate::run::lesson::variant_name;
 use crate::scene::Scene;
 
 /// `times.json`: a report's times, and what they were measured on.
@@ -46,7 +47,7 @@ pub struct VariantTimes {
 
 /// Times every variant and the baseline, writes `times.json` in the output
 /// folder; returns what it wrote and where.
-pub fn run_times_only<L: Lesson>(
+pub fn run_times_only<L: Instruments>(
     args: &Args,
     scene: Scene,
     variants: &[L::Variant],

@@ -16,11 +16,12 @@ use clap::Parser;
 
 use crate::gpu::web::page_error;
 use crate::run::cli::Args;
-use crate::run::lesson::{all_variants, select_variants, variant_name, Lesson};
+use crate::run::instruments::Instruments;
+use crate::run::lesson::{all_variants, select_variants, variant_name};
 use crate::run::window::page::{canvas, show_error};
 
 /// Runs lesson `L` in the page: what a lesson's `main` does on the web.
-pub fn start<L: Lesson>() {
+pub fn start<L: Instruments>() {
     // The page's reference worker runs the same module: there the lesson
     // serves the window's reference jobs (`window::live_worker`).
     if crate::run::window::live_worker::in_worker() {
@@ -32,7 +33,7 @@ pub fn start<L: Lesson>() {
     }
 }
 
-fn try_start<L: Lesson>() -> Result<()> {
+fn try_start<L: Instruments>() -> Result<()> {
     let canvas = canvas()?;
     let flags = canvas.get_attribute("data-args").unwrap_or_default();
     let argv = std::iter::once(L::NAME).chain(flags.split_whitespace());

@@ -3,13 +3,15 @@
 //! copy of the volume pass ([`Tally`](crate::lesson_01::tally::Tally)): exact on one adapter; rasterisers
 //! differ by a few edge fragments, and where a depth test ties.
 
-use std::collections::BTreeMap;
-
 use anyhow::Result;
 use common::gpu::read_later::later;
 use common::gpu::render::SceneGpu;
 use common::gpu::targets::FrameTargets;
 use common::gpu::Gpu;
+use common::measure::counters::{
+    Counts, DRAWS, EDGES_TESTED, FRAGMENT_SHADER_INVOCATIONS, SILHOUETTE_EDGES, STENCIL_UPDATES,
+    VOLUME_FRAGMENTS, VOLUME_TRIANGLES,
+};
 use common::measure::timing::Frame;
 
 use super::super::compute::ComputeVolumes;
@@ -38,17 +40,18 @@ pub struct VolumeCosts {
 }
 
 impl VolumeCosts {
-    /// The standard report keys (`volume_fragments`, `stencil_updates`,
-    /// `volume_triangles`) into `c`, and `draws`: `other_draws` (base and
-    /// lit passes) plus the volume passes'.
-    pub fn insert_into(&self, c: &mut BTreeMap<String, u64>, other_draws: u64) {
-        c.insert("volume_fragments".into(), self.fragments);
-        c.insert("stencil_updates".into(), self.stencil_updates);
-        c.insert("volume_triangles".into(), self.triangles);
-        c.insert("draws".into(), other_draws + self.draws);
-        c.insert("edges_tested".into(), self.edges_tested);
+    /// The standard counters ([`VOLUME_FRAGMENTS`], [`STENCIL_UPDATES`],
+    /// [`VOLUME_TRIANGLES`], [`EDGES_TESTED`], [`SILHOUETTE_EDGES`]) into
+    /// `c`, and [`DRAWS`]: `other_draws` (base and lit passes) plus the
+    /// volume passes'.
+    pub fn insert_into(&self, c: &mut Counts, other_draws: u64) {
+        c.set(VOLUME_FRAGMENTS, self.fragments);
+        c.set(STENCIL_UPDATES, self.stencil_updates);
+        c.set(VOLUME_TRIANGLES, self.triangles);
+        c.set(DRAWS, other_draws + self.draws);
+        c.set(EDGES_TESTED, self.edges_tested);
         if let Some(n) = self.silhouette_edges {
-            c.insert("silhouette_edges".into(), n);
+            c.set(SILHOUETTE_EDGES, n);
         }
     }
 }
@@ -61,7 +64,7 @@ pub fn base_and_lit_draws(scene: &SceneGpu) -> u64 {
 
 impl ShadowVolumes {
     /// Fragments rasterised by the volumes of `draws[light]` for every light
-    /// (see [`FragmentCounter`](common::measure::counters::FragmentCounter)); `None` without PIPELINE_STATISTICS_QUERY.
+    /// (see [`FragmentCounter`](common::measure::fragment_counter::FragmentCounter)); `None` without PIPELINE_STATISTICS_QUERY.
     /// Call after `prepare_cpu` for the CPU path. Untimed: its own submit.
     pub fn count_fragments(
         &self,
@@ -204,61 +207,52 @@ impl ShadowVolumes {
     }
 }
 
-/// The volumes' counts per variant, taken once, on a variant's second
-/// frame: the first frame's depth is then in place, and the counting
-/// submits of its own are left out of the frame's times (lessons 05 and
-/// 06's harness; their `Lesson::COUNTED_ON_FRAME` is 2).
+/// One variant's volume counts, taken once, on its second frame: the
+/// first frame's depth is then in place, and the counting submits of its
+/// own are left out of the frame's times (lessons 05 and 06's harness,
+/// one per variant; their `counted_on_frame` is 2).
+#[derive(Clone, Debug, Default)]
 pub struct SecondFrameCounts {
-    frames: Vec<u32>,
+    /// Frames drawn since the variant was last (re)set.
+    frames: u32,
     /// Fragment-shader invocations (pipeline statistics, Vulkan only).
-    invocations: Vec<Option<u64>>,
-    costs: Vec<Option<VolumeCosts>>,
+    invocations: Option<u64>,
+    /// The exact costs; `None` until counted.
+    costs: Option<VolumeCosts>,
 }
 
 impl SecondFrameCounts {
-    /// Nothing counted yet, for `variants` variants.
-    pub fn new(variants: usize) -> SecondFrameCounts {
-        SecondFrameCounts {
-            frames: vec![0; variants],
-            invocations: vec![None; variants],
-            costs: vec![None; variants],
-        }
-    }
-
-    /// After a frame of variant `v`: on its second, `count` (untimed).
+    /// After a frame of the variant: on its second, `count` (untimed).
     pub fn after_frame(
         &mut self,
         frame: &mut Frame,
-        v: usize,
         count: impl FnOnce(&Gpu) -> Result<(Option<u64>, VolumeCosts)>,
     ) -> Result<()> {
-        self.frames[v] += 1;
+        self.frames += 1;
         // From the second frame on, until counted: in a web page the
         // counts come back a frame or more later.
-        if self.frames[v] >= 2 && self.costs[v].is_none() {
+        if self.frames >= 2 && self.costs.is_none() {
             if let Some((invocations, costs)) = frame.untimed(|gpu| later(|| count(gpu)))? {
-                self.invocations[v] = invocations;
-                self.costs[v] = Some(costs);
+                self.invocations = invocations;
+                self.costs = Some(costs);
             }
         }
         Ok(())
     }
 
-    /// Count variant `v` again on its second frame from now.
-    pub fn again(&mut self, v: usize) {
-        self.frames[v] = 0;
-        self.costs[v] = None;
-        self.invocations[v] = None;
+    /// Count again on the variant's second frame from now.
+    pub fn again(&mut self) {
+        *self = SecondFrameCounts::default();
     }
 
-    /// Variant `v`'s counts into `c` ([`VolumeCosts::insert_into`]), with
+    /// The counts into `c` ([`VolumeCosts::insert_into`]), with
     /// `other_draws` the base and lit passes' draw calls.
-    pub fn insert_into(&self, v: usize, c: &mut BTreeMap<String, u64>, other_draws: u64) {
-        if let Some(f) = self.invocations[v] {
+    pub fn insert_into(&self, c: &mut Counts, other_draws: u64) {
+        if let Some(f) = self.invocations {
             // llvmpipe counts 16 per 4×4 block: not the fragment count.
-            c.insert("fragment_shader_invocations".into(), f);
+            c.set(FRAGMENT_SHADER_INVOCATIONS, f);
         }
-        if let Some(costs) = self.costs[v] {
+        if let Some(costs) = self.costs {
             costs.insert_into(c, other_draws);
         }
     }

@@ -1,7 +1,7 @@
 //! Bevy's cards: its default Gaussian filter (`bevy_gaussian`) and its
 //! PCSS on a spot (`bevy_pcss_or_pcf`).
 
-use common::ports::{Constant, Departure, PortCard, Role, Source, Value};
+use common::ports::{Constant, Departure, PortCard, Role, Source, Value, TAPS_UNIT};
 
 const BEVY_SAMPLING: Source = Source {
     file: "crates/bevy_pbr/src/render/shadow_sampling.wgsl",
@@ -164,7 +164,7 @@ pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
         Constant { name: "spot PCSS call", value: Value::Text("sample_shadow_map_pcss(shadow_uv, depth, array_index, frag_coord_xy, SPOT_SHADOW_TEXEL_SIZE, soft_shadow_size) when soft_shadow_size > 0"), unit: "", source: 1, lines: "116-125" },
         Constant { name: "soft_shadow_size (spot)", value: Value::Text("light.radius when soft_shadows_enabled, else 0"), unit: "m", source: 3, lines: "1095-1099" },
         Constant { name: "SPOT_SHADOW_TEXEL_SIZE", value: Value::Num(0.0134277345), unit: "texel_size units", source: 0, lines: "71" },
-        Constant { name: "shadow_map_size", value: Value::Text("textureDimensions(directional_shadow_textures): the spot's map is a layer of the directional texture"), unit: "texels", source: 0, lines: "170, 228" },
+        Constant { name: "shadow_map_size", value: Value::Text("textureDimensions(directional_shadow_textures): the spot's map is a layer of the directional texture"), unit: "texels", source: 0, lines: "170, 228" }, // not a counter: Bevy's shader variable
         Constant { name: "D3D_SAMPLE_POINT_POSITIONS", value: Value::List(BEVY_D3D_SAMPLE_POINT_POSITIONS), unit: "search radii", source: 0, lines: "79-88" },
         Constant { name: "blocker test", value: Value::Text("sampled_depth >= depth, linearly filtered depth"), unit: "", source: 0, lines: "46-61" },
         Constant { name: "search uv_offset_scale", value: Value::Text("search_size / (texel_size * shadow_map_size)"), unit: "uv", source: 0, lines: "229" },
@@ -174,7 +174,7 @@ pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
         Constant { name: "SPIRAL_OFFSET_0_..7_", value: Value::List(BEVY_SPIRAL_OFFSETS), unit: "filter radii", source: 2, lines: "88-95" },
         Constant { name: "random_rotation_matrix", value: Value::Text("2 PI * interleaved_gradient_noise(frag_coord, 1) when not temporal; mat2x2(m.y, -m.x, m.x, m.y), m = (sin, cos)"), unit: "", source: 0, lines: "156-164" },
         Constant { name: "interleaved_gradient_noise", value: Value::Text("fract(52.9829189 * fract(0.06711056 * x + 0.00583715 * y)), xy + 5.588238 * (frame % 64)"), unit: "", source: 2, lines: "72-75" },
-        Constant { name: "PCSS taps", value: Value::Num(8.0), unit: "taps", source: 0, lines: "177-209, 221-254" },
+        Constant { name: "PCSS taps", value: Value::Num(8.0), unit: TAPS_UNIT, source: 0, lines: "177-209, 221-254" }, // not a counter: a unit
         Constant { name: "soft_shadow_size (directional)", value: Value::Text("None by default: no PCSS on a sun"), unit: "", source: 5, lines: "116, 158" },
     ],
     departures: &[

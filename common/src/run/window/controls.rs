@@ -10,11 +10,11 @@ use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{Key, NamedKey};
 
 use super::App;
-use crate::run::lesson::Lesson;
+use crate::run::instruments::Instruments;
 use crate::run::view::View;
 use crate::scene::LightKind;
 
-impl<L: Lesson> App<L> {
+impl<L: Instruments> App<L> {
     /// Turns the camera around its target: `dx`, `dy` in pixels of drag
     /// (0.01 radian each).
     pub(super) fn orbit(&mut self, dx: f64, dy: f64) {

@@ -23,7 +23,7 @@ use winit::event_loop::EventLoop;
 #[cfg(not(target_arch = "wasm32"))]
 use super::App;
 #[cfg(not(target_arch = "wasm32"))]
-use crate::run::lesson::Lesson;
+use crate::run::instruments::Instruments;
 
 /// The event loop, or why there is none.
 pub(super) fn open_event_loop() -> Result<EventLoop<()>> {
@@ -41,7 +41,7 @@ fn run_event_loop(event_loop: EventLoop<()>, mut app: &mut dyn ApplicationHandle
 /// Runs the window until it closes, then flushes `--window-log` and
 /// returns the error that closed it, if one did.
 #[cfg(not(target_arch = "wasm32"))]
-pub(super) fn run_native<L: Lesson>(event_loop: EventLoop<()>, mut app: App<L>) -> Result<()> {
+pub(super) fn run_native<L: Instruments>(event_loop: EventLoop<()>, mut app: App<L>) -> Result<()> {
     run_event_loop(event_loop, &mut app)?;
     if let Some(log) = &mut app.log {
         log.flush().context("--window-log: cannot write")?;

@@ -2,7 +2,6 @@
 //! reference, build the overlay, put the picture on screen, and capture or
 //! log it when asked.
 
-use std::io::Write;
 use std::time::Duration;
 
 use web_time::Instant;
@@ -11,13 +10,13 @@ use anyhow::{Context, Result};
 use winit::event_loop::ActiveEventLoop;
 
 use super::live::{Level, PendingJob};
-use super::overlay::{self, Panel, ShownError};
+use super::overlay;
+use super::panel::diff_title;
 use super::present::Overlay;
 use super::views;
 use super::{App, DEFAULT_CAPTURE_AFTER};
 use crate::gpu::read_later::later;
-use crate::run::lesson::apply_knob;
-use crate::run::lesson::{variant_doc, Lesson};
+use crate::run::instruments::{apply_knob, Instruments};
 use crate::run::view::View;
 
 /// The longest `--capture` waits for the live reference's full figure.
@@ -41,7 +40,7 @@ const ANSWER_POLL: Duration = Duration::from_millis(20);
 /// How often the buffer view reads the lesson's buffer back.
 const BUFFER_EVERY: Duration = Duration::from_millis(500);
 
-impl<L: Lesson> App<L> {
+impl<L: Instruments> App<L> {
     /// When the next frame is due: `None` for at once. Only a CPU adapter
     /// with the live reference at work on a still view waits, until an
     /// answer comes or [`STILL_FRAME_EVERY`] has passed; a GPU draws
@@ -70,11 +69,32 @@ impl<L: Lesson> App<L> {
         Some((Instant::now() + ANSWER_POLL).min(last + STILL_FRAME_EVERY))
     }
 
+    /// One frame, in six steps: the variant's frame, timed; the live
+    /// reference fed and read; the buffer view; the overlay; the picture
+    /// on screen; then what the overlay asked for.
     pub(super) fn redraw(&mut self, el: &ActiveEventLoop) -> Result<()> {
         if self.running.is_none() {
             return Ok(());
         }
         let now = Instant::now();
+        self.advance_orbit(now);
+        let variant = self.variants[self.state.current];
+        self.render_timed(now, variant)?;
+        self.feed_live_reference(now)?;
+        self.read_buffer_view(now, variant)?;
+        let built = self.build_overlay(variant);
+        if !self.present_frame(built.overlay)? {
+            return Ok(());
+        }
+        self.frames += 1;
+        self.write_log(&built.shown, built.rect_px)?;
+        self.apply_actions(built.actions, variant)?;
+        self.finish_if_done(el)
+    }
+
+    /// `--orbit`: turns the camera by the time since the last frame, while
+    /// `--orbit-seconds` lasts.
+    fn advance_orbit(&mut self, now: Instant) {
         let dt = self.last_frame.map_or(0.0, |t| (now - t).as_secs_f64());
         self.last_frame = Some(now);
         let orbiting = self
@@ -85,16 +105,19 @@ impl<L: Lesson> App<L> {
             // A steady drag: 0.01 radian per pixel.
             self.orbit(deg_per_s.to_radians() * dt / 0.01, 0.0);
         }
-        let variant = self.variants[self.state.current];
-        let r = self.running.as_mut().expect("checked above");
+    }
+
+    /// Step 1: the variant's frame, timed as the headless runner times it, and
+    /// the cost the overlay shows: this frame's, the GPU's as they come
+    /// back, frames per second.
+    fn render_timed(&mut self, now: Instant, variant: L::Variant) -> Result<()> {
+        let r = self.running.as_mut().expect("checked by redraw");
         let s = &mut self.state;
         // The view this frame draws: a job of an older one stops after
         // its coarse pass.
         if let Some(live) = r.live.as_mut() {
             live.note_view(s.stamp.scene_gen);
         }
-
-        // 1. The variant's frame, timed as the headless runner times it.
         let mut frame = r.timer.frame(&r.gpu);
         r.lesson.render(&mut frame, &r.scene, &r.targets, variant)?;
         s.cost.ms = frame.finish()?.ms;
@@ -123,9 +146,14 @@ impl<L: Lesson> App<L> {
             s.frame_times.pop_front();
         }
         s.cost.fps = s.frame_times.len() as f64;
+        Ok(())
+    }
 
-        // 2. The live reference: read what it answered, send the next job.
-        let ctx = r.egui.egui_ctx().clone();
+    /// Step 2: the live reference: read what it answered, send the next job,
+    /// and upload the error image the view shows.
+    fn feed_live_reference(&mut self, now: Instant) -> Result<()> {
+        let r = self.running.as_mut().expect("checked by redraw");
+        let s = &mut self.state;
         if let Some(live) = r.live.as_mut() {
             for a in live.answers()? {
                 let current = a.stamp == s.stamp;
@@ -175,116 +203,48 @@ impl<L: Lesson> App<L> {
                 s.error_image = Some(error_view);
             }
         }
+        Ok(())
+    }
 
-        // 3. The buffer view, a few times a second while it is shown (in a
-        // web page it comes back a frame or more later: asked again each
-        // frame until it has).
+    /// Step 3: the buffer view, a few times a second while it is shown (in a
+    /// web page it comes back a frame or more later: asked again each
+    /// frame until it has).
+    fn read_buffer_view(&mut self, now: Instant, variant: L::Variant) -> Result<()> {
+        let r = self.running.as_mut().expect("checked by redraw");
+        let s = &mut self.state;
         let buffer_due = s.buffer_at.is_none_or(|t| now - t > BUFFER_EVERY);
-        if s.view == View::Buffer && (buffer_due || s.buffer_coming) {
-            s.buffer_at = Some(now);
-            let read = later(|| r.lesson.buffer_view(&r.gpu, &r.scene, variant))?;
-            s.buffer_coming = read.is_none();
-            match read {
-                Some(Some(b)) => {
-                    let stamp = (s.stamp.scene_gen, s.stamp.image_gen);
-                    views::upload(&ctx, &mut s.buffer, "buffer", &b.image, b.title, stamp);
-                    s.buffer_note = None;
-                }
-                Some(None) => {
-                    s.buffer = None;
-                    s.buffer_note = Some(format!("{} has no buffer to show", L::NAME));
-                }
-                None => {}
-            }
+        if s.view != View::Buffer || !(buffer_due || s.buffer_coming) {
+            return Ok(());
         }
-
-        // 4. The overlay.
-        let input = r.egui.take_egui_input(&r.window);
-        let knobs = r.lesson.knobs(variant);
-        let shown = s.answer.as_ref().map(|a| ShownError {
-            error: a.error.clone(),
-            level: a.level,
-            stale: a.stamp != s.stamp,
-            latency_s: s.answer_latency,
-        });
-        let picture = match s.view {
-            View::Buffer => s.buffer.as_ref(),
-            _ => None,
-        };
-        let now_stamp = (s.stamp.scene_gen, s.stamp.image_gen);
-        let titled = |title: &str, stamp| match stamp == now_stamp {
-            true => title.to_string(),
-            false => format!("{title} (of an earlier view; updating)"),
-        };
-        let view_note = match s.view {
-            View::Frame => None,
-            View::Visibility => Some("white lit, black shadowed (light 0)".to_string()),
-            View::Diff if r.live.is_none() => {
-                Some("no diff: the live reference is off".to_string())
+        s.buffer_at = Some(now);
+        let read = later(|| r.lesson.buffer_view(&r.gpu, &r.scene, variant))?;
+        s.buffer_coming = read.is_none();
+        match read {
+            Some(Some(b)) => {
+                let stamp = (s.stamp.scene_gen, s.stamp.image_gen);
+                let ctx = r.egui.egui_ctx().clone();
+                views::upload(&ctx, &mut s.buffer, "buffer", &b.image, b.title, stamp);
+                s.buffer_note = None;
             }
-            View::Diff => Some(match &s.diff {
-                Some((title, stamp)) => titled(title, *stamp),
-                None => "computing…".to_string(),
-            }),
-            View::Dv if r.live.is_none() => Some("no dv: the live reference is off".to_string()),
-            View::Dv => Some(match &s.diff {
-                Some((title, stamp)) => titled(&dv_title(title), *stamp),
-                None => "computing…".to_string(),
-            }),
-            View::Buffer => match picture {
-                Some(p) => Some(titled(&p.title, p.stamp)),
-                None => s.buffer_note.clone().or(Some("computing…".to_string())),
-            },
-        };
-        let doc = variant_doc(variant);
-        let counters = r.lesson.counters(variant);
-        let adapter = format!("{} ({})", r.gpu.adapter_name(), r.gpu.backend_name());
-        if self.adapter_line.is_empty() {
-            self.adapter_line = adapter.clone();
+            Some(None) => {
+                s.buffer = None;
+                s.buffer_note = Some(format!("{} has no buffer to show", L::NAME));
+            }
+            None => {}
         }
-        let mut actions = overlay::Actions::default();
-        let out = ctx.run_ui(input, |ui| {
-            let ctx = ui.ctx().clone();
-            if let Some(p) = picture {
-                views::paint_behind(&ctx, p, ctx.content_rect());
-            }
-            if s.show_overlay {
-                let panel = Panel {
-                    lesson: L::NAME,
-                    adapter: &adapter,
-                    variants: &s.variants,
-                    current: s.current,
-                    doc: &doc,
-                    cost: &s.cost,
-                    error: shown.as_ref(),
-                    no_reference: r.live.is_none(),
-                    view: s.view,
-                    view_note: view_note.as_deref(),
-                    knobs: &knobs,
-                    settings_line: s.settings_line.as_deref(),
-                    lights: r.scene.scene.lights.len(),
-                    counters: &counters,
-                };
-                actions = overlay::show(&ctx, &panel);
-            }
-        });
-        r.egui
-            .handle_platform_output(&r.window, out.platform_output);
-        let out_ppp = out.pixels_per_point;
-        let primitives = ctx.tessellate(out.shapes, out.pixels_per_point);
-        let overlay = Overlay {
-            primitives,
-            textures: out.textures_delta,
-            pixels_per_point: out.pixels_per_point,
-        };
+        Ok(())
+    }
 
-        // 5. On screen.
+    /// Step 5: the frame and its overlay on screen; `false` when the surface had
+    /// no texture to give (it is configured again, and the frame dropped).
+    fn present_frame(&mut self, overlay: Overlay) -> Result<bool> {
+        let r = self.running.as_mut().expect("checked by redraw");
         let surface_tex = match r.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
             _ => {
                 r.surface.configure(&r.gpu.device, &r.config);
-                return Ok(());
+                return Ok(false);
             }
         };
         let view = surface_tex
@@ -293,16 +253,14 @@ impl<L: Lesson> App<L> {
                 format: r.config.view_formats.first().copied(),
                 ..Default::default()
             });
-        r.present.draw(&r.gpu, s.view, overlay, &view);
+        r.present.draw(&r.gpu, self.state.view, overlay, &view);
         r.gpu.queue.present(surface_tex);
-        self.frames += 1;
-        let rect = actions.rect.map(|r| {
-            let ppp = out_ppp;
-            [r.min.x * ppp, r.min.y * ppp, r.max.x * ppp, r.max.y * ppp]
-        });
-        self.write_log(&shown, rect)?;
+        Ok(true)
+    }
 
-        // 6. What the overlay asked for, for the next frame.
+    /// Step 6: what the overlay asked for, for the next frame: a variant, a
+    /// view, knobs, the settings printed.
+    fn apply_actions(&mut self, actions: overlay::Actions, variant: L::Variant) -> Result<()> {
         if let Some(i) = actions.variant {
             self.select_variant(i);
         }
@@ -310,7 +268,7 @@ impl<L: Lesson> App<L> {
             self.state.view = v;
         }
         for (name, value) in actions.knobs {
-            let r = self.running.as_mut().expect("checked above");
+            let r = self.running.as_mut().expect("checked by redraw");
             apply_knob(&mut r.lesson, &r.gpu, &r.scene, variant, name, value)?;
             self.state.restart_gpu_times(r.timer.frames());
             self.state.buffer_at = None;
@@ -319,7 +277,7 @@ impl<L: Lesson> App<L> {
         if actions.print_settings {
             self.print_settings()?;
         }
-        self.finish_if_done(el)
+        Ok(())
     }
 
     /// `--capture` after `--capture-after` frames (and the full figure of
@@ -365,94 +323,6 @@ impl<L: Lesson> App<L> {
         el.exit();
         Ok(())
     }
-
-    /// One `--window-log` line: the frame's time and cost, the view it
-    /// shows, and the error figure with the view it was computed for.
-    fn write_log(&mut self, shown: &Option<ShownError>, overlay: Option<[f32; 4]>) -> Result<()> {
-        #[cfg(not(target_arch = "wasm32"))]
-        if self.log.is_none() {
-            return Ok(());
-        }
-        let s = &self.state;
-        let answer = s.answer.as_ref().map(|a| {
-            serde_json::json!({
-                "scene_gen": a.stamp.scene_gen,
-                "image_gen": a.stamp.image_gen,
-                "level": match a.level { Level::Coarse => "coarse", Level::Full => "full" },
-                "worker_ms": a.ms,
-                "misclassified_pct": a.error.misclassified_pct,
-                "false_shadow_pct": a.error.false_shadow_pct,
-                "false_lit_pct": a.error.false_lit_pct,
-                // An area light's: the error inside the penumbra.
-                "penumbra_mean_abs": a.error.soft.as_ref().map(|x| x.penumbra_mean_abs),
-                "light_bleeding_pct": a.error.soft.as_ref().map(|x| x.light_bleeding_pct),
-            })
-        });
-        let line = serde_json::json!({
-            "frame": self.frames,
-            "width": self.running.as_ref().map(|r| r.targets.width),
-            "height": self.running.as_ref().map(|r| r.targets.height),
-            "t_s": self.started.elapsed().as_secs_f64(),
-            "variant": s.variants[s.current],
-            "scene_gen": s.stamp.scene_gen,
-            "image_gen": s.stamp.image_gen,
-            "cost_ms": s.cost.ms,
-            // The GPU's total and passes over the last frames timed:
-            // [q25, median, q75] ms; in a page, how late they were read.
-            "gpu_ms": gpu_spreads(&s.cost),
-            // The lesson's counters for the variant shown, as the report's.
-            "counters": self.running.as_ref().map(|r| r.lesson.counters(self.variants[s.current])),
-            "gpu_frames": s.cost.gpu.len(),
-            "gpu_read_late": s.cost.late.map(|(late, _)| late),
-            "timestamp_quantum_ns": s.cost.late.map(|(_, q)| q),
-            "fps": s.cost.fps,
-            "error": answer,
-            "error_current": shown.as_ref().is_some_and(|e| !e.stale),
-            "adapter": self.adapter_line,
-            "rss_kb": rss_kb(),
-            "overlay_px": overlay,
-        });
-        // A page shows the line to its scripts (the web check reads it).
-        #[cfg(target_arch = "wasm32")]
-        self.page.publish(&line);
-        let Some(log) = self.log.as_mut() else {
-            return Ok(());
-        };
-        writeln!(log, "{line}").context("--window-log: cannot write")
-    }
-}
-
-/// Every GPU key's `[q25, median, q75]` over the frames the overlay keeps.
-fn gpu_spreads(cost: &super::overlay::Cost) -> serde_json::Value {
-    let keys = cost.gpu.back().into_iter().flat_map(|f| f.keys());
-    let spreads = keys.filter_map(|k| Some((k.clone(), cost.gpu_spread(k)?.to_vec())));
-    serde_json::json!(spreads.collect::<std::collections::BTreeMap<_, _>>())
-}
-
-/// What the diff image shows, in one line.
-fn diff_title(a: &super::live::Answer) -> String {
-    let level = match a.level {
-        Level::Coarse => "coarse estimate",
-        Level::Full => "every pixel",
-    };
-    format!("diff against the exact reference, light 0 ({level}): red false shadow, green false lit, gray agree, near black not a receiver")
-}
-
-/// What the dv image shows, in one line, at the diff's `level` (read from
-/// its title).
-fn dv_title(diff_title: &str) -> String {
-    let level = match diff_title.contains("coarse") {
-        true => "coarse estimate",
-        false => "every pixel",
-    };
-    format!("signed error V − V_ref, light 0 ({level}): blue darker than exact, red lighter, white agree, dark gray not a receiver")
-}
-
-/// This process's resident memory (Linux), for the log.
-fn rss_kb() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find_map(|l| l.strip_prefix("VmRSS:"))?;
-    line.trim().trim_end_matches("kB").trim().parse().ok()
 }
 
 /// `--capture`'s PNG; not generic, so that its encoder is compiled once,

@@ -11,7 +11,7 @@
 use anyhow::{bail, Result};
 use image::RgbaImage;
 
-use super::live::{Answer, Job, Level, Stamp};
+use super::live_job::{Answer, Job, Level, Stamp};
 use crate::gpu::targets::FrameImages;
 use crate::reference::metrics::ErrorStats;
 use crate::scene::{Camera, Light, Scene};

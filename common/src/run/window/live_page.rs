@@ -20,7 +20,7 @@ use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array, Uint8Array};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
-use super::live::{Answer, Job, Level, PendingJob};
+use super::live_job::{Answer, Job, Level, PendingJob};
 use super::live_message::{AnswerHeader, JobHeader};
 use super::page::canvas;
 

@@ -9,7 +9,7 @@
 use anyhow::{anyhow, Result};
 use web_time::Instant;
 
-use super::live::{measure, measure_coarse, Answer, Job, Level};
+use super::live_job::{measure, measure_coarse, Answer, Job, Level};
 use crate::reference::{try_render_reference, Reference};
 
 /// The job under way and the reference of the last view.

@@ -19,7 +19,7 @@ use super::live_message::{AnswerHeader, JobHeader};
 use super::live_page::object;
 use super::live_server::Server;
 use crate::run::cli::Args;
-use crate::run::lesson::Lesson;
+use crate::run::instruments::Instruments;
 use crate::scene::Scene;
 
 /// Whether this module runs in a worker (no page, no canvas).
@@ -31,7 +31,7 @@ pub fn in_worker() -> bool {
 
 /// Loads the scene and takes over the worker's messages; every failure,
 /// a panic included, goes back to the page as one line.
-pub fn serve<L: Lesson>() {
+pub fn serve<L: Instruments>() {
     std::panic::set_hook(Box::new(|info| {
         post_error(&format!("the reference worker panicked: {info}"));
     }));
@@ -40,7 +40,7 @@ pub fn serve<L: Lesson>() {
     }
 }
 
-fn try_serve<L: Lesson>() -> Result<()> {
+fn try_serve<L: Instruments>() -> Result<()> {
     let global = scope();
     let flags = Reflect::get(&global, &"workbookArgs".into())
         .ok()

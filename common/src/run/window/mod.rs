@@ -6,8 +6,11 @@
 //! - [`controls`]: the camera, the light, the keys, and the command line
 //!   that reproduces what the window shows.
 //! - [`event_loop`]: winit's event loop, opened and run.
-//! - [`frame`]: one frame: render, measure, overlay, present, capture.
+//! - [`frame`]: one frame, in steps: render, measure, overlay, present, capture.
+//! - [`panel`]: the frame's overlay step: the panel built and tessellated.
+//! - [`frame_log`]: `--window-log`, a JSON line a frame.
 //! - [`live`]: the exact reference on low-priority worker threads.
+//! - [`live_job`]: its jobs, the frames read back for them, and its answers.
 //! - [`overlay`]: the egui overlay (and [`overlay::KEYS`], every key).
 //! - [`present`]: the window's picture (view + overlay) and its capture.
 //! - [`views`]: the diff and buffer views' pictures.
@@ -25,7 +28,9 @@
 pub mod controls;
 pub mod event_loop;
 pub mod frame;
+pub mod frame_log;
 pub mod live;
+pub mod live_job;
 pub mod live_message;
 #[cfg(target_arch = "wasm32")]
 pub mod live_page;
@@ -35,6 +40,7 @@ pub mod live_worker;
 pub mod overlay;
 #[cfg(target_arch = "wasm32")]
 pub mod page;
+pub mod panel;
 pub mod present;
 pub mod views;
 
@@ -53,8 +59,7 @@ use crate::gpu::targets::FrameTargets;
 use crate::gpu::Gpu;
 use crate::measure::timing::Timer;
 use crate::run::cli::Args;
-use crate::run::lesson::apply_cli_knobs;
-use crate::run::lesson::Lesson;
+use crate::run::instruments::{apply_cli_knobs, Instruments};
 use crate::scene::Scene;
 
 use crate::run::view::View;
@@ -80,7 +85,7 @@ pub fn as_page() -> bool {
 pub const DEFAULT_CAPTURE_AFTER: u32 = 30;
 
 /// The window and what draws into it.
-struct Running<L: Lesson> {
+struct Running<L: Instruments> {
     window: Arc<Window>,
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
@@ -138,7 +143,7 @@ struct State {
     settings_line: Option<String>,
 }
 
-struct App<L: Lesson> {
+struct App<L: Instruments> {
     args: Args,
     scene: Option<Scene>,
     variants: Vec<L::Variant>,
@@ -160,7 +165,11 @@ struct App<L: Lesson> {
     page: page::Page,
 }
 
-pub fn run_window<L: Lesson>(args: &Args, scene: Scene, variants: Vec<L::Variant>) -> Result<()> {
+pub fn run_window<L: Instruments>(
+    args: &Args,
+    scene: Scene,
+    variants: Vec<L::Variant>,
+) -> Result<()> {
     let event_loop = open_event_loop()?;
     let log = match &args.window_log {
         Some(p) => Some(std::io::BufWriter::new(
@@ -250,7 +259,7 @@ fn check_capture_path(p: &std::path::Path) -> Result<()> {
     Ok(())
 }
 
-impl<L: Lesson> App<L> {
+impl<L: Instruments> App<L> {
     #[cfg(not(target_arch = "wasm32"))]
     fn start(&mut self, el: &ActiveEventLoop) -> Result<()> {
         let attrs = Window::default_attributes()
@@ -370,7 +379,7 @@ impl<L: Lesson> App<L> {
         }
         r.lesson = L::new(&r.gpu, &r.scene)?;
         for (v, name, value) in knobs {
-            crate::run::lesson::apply_knob(&mut r.lesson, &r.gpu, &r.scene, v, name, value)?;
+            crate::run::instruments::apply_knob(&mut r.lesson, &r.gpu, &r.scene, v, name, value)?;
         }
         r.present.resize(&r.gpu, &r.targets);
         self.state.view_changed();
@@ -412,7 +421,7 @@ impl State {
     }
 }
 
-impl<L: Lesson> ApplicationHandler for App<L> {
+impl<L: Instruments> ApplicationHandler for App<L> {
     fn resumed(&mut self, el: &ActiveEventLoop) {
         if self.running.is_none() {
             if let Err(e) = self.start(el) {

@@ -18,9 +18,9 @@ use winit::window::Window;
 use super::App;
 use crate::gpu::web::page_error;
 use crate::gpu::Gpu;
-use crate::run::lesson::Lesson;
+use crate::run::instruments::Instruments;
 
-impl<L: Lesson> App<L> {
+impl<L: Instruments> App<L> {
     pub(super) fn start(&mut self, el: &ActiveEventLoop) -> Result<()> {
         if self.page.window.is_some() {
             return Ok(());
@@ -118,7 +118,7 @@ pub(crate) fn canvas() -> Result<web_sys::HtmlCanvasElement> {
 }
 
 /// One line in the page (`#workbook-error`) and the console.
-pub fn show_error<L: Lesson>(e: &anyhow::Error) {
+pub fn show_error<L: Instruments>(e: &anyhow::Error) {
     let line = format!(
         "error: {}: {}",
         L::NAME,
