@@ -1,4 +1,4 @@
-//! The "buffer" view of every lesson (`Lesson::buffer_view`), through the
+//! The "buffer" view of every lesson (`Instruments::buffer_view`), through the
 //! `<variant>_buffer.png` the headless runner writes: it exists, has the
 //! size its kind gives it, is not one flat colour, and shows what it says.
 //!

@@ -108,8 +108,12 @@ const HARNESS: &[Harness] = &[
         "counting for the report (measurement)",
     ),
     h(
-        Name::Word("COUNTED_ON_FRAME"),
+        Name::Word("counted_on_frame"),
         "on which frame the harness counts",
+    ),
+    h(
+        Name::Word("Instruments"),
+        "the lesson's harness (measurement), not its technique",
     ),
     h(
         Name::Word("stats"),

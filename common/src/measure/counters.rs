@@ -141,145 +141,145 @@ pub const ALL: &[Counter] = &[
 ];
 
 // Shadow maps.
-/// `shadow_map_size`.
+/// `shadow_map_size`, in texels: the shadow map's side, in texels (a cube map: one face's side).
 pub const SHADOW_MAP_SIZE: Counter = Counter {
     name: "shadow_map_size",
     unit: "texels",
     legend: "the shadow map's side, in texels (a cube map: one face's side)",
 };
-/// `cascades`.
+/// `cascades`, in cascades: the number of cascades (shadow maps split along the view).
 pub const CASCADES: Counter = Counter {
     name: "cascades",
     unit: "cascades",
     legend: "the number of cascades (shadow maps split along the view)",
 };
-/// `texel_um_u`.
+/// `texel_um_u`, in µm: one shadow-map texel's width in the scene, in micrometres.
 pub const TEXEL_UM_U: Counter = Counter {
     name: "texel_um_u",
     unit: "µm",
     legend: "one shadow-map texel's width in the scene, in micrometres",
 };
-/// `texel_um_v`.
+/// `texel_um_v`, in µm: one shadow-map texel's height in the scene, in micrometres.
 pub const TEXEL_UM_V: Counter = Counter {
     name: "texel_um_v",
     unit: "µm",
     legend: "one shadow-map texel's height in the scene, in micrometres",
 };
-/// `texels_per_100m_at_2m`.
+/// `texels_per_100m_at_2m`, in texels per 100 m: shadow-map texels per 100 m of scene, in the cascade that holds view depth 2 m.
 pub const TEXELS_PER_100M_AT_2M: Counter = Counter {
     name: "texels_per_100m_at_2m",
     unit: "texels per 100 m",
     legend: "shadow-map texels per 100 m of scene, in the cascade that holds view depth 2 m",
 };
-/// `texels_per_100m_at_10m`.
+/// `texels_per_100m_at_10m`, in texels per 100 m: shadow-map texels per 100 m of scene, in the cascade that holds view depth 10 m.
 pub const TEXELS_PER_100M_AT_10M: Counter = Counter {
     name: "texels_per_100m_at_10m",
     unit: "texels per 100 m",
     legend: "shadow-map texels per 100 m of scene, in the cascade that holds view depth 10 m",
 };
-/// `texels_per_100m_at_50m`.
+/// `texels_per_100m_at_50m`, in texels per 100 m: shadow-map texels per 100 m of scene, in the cascade that holds view depth 50 m.
 pub const TEXELS_PER_100M_AT_50M: Counter = Counter {
     name: "texels_per_100m_at_50m",
     unit: "texels per 100 m",
     legend: "shadow-map texels per 100 m of scene, in the cascade that holds view depth 50 m",
 };
-/// `texels_per_100m_at_200m`.
+/// `texels_per_100m_at_200m`, in texels per 100 m: shadow-map texels per 100 m of scene, in the cascade that holds view depth 200 m.
 pub const TEXELS_PER_100M_AT_200M: Counter = Counter {
     name: "texels_per_100m_at_200m",
     unit: "texels per 100 m",
     legend: "shadow-map texels per 100 m of scene, in the cascade that holds view depth 200 m",
 };
-/// `origin_off_grid_millitexels`.
+/// `origin_off_grid_millitexels`, in millitexels: how far the cascades' light-space origins lie off their texel grids, worst cascade, in thousandths of a texel: 0 when snapped.
 pub const ORIGIN_OFF_GRID_MILLITEXELS: Counter = Counter {
     name: "origin_off_grid_millitexels",
     unit: "millitexels",
     legend: "how far the cascades' light-space origins lie off their texel grids, worst cascade, in thousandths of a texel: 0 when snapped",
 };
-/// `near_plane_mm`.
+/// `near_plane_mm`, in mm: the cube map's near plane, in millimetres.
 pub const NEAR_PLANE_MM: Counter = Counter {
     name: "near_plane_mm",
     unit: "mm",
     legend: "the cube map's near plane, in millimetres",
 };
-/// `unclipped_depth`.
+/// `unclipped_depth`, in 0 or 1: 1 where the pass clamps depth instead of clipping it (`unclipped_depth`), else 0.
 pub const UNCLIPPED_DEPTH: Counter = Counter {
     name: "unclipped_depth",
     unit: "0 or 1",
     legend: "1 where the pass clamps depth instead of clipping it (`unclipped_depth`), else 0",
 };
-/// `slope_bias_millitexels`.
+/// `slope_bias_millitexels`, in millitexels per unit of tan θ: the slope-scaled bias, in thousandths of a texel per unit of tan θ.
 pub const SLOPE_BIAS_MILLITEXELS: Counter = Counter {
     name: "slope_bias_millitexels",
     unit: "millitexels per unit of tan θ",
     legend: "the slope-scaled bias, in thousandths of a texel per unit of tan θ",
 };
-/// `faces_rendered`.
+/// `faces_rendered`, in faces: cube-map faces drawn into, over all lights.
 pub const FACES_RENDERED: Counter = Counter {
     name: "faces_rendered",
     unit: "faces",
     legend: "cube-map faces drawn into, over all lights",
 };
-/// `caster_draws`.
+/// `caster_draws`, in draw calls: caster draw calls into the shadow maps (one per caster and face it can touch).
 pub const CASTER_DRAWS: Counter = Counter {
     name: "caster_draws",
     unit: "draw calls",
     legend: "caster draw calls into the shadow maps (one per caster and face it can touch)",
 };
-/// `shadow_fragments`.
+/// `shadow_fragments`, in fragments: fragments the shadow pass rasterised, every map, face and cascade.
 pub const SHADOW_FRAGMENTS: Counter = Counter {
     name: "shadow_fragments",
     unit: "fragments",
     legend: "fragments the shadow pass rasterised, every map, face and cascade",
 };
-/// `shadow_texels_written`.
+/// `shadow_texels_written`, in texels: shadow-map texels that pass's fragments wrote (depth test passed).
 pub const SHADOW_TEXELS_WRITTEN: Counter = Counter {
     name: "shadow_texels_written",
     unit: "texels",
     legend: "shadow-map texels that pass's fragments wrote (depth test passed)",
 };
-/// `shadow_texels_scissored`.
+/// `shadow_texels_scissored`, in texels: cube-face texels inside the faces' scissor rectangles, the texels a visible receiver's lookup can read (lesson 04's `face_rects`); a whole face where there is no rectangle.
 pub const SHADOW_TEXELS_SCISSORED: Counter = Counter {
     name: "shadow_texels_scissored",
     unit: "texels",
     legend: "cube-face texels inside the faces' scissor rectangles, the texels a visible receiver's lookup can read (lesson 04's `face_rects`); a whole face where there is no rectangle",
 };
-/// `taps`.
+/// `taps`, in comparisons per lookup: depth comparisons per shadow lookup.
 pub const TAPS: Counter = Counter {
     name: "taps",
     unit: "comparisons per lookup",
     legend: "depth comparisons per shadow lookup",
 };
-/// `blocker_search_taps`.
+/// `blocker_search_taps`, in depth reads per pixel and light: the blocker search's depth reads per pixel and light, one texel each, before the filter (PCSS's first step; a pixel whose search finds no blocker stops there); 0 for a fixed filter or a variance map.
 pub const BLOCKER_SEARCH_TAPS: Counter = Counter {
     name: "blocker_search_taps",
     unit: "depth reads per pixel and light",
     legend: "the blocker search's depth reads per pixel and light, one texel each, before the filter (PCSS's first step; a pixel whose search finds no blocker stops there); 0 for a fixed filter or a variance map",
 };
-/// `filter_taps_per_pixel`.
+/// `filter_taps_per_pixel`, in comparisons per pixel and light: depth comparisons the lit pass makes per pixel and light.
 pub const FILTER_TAPS_PER_PIXEL: Counter = Counter {
     name: "filter_taps_per_pixel",
     unit: "comparisons per pixel and light",
     legend: "depth comparisons the lit pass makes per pixel and light",
 };
-/// `texels_read`.
+/// `texels_read`, in texels per lookup: shadow-map texels one lookup reads (a bilinear comparison reads 2×2).
 pub const TEXELS_READ: Counter = Counter {
     name: "texels_read",
     unit: "texels per lookup",
     legend: "shadow-map texels one lookup reads (a bilinear comparison reads 2×2)",
 };
-/// `probed_pixels`.
+/// `probed_pixels`, in pixels: an adaptive filter's pixels: those its lit pass shaded inside the map, where its 4 probes ran (counted in one untimed draw).
 pub const PROBED_PIXELS: Counter = Counter {
     name: "probed_pixels",
     unit: "pixels",
     legend: "an adaptive filter's pixels: those its lit pass shaded inside the map, where its 4 probes ran (counted in one untimed draw)",
 };
-/// `full_disk_pixels`.
+/// `full_disk_pixels`, in pixels: of those, the pixels whose probes disagreed and that took the full disk.
 pub const FULL_DISK_PIXELS: Counter = Counter {
     name: "full_disk_pixels",
     unit: "pixels",
     legend: "of those, the pixels whose probes disagreed and that took the full disk",
 };
-/// `filter_taps`.
+/// `filter_taps`, in comparisons: the depth comparisons an adaptive filter made over the frame: 4 per probed pixel, 16 more per full-disk pixel.
 pub const FILTER_TAPS: Counter = Counter {
     name: "filter_taps",
     unit: "comparisons",
@@ -287,67 +287,67 @@ pub const FILTER_TAPS: Counter = Counter {
 };
 
 // Shadow volumes: the casters, their meshes and silhouettes.
-/// `casters_drawn`.
+/// `casters_drawn`, in caster-light pairs: caster-light pairs whose shadow volume is drawn.
 pub const CASTERS_DRAWN: Counter = Counter {
     name: "casters_drawn",
     unit: "caster-light pairs",
     legend: "caster-light pairs whose shadow volume is drawn",
 };
-/// `casters_zpass`.
+/// `casters_zpass`, in caster-light pairs: caster-light pairs counted with z-pass (their volumes cannot reach the near plane).
 pub const CASTERS_ZPASS: Counter = Counter {
     name: "casters_zpass",
     unit: "caster-light pairs",
     legend: "caster-light pairs counted with z-pass (their volumes cannot reach the near plane)",
 };
-/// `casters_zfail`.
+/// `casters_zfail`, in caster-light pairs: caster-light pairs counted with z-fail, with caps.
 pub const CASTERS_ZFAIL: Counter = Counter {
     name: "casters_zfail",
     unit: "caster-light pairs",
     legend: "caster-light pairs counted with z-fail, with caps",
 };
-/// `casters_skipped`.
+/// `casters_skipped`, in caster-light pairs: caster-light pairs left out: their volumes cannot change a visible pixel.
 pub const CASTERS_SKIPPED: Counter = Counter {
     name: "casters_skipped",
     unit: "caster-light pairs",
     legend: "caster-light pairs left out: their volumes cannot change a visible pixel",
 };
-/// `open_edges`.
+/// `open_edges`, in edges: caster mesh edges with one face (the mesh is open there), summed over the casters; the lesson draws such casters two-sided.
 pub const OPEN_EDGES: Counter = Counter {
     name: "open_edges",
     unit: "edges",
     legend: "caster mesh edges with one face (the mesh is open there), summed over the casters; the lesson draws such casters two-sided",
 };
-/// `nonmanifold_edges`.
+/// `nonmanifold_edges`, in edges: caster mesh edges with three or more faces, summed over the casters.
 pub const NONMANIFOLD_EDGES: Counter = Counter {
     name: "nonmanifold_edges",
     unit: "edges",
     legend: "caster mesh edges with three or more faces, summed over the casters",
 };
-/// `degenerate_triangles`.
+/// `degenerate_triangles`, in triangles: zero-area triangles of the casters' own meshes (the input, not the volumes), summed over the casters; they face no light and are left out.
 pub const DEGENERATE_TRIANGLES: Counter = Counter {
     name: "degenerate_triangles",
     unit: "triangles",
     legend: "zero-area triangles of the casters' own meshes (the input, not the volumes), summed over the casters; they face no light and are left out",
 };
-/// `edges_tested`.
+/// `edges_tested`, in edges per frame: caster edges tested for the silhouette, per frame over all lights (on the CPU or in a shader).
 pub const EDGES_TESTED: Counter = Counter {
     name: "edges_tested",
     unit: "edges per frame",
     legend: "caster edges tested for the silhouette, per frame over all lights (on the CPU or in a shader)",
 };
-/// `silhouette_edges`.
+/// `silhouette_edges`, in edges per frame: silhouette edges found and extruded, per frame over all lights (— where the route extrudes on the fly).
 pub const SILHOUETTE_EDGES: Counter = Counter {
     name: "silhouette_edges",
     unit: "edges per frame",
     legend: "silhouette edges found and extruded, per frame over all lights (— where the route extrudes on the fly)",
 };
-/// `volume_triangles`.
+/// `volume_triangles`, in triangles: triangles submitted for the shadow volumes (sides and caps); the quads route sends every edge, most of them zero-area.
 pub const VOLUME_TRIANGLES: Counter = Counter {
     name: "volume_triangles",
     unit: "triangles",
     legend: "triangles submitted for the shadow volumes (sides and caps); the quads route sends every edge, most of them zero-area",
 };
-/// `max_volume_overlap`.
+/// `max_volume_overlap`, in volumes: the most shadow volumes any sampled point lies in (a grid of pixels); 256 wraps an 8-bit stencil to 0.
 pub const MAX_VOLUME_OVERLAP: Counter = Counter {
     name: "max_volume_overlap",
     unit: "volumes",
@@ -355,25 +355,25 @@ pub const MAX_VOLUME_OVERLAP: Counter = Counter {
 };
 
 // Bounds (lesson 08).
-/// `lights_around_camera`.
+/// `lights_around_camera`, in lights: lights whose range sphere holds the camera.
 pub const LIGHTS_AROUND_CAMERA: Counter = Counter {
     name: "lights_around_camera",
     unit: "lights",
     legend: "lights whose range sphere holds the camera",
 };
-/// `lights_crossing_near_plane`.
+/// `lights_crossing_near_plane`, in lights: lights whose range sphere crosses the near plane without holding the camera.
 pub const LIGHTS_CROSSING_NEAR_PLANE: Counter = Counter {
     name: "lights_crossing_near_plane",
     unit: "lights",
     legend: "lights whose range sphere crosses the near plane without holding the camera",
 };
-/// `lights_culled`.
+/// `lights_culled`, in lights: lights whose range sphere is off screen, so nothing of theirs is drawn.
 pub const LIGHTS_CULLED: Counter = Counter {
     name: "lights_culled",
     unit: "lights",
     legend: "lights whose range sphere is off screen, so nothing of theirs is drawn",
 };
-/// `scissor_pixels`.
+/// `scissor_pixels`, in pixels: pixels inside the lights' scissor rectangles, summed over the lights (the whole screen per light without a scissor).
 pub const SCISSOR_PIXELS: Counter = Counter {
     name: "scissor_pixels",
     unit: "pixels",
@@ -381,31 +381,31 @@ pub const SCISSOR_PIXELS: Counter = Counter {
 };
 
 // What the frame rasterises.
-/// `volume_fragments`.
+/// `volume_fragments`, in fragments: shadow-volume fragments rasterised (an exact, untimed tally of the volume pass).
 pub const VOLUME_FRAGMENTS: Counter = Counter {
     name: "volume_fragments",
     unit: "fragments",
     legend: "shadow-volume fragments rasterised (an exact, untimed tally of the volume pass)",
 };
-/// `stencil_fragments`.
+/// `stencil_fragments`, in fragments: of the volume fragments, those that pass the depth-bounds mark and reach the stencil.
 pub const STENCIL_FRAGMENTS: Counter = Counter {
     name: "stencil_fragments",
     unit: "fragments",
     legend: "of the volume fragments, those that pass the depth-bounds mark and reach the stencil",
 };
-/// `stencil_updates`.
+/// `stencil_updates`, in fragments: of those, the fragments that change the stencil (z-pass: in front of the surface; z-fail: behind it).
 pub const STENCIL_UPDATES: Counter = Counter {
     name: "stencil_updates",
     unit: "fragments",
     legend: "of those, the fragments that change the stencil (z-pass: in front of the surface; z-fail: behind it)",
 };
-/// `fragment_shader_invocations`.
+/// `fragment_shader_invocations`, in invocations: the adapter's pipeline statistic for a copy of the volume pass (llvmpipe counts 16 per 4×4 block it shades, so it is not a fragment count there).
 pub const FRAGMENT_SHADER_INVOCATIONS: Counter = Counter {
     name: "fragment_shader_invocations",
     unit: "invocations",
     legend: "the adapter's pipeline statistic for a copy of the volume pass (llvmpipe counts 16 per 4×4 block it shades, so it is not a fragment count there)",
 };
-/// `draws`.
+/// `draws`, in draw calls: draw calls in the frame, every pass.
 pub const DRAWS: Counter = Counter {
     name: "draws",
     unit: "draw calls",
@@ -413,20 +413,20 @@ pub const DRAWS: Counter = Counter {
 };
 
 // Precision (lesson 07).
-/// `depth_gap_ppb_at_half_far`.
+/// `depth_gap_ppb_at_half_far`, in parts per billion: the smallest relative depth gap Δd/d the depth buffer resolves at half the far distance, in parts per billion (10⁹: nothing resolved).
 pub const DEPTH_GAP_PPB_AT_HALF_FAR: Counter = Counter {
     name: "depth_gap_ppb_at_half_far",
     unit: "parts per billion",
     legend: "the smallest relative depth gap Δd/d the depth buffer resolves at half the far distance, in parts per billion (10⁹: nothing resolved)",
 };
-/// `depth_gap_ppb_at_sqrt_near_far`.
+/// `depth_gap_ppb_at_sqrt_near_far`, in parts per billion: the same at √(near · far), in parts per billion.
 pub const DEPTH_GAP_PPB_AT_SQRT_NEAR_FAR: Counter = Counter {
     name: "depth_gap_ppb_at_sqrt_near_far",
     unit: "parts per billion",
     legend: "the same at √(near · far), in parts per billion",
 };
 
-/// `vertices_before_near`: lesson 07's second exercise.
+/// `vertices_before_near`, in vertices: scene vertices the adapted near plane clips that the scene file's near plane keeps (lesson 07's exercise).
 pub const VERTICES_BEFORE_NEAR: Counter = Counter {
     name: "vertices_before_near",
     unit: "vertices",

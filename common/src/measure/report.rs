@@ -50,7 +50,7 @@ pub struct VariantReport {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera_path: Option<CameraPathReport>,
     /// The error per pixel class, when the lesson has classes
-    /// ([`crate::run::lesson::Lesson::pixel_classes`]; absent otherwise).
+    /// ([`crate::run::instruments::Instruments::pixel_classes`]; absent otherwise).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub classes: Option<Vec<ClassError>>,
     /// How the variant's timed block went ([`crate::measure::protocol`]);

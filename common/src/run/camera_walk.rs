@@ -98,7 +98,7 @@ impl PathWalk<'_> {
 
     /// The probe after frame `i`: frame `i`'s view (its matrices stay in
     /// the scene's uniforms), the lesson fitting to `next` (the scene's
-    /// camera, which the lessons with `CAMERA_PATH` re-read every frame).
+    /// camera, which the lessons with `Capabilities::camera_path` re-read every frame).
     fn probe<L: Instruments>(
         &mut self,
         next: &crate::scene::Camera,

@@ -33,7 +33,7 @@ pub trait Instruments: Lesson {
         Counts::new()
     }
 
-    /// Forgets what `variant` counted once (lessons 01–08), so that its
+    /// Forgets what `variant` counted once (lessons 01–09), so that its
     /// next frames count again: the runner's `--fragile` frames, drawn with
     /// the camera moved.
     fn count_again(&mut self, _variant: Self::Variant) {}
@@ -60,7 +60,7 @@ pub trait Instruments: Lesson {
     }
 
     /// The lesson's own buffer for the window's "buffer" view (lessons
-    /// 01–03: the shadow map; 04: the cube map's cross; 05–08: the stencil
+    /// 01–03 and 10: the shadow map; 04: the cube map's cross; 05–08: the stencil
     /// count; 09: the cascade each pixel samples), as the last
     /// [`Lesson::render`] of `variant` left it, or `None`.
     fn buffer_view(

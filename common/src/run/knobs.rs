@@ -1,7 +1,7 @@
 //! A technique's knobs: the parameters its chapter discusses (a bias in
 //! texels, a kernel's size, a cascade count), on top of its named variants.
 //! The window shows them as widgets; `--knob NAME=VALUE` sets them headless.
-//! Both go through [`crate::run::lesson::apply_knob`], so a test that sets
+//! Both go through [`crate::run::instruments::apply_knob`], so a test that sets
 //! a knob headless exercises the code a widget calls.
 
 /// What values a knob takes.

@@ -1,7 +1,9 @@
-//! The [`Lesson`] trait: what a lesson provides. The runners (headless in
-//! [`crate::run::headless`], interactive in [`crate::run::window`]) do the rest, and
-//! both call the same [`Lesson::render`], which draws into any
-//! [`FrameTargets`].
+//! The [`Lesson`] trait: a lesson's technique (its variants, its
+//! resources, the passes of one frame) and its [`Capabilities`]; what it
+//! measures besides is its [`Instruments`](crate::run::instruments::Instruments).
+//! The runners (headless in [`crate::run::headless`], interactive in
+//! [`crate::run::window`]) do the rest, and both call the same
+//! [`Lesson::render`], which draws into any [`FrameTargets`].
 
 use anyhow::Result;
 use clap::ValueEnum;
@@ -37,7 +39,11 @@ pub trait Lesson: Sized + 'static {
     /// Creates the lesson's pipelines and resources.
     fn new(gpu: &Gpu, scene: &SceneGpu) -> Result<Self>;
 
-    /// Records one frame of `variant` into `targets`, one named pass at a time.
+    /// Records one frame of `variant` into `targets`, one named pass at a
+    /// time. Wherever it builds a light's matrix it applies
+    /// `scene.light_jitter` (the runner's `--fragile` sub-texel move of the
+    /// maps: identity otherwise), and it reads the scene's camera each
+    /// frame where [`Capabilities::camera_path`] says so.
     fn render(
         &mut self,
         frame: &mut Frame,

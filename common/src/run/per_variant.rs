@@ -1,5 +1,8 @@
 //! [`PerVariant`]: one value per variant of a lesson, indexed by the
-//! variant itself (`self.maps[variant]`), never by `variant as usize`.
+//! variant itself (`self.maps[variant]`): a lesson's state per variant in
+//! one typed place, instead of parallel `Vec`s indexed by `variant as
+//! usize`, which only held while the enum's discriminants happened to
+//! follow the order its values were made in.
 
 use std::ops::{Index, IndexMut};
 
@@ -47,9 +50,12 @@ impl<V: ValueEnum + Copy + PartialEq, T> PerVariant<V, T> {
         self.values.iter_mut()
     }
 
+    /// The variant's place in `V::value_variants()` (the order the values
+    /// were made in, which need not be the enum's discriminants).
     fn slot(variant: V) -> usize {
         let all = V::value_variants();
-        all.iter().position(|&v| v == variant).unwrap_or(all.len())
+        let at = all.iter().position(|&v| v == variant);
+        at.expect("a variant that value_variants() does not list (#[value(skip)]?)")
     }
 }
 

@@ -69,9 +69,11 @@ impl<L: Instruments> App<L> {
         Some((Instant::now() + ANSWER_POLL).min(last + STILL_FRAME_EVERY))
     }
 
-    /// One frame, in six steps: the variant's frame, timed; the live
-    /// reference fed and read; the buffer view; the overlay; the picture
-    /// on screen; then what the overlay asked for.
+    /// One frame, in six numbered steps (the variant's frame, timed; the
+    /// live reference fed and read; the buffer view; the overlay; the
+    /// picture on screen; what the overlay asked for), with the orbit
+    /// turned before them, and the `--window-log` line written and the
+    /// run's end checked around the last.
     pub(super) fn redraw(&mut self, el: &ActiveEventLoop) -> Result<()> {
         if self.running.is_none() {
             return Ok(());
