@@ -174,7 +174,7 @@ pub const BEVY_PCSS_OR_PCF: PortCard = PortCard {
         Constant { name: "SPIRAL_OFFSET_0_..7_", value: Value::List(BEVY_SPIRAL_OFFSETS), unit: "filter radii", source: 2, lines: "88-95" },
         Constant { name: "random_rotation_matrix", value: Value::Text("2 PI * interleaved_gradient_noise(frag_coord, 1) when not temporal; mat2x2(m.y, -m.x, m.x, m.y), m = (sin, cos)"), unit: "", source: 0, lines: "156-164" },
         Constant { name: "interleaved_gradient_noise", value: Value::Text("fract(52.9829189 * fract(0.06711056 * x + 0.00583715 * y)), xy + 5.588238 * (frame % 64)"), unit: "", source: 2, lines: "72-75" },
-        Constant { name: "PCSS taps", value: Value::Num(8.0), unit: TAPS_UNIT, source: 0, lines: "177-209, 221-254" }, // not a counter: a unit
+        Constant { name: "PCSS taps", value: Value::Num(8.0), unit: TAPS_UNIT, source: 0, lines: "177-209, 221-254" },
         Constant { name: "soft_shadow_size (directional)", value: Value::Text("None by default: no PCSS on a sun"), unit: "", source: 5, lines: "116, 158" },
     ],
     departures: &[

@@ -174,8 +174,8 @@ pub const FILAMENT_PCSS: PortCard = PortCard {
     constants: &[
         Constant { name: "ShadowType", value: Value::Text("PCSS, an option (PCF is the default)"), unit: "", source: 3, lines: "545-549" },
         Constant { name: "poissonDisk[0..16]", value: Value::List(FILAMENT_POISSON_16), unit: "disk radii", source: 0, lines: "92-96" },
-        Constant { name: "PCSS_SHADOW_BLOCKER_SEARCH_TAP_COUNT", value: Value::Num(16.0), unit: TAPS_UNIT, source: 0, lines: "114" }, // not a counter: a unit
-        Constant { name: "PCSS_SHADOW_FILTER_TAP_COUNT", value: Value::Num(16.0), unit: TAPS_UNIT, source: 0, lines: "116" }, // not a counter: a unit
+        Constant { name: "PCSS_SHADOW_BLOCKER_SEARCH_TAP_COUNT", value: Value::Num(16.0), unit: TAPS_UNIT, source: 0, lines: "114" },
+        Constant { name: "PCSS_SHADOW_FILTER_TAP_COUNT", value: Value::Num(16.0), unit: TAPS_UNIT, source: 0, lines: "116" },
         Constant { name: "getRandomRotationMatrix", value: Value::Text("interleavedGradientNoise(fragCoord) * (2.0 * PI), temporalNoise 0 without TAA"), unit: "radians", source: 0, lines: "139-146" },
         Constant { name: "getPenumbraLs", value: Value::Text("bulbRadiusLs, / zLight for a spot"), unit: "texels", source: 0, lines: "148-158" },
         Constant { name: "penumbraRatio (directional)", value: Value::Text("(z_blocker - z_receiver) / (1.0 - z_blocker)"), unit: "reversed depth", source: 0, lines: "171" },

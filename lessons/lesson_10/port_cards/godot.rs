@@ -78,7 +78,7 @@ pub const GODOT_PCF: PortCard = PortCard {
         Constant { name: "PARAM_SIZE (light_size)", value: Value::Num(0.0), unit: "m", source: 3, lines: "472" },
         Constant { name: "hard shadow (size 0)", value: Value::Text("sample_pcf_shadow(shadow_atlas, soft_shadow_scale * shadow_atlas_pixel_size, shadow_uv, taa_frame_count)"), unit: "", source: 0, lines: "791-793" },
         Constant { name: "sample_pcf_shadow", value: Value::Text("sc_soft_shadow_samples() bilinear comparisons at pos + shadow_pixel_size * (disk_rotation * soft_shadow_kernel[i].xy), averaged"), unit: "", source: 0, lines: "267-291" },
-        Constant { name: "SOFT_LOW soft_shadow_samples", value: Value::Num(4.0), unit: TAPS_UNIT, source: 2, lines: "3061-3065, 3108-3112" }, // not a counter: a unit
+        Constant { name: "SOFT_LOW soft_shadow_samples", value: Value::Num(4.0), unit: TAPS_UNIT, source: 2, lines: "3061-3065, 3108-3112" },
         Constant { name: "SOFT_LOW shadows_quality_radius", value: Value::Num(2.0), unit: "texels", source: 2, lines: "3061-3065, 3108-3112" },
         Constant { name: "soft_shadow_scale (size 0)", value: Value::Text("shadow_blur (1.0) * shadows_quality_radius"), unit: "", source: 1, lines: "973, 1007-1010" },
         GODOT_COMMON[0],

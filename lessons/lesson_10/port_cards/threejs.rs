@@ -104,7 +104,7 @@ pub const THREEJS_PCF: PortCard = PortCard {
         Constant { name: "shadowMap.type", value: Value::Text("PCFShadowMap, the default"), unit: "", source: 1, lines: "89" },
         Constant { name: "shadowSide", value: Value::Text("{ FrontSide: BackSide, BackSide: FrontSide, DoubleSide: DoubleSide }: a front-sided material's back faces"), unit: "", source: 1, lines: "51, 476" },
         Constant { name: "PCF depth texture", value: Value::Text("compareFunction LessEqualCompare, LinearFilter: bilinear comparisons"), unit: "", source: 1, lines: "260-264" },
-        Constant { name: "PCF taps", value: Value::Num(5.0), unit: TAPS_UNIT, source: 0, lines: "137-143" }, // not a counter: a unit
+        Constant { name: "PCF taps", value: Value::Num(5.0), unit: TAPS_UNIT, source: 0, lines: "137-143" },
         Constant { name: "vogelDiskSample", value: Value::Text("r = sqrt((i + 0.5) / n), theta = i * 2.399963229728653 + phi"), unit: "", source: 0, lines: "104-111" },
         Constant { name: "phi", value: Value::Text("interleavedGradientNoise(gl_FragCoord.xy) * 6.28318530718"), unit: "radians", source: 0, lines: "97-101, 135" },
         Constant { name: "radius", value: Value::Text("shadowRadius * texelSize.x, shadowRadius 1 (LightShadow.radius)"), unit: "texels", source: 0, lines: "132; LightShadow.js 77" },
@@ -129,7 +129,7 @@ pub const THREEJS_PCF_SOFT: PortCard = PortCard {
     constants: &[
         Constant { name: "PCFSoftShadowMap deprecated", value: Value::Text("'PCFSoftShadowMap has been deprecated. Using PCFShadowMap instead.', tested on lights.type, the array of lights"), unit: "", source: 1, lines: "99-104" },
         Constant { name: "shadowMapTypeDefines", value: Value::Text("PCF and VSM only; any other type compiles SHADOWMAP_TYPE_BASIC"), unit: "", source: 6, lines: "345-352" },
-        Constant { name: "PCF_SOFT taps", value: Value::Num(16.0), unit: TAPS_UNIT, source: 5, lines: "172-206" }, // not a counter: a unit
+        Constant { name: "PCF_SOFT taps", value: Value::Num(16.0), unit: TAPS_UNIT, source: 5, lines: "172-206" },
         Constant { name: "PCF_SOFT weights", value: Value::Text("the outer row and column mixed by f = fract(uv * size + 0.5), sum / 9"), unit: "", source: 5, lines: "179-206" },
         Constant { name: "texture2DCompare", value: Value::Text("step(compare, depth): one nearest texel"), unit: "", source: 5, lines: "76-90" },
         Constant { name: "shadowSide", value: Value::Text("{ FrontSide: BackSide, BackSide: FrontSide, DoubleSide: DoubleSide }: a front-sided material's back faces"), unit: "", source: 1, lines: "51, 476" },
